@@ -1,0 +1,70 @@
+//! Deterministic finite MDPs and grid worlds, with a priced sensing model and an oracle.
+//!
+//! This crate is the environment side of cost-sensitive reinforcement learning (Tan,
+//! AAAI-91, section "Experiments in a Navigation Domain"). It knows nothing of learning:
+//!
+//! * [`Mdp`]: a deterministic MDP over dense [`StateId`]s and [`ActionId`]s whose
+//!   [`Step`] keeps `terminated` (the goal: do not bootstrap) and `truncated` (a move cap:
+//!   bootstrap) apart. [`TabularMdp`] is an explicit one; rewards must be non-negative for
+//!   the paper's theorems, or shifted on request ([`NegativeRewards`]).
+//! * [`Map`]: a validated grid read from a TOML file ([`Map::load`]), compiled in
+//!   ([`builtin`]: `tan3x3`, `tan8x8`, `dyna9x6`, `open8x8`, `corridors9x5`) or drawn at
+//!   random ([`RandomMap`]). [`GridWorld`] turns a map into an MDP with four moves
+//!   ([`Action`]): a blocked move stays, entering the goal pays 1 and ends the trial.
+//! * [`FeatureSpace`]: the sensing model. A feature is the condition ([`Cell`]) of the
+//!   cell at a Cartesian [`Offset`] from the robot (`dx` right, `dy` up); cells beyond the
+//!   boundary read as obstacles. Costs come from a pluggable [`CostModel`] ([`Manhattan`]
+//!   by default) and features are numbered in one fixed order: ascending cost, then
+//!   clockwise from straight up.
+//! * [`Oracle`]: distances to the goal, `V*` and the optimal actions, for measuring and
+//!   testing; a learner never sees it.
+//! * [`render_text`] and [`render_svg`]: pictures of a map with an [`Overlay`].
+//!
+//! # Example
+//!
+//! ```
+//! use mdp::{Action, FeatureSpace, GridWorld, Manhattan, Mdp, Oracle, Pos};
+//!
+//! let map = mdp::builtin("tan8x8").unwrap();
+//! let world = GridWorld::new(&map);
+//! let oracle = Oracle::for_grid(&world, 0.9).unwrap();
+//! let space = FeatureSpace::new(&map, &Manhattan).unwrap();
+//!
+//! let s = world.state_at(Pos::new(7, 0)).unwrap();
+//! let best = oracle.optimal_actions(s);
+//! let step = world.step(s, best[0]);
+//! assert_eq!(oracle.distance(step.next), Some(oracle.distance(s).unwrap() - 1));
+//! // The cheapest feature senses the cell above the robot.
+//! assert_eq!(space.cost(mdp::Feature(0)), 1.0);
+//! println!("{}", mdp::render_text(&map, &mdp::Overlay::default()));
+//! ```
+//!
+//! # Choices where the paper is silent
+//!
+//! * `tan8x8` is a reconstruction: the paper's Figure 4a is not in its text. It keeps the
+//!   figures the paper gives (8 by 8, 13 obstacles, 50 states) and is maze-like.
+//! * `tan3x3` puts the goal in the top-right corner.
+//! * Maps are limited to [`MAX_SIDE`] cells a side and files to [`MAX_FILE_BYTES`].
+//! * A move from a terminal state stays there with reward 0 (trials end before it).
+
+#![deny(missing_docs)]
+
+mod error;
+mod grid;
+mod map;
+mod oracle;
+mod process;
+mod random;
+mod render;
+mod sensing;
+mod tabular;
+
+pub use error::{MapError, MdpError, Position};
+pub use grid::{Action, Blocked, GridOptions, GridWorld};
+pub use map::{Cell, MAX_FILE_BYTES, MAX_SIDE, Map, Pos, builtin, builtin_names, resolve};
+pub use oracle::Oracle;
+pub use process::{ActionId, Mdp, StateId, Step};
+pub use random::RandomMap;
+pub use render::{Overlay, render_svg, render_text};
+pub use sensing::{BadCost, CostModel, Feature, FeatureSpace, Manhattan, Offset};
+pub use tabular::{NegativeRewards, TabularMdp};
