@@ -139,7 +139,7 @@ impl Oracle {
                 continue;
             }
             for a in 0..na {
-                optimal[s * na + a] = q(&v, s, a) >= v[s] - TIE * v[s].abs().max(1.0);
+                optimal[s * na + a] = q(&v, s, a) >= v[s] - TIE * v[s].abs();
             }
         }
         Ok(Oracle {

@@ -57,7 +57,7 @@ impl Offset {
         half(self).cmp(&half(other)).then_with(|| {
             // Within a half, b is clockwise from a when the cross product a x b is negative.
             let cross = self.dx as i64 * other.dy as i64 - self.dy as i64 * other.dx as i64;
-            0.cmp(&cross)
+            cross.cmp(&0)
         })
     }
 }

@@ -1,0 +1,169 @@
+//! `csrl maps`, `csrl map show` and `csrl map check`.
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use clap::Subcommand;
+use mdp::{GridWorld, Map, Oracle, Pos};
+use serde::Serialize;
+
+/// The `map` subcommands.
+#[derive(Subcommand)]
+pub enum MapCommand {
+    /// Print a map (a built-in name or a file path) with its figures.
+    Show {
+        /// A built-in map name (see `csrl maps`) or a path to a map file.
+        map: String,
+        /// Print one JSON object instead of text.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Validate a map file: exit 0 if it is valid, otherwise print why and exit 1.
+    Check {
+        /// The map file.
+        file: PathBuf,
+    },
+}
+
+/// `csrl maps`.
+pub fn list() -> Result<()> {
+    for name in mdp::builtin_names() {
+        let map = mdp::builtin(name).expect("listed built-ins exist");
+        let first = map
+            .description()
+            .and_then(|d| d.split(". ").next())
+            .unwrap_or("")
+            .trim_end_matches('.');
+        println!(
+            "{name:<14} {:>2}x{:<2} {:>3} states  {first}",
+            map.width(),
+            map.height(),
+            map.states()
+        );
+    }
+    Ok(())
+}
+
+/// `csrl map ...`.
+pub fn run(cmd: &MapCommand) -> Result<()> {
+    match cmd {
+        MapCommand::Show { map, json } => {
+            let map = mdp::resolve(map)?;
+            if *json {
+                println!("{}", serde_json::to_string_pretty(&MapJson::new(&map))?);
+            } else {
+                show(&map);
+            }
+            Ok(())
+        }
+        MapCommand::Check { file } => {
+            let map = Map::load(file)?;
+            eprintln!(
+                "{}: valid map `{}`, {}x{}, {} states",
+                file.display(),
+                map.name(),
+                map.width(),
+                map.height(),
+                map.states()
+            );
+            Ok(())
+        }
+    }
+}
+
+fn show(map: &Map) {
+    let world = GridWorld::new(map);
+    let oracle = Oracle::for_grid(&world, 0.9).expect("0.9 is a valid discount");
+    println!("{}", map.name());
+    if let Some(d) = map.description() {
+        println!("{d}");
+    }
+    println!();
+    print!("{}", mdp::render_text(map, &mdp::Overlay::default()));
+    let distances: Vec<u32> = world
+        .states()
+        .iter()
+        .filter_map(|&s| oracle.distance(s))
+        .collect();
+    let longest = distances.iter().max().copied().unwrap_or(0);
+    let mean = distances.iter().sum::<u32>() as f64 / distances.len().max(1) as f64;
+    println!();
+    println!("size        {} x {}", map.width(), map.height());
+    println!("obstacles   {}", map.obstacles());
+    println!(
+        "states      {} (free cells other than the goal)",
+        map.states()
+    );
+    println!("goal        row {}, col {}", map.goal().row, map.goal().col);
+    println!("distance    mean {mean:.2}, longest {longest} moves to the goal");
+    println!();
+    println!("Moves to the goal:");
+    for r in 0..map.height() {
+        let line: Vec<String> = (0..map.width())
+            .map(|c| match world.state_at(Pos::new(r, c)) {
+                Some(s) => format!(
+                    "{:>3}",
+                    oracle.distance(s).expect("valid maps are connected")
+                ),
+                None => "  #".to_string(),
+            })
+            .collect();
+        println!("{}", line.join(""));
+    }
+}
+
+#[derive(Serialize)]
+struct RowCol {
+    row: usize,
+    col: usize,
+}
+
+#[derive(Serialize)]
+struct CellJson {
+    row: usize,
+    col: usize,
+    kind: &'static str,
+    distance: Option<u32>,
+}
+
+#[derive(Serialize)]
+struct MapJson {
+    name: String,
+    description: Option<String>,
+    width: usize,
+    height: usize,
+    states: usize,
+    obstacles: usize,
+    goal: RowCol,
+    layout: Vec<String>,
+    cells: Vec<CellJson>,
+}
+
+impl MapJson {
+    fn new(map: &Map) -> MapJson {
+        let world = GridWorld::new(map);
+        let oracle = Oracle::for_grid(&world, 0.9).expect("0.9 is a valid discount");
+        MapJson {
+            name: map.name().to_string(),
+            description: map.description().map(str::to_string),
+            width: map.width(),
+            height: map.height(),
+            states: map.states(),
+            obstacles: map.obstacles(),
+            goal: RowCol {
+                row: map.goal().row,
+                col: map.goal().col,
+            },
+            layout: map.layout().lines().map(str::to_string).collect(),
+            cells: map
+                .cells()
+                .map(|(p, c)| CellJson {
+                    row: p.row,
+                    col: p.col,
+                    kind: c.name(),
+                    distance: world.state_at(p).and_then(|s| oracle.distance(s)),
+                })
+                .collect(),
+        }
+    }
+}
