@@ -1,0 +1,170 @@
+//! The crate's one error type.
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong: an invalid cost, or a data or costs file that cannot be
+/// used. Variants about a file name it and, where there is one, the 1-based line.
+///
+/// ```
+/// let err = cslearn::Cost::new(-3.0).unwrap_err();
+/// assert!(matches!(err, cslearn::Error::InvalidCost { .. }));
+/// assert_eq!(err.to_string(), "invalid cost -3: costs must be finite and not negative");
+/// ```
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// A cost is negative, infinite or NaN.
+    #[error("invalid cost {value}: costs must be finite and not negative")]
+    InvalidCost {
+        /// The rejected number.
+        value: f64,
+    },
+    /// A file could not be opened or read.
+    #[error("{}: cannot read: {source}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The operating system's error.
+        source: std::io::Error,
+    },
+    /// A file is not UTF-8 text.
+    #[error("{}: line {line}: not UTF-8 text", path.display())]
+    NotUtf8 {
+        /// The file.
+        path: PathBuf,
+        /// The line with the first invalid byte.
+        line: u64,
+    },
+    /// A file has no header line.
+    #[error("{}: the file is empty", path.display())]
+    EmptyFile {
+        /// The file.
+        path: PathBuf,
+    },
+    /// A file has a header but no records.
+    #[error("{}: the file has a header but no records", path.display())]
+    NoRecords {
+        /// The file.
+        path: PathBuf,
+    },
+    /// A record has more or fewer fields than the header.
+    #[error("{}: line {line}: {found} fields, but the header has {expected}", path.display())]
+    RaggedRecord {
+        /// The file.
+        path: PathBuf,
+        /// The line of the record.
+        line: u64,
+        /// The number of fields in the header.
+        expected: u64,
+        /// The number of fields in the record.
+        found: u64,
+    },
+    /// The CSV reader failed for a reason other than the ones above.
+    #[error("{}: line {}: malformed CSV: {source}", path.display(), line.map_or_else(|| "?".to_string(), |l| l.to_string()))]
+    Malformed {
+        /// The file.
+        path: PathBuf,
+        /// The line, when the reader knows it.
+        line: Option<u64>,
+        /// The reader's error.
+        source: csv::Error,
+    },
+    /// Two columns of the header have the same name.
+    #[error("{}: column `{column}` appears twice in the header", path.display())]
+    DuplicateColumn {
+        /// The file.
+        path: PathBuf,
+        /// The repeated name.
+        column: String,
+    },
+    /// The target column is not in the data file.
+    #[error("{}: no target column `{target}` (columns: {})", path.display(), columns.join(", "))]
+    UnknownTarget {
+        /// The data file.
+        path: PathBuf,
+        /// The requested column.
+        target: String,
+        /// The columns the file has.
+        columns: Vec<String>,
+    },
+    /// The data file has no column besides the target.
+    #[error("{}: no feature columns besides the target", path.display())]
+    NoFeatures {
+        /// The data file.
+        path: PathBuf,
+    },
+    /// A record has no value in the target column.
+    #[error("{}: line {line}: the target column is empty", path.display())]
+    MissingTarget {
+        /// The data file.
+        path: PathBuf,
+        /// The line of the record.
+        line: u64,
+    },
+    /// `--positive-if` compares numbers but a target cell is not a number.
+    #[error("{}: line {line}: target value `{text}` is not a number, but the positive-if expression compares numbers", path.display())]
+    NonNumericTarget {
+        /// The data file.
+        path: PathBuf,
+        /// The line of the record.
+        line: u64,
+        /// The cell.
+        text: String,
+    },
+    /// The expression that splits the target into two classes cannot be parsed.
+    #[error("bad positive-if expression `{expr}`: {reason}")]
+    BadExpression {
+        /// The expression as given.
+        expr: String,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+    /// The costs file's header is not `feature,cost`.
+    #[error("{}: the header must be `feature,cost`, found `{}`", path.display(), found.join(","))]
+    CostsHeader {
+        /// The costs file.
+        path: PathBuf,
+        /// The header found.
+        found: Vec<String>,
+    },
+    /// A feature column of the data has no cost.
+    #[error("{}: no cost for column `{feature}`", path.display())]
+    MissingCost {
+        /// The costs file.
+        path: PathBuf,
+        /// The column without a cost.
+        feature: String,
+    },
+    /// The costs file prices a column the data file does not have.
+    #[error("{}: line {line}: cost for `{feature}`, which is not a column of the data", path.display())]
+    UnknownCostFeature {
+        /// The costs file.
+        path: PathBuf,
+        /// The line.
+        line: u64,
+        /// The unknown name.
+        feature: String,
+    },
+    /// The costs file prices a column twice.
+    #[error("{}: line {line}: a second cost for `{feature}`", path.display())]
+    DuplicateCost {
+        /// The costs file.
+        path: PathBuf,
+        /// The line of the repeat.
+        line: u64,
+        /// The column.
+        feature: String,
+    },
+    /// A cost in the costs file is not a finite, non-negative number.
+    #[error("{}: line {line}: the cost of `{feature}` is `{text}`, but costs must be finite, non-negative numbers", path.display())]
+    BadCost {
+        /// The costs file.
+        path: PathBuf,
+        /// The line.
+        line: u64,
+        /// The column priced.
+        feature: String,
+        /// The cell as written.
+        text: String,
+    },
+}

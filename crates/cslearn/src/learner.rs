@@ -1,0 +1,407 @@
+//! The incremental learner: the paper's Figure 2 cycle over the five functions.
+
+use rand::Rng;
+use serde::Serialize;
+
+use crate::attend::{Attend, Attention, ObservationAttending, RankedAttending};
+use crate::discriminate::{CheapestFirst, Discriminate, RandomOrder};
+use crate::example::Library;
+use crate::predict::{Decision, Nearest, Predict, Unanimous};
+use crate::select::{InfoCost, MissingRule, Select};
+use crate::sensing::{Ledger, Probe, Sensor};
+use crate::types::{ClassId, Cost, FeatureCosts, FeatureId};
+use crate::update::{AppendAll, Update};
+
+/// The result of classifying one object: the class (none if nothing could be predicted)
+/// and the cost charged for it.
+///
+/// ```
+/// let c = cslearn::Classified { class: None, cost: cslearn::Cost::ZERO };
+/// assert!(c.class.is_none());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Classified {
+    /// The predicted class.
+    pub class: Option<ClassId>,
+    /// What the measurements cost.
+    pub cost: Cost,
+}
+
+/// The result of learning one object.
+///
+/// ```
+/// use cslearn::{ClassId, Cost, Outcome};
+/// let o = Outcome { predicted: Some(ClassId(1)), class: ClassId(1), cost: Cost::ONE, measured: 1 };
+/// assert!(o.correct());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Outcome {
+    /// The class predicted before the true class was given (none for an empty library).
+    pub predicted: Option<ClassId>,
+    /// The true class.
+    pub class: ClassId,
+    /// Everything charged for this object, discrimination included.
+    pub cost: Cost,
+    /// The number of features measured on it.
+    pub measured: usize,
+}
+
+impl Outcome {
+    /// Whether the prediction was right.
+    ///
+    /// ```
+    /// use cslearn::{ClassId, Cost, Outcome};
+    /// let o = Outcome { predicted: None, class: ClassId(0), cost: Cost::ZERO, measured: 0 };
+    /// assert!(!o.correct());
+    /// ```
+    pub fn correct(&self) -> bool {
+        self.predicted == Some(self.class)
+    }
+}
+
+/// What streaming a sequence of objects through a learner gave.
+///
+/// ```
+/// let r = cslearn::StreamReport::default();
+/// assert_eq!(r.objects, 0);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct StreamReport {
+    /// Objects seen.
+    pub objects: usize,
+    /// Wrong predictions (an object for which nothing could be predicted counts as one).
+    pub errors: usize,
+    /// The share of right predictions (0 for no objects).
+    pub accuracy: f64,
+    /// Everything charged.
+    pub total_cost: f64,
+    /// `total_cost` per object (0 for no objects).
+    pub mean_cost: f64,
+    /// The cost of measuring every feature of one object.
+    pub full_cost: f64,
+}
+
+/// An incremental cost-sensitive learner: the five functions of the paper's Figure 2,
+/// run for each new object.
+///
+/// [`learn`](Learner::learn) runs the whole cycle: attend, select, measure (charged) until
+/// the prediction function settles; compare with the true class; on an error,
+/// discriminate; update the library. [`classify`](Learner::classify) runs only the first
+/// part. [`cs_id3`], [`cs_ibl`] and [`id3`] build the paper's instantiations.
+///
+/// The learner owns the price list (charging every measurement), the library, and
+/// buffers reused from object to object, so classifying allocates nothing per
+/// measurement once warm.
+///
+/// ```
+/// use cslearn::{ClassId, FeatureCosts, Value};
+/// let costs = FeatureCosts::from_f64(&[1.0, 50.0]).unwrap();
+/// let mut learner = cslearn::cs_id3(costs);
+/// // The class is feature 0; feature 1 is expensive noise.
+/// let objects = [[Some(Value(0)), Some(Value(5))], [Some(Value(1)), Some(Value(6))]];
+/// for round in 0..3 {
+///     for (i, object) in objects.iter().enumerate() {
+///         let outcome = learner.learn(&object[..], ClassId(i as u32));
+///         if round > 0 {
+///             assert!(outcome.correct());
+///             assert_eq!(outcome.cost.get(), 1.0); // only the cheap feature
+///         }
+///     }
+/// }
+/// ```
+#[derive(Clone, Debug)]
+pub struct Learner<A, S, P, D, U> {
+    costs: FeatureCosts,
+    library: Library,
+    attend: A,
+    select: S,
+    predict: P,
+    discriminate: D,
+    update: U,
+    attention: Attention,
+    conflicting: Attention,
+    ledger: Ledger,
+}
+
+/// CS-ID3 (SPEC 2): observation attending, I^2/C selection with the own-branch rule,
+/// unanimous prediction, cheapest-first discrimination, every example kept.
+pub type CsId3 = Learner<ObservationAttending, InfoCost, Unanimous, CheapestFirst, AppendAll>;
+
+/// CS-IBL: ranked attending with a mismatch tolerance, I^2/C selection over the attended
+/// instances, nearest-instance prediction, cheapest-first discrimination.
+pub type CsIbl = Learner<RankedAttending, InfoCost, Nearest, CheapestFirst, AppendAll>;
+
+/// Cost-blind ID3, the baseline (SPEC 2): CS-ID3 with every cost taken as equal in
+/// selection and discrimination in a seeded random order. Real costs are still charged.
+pub type Id3<R> = Learner<ObservationAttending, InfoCost, Unanimous, RandomOrder<R>, AppendAll>;
+
+/// CS-ID3 over the features priced by `costs`.
+///
+/// ```
+/// let learner = cslearn::cs_id3(cslearn::FeatureCosts::from_f64(&[1.0]).unwrap());
+/// assert!(learner.library().is_empty());
+/// ```
+pub fn cs_id3(costs: FeatureCosts) -> CsId3 {
+    Learner::new(
+        costs,
+        ObservationAttending,
+        InfoCost::new(MissingRule::OwnBranch),
+        Unanimous::default(),
+        CheapestFirst,
+        AppendAll,
+    )
+}
+
+/// CS-IBL over the features priced by `costs`, tolerating up to `tolerance` wrong values
+/// on an object. With `tolerance` 0 it attends as CS-ID3 does.
+///
+/// ```
+/// let learner = cslearn::cs_ibl(cslearn::FeatureCosts::from_f64(&[1.0]).unwrap(), 1);
+/// assert!(learner.library().is_empty());
+/// ```
+pub fn cs_ibl(costs: FeatureCosts, tolerance: u32) -> CsIbl {
+    Learner::new(
+        costs,
+        RankedAttending { tolerance },
+        InfoCost::new(MissingRule::OwnBranch),
+        Nearest::default(),
+        CheapestFirst,
+        AppendAll,
+    )
+}
+
+/// Cost-blind ID3 over the features priced by `costs`, drawing its discrimination orders
+/// from `rng`.
+///
+/// ```
+/// use rand::SeedableRng;
+/// let rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
+/// let learner = cslearn::id3(cslearn::FeatureCosts::from_f64(&[1.0]).unwrap(), rng);
+/// assert!(learner.library().is_empty());
+/// ```
+pub fn id3<R: Rng>(costs: FeatureCosts, rng: R) -> Id3<R> {
+    Learner::new(
+        costs,
+        ObservationAttending,
+        InfoCost::new(MissingRule::OwnBranch).cost_blind(),
+        Unanimous::default(),
+        RandomOrder::new(rng),
+        AppendAll,
+    )
+}
+
+impl<A, S, P, D, U> Learner<A, S, P, D, U>
+where
+    A: Attend,
+    S: Select,
+    P: Predict,
+    D: Discriminate,
+    U: Update,
+{
+    /// A learner with an empty library from the price list and the five functions.
+    ///
+    /// ```
+    /// use cslearn::*;
+    /// let learner = Learner::new(
+    ///     FeatureCosts::from_f64(&[1.0, 2.0]).unwrap(),
+    ///     RuleAttending,
+    ///     InfoCost::new(MissingRule::C45),
+    ///     Unanimous::default(),
+    ///     CheapestFirst,
+    ///     AppendErrors,
+    /// );
+    /// assert_eq!(learner.costs().len(), 2);
+    /// ```
+    pub fn new(
+        costs: FeatureCosts,
+        attend: A,
+        select: S,
+        predict: P,
+        discriminate: D,
+        update: U,
+    ) -> Self {
+        Learner {
+            costs,
+            library: Library::new(),
+            attend,
+            select,
+            predict,
+            discriminate,
+            update,
+            attention: Attention::new(),
+            conflicting: Attention::new(),
+            ledger: Ledger::default(),
+        }
+    }
+
+    /// Predict the class of the object behind `sensor`, measuring (and charging) what the
+    /// five functions ask for; the library is not changed. The measurements stay in
+    /// [`ledger`](Learner::ledger) until the next object.
+    ///
+    /// ```
+    /// use cslearn::{ClassId, FeatureCosts, Value};
+    /// let mut learner = cslearn::cs_id3(FeatureCosts::from_f64(&[1.0]).unwrap());
+    /// assert_eq!(learner.classify(&[Some(Value(0))][..]).class, None); // nothing learned yet
+    /// learner.learn(&[Some(Value(0))][..], ClassId(4));
+    /// assert_eq!(learner.classify(&[Some(Value(0))][..]).class, Some(ClassId(4)));
+    /// ```
+    pub fn classify<T: Sensor>(&mut self, sensor: T) -> Classified {
+        let class = self.run(sensor, None);
+        Classified {
+            class,
+            cost: self.ledger.cost(),
+        }
+    }
+
+    /// Learn from one object whose true class is `class`: predict it (charged), then
+    /// discriminate if the prediction was wrong, then update the library.
+    ///
+    /// ```
+    /// use cslearn::{ClassId, FeatureCosts, FeatureId, Value};
+    /// let mut learner = cslearn::cs_id3(FeatureCosts::from_f64(&[1.0, 2.0]).unwrap());
+    /// let first = learner.learn(&[Some(Value(0)), Some(Value(0))][..], ClassId(0));
+    /// assert_eq!(first.predicted, None);
+    /// let second = learner.learn(&[Some(Value(1)), Some(Value(0))][..], ClassId(1));
+    /// assert_eq!(second.predicted, Some(ClassId(0)));
+    /// // Discrimination measured the cheapest feature, which tells the two apart.
+    /// assert_eq!(learner.library()[1].pairs(), &[(FeatureId(0), Value(1))]);
+    /// ```
+    pub fn learn<T: Sensor>(&mut self, sensor: T, class: ClassId) -> Outcome {
+        let predicted = self.run(sensor, Some(class));
+        Outcome {
+            predicted,
+            class,
+            cost: self.ledger.cost(),
+            measured: self.ledger.measured().len(),
+        }
+    }
+
+    /// Learn from each (object, true class) in turn and report the errors and costs.
+    ///
+    /// ```
+    /// use cslearn::{ClassId, FeatureCosts, Value};
+    /// let mut learner = cslearn::cs_id3(FeatureCosts::from_f64(&[1.0]).unwrap());
+    /// let rows = [[Some(Value(0))], [Some(Value(0))]];
+    /// let report = learner.stream(rows.iter().map(|r| (&r[..], ClassId(0))));
+    /// assert_eq!((report.objects, report.errors), (2, 1));
+    /// assert_eq!(report.full_cost, 1.0);
+    /// ```
+    pub fn stream<T: Sensor>(
+        &mut self,
+        objects: impl IntoIterator<Item = (T, ClassId)>,
+    ) -> StreamReport {
+        let mut report = StreamReport {
+            full_cost: self.costs.total().get(),
+            ..StreamReport::default()
+        };
+        let mut total = Cost::ZERO;
+        for (object, class) in objects {
+            let outcome = self.learn(object, class);
+            report.objects += 1;
+            report.errors += usize::from(!outcome.correct());
+            total += outcome.cost;
+        }
+        report.total_cost = total.get();
+        if report.objects > 0 {
+            let n = report.objects as f64;
+            report.accuracy = (report.objects - report.errors) as f64 / n;
+            report.mean_cost = report.total_cost / n;
+        }
+        report
+    }
+
+    /// The cycle for one object; `label` is `Some` when learning.
+    fn run<T: Sensor>(&mut self, sensor: T, label: Option<ClassId>) -> Option<ClassId> {
+        let Learner {
+            costs,
+            library,
+            attend,
+            select,
+            predict,
+            discriminate,
+            update,
+            attention,
+            conflicting,
+            ledger,
+        } = self;
+        ledger.clear();
+        let mut probe = Probe::new(sensor, &*costs, ledger);
+        // Figure 2, step 1: attend, select, measure, until a class can be predicted.
+        attend.start(library, attention);
+        let decision = loop {
+            match predict.predict(library, attention, false) {
+                Decision::Measure => {}
+                settled => break settled,
+            }
+            let next = select
+                .select(library, attention, probe.ledger(), costs)
+                // A selection that repeats itself would never end; treat it as exhausted.
+                .filter(|&f| !probe.ledger().is_measured(f));
+            let Some(feature) = next else {
+                break predict.predict(library, attention, true);
+            };
+            let value = probe.measure(feature);
+            attend.attend(library, feature, value, attention);
+        };
+        let predicted = match decision {
+            Decision::Predict(c) => Some(c),
+            Decision::Measure | Decision::Abstain => None,
+        };
+        let Some(label) = label else {
+            return predicted;
+        };
+        // Step 2: verify. Step 3: discriminate from the attended examples of other classes.
+        let correct = predicted == Some(label);
+        if !correct {
+            conflicting.copy_from(attention, |i| library[i].class() != label);
+            discriminate.discriminate(library, attend, conflicting, &mut probe);
+        }
+        // Step 4: update.
+        update.update(library, ledger.to_example(label), correct);
+        predicted
+    }
+
+    /// The example library.
+    ///
+    /// ```
+    /// let learner = cslearn::cs_id3(cslearn::FeatureCosts::new(Vec::new()));
+    /// assert!(learner.library().is_empty());
+    /// ```
+    pub fn library(&self) -> &Library {
+        &self.library
+    }
+
+    /// The price list charged.
+    ///
+    /// ```
+    /// let learner = cslearn::cs_id3(cslearn::FeatureCosts::from_f64(&[3.0]).unwrap());
+    /// assert_eq!(learner.costs().total().get(), 3.0);
+    /// ```
+    pub fn costs(&self) -> &FeatureCosts {
+        &self.costs
+    }
+
+    /// Add a new feature (no closed world): from now on it can be measured and charged.
+    ///
+    /// ```
+    /// let mut learner = cslearn::cs_id3(cslearn::FeatureCosts::new(Vec::new()));
+    /// let f = learner.add_feature(cslearn::Cost::ONE);
+    /// assert_eq!(f, cslearn::FeatureId(0));
+    /// ```
+    pub fn add_feature(&mut self, cost: Cost) -> FeatureId {
+        self.costs.push(cost)
+    }
+
+    /// What was measured on the last object, and what it cost.
+    ///
+    /// ```
+    /// use cslearn::{ClassId, FeatureCosts, Value};
+    /// let mut learner = cslearn::cs_id3(FeatureCosts::from_f64(&[2.0]).unwrap());
+    /// learner.learn(&[Some(Value(0))][..], ClassId(0));
+    /// learner.learn(&[Some(Value(1))][..], ClassId(1));
+    /// assert_eq!(learner.ledger().cost().get(), 2.0);
+    /// ```
+    pub fn ledger(&self) -> &Ledger {
+        &self.ledger
+    }
+}
