@@ -4,6 +4,7 @@
 //! non-zero exit (2 for usage errors, 1 for anything else); no input makes it panic.
 
 mod maps;
+mod run;
 
 use std::process::ExitCode;
 
@@ -25,6 +26,8 @@ enum Command {
     /// Show or check a map.
     #[command(subcommand)]
     Map(maps::MapCommand),
+    /// Run CS-QL once and report the measures of the paper's Table 1.
+    Run(run::RunArgs),
 }
 
 fn main() -> ExitCode {
@@ -32,6 +35,7 @@ fn main() -> ExitCode {
     let result = match &cli.command {
         Command::Maps => maps::list(),
         Command::Map(cmd) => maps::run(cmd),
+        Command::Run(args) => run::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,396 @@
+//! CLASSIFY (the paper's Figure 3), made from cslearn's parts, with a cache that never
+//! changes what is charged.
+//!
+//! # The procedure (SPEC 4)
+//!
+//! 1. The candidates are all descriptions; the new description is empty.
+//! 2. If one candidate remains and every feature it has is measured, return it. If none
+//!    remains, add the new description (the features measured in this call) and return it.
+//! 3. Otherwise select a feature by I^2/C over the candidates ([`cslearn::InfoCost`] with
+//!    the C4.5 missing-value rule: the gain of a feature is computed on the candidates that
+//!    have it and scaled by their share; with every gain zero the cheapest candidate
+//!    feature wins; ties go by the feature order), measure it on the state (charged),
+//!    record it in the new description, drop the candidates that require another value
+//!    ([`cslearn::RuleAttending`]: a description that lacks the feature stays), go to 2.
+//!
+//! # The cache
+//!
+//! Which feature step 3 picks depends only on the representation and on the values
+//! measured so far in the call, so the whole procedure is a decision tree over the
+//! current representation. [`Classify`] grows that tree lazily (a node is computed the
+//! first time a classification reaches it) and throws it away whenever the
+//! representation changes. A cached classification measures exactly the features, in
+//! the same order, that the plain procedure measures: the cache saves computation, never
+//! sensing. `tests/classify.rs` checks this feature for feature against
+//! [`Classify::classify_plain`].
+
+use cslearn::{Attend, Attention, Cost, FeatureId, InfoCost, MissingRule, RuleAttending};
+use mdp::{Cell, Feature, FeatureSpace, GridWorld, Oracle, StateId};
+use qlearn::{QTable, RowId};
+
+use crate::check::Verdict;
+use crate::learner::Perception;
+use crate::representation::{DescriptionId, Representation, feature_id, value_of};
+
+/// The result of one classification.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Classification {
+    /// The description returned.
+    pub description: DescriptionId,
+    /// Whether it was created by this call.
+    pub created: bool,
+    /// The features measured, in order, with the values read.
+    pub measured: Vec<(Feature, Cell)>,
+    /// Their summed cost.
+    pub cost: f64,
+}
+
+/// What step 2 or 3 decides at one point of the procedure.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Step {
+    /// Return this description.
+    Found(DescriptionId),
+    /// Add the new description and return it.
+    Create,
+    /// Measure this feature next.
+    Measure(Feature),
+}
+
+const UNEXPANDED: u32 = u32::MAX;
+
+/// A node of the cached decision tree.
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    step: Step,
+    /// For `Measure`: the child for each cell code.
+    children: [u32; 3],
+}
+
+/// The CLASSIFY perception of CS-QL: the representation, the selection part and the
+/// cache.
+///
+/// ```
+/// use csql::Classify;
+/// use mdp::{FeatureSpace, GridWorld, Manhattan};
+/// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+/// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+/// let mut c = Classify::new(&space);
+/// // The first call on an empty representation creates the empty description, for free.
+/// let first = c.classify_state(&world, world.states()[0]);
+/// assert!(first.created && first.cost == 0.0);
+/// // It matches every state.
+/// let again = c.classify_state(&world, world.states()[5]);
+/// assert_eq!((again.description, again.created), (first.description, false));
+/// ```
+#[derive(Clone, Debug)]
+pub struct Classify {
+    space: FeatureSpace,
+    costs: Vec<Cost>,
+    rep: Representation,
+    select: InfoCost,
+    attention: Attention,
+    measured: Vec<(Feature, Cell)>,
+    nodes: Vec<Node>,
+    cached_version: u64,
+    use_cache: bool,
+}
+
+impl Classify {
+    /// CLASSIFY over an empty representation, with the cache on.
+    ///
+    /// ```
+    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
+    /// assert!(csql::Classify::new(&space).representation().is_empty());
+    /// ```
+    pub fn new(space: &FeatureSpace) -> Classify {
+        Classify::with_representation(space, Representation::default())
+    }
+
+    /// CLASSIFY over a given representation (for learning on a fixed one).
+    ///
+    /// ```
+    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
+    /// let mut rep = csql::Representation::default();
+    /// rep.push(&[]);
+    /// assert_eq!(csql::Classify::with_representation(&space, rep).representation().len(), 1);
+    /// ```
+    pub fn with_representation(space: &FeatureSpace, rep: Representation) -> Classify {
+        let costs = space
+            .costs()
+            .iter()
+            .map(|&c| Cost::new(c).expect("feature spaces hold valid costs"))
+            .collect();
+        Classify {
+            space: space.clone(),
+            costs,
+            rep,
+            select: InfoCost::new(MissingRule::C45),
+            attention: Attention::new(),
+            measured: Vec::new(),
+            nodes: Vec::new(),
+            cached_version: u64::MAX,
+            use_cache: true,
+        }
+    }
+
+    /// Turn the cache off (every call runs the plain procedure) or on.
+    ///
+    /// ```
+    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
+    /// let c = csql::Classify::new(&space).with_cache(false);
+    /// ```
+    pub fn with_cache(mut self, on: bool) -> Classify {
+        self.use_cache = on;
+        self
+    }
+
+    /// The representation.
+    ///
+    /// ```
+    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
+    /// assert_eq!(csql::Classify::new(&space).representation().len(), 0);
+    /// ```
+    pub fn representation(&self) -> &Representation {
+        &self.rep
+    }
+
+    /// Give up the representation.
+    ///
+    /// ```
+    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
+    /// assert!(csql::Classify::new(&space).into_representation().is_empty());
+    /// ```
+    pub fn into_representation(self) -> Representation {
+        self.rep
+    }
+
+    /// The feature space.
+    ///
+    /// ```
+    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
+    /// assert_eq!(csql::Classify::new(&space).space().len(), 80);
+    /// ```
+    pub fn space(&self) -> &FeatureSpace {
+        &self.space
+    }
+
+    /// Classify a state, creating a description if none matches; every measurement is
+    /// charged. Uses the cache unless it is off.
+    ///
+    /// ```
+    /// use mdp::{FeatureSpace, GridWorld, Manhattan};
+    /// let world = GridWorld::new(&mdp::builtin("tan8x8").unwrap());
+    /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let mut c = csql::Classify::new(&space);
+    /// let s = world.states()[0];
+    /// assert_eq!(c.classify_state(&world, s).description.0, 0);
+    /// ```
+    pub fn classify_state(&mut self, world: &GridWorld, s: StateId) -> Classification {
+        if self.use_cache {
+            self.classify_cached(world, s)
+        } else {
+            self.classify_plain(world, s)
+        }
+    }
+
+    /// The plain procedure of Figure 3, step by step, with no cache: the reference the
+    /// cached path is tested against.
+    ///
+    /// ```
+    /// use mdp::{Cell, Feature, FeatureSpace, GridWorld, Manhattan, Pos};
+    /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let mut rep = csql::Representation::default();
+    /// rep.push(&[(Feature(0), Cell::Obstacle)]); // a wall above
+    /// let mut c = csql::Classify::with_representation(&space, rep);
+    /// let below = world.state_at(Pos::new(1, 0)).unwrap();
+    /// let out = c.classify_plain(&world, below);
+    /// // It measures "up", finds no wall, and creates a description for it.
+    /// assert_eq!(out.measured, vec![(Feature(0), Cell::Empty)]);
+    /// assert!(out.created && out.cost == 1.0);
+    /// ```
+    pub fn classify_plain(&mut self, world: &GridWorld, s: StateId) -> Classification {
+        self.measured.clear();
+        RuleAttending.start(self.rep.library(), &mut self.attention);
+        loop {
+            match self.decide() {
+                Step::Found(d) => return self.finish(d, false),
+                Step::Create => {
+                    let d = self.rep.push(&self.measured);
+                    return self.finish(d, true);
+                }
+                Step::Measure(f) => {
+                    let v = self.space.measure(world, s, f);
+                    self.measured.push((f, v));
+                    RuleAttending.attend(
+                        self.rep.library(),
+                        feature_id(f),
+                        Some(value_of(v)),
+                        &mut self.attention,
+                    );
+                }
+            }
+        }
+    }
+
+    /// Step 2 and 3 for the current attended candidates and measured features.
+    fn decide(&mut self) -> Step {
+        match *self.attention.attended() {
+            [] => Step::Create,
+            [only] => {
+                let d = &self.rep.library().examples()[only];
+                let all_measured = d
+                    .pairs()
+                    .iter()
+                    .all(|&(f, _)| self.measured.iter().any(|&(m, _)| feature_id(m) == f));
+                if all_measured {
+                    Step::Found(DescriptionId(only as u32))
+                } else {
+                    self.select_next()
+                }
+            }
+            _ => self.select_next(),
+        }
+    }
+
+    fn select_next(&mut self) -> Step {
+        let library = self.rep.library();
+        let measured = &self.measured;
+        let pick = self.select.select_from(
+            self.attention
+                .attended()
+                .iter()
+                .map(|&i| &library.examples()[i]),
+            |f: FeatureId| measured.iter().any(|&(m, _)| feature_id(m) == f),
+            &self.costs[..],
+        );
+        match pick {
+            Some(f) => Step::Measure(Feature(f.0)),
+            // Candidates that are all fully measured and matched would all match the
+            // state; descriptions are pairwise disjoint, so at most one can remain.
+            None => Step::Found(DescriptionId(self.attention.attended()[0] as u32)),
+        }
+    }
+
+    fn finish(&self, d: DescriptionId, created: bool) -> Classification {
+        Classification {
+            description: d,
+            created,
+            cost: self.measured.iter().map(|&(f, _)| self.space.cost(f)).sum(),
+            measured: self.measured.clone(),
+        }
+    }
+
+    /// The cached path: walk the decision tree of the procedure, computing a node the
+    /// first time it is reached.
+    fn classify_cached(&mut self, world: &GridWorld, s: StateId) -> Classification {
+        if self.cached_version != self.rep.version() {
+            self.nodes.clear();
+            self.cached_version = self.rep.version();
+        }
+        self.measured.clear();
+        if self.nodes.is_empty() {
+            let step = self.expand();
+            self.nodes.push(Node {
+                step,
+                children: [UNEXPANDED; 3],
+            });
+        }
+        let mut at = 0usize;
+        loop {
+            match self.nodes[at].step {
+                Step::Found(d) => return self.finish(d, false),
+                Step::Create => {
+                    let d = self.rep.push(&self.measured);
+                    let out = self.finish(d, true);
+                    // The representation changed: the cache is stale.
+                    self.nodes.clear();
+                    self.cached_version = self.rep.version();
+                    return out;
+                }
+                Step::Measure(f) => {
+                    let v = self.space.measure(world, s, f);
+                    self.measured.push((f, v));
+                    let child = self.nodes[at].children[v.code() as usize];
+                    at = if child == UNEXPANDED {
+                        let step = self.expand();
+                        self.nodes.push(Node {
+                            step,
+                            children: [UNEXPANDED; 3],
+                        });
+                        let new = self.nodes.len() - 1;
+                        self.nodes[at].children[v.code() as usize] = new as u32;
+                        new
+                    } else {
+                        child as usize
+                    };
+                }
+            }
+        }
+    }
+
+    /// Compute the step of the procedure after the measurements so far: attend from
+    /// scratch over the measured values, then decide.
+    fn expand(&mut self) -> Step {
+        RuleAttending.start(self.rep.library(), &mut self.attention);
+        for &(f, v) in &self.measured {
+            RuleAttending.attend(
+                self.rep.library(),
+                feature_id(f),
+                Some(value_of(v)),
+                &mut self.attention,
+            );
+        }
+        self.decide()
+    }
+
+    /// Add the next cheapest feature a description lacks, valued at state `s`; returns the
+    /// feature's cost, or `None` if the description already has every feature.
+    ///
+    /// ```
+    /// use mdp::{FeatureSpace, GridWorld, Manhattan};
+    /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let mut c = csql::Classify::new(&space);
+    /// let s = world.states()[0];
+    /// let d = c.classify_state(&world, s).description;
+    /// assert_eq!(c.add_feature(&world, d, s), Some(1.0));
+    /// assert_eq!(c.representation().get(d).len(), 1);
+    /// ```
+    pub fn add_feature(&mut self, world: &GridWorld, d: DescriptionId, s: StateId) -> Option<f64> {
+        let f = self.rep.get(d).next_missing(self.space.len())?;
+        let v = self.space.measure(world, s, f);
+        self.rep.refine(d, f, v);
+        Some(self.space.cost(f))
+    }
+}
+
+impl Perception for Classify {
+    fn classify(&mut self, world: &GridWorld, s: StateId, table: &mut QTable) -> (RowId, f64) {
+        let out = self.classify_state(world, s);
+        if out.created {
+            let row = table.add_row();
+            debug_assert_eq!(row, out.description.row());
+        }
+        (out.description.row(), out.cost)
+    }
+
+    fn refine(&mut self, world: &GridWorld, row: RowId, s: StateId) -> Option<f64> {
+        self.add_feature(world, DescriptionId(row.0), s)
+    }
+
+    fn verdict(
+        &self,
+        world: &GridWorld,
+        oracle: &Oracle,
+        table: &QTable,
+        tolerance: f64,
+    ) -> Verdict {
+        let rows: Vec<Option<RowId>> = world
+            .states()
+            .iter()
+            .map(|&s| self.rep.matching(world, &self.space, s).map(|d| d.row()))
+            .collect();
+        Verdict::judge(world, oracle, table, &rows, tolerance)
+    }
+}

@@ -1,0 +1,117 @@
+//! The cost-sensitive decision tree over the final descriptions (the paper's Figure 5d),
+//! built with cslearn's tree and classifying states of the grid.
+
+use cslearn::{ClassId, Cost, DecisionTree, FeatureId, Labels, Sensor, TreeOptions, Value};
+use mdp::{Cell, Feature, FeatureSpace, GridWorld, StateId};
+
+use crate::representation::{DescriptionId, Representation};
+
+/// A state being sensed through a grid's feature space, for cslearn's sensing trait.
+///
+/// ```
+/// use cslearn::{FeatureId, Sensor, Value};
+/// use mdp::{FeatureSpace, GridWorld, Manhattan, Pos};
+/// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+/// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+/// let mut sensor = csql::StateSensor { world: &world, space: &space, state: world.states()[0] };
+/// assert_eq!(sensor.measure(FeatureId(0)), Some(Value(mdp::Cell::Obstacle.code())));
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct StateSensor<'a> {
+    /// The world.
+    pub world: &'a GridWorld,
+    /// Its features.
+    pub space: &'a FeatureSpace,
+    /// The state sensed.
+    pub state: StateId,
+}
+
+impl Sensor for StateSensor<'_> {
+    fn measure(&mut self, feature: FeatureId) -> Option<Value> {
+        let f = Feature(feature.0);
+        (f.index() < self.space.len())
+            .then(|| Value(self.space.measure(self.world, self.state, f).code()))
+    }
+}
+
+/// Names features by offset, values by cell and classes by description label.
+struct GridLabels<'a>(&'a FeatureSpace);
+
+impl Labels for GridLabels<'_> {
+    fn feature(&self, feature: FeatureId) -> String {
+        let o = self.0.offset(Feature(feature.0));
+        format!("({}, {})", o.dx, o.dy)
+    }
+    fn value(&self, _feature: FeatureId, value: Value) -> String {
+        Cell::from_code(value.0).map_or_else(|| value.0.to_string(), |c| c.name().to_string())
+    }
+    fn class(&self, class: ClassId) -> String {
+        format!("d{}", class.0)
+    }
+}
+
+/// A decision tree that maps states to descriptions, built greedily by I^2/C over the
+/// descriptions as rules (a description lacking the split feature follows every branch).
+///
+/// ```
+/// use csql::{RunSettings, Setup, StateTree, StrategyKind};
+/// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 2);
+/// let setup = Setup::new(&settings).unwrap();
+/// let (report, rep) = csql::run_with_representation(&setup, &settings);
+/// let tree = StateTree::build(&rep, &setup.space);
+/// for s in setup.world.states() {
+///     let (d, _cost) = tree.classify(&setup.world, &setup.space, s);
+///     assert_eq!(d, rep.matching(&setup.world, &setup.space, s));
+/// }
+/// assert!(tree.to_dot(&setup.space).starts_with("digraph"));
+/// ```
+#[derive(Clone, Debug)]
+pub struct StateTree {
+    tree: DecisionTree,
+}
+
+impl StateTree {
+    /// Build the tree over a representation.
+    pub fn build(rep: &Representation, space: &FeatureSpace) -> StateTree {
+        let costs: Vec<Cost> = space
+            .costs()
+            .iter()
+            .map(|&c| Cost::new(c).expect("feature spaces hold valid costs"))
+            .collect();
+        StateTree {
+            tree: DecisionTree::build(rep.library(), &costs[..], TreeOptions::rules()),
+        }
+    }
+
+    /// The description the tree gives a state, and the sensing cost of getting there.
+    pub fn classify(
+        &self,
+        world: &GridWorld,
+        space: &FeatureSpace,
+        s: StateId,
+    ) -> (Option<DescriptionId>, f64) {
+        let out = self.tree.classify(StateSensor {
+            world,
+            space,
+            state: s,
+        });
+        (out.class.map(|c| DescriptionId(c.0)), out.cost.get())
+    }
+
+    /// The tree as Graphviz DOT, with features named by offset `(dx, dy)`.
+    pub fn to_dot(&self, space: &FeatureSpace) -> String {
+        self.tree.to_dot(&GridLabels(space))
+    }
+
+    /// The underlying cslearn tree.
+    ///
+    /// ```
+    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
+    /// let mut rep = csql::Representation::default();
+    /// rep.push(&[]);
+    /// assert_eq!(csql::StateTree::build(&rep, &space).tree().len(), 1);
+    /// ```
+    pub fn tree(&self) -> &DecisionTree {
+        &self.tree
+    }
+}
