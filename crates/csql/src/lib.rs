@@ -27,7 +27,7 @@ pub use reference::{
 pub use representation::{Description, DescriptionId, Representation};
 pub use run::{
     DescriptionReport, FeatureReport, RunReport, Setup, StateReport, Table1, TracePoint, run,
-    run_on, run_with_representation,
+    run_on, run_on_with, run_with_representation,
 };
 pub use settings::RunSettings;
 pub use strategy::{

@@ -301,7 +301,29 @@ pub fn run_with_representation(
     setup: &Setup,
     settings: &RunSettings,
 ) -> (RunReport, Representation) {
-    let mut perception = Classify::new(&setup.space);
+    run_classify(setup, settings, Classify::new(&setup.space))
+}
+
+/// Run CS-QL with a given CLASSIFY (for example with its cache off, or starting from a
+/// representation).
+///
+/// ```
+/// use csql::{Classify, RunSettings, Setup, StrategyKind};
+/// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
+/// let setup = Setup::new(&settings).unwrap();
+/// let plain = Classify::new(&setup.space).with_cache(false);
+/// assert_eq!(csql::run_on_with(&setup, &settings, plain), csql::run_on(&setup, &settings));
+/// ```
+pub fn run_on_with(setup: &Setup, settings: &RunSettings, classify: Classify) -> RunReport {
+    run_classify(setup, settings, classify).0
+}
+
+fn run_classify(
+    setup: &Setup,
+    settings: &RunSettings,
+    classify: Classify,
+) -> (RunReport, Representation) {
+    let mut perception = classify;
     let mut strategy = settings.strategy.build(settings.random_moves);
     let mut table = QTable::new(setup.world_actions()).expect("grid worlds have four actions");
     let learned = learn(
