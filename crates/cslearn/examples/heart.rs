@@ -18,7 +18,13 @@ fn main() -> Result<(), cslearn::Error> {
     let options = DatasetOptions::new("num").positive_if(">0");
     let data = Dataset::load(&dir.join("cleveland.csv"), &dir.join("costs.csv"), &options)?;
     println!("learner  seed  errors  accuracy  mean cost");
-    for name in ["cs-id3", "cs-ibl", "id3"] {
+    for name in [
+        "cs-id3",
+        "cs-id3/no-recheck",
+        "cs-ibl",
+        "id3",
+        "id3/no-recheck",
+    ] {
         let mut sum = (0.0, 0.0);
         for seed in 0..seeds {
             let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
@@ -27,11 +33,13 @@ fn main() -> Result<(), cslearn::Error> {
             let costs = data.costs().clone();
             let report: StreamReport = match name {
                 "cs-id3" => cslearn::cs_id3(costs).stream(objects),
+                "cs-id3/no-recheck" => cslearn::cs_id3(costs).recheck(false).stream(objects),
                 "cs-ibl" => cslearn::cs_ibl(costs, 1).stream(objects),
-                _ => cslearn::id3(costs, rng).stream(objects),
+                "id3" => cslearn::id3(costs, rng).stream(objects),
+                _ => cslearn::id3(costs, rng).recheck(false).stream(objects),
             };
             println!(
-                "{name:7} {seed:5} {:7} {:9.3} {:10.2}",
+                "{name:18} {seed:5} {:7} {:9.3} {:10.2}",
                 report.errors, report.accuracy, report.mean_cost
             );
             sum.0 += report.accuracy;
@@ -39,7 +47,7 @@ fn main() -> Result<(), cslearn::Error> {
         }
         let n = seeds as f64;
         println!(
-            "{name:7}  mean         {:9.3} {:10.2}",
+            "{name:18}  mean         {:9.3} {:10.2}",
             sum.0 / n,
             sum.1 / n
         );

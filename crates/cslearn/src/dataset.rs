@@ -636,24 +636,24 @@ impl Labels for Dataset {
 fn encode_column(name: &str, cells: &[&str], binning: Binning) -> (Column, Vec<Option<Value>>) {
     let present = cells.iter().filter(|c| !is_missing(c));
     let numbers: Option<Vec<f64>> = present.clone().map(|c| parse_number(c)).collect();
-    if let (Binning::Quantiles(bins), Some(mut xs)) = (binning, numbers) {
-        if !xs.is_empty() {
-            xs.sort_by(f64::total_cmp);
-            let cuts = quantile_cuts(&xs, bins.get());
-            let values = cells
-                .iter()
-                .map(|c| {
-                    let x = parse_number(c)?;
-                    Some(Value(cuts.partition_point(|&cut| cut < x) as u32))
-                })
-                .collect();
-            let column = Column {
-                name: name.to_string(),
-                values: bin_names(&cuts),
-                cuts: Some(cuts),
-            };
-            return (column, values);
-        }
+    if let (Binning::Quantiles(bins), Some(mut xs)) = (binning, numbers)
+        && !xs.is_empty()
+    {
+        xs.sort_by(f64::total_cmp);
+        let cuts = quantile_cuts(&xs, bins.get());
+        let values = cells
+            .iter()
+            .map(|c| {
+                let x = parse_number(c)?;
+                Some(Value(cuts.partition_point(|&cut| cut < x) as u32))
+            })
+            .collect();
+        let column = Column {
+            name: name.to_string(),
+            values: bin_names(&cuts),
+            cuts: Some(cuts),
+        };
+        return (column, values);
     }
     let mut texts: Vec<String> = present.map(|c| c.to_string()).collect();
     sort_texts(&mut texts);

@@ -49,7 +49,8 @@ pub trait Discriminate {
     );
 }
 
-/// Measure features in `order`, skipping measured ones, until nothing conflicts.
+/// Measure features in `order`, skipping those the current pass has seen, until nothing
+/// conflicts. A feature paid for in an earlier pass is replayed free but still attended.
 fn measure_until_apart<A: Attend + ?Sized, S: Sensor>(
     order: &[FeatureId],
     library: &Library,
@@ -61,7 +62,7 @@ fn measure_until_apart<A: Attend + ?Sized, S: Sensor>(
         if conflicting.attended().is_empty() {
             return;
         }
-        if probe.ledger().is_measured(feature) {
+        if probe.ledger().consulted(feature) {
             continue;
         }
         let value = probe.measure(feature);

@@ -341,7 +341,8 @@ struct SplitStats {
 /// ```
 pub trait Select {
     /// The feature to measure next, given the attended examples and the ledger of what
-    /// was measured on the object.
+    /// was measured on the object (candidates are the features the current pass has not
+    /// [consulted](Ledger::consulted)).
     fn select(
         &mut self,
         library: &Library,
@@ -360,7 +361,7 @@ impl Select for InfoCost {
         costs: &FeatureCosts,
     ) -> Option<FeatureId> {
         let examples = attention.attended().iter().map(|&i| &library[i]);
-        let measured = |f| ledger.is_measured(f);
+        let measured = |f| ledger.consulted(f);
         if self.cost_blind {
             self.select_from(examples, measured, &CostBlind(costs))
         } else {

@@ -44,6 +44,10 @@ impl<S: Sensor + ?Sized> Sensor for &mut S {
 /// What was measured on one object, in order, and what it cost: the learner's ledger.
 ///
 /// A missing value is recorded too (it was paid for, and measuring again would not help).
+/// A feature is paid for once per object: the learner may look at the object more than
+/// once (a *pass*: after learning it checks that the object is now recognised), and a
+/// later pass reads the values already paid for free. [`consulted`](Ledger::consulted)
+/// tells which features the current pass has looked at.
 ///
 /// ```
 /// use cslearn::{Cost, FeatureCosts, FeatureId, Ledger, Probe, Value};
@@ -61,6 +65,8 @@ impl<S: Sensor + ?Sized> Sensor for &mut S {
 pub struct Ledger {
     measured: Vec<(FeatureId, Option<Value>)>,
     cost: Cost,
+    /// Indices into `measured` of the features looked at in the current pass.
+    pass: Vec<usize>,
 }
 
 impl Ledger {
@@ -73,10 +79,46 @@ impl Ledger {
     /// ```
     pub fn clear(&mut self) {
         self.measured.clear();
+        self.pass.clear();
         self.cost = Cost::ZERO;
     }
 
-    /// Record a measurement and its price.
+    /// Start a new pass over the same object: nothing is consulted yet, everything paid
+    /// for stays paid for.
+    ///
+    /// ```
+    /// use cslearn::{Cost, FeatureId, Ledger};
+    /// let mut ledger = Ledger::default();
+    /// ledger.record(FeatureId(0), None, Cost::ONE);
+    /// ledger.start_pass();
+    /// assert!(ledger.is_measured(FeatureId(0)) && !ledger.consulted(FeatureId(0)));
+    /// ```
+    pub fn start_pass(&mut self) {
+        self.pass.clear();
+    }
+
+    /// Whether the current pass has looked at `feature`.
+    ///
+    /// ```
+    /// use cslearn::{Cost, FeatureId, Ledger};
+    /// let mut ledger = Ledger::default();
+    /// ledger.record(FeatureId(0), None, Cost::ONE);
+    /// assert!(ledger.consulted(FeatureId(0)));
+    /// ```
+    pub fn consulted(&self, feature: FeatureId) -> bool {
+        self.pass.iter().any(|&i| self.measured[i].0 == feature)
+    }
+
+    /// Look at `feature` in the current pass if it was paid for: its value, free.
+    fn replay(&mut self, feature: FeatureId) -> Option<Option<Value>> {
+        let i = self.measured.iter().position(|&(f, _)| f == feature)?;
+        if !self.pass.contains(&i) {
+            self.pass.push(i);
+        }
+        Some(self.measured[i].1)
+    }
+
+    /// Record a measurement and its price; it counts as consulted in the current pass.
     ///
     /// ```
     /// use cslearn::{Cost, FeatureId, Ledger, Value};
@@ -85,6 +127,7 @@ impl Ledger {
     /// assert_eq!(ledger.value(FeatureId(2)), Some(Some(Value(1))));
     /// ```
     pub fn record(&mut self, feature: FeatureId, value: Option<Value>, cost: Cost) {
+        self.pass.push(self.measured.len());
         self.measured.push((feature, value));
         self.cost += cost;
     }
@@ -98,7 +141,7 @@ impl Ledger {
         &self.measured
     }
 
-    /// Whether `feature` has been measured.
+    /// Whether `feature` has been measured (paid for) on this object.
     ///
     /// ```
     /// assert!(!cslearn::Ledger::default().is_measured(cslearn::FeatureId(0)));
@@ -186,8 +229,9 @@ impl<'a, S: Sensor, C: Costs + ?Sized> Probe<'a, S, C> {
         }
     }
 
-    /// Measure `feature`, charge its cost and record it. A feature without a price is
-    /// charged nothing (no part of this crate measures one).
+    /// Measure `feature`, charge its cost and record it; a feature already paid for on
+    /// this object is read from the ledger, free. A feature without a price is charged
+    /// nothing (no part of this crate measures one).
     ///
     /// ```
     /// use cslearn::{FeatureCosts, FeatureId, Ledger, Probe, Value};
@@ -198,10 +242,26 @@ impl<'a, S: Sensor, C: Costs + ?Sized> Probe<'a, S, C> {
     /// assert_eq!(ledger.measured().len(), 1);
     /// ```
     pub fn measure(&mut self, feature: FeatureId) -> Option<Value> {
+        if let Some(value) = self.ledger.replay(feature) {
+            return value;
+        }
         let value = self.sensor.measure(feature);
         let cost = self.costs.cost(feature).unwrap_or(Cost::ZERO);
         self.ledger.record(feature, value, cost);
         value
+    }
+
+    /// The ledger so far, to start a new pass.
+    ///
+    /// ```
+    /// let costs = cslearn::FeatureCosts::new(Vec::new());
+    /// let mut ledger = cslearn::Ledger::default();
+    /// let row: [Option<cslearn::Value>; 0] = [];
+    /// let mut probe = cslearn::Probe::new(&row[..], &costs, &mut ledger);
+    /// probe.ledger_mut().start_pass();
+    /// ```
+    pub fn ledger_mut(&mut self) -> &mut Ledger {
+        self.ledger
     }
 
     /// The ledger so far.

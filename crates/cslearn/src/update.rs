@@ -5,7 +5,9 @@ use crate::example::{Example, Library};
 /// Library updating, one of the five functions.
 ///
 /// `example` holds every value measured on the object (missing values left out) and the
-/// object's true class; `correct` says whether the prediction was right.
+/// object's true class; `correct` says whether the prediction was right. The result is
+/// the index of the library example that now stands for the object, if any: the learner
+/// refines that example when it checks that the object is recognised.
 ///
 /// | implementation | keeps |
 /// |---|---|
@@ -15,12 +17,13 @@ use crate::example::{Example, Library};
 /// ```
 /// use cslearn::{AppendAll, ClassId, Example, Library, Update};
 /// let mut lib = Library::new();
-/// AppendAll.update(&mut lib, Example::new(ClassId(0)), true);
+/// assert_eq!(AppendAll.update(&mut lib, Example::new(ClassId(0)), true), Some(0));
 /// assert_eq!(lib.len(), 1);
 /// ```
 pub trait Update {
-    /// Change `library` to reflect the new example.
-    fn update(&mut self, library: &mut Library, example: Example, correct: bool);
+    /// Change `library` to reflect the new example; return the index of the example
+    /// that stands for the object, if one does.
+    fn update(&mut self, library: &mut Library, example: Example, correct: bool) -> Option<usize>;
 }
 
 /// Keep every new example (the paper's CS-ID3: "it adds the new example to the example
@@ -36,8 +39,8 @@ pub trait Update {
 pub struct AppendAll;
 
 impl Update for AppendAll {
-    fn update(&mut self, library: &mut Library, example: Example, _correct: bool) {
-        library.push(example);
+    fn update(&mut self, library: &mut Library, example: Example, _correct: bool) -> Option<usize> {
+        Some(library.push(example))
     }
 }
 
@@ -47,7 +50,7 @@ impl Update for AppendAll {
 /// ```
 /// use cslearn::{AppendErrors, ClassId, Example, Library, Update};
 /// let mut lib = Library::new();
-/// AppendErrors.update(&mut lib, Example::new(ClassId(0)), true);
+/// assert_eq!(AppendErrors.update(&mut lib, Example::new(ClassId(0)), true), None);
 /// assert!(lib.is_empty());
 /// AppendErrors.update(&mut lib, Example::new(ClassId(0)), false);
 /// assert_eq!(lib.len(), 1);
@@ -56,9 +59,7 @@ impl Update for AppendAll {
 pub struct AppendErrors;
 
 impl Update for AppendErrors {
-    fn update(&mut self, library: &mut Library, example: Example, correct: bool) {
-        if !correct {
-            library.push(example);
-        }
+    fn update(&mut self, library: &mut Library, example: Example, correct: bool) -> Option<usize> {
+        (!correct).then(|| library.push(example))
     }
 }
