@@ -317,6 +317,10 @@ impl QTable {
     /// [`Target::Bootstrap(y)`](Target::Bootstrap). Returns `V(row)` before and after.
     ///
     /// `y` may be `row` itself (a move that stays); `V(y)` is read before the update.
+    /// With `beta = 1` the new `Q` is the target exactly; otherwise it is clamped so
+    /// that rounding never carries it past the target (the exact result always lies
+    /// between the old `Q` and the target). Without that, a one-ulp overshoot could
+    /// later show as a one-ulp decrease of `V`, which Theorem 1 rules out.
     /// Rewards should be finite; a NaN or infinite reward is stored as given and never
     /// makes selection panic.
     ///
@@ -354,7 +358,22 @@ impl QTable {
         let base = r * self.actions;
         let q_row = &mut self.q[base..base + self.actions];
         let old = q_row[action.index()];
-        let new = old + beta.get() * (target - old);
+        let beta = beta.get();
+        // Equation 2 moves Q towards the target and never past it, but rounding can
+        // overshoot by an ulp (even with beta = 1: `old + (target - old)` need not be
+        // `target`); the next update towards the same target would then lower V by an
+        // ulp, a decrease Theorem 1 rules out and CS-QL would act on. So beta = 1 takes
+        // the target exactly, and any other beta is clamped to it.
+        let new = if beta == 1.0 {
+            target
+        } else {
+            let step = old + beta * (target - old);
+            if target >= old {
+                step.min(target)
+            } else {
+                step.max(target)
+            }
+        };
         let before = self.v[r];
         // Skipping an update that changes nothing keeps the row's Boltzmann weights
         // valid; once values settle, most updates are of this kind.

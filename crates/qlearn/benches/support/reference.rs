@@ -12,7 +12,6 @@ const SIDE: usize = 8;
 /// Cells; the goal is the last one (bottom-right), the start the first (top-left).
 const CELLS: usize = SIDE * SIDE;
 const GOAL: usize = CELLS - 1;
-const BETA: f64 = 1.0;
 const GAMMA: f64 = 0.9;
 const T: f64 = 0.4;
 const MAX_MOVES: u64 = 100;
@@ -56,8 +55,8 @@ pub fn run<R: Rng + ?Sized>(steps: u64, rng: &mut R) -> Vec<f64> {
         }
         let y = next[s][a];
         let target = if y == GOAL { 1.0 } else { GAMMA * v[y] };
-        let old = q[s * 4 + a];
-        q[s * 4 + a] = old + BETA * (target - old);
+        // With beta = 1, equation 2 is an assignment.
+        q[s * 4 + a] = target;
         v[s] = q[s * 4..s * 4 + 4]
             .iter()
             .copied()
