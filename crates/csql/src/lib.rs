@@ -1,6 +1,99 @@
-//! CS-QL: cost-sensitive Q-learning (Tan, AAAI-91, Figure 3).
+//! CS-QL: cost-sensitive Q-learning, which learns a policy and a cheap representation of
+//! states at the same time (Tan, AAAI-91, section "Integrating CS-learning with
+//! Q-learning", Figure 3).
 //!
-//! PLACEHOLDER
+//! A robot that cannot afford to sense the whole world before every move describes each
+//! state by a few sensed features. CS-QL starts with no description at all; CLASSIFY
+//! ([`Classify`]) maps a state to a description by measuring features chosen by I^2/C,
+//! creating a new description when none matches; Q-learning ([`qlearn::QTable`]) learns
+//! on the descriptions; and when the utility V of a description decreases, the
+//! description must be inconsistent (Theorem 2), so the [`Strategy`] in use refines it
+//! with the next cheapest feature. This crate is the only one that knows the other three:
+//! `mdp` for the world, `cslearn` for attending, selection and the decision tree, `qlearn`
+//! for the table and Boltzmann selection.
+//!
+//! # Example
+//!
+//! ```
+//! use csql::{RunSettings, StrategyKind};
+//!
+//! let settings = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 1);
+//! let report = csql::run(&settings).unwrap();
+//! assert!(report.converged);
+//! assert_eq!(report.table1.descriptions, Some(50));
+//! println!("{}", report.table1.cost_to_converge.unwrap());
+//! ```
+//!
+//! # Parts
+//!
+//! | part | what |
+//! |---|---|
+//! | [`RunSettings`] | every setting of a run, the paper's preset [`RunSettings::tan1991`], TOML overrides |
+//! | [`Representation`], [`Description`] | the descriptions: rules over grid features, stored as a cslearn library |
+//! | [`Classify`] | CLASSIFY, with a cache that never changes what is charged |
+//! | [`Strategy`]: [`Resetting`], [`Lazy`], [`RandomMoves`], [`Eager`] | the reaction to a decrease |
+//! | [`Perception`], [`run_trial`] | the main loop, generic over perception and strategy |
+//! | [`Verdict`] | the oracle's end-of-trial checks: consistent, sufficient, converged |
+//! | [`run`], [`RunReport`], [`Table1`] | a whole run and the eight measures of Table 1 |
+//! | [`StateTree`] | the cost-sensitive decision tree over the final descriptions (row 8) |
+//! | [`full_sensing_reference`], [`fixed_representation_reference`] | the paper's two points of comparison |
+//! | [`policy_svg`] | the map with the learned policy and descriptions (Figure 4b) |
+//!
+//! # Choices where the paper is silent
+//!
+//! SPEC section 4 fixes CLASSIFY, the strategies and the measures; beyond it:
+//!
+//! * A decrease is `V_after < V_before - decrease_threshold`, threshold 0 by default (a
+//!   setting, after the paper's remark on noisy utilities).
+//! * A refinement that finds every feature already present changes nothing (it cannot
+//!   happen on a valid grid: a full description identifies its state).
+//! * Random moves of the random strategy end with the trial that holds them.
+//! * Rows 5 to 8 are measured after convergence only, and are `None` for a run that did
+//!   not converge before its trial cap (20000 by default).
+//! * Greedy actions in reports are the lowest action id among ties (qlearn's rule).
+//! * The whole-world reference charges, at every classification, the cost of sensing
+//!   every cell of the bordered world from the robot.
+//!
+//! # Consistency, homomorphism and Theorem 2
+//!
+//! The paper calls a description consistent when its states share utility and best
+//! actions. Theorem 2 holds exactly for a stronger notion: a description is homomorphic
+//! when its states agree, for every action, on the reward, on termination and on the
+//! description of the next state. The first decrease always happens at a
+//! non-homomorphic description, and with every description homomorphic nothing
+//! decreases; a description that is consistent in the paper's sense can still see a
+//! transient decrease (its states lead to different descriptions that have not yet
+//! learned their values). The workspace's `tests/theorems.rs` checks all three. The oracle
+//! here judges consistency as SPEC 4 says (shared `V*` and at least one shared optimal
+//! action); the literal reading (equal sets of optimal actions) is reported as
+//! [`RunReport::consistent_literal`].
+//!
+//! # Measured
+//!
+//! `cargo run --release -p csql --example table1` (means over seeds 1 to 5, every run
+//! converged to an optimal policy; `tan8x8` is our reconstruction of the paper's map):
+//!
+//! | strategy | 1 cost to sufficient | 2 trials | 3 cost to converge | 4 trials | 5 descriptions | 6 mean features | 7 max features | 8 tree cost/state | 8' description cost/state |
+//! |---|---|---|---|---|---|---|---|---|---|
+//! | resetting | 781185 | 1410 | 868445 | 1540 | 50 | 7.68 | 20.0 | 8.34 | 11.95 |
+//! | lazy | 100950 | 166 | 121394 | 192 | 50 | 8.39 | 20.0 | 8.24 | 13.35 |
+//! | random | 68574 | 92 | 99797 | 126 | 50 | 8.98 | 20.0 | 8.20 | 14.55 |
+//! | eager | 68706 | 62 | 125455 | 108 | 50 | 11.23 | 20.4 | 7.98 | 19.81 |
+//!
+//! The paper's shape holds: resetting spends seven to nine times the sensing of lazy and
+//! random before convergence and yields the fewest features per description; eager
+//! yields the most. Our maximum of about 20 features is twice the paper's: on this
+//! layout a few pairs of states look alike up to distance 4. On `tan3x3` every strategy
+//! learns Figure 5's optimal policy with 8 descriptions, not the paper's 7: under the
+//! fixed feature order the two mirror-image states at distance 3 differ on a cost-1
+//! feature that every refinement reaches first.
+//!
+//! # Speed
+//!
+//! `cargo bench -p csql`: on a 2-core machine a whole resetting run on `tan8x8` (about
+//! 96000 moves) takes about 46 ms, and classifying all 50 states with the cache is about
+//! 360 times faster than the plain procedure (6.9 us against 2.5 ms).
+
 #![deny(missing_docs)]
 
 mod check;
