@@ -3,7 +3,9 @@
 use std::path::PathBuf;
 
 /// Everything that can go wrong: an invalid cost, or a data or costs file that cannot be
-/// used. Variants about a file name it and, where there is one, the 1-based line.
+/// used. Variants about a file name it and, where there is one, the 1-based line. The
+/// operating system's or the CSV reader's own error, where there is one, is the
+/// [`source`](std::error::Error::source), not repeated in the message.
 ///
 /// ```
 /// let err = cslearn::Cost::new(-3.0).unwrap_err();
@@ -20,7 +22,7 @@ pub enum Error {
         value: f64,
     },
     /// A file could not be opened or read.
-    #[error("{}: cannot read: {source}", path.display())]
+    #[error("{}: cannot read", path.display())]
     Io {
         /// The file.
         path: PathBuf,
@@ -60,7 +62,7 @@ pub enum Error {
         found: u64,
     },
     /// The CSV reader failed for a reason other than the ones above.
-    #[error("{}: line {}: malformed CSV: {source}", path.display(), line.map_or_else(|| "?".to_string(), |l| l.to_string()))]
+    #[error("{}: line {}: malformed CSV", path.display(), line.map_or_else(|| "?".to_string(), |l| l.to_string()))]
     Malformed {
         /// The file.
         path: PathBuf,

@@ -109,6 +109,7 @@ mod learner;
 mod predict;
 mod select;
 mod sensing;
+mod stream;
 mod tree;
 mod types;
 mod update;
@@ -126,6 +127,7 @@ pub use learner::{
 pub use predict::{Decision, Nearest, Predict, Unanimous};
 pub use select::{InfoCost, MissingRule, Select};
 pub use sensing::{Ledger, Probe, Sensor};
+pub use stream::{LearnerKind, stream_dataset};
 pub use tree::{Branch, DecisionTree, Labels, Node, NodeId, PlainLabels, TreeOptions};
 pub use types::{ClassId, Cost, CostBlind, Costs, FeatureCosts, FeatureId, Value};
 pub use update::{AppendAll, AppendErrors, Update};

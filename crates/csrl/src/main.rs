@@ -3,6 +3,7 @@
 //! Run `csrl --help` for the commands. Results go to stdout, errors to stderr with a
 //! non-zero exit (2 for usage errors, 1 for anything else); no input makes it panic.
 
+mod classify;
 mod maps;
 mod run;
 
@@ -28,6 +29,8 @@ enum Command {
     Map(maps::MapCommand),
     /// Run CS-QL once and report the measures of the paper's Table 1.
     Run(run::RunArgs),
+    /// Stream a CSV table through a cost-sensitive learner and report errors and costs.
+    Classify(classify::ClassifyArgs),
 }
 
 fn main() -> ExitCode {
@@ -36,6 +39,7 @@ fn main() -> ExitCode {
         Command::Maps => maps::list(),
         Command::Map(cmd) => maps::run(cmd),
         Command::Run(args) => run::run(args),
+        Command::Classify(args) => classify::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

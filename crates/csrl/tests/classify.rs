@@ -1,0 +1,247 @@
+//! `csrl classify`, run as a user runs it: on the shipped heart-disease data and on broken
+//! files.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn csrl(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_csrl"))
+        .args(args)
+        .output()
+        .expect("run csrl")
+}
+
+fn heart(name: &str) -> String {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../data/heart-disease")
+        .join(name);
+    path.to_string_lossy().into_owned()
+}
+
+/// Write `text` to a file of its own in a scratch directory for this test process.
+fn scratch(name: &str, bytes: &[u8]) -> String {
+    let dir = std::env::temp_dir().join(format!("csrl-classify-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, bytes).unwrap();
+    path.to_string_lossy().into_owned()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn classify_heart(learner: &str, seed: &str) -> serde_json::Value {
+    let (data, costs) = (heart("cleveland.csv"), heart("costs.csv"));
+    let out = csrl(&[
+        "classify",
+        "--data",
+        &data,
+        "--costs",
+        &costs,
+        "--target",
+        "num",
+        "--positive-if",
+        ">0",
+        "--learner",
+        learner,
+        "--seed",
+        seed,
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+#[test]
+fn heart_json_has_the_documented_fields() {
+    let v = classify_heart("cs-id3", "1");
+    assert_eq!(v["objects"], 304);
+    let errors = v["errors"].as_u64().unwrap();
+    let accuracy = v["accuracy"].as_f64().unwrap();
+    assert!((accuracy - (304 - errors) as f64 / 304.0).abs() < 1e-12);
+    let total = v["total_cost"].as_f64().unwrap();
+    let mean = v["mean_cost"].as_f64().unwrap();
+    assert!((mean - total / 304.0).abs() < 1e-9);
+    assert!((v["full_cost"].as_f64().unwrap() - 600.57).abs() < 1e-9);
+}
+
+#[test]
+fn cs_id3_spends_far_less_than_cost_blind_id3_at_comparable_accuracy() {
+    for seed in ["1", "2", "3"] {
+        let cs = classify_heart("cs-id3", seed);
+        let blind = classify_heart("id3", seed);
+        let (cs_cost, blind_cost) = (
+            cs["mean_cost"].as_f64().unwrap(),
+            blind["mean_cost"].as_f64().unwrap(),
+        );
+        assert!(
+            cs_cost * 5.0 < blind_cost,
+            "seed {seed}: {cs_cost} vs {blind_cost}"
+        );
+        assert!(blind_cost * 2.0 < 600.57, "seed {seed}: {blind_cost}");
+        let (a, b) = (
+            cs["accuracy"].as_f64().unwrap(),
+            blind["accuracy"].as_f64().unwrap(),
+        );
+        assert!((a - b).abs() < 0.1, "seed {seed}: accuracy {a} vs {b}");
+        assert!(a > 0.55, "seed {seed}: accuracy {a}");
+    }
+}
+
+#[test]
+fn json_is_the_same_for_the_same_seed_and_changes_with_it() {
+    for learner in ["cs-id3", "cs-ibl", "id3"] {
+        assert_eq!(classify_heart(learner, "5"), classify_heart(learner, "5"));
+    }
+    assert_ne!(
+        classify_heart("id3", "5")["total_cost"],
+        classify_heart("id3", "6")["total_cost"]
+    );
+}
+
+#[test]
+fn text_output_names_every_figure() {
+    let (data, costs) = (heart("cleveland.csv"), heart("costs.csv"));
+    let out = csrl(&[
+        "classify",
+        "--data",
+        &data,
+        "--costs",
+        &costs,
+        "--target",
+        "num",
+        "--positive-if",
+        "!=0",
+        "--learner",
+        "cs-ibl",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = String::from_utf8(out.stdout).unwrap();
+    for word in [
+        "objects",
+        "errors",
+        "accuracy",
+        "total cost",
+        "mean cost",
+        "full cost   600.57",
+    ] {
+        assert!(text.contains(word), "`{word}` missing in {text}");
+    }
+}
+
+/// Run on broken input: it must fail with exit 1 (not a panic's 101) and say why.
+fn fails_with(data: &str, costs: &str, extra: &[&str], expected: &[&str]) {
+    let mut args = vec![
+        "classify",
+        "--data",
+        data,
+        "--costs",
+        costs,
+        "--learner",
+        "cs-id3",
+    ];
+    if !extra.contains(&"--target") {
+        args.extend(["--target", "t"]);
+    }
+    args.extend(extra);
+    let out = csrl(&args);
+    assert_eq!(out.status.code(), Some(1), "{args:?}: {}", stderr(&out));
+    let message = stderr(&out);
+    for part in expected {
+        assert!(message.contains(part), "`{part}` missing in: {message}");
+    }
+    assert!(!message.contains("panicked"), "{message}");
+}
+
+#[test]
+fn broken_files_give_clear_errors() {
+    let costs = scratch("costs.csv", b"feature,cost\na,1\nb,2\n");
+    let good = scratch("good.csv", b"a,b,t\n1,x,0\n2,y,1\n");
+
+    let ragged = scratch("ragged.csv", b"a,b,t\n1,x,0\n2,y\n");
+    fails_with(
+        &ragged,
+        &costs,
+        &[],
+        &["ragged.csv", "line 3", "2 fields", "header has 3"],
+    );
+
+    let not_utf8 = scratch("latin1.csv", b"a,b,t\n1,caf\xe9,0\n");
+    fails_with(
+        &not_utf8,
+        &costs,
+        &[],
+        &["latin1.csv", "line 2", "not UTF-8"],
+    );
+
+    let empty = scratch("empty.csv", b"");
+    fails_with(&empty, &costs, &[], &["empty.csv", "empty"]);
+
+    fails_with(
+        &good,
+        &costs,
+        &["--target", "nope"],
+        &["no target column `nope`", "a, b, t"],
+    );
+
+    let missing_cost = scratch("costs-missing.csv", b"feature,cost\na,1\n");
+    fails_with(
+        &good,
+        &missing_cost,
+        &[],
+        &["costs-missing.csv", "no cost for column `b`"],
+    );
+
+    let negative = scratch("costs-negative.csv", b"feature,cost\na,1\nb,-2\n");
+    fails_with(
+        &good,
+        &negative,
+        &[],
+        &["costs-negative.csv", "line 3", "`b`", "-2", "non-negative"],
+    );
+
+    let header = scratch("costs-header.csv", b"name,price\na,1\nb,2\n");
+    fails_with(&good, &header, &[], &["feature,cost"]);
+
+    fails_with(
+        &good,
+        &costs,
+        &["--positive-if", ">x"],
+        &["positive-if", "needs a number"],
+    );
+
+    let text_target = scratch("text-target.csv", b"a,b,t\n1,x,yes\n");
+    fails_with(
+        &text_target,
+        &costs,
+        &["--positive-if", ">0"],
+        &["line 2", "`yes` is not a number"],
+    );
+
+    let no_such = scratch("dir-marker", b"");
+    let missing = format!("{no_such}-does-not-exist.csv");
+    fails_with(
+        &missing,
+        &costs,
+        &[],
+        &["does-not-exist.csv", "cannot read"],
+    );
+}
+
+#[test]
+fn an_unknown_learner_is_a_usage_error() {
+    let out = csrl(&[
+        "classify",
+        "--data",
+        "d.csv",
+        "--costs",
+        "c.csv",
+        "--target",
+        "t",
+        "--learner",
+        "c4.5",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("cs-id3"));
+}
