@@ -296,9 +296,7 @@ impl<M: Mdp> QLearner<M> {
             } else {
                 Target::Bootstrap(RowId(step.next.0))
             };
-            let change = self
-                .table
-                .update(row, a, step.reward, target, beta, gamma);
+            let change = self.table.update(row, a, step.reward, target, beta, gamma);
             trial.moves += 1;
             trial.reward += step.reward;
             trial.decreases += u32::from(change.decreased());

@@ -293,5 +293,4 @@ impl Params {
             max_moves: MoveCap(NonZeroU32::MIN.saturating_add(99)),
         }
     }
-
 }

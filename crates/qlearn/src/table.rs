@@ -471,8 +471,9 @@ impl QTable {
         let r = row.index();
         let base = r * self.actions;
         let mut total = self.totals[r];
-        // `!(total > 0.0)` also catches a NaN sum, which is then recomputed each time.
-        if !(total > 0.0) {
+        // A NaN sum is not fresh either, and is then recomputed each time.
+        let fresh = total > 0.0;
+        if !fresh {
             total = self.refresh(r, t);
         }
         let u = rng.random::<f64>() * total;
@@ -597,7 +598,10 @@ mod tests {
     use rand_xoshiro::Xoshiro256PlusPlus;
 
     fn rates(beta: f64, gamma: f64) -> (LearningRate, Discount) {
-        (LearningRate::new(beta).unwrap(), Discount::new(gamma).unwrap())
+        (
+            LearningRate::new(beta).unwrap(),
+            Discount::new(gamma).unwrap(),
+        )
     }
 
     /// The cache must equal a fresh computation for every row it claims to hold.
@@ -622,8 +626,7 @@ mod tests {
         let (beta, gamma) = rates(0.7, 0.9);
         let temps = [0.4, 0.4, 0.05, 3.0].map(|t| Temperature::new(t).unwrap());
         let mut refreshed = 0;
-        for round in 0..4 {
-            let t = temps[round];
+        for (round, &t) in temps.iter().enumerate() {
             for _ in 0..500 {
                 let row = RowId(rng.random_range(0..6));
                 let a = table.boltzmann(row, t, &mut rng);
@@ -683,7 +686,14 @@ mod tests {
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(5);
         let mut table = QTable::with_rows(4, 1).unwrap();
         table.update(RowId(0), ActionId(1), 1e6, Target::Terminal, beta, gamma);
-        table.update(RowId(0), ActionId(3), 1e6 - 1e-3, Target::Terminal, beta, gamma);
+        table.update(
+            RowId(0),
+            ActionId(3),
+            1e6 - 1e-3,
+            Target::Terminal,
+            beta,
+            gamma,
+        );
         for t in [1e-6, 1e-300, 0.4, 1e6, f64::MAX] {
             let t = Temperature::new(t).unwrap();
             let p = table.boltzmann_probabilities(RowId(0), t);
@@ -704,12 +714,26 @@ mod tests {
         let (beta, gamma) = rates(1.0, 0.9);
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(5);
         let mut table = QTable::with_rows(2, 1).unwrap();
-        table.update(RowId(0), ActionId(0), f64::NAN, Target::Terminal, beta, gamma);
+        table.update(
+            RowId(0),
+            ActionId(0),
+            f64::NAN,
+            Target::Terminal,
+            beta,
+            gamma,
+        );
         let t = Temperature::new(0.4).unwrap();
         for _ in 0..10 {
             assert!(table.boltzmann(RowId(0), t, &mut rng).index() < 2);
         }
-        table.update(RowId(0), ActionId(1), f64::INFINITY, Target::Terminal, beta, gamma);
+        table.update(
+            RowId(0),
+            ActionId(1),
+            f64::INFINITY,
+            Target::Terminal,
+            beta,
+            gamma,
+        );
         for _ in 0..10 {
             assert!(table.boltzmann(RowId(0), t, &mut rng).index() < 2);
         }
@@ -725,7 +749,10 @@ mod tests {
         table.boltzmann(RowId(0), t, &mut rng);
         assert!(table.totals[0] > 0.0);
         table.update(RowId(0), ActionId(0), 1.0, Target::Terminal, beta, gamma);
-        assert!(table.totals[0] > 0.0, "an update to the same value dropped the cache");
+        assert!(
+            table.totals[0] > 0.0,
+            "an update to the same value dropped the cache"
+        );
         table.update(RowId(0), ActionId(1), 0.5, Target::Terminal, beta, gamma);
         assert_eq!(table.totals[0], 0.0);
     }
@@ -752,7 +779,10 @@ mod tests {
             let a = table.epsilon_greedy(RowId(0), Epsilon::new(1.0).unwrap(), &mut rng);
             counts[a.index()] += 1;
         }
-        assert!(counts.iter().all(|&c| (850..1150).contains(&c)), "{counts:?}");
+        assert!(
+            counts.iter().all(|&c| (850..1150).contains(&c)),
+            "{counts:?}"
+        );
         for _ in 0..100 {
             let a = table.epsilon_greedy(RowId(0), Epsilon::new(0.0).unwrap(), &mut rng);
             assert_eq!(a, ActionId(2));

@@ -10,8 +10,8 @@ use std::ops::ControlFlow;
 use mdp::{ActionId, Mdp, NegativeRewards, StateId, TabularMdp};
 use proptest::prelude::*;
 use qlearn::{
-    Discount, LearningRate, MoveCap, Params, QLearner, QTable, RowId, Start, Target,
-    Temperature, VChange,
+    Discount, LearningRate, MoveCap, Params, QLearner, QTable, RowId, Start, Target, Temperature,
+    VChange,
 };
 use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -37,7 +37,14 @@ fn first_decrease<M: Mdp>(
         } else {
             Target::Bootstrap(RowId(row_of[step.next.index()]))
         };
-        let change = table.update(RowId(row_of[s.index()]), a, step.reward, target, beta, gamma);
+        let change = table.update(
+            RowId(row_of[s.index()]),
+            a,
+            step.reward,
+            target,
+            beta,
+            gamma,
+        );
         if change.decreased() {
             return Some((i, change));
         }

@@ -30,12 +30,12 @@ pub fn value_iteration<M: Mdp>(mdp: &M, gamma: f64) -> Vec<f64> {
     let mut v = vec![0.0f64; n];
     for _ in 0..100_000 {
         let mut next_v = vec![0.0f64; n];
-        for s in 0..n {
+        for (s, value) in next_v.iter_mut().enumerate() {
             let s_id = StateId(s as u32);
             if mdp.is_terminal(s_id) {
                 continue;
             }
-            next_v[s] = (0..mdp.num_actions())
+            *value = (0..mdp.num_actions())
                 .map(|a| q_value(mdp, &v, s_id, ActionId(a as u32), gamma))
                 .fold(f64::NEG_INFINITY, f64::max);
         }
