@@ -32,7 +32,10 @@ fn main() -> Result<(), cslearn::Error> {
     let learners: [(&str, Option<LearnerKind>); 4] = [
         ("CS-ID3", Some(LearnerKind::CsId3)),
         ("CS-ID3, no recheck", None),
-        ("CS-IBL, tolerance 1", Some(LearnerKind::CsIbl { tolerance: 1 })),
+        (
+            "CS-IBL, tolerance 1",
+            Some(LearnerKind::CsIbl { tolerance: 1 }),
+        ),
         ("ID3 (cost-blind)", Some(LearnerKind::Id3)),
     ];
     for (name, kind) in learners {
@@ -55,6 +58,9 @@ fn main() -> Result<(), cslearn::Error> {
             "| {name} | {acc:.3} ({acc_lo:.3}-{acc_hi:.3}) | {cost:.1} ({cost_lo:.1}-{cost_hi:.1}) |"
         );
     }
-    println!("| measuring everything | | {:.2} |", data.costs().total().get());
+    println!(
+        "| measuring everything | | {:.2} |",
+        data.costs().total().get()
+    );
     Ok(())
 }

@@ -412,6 +412,18 @@ where
         &self.library
     }
 
+    /// The example library, to seed it with known examples or change it.
+    ///
+    /// ```
+    /// use cslearn::{ClassId, Example, FeatureCosts};
+    /// let mut learner = cslearn::cs_id3(FeatureCosts::new(Vec::new()));
+    /// learner.library_mut().push(Example::new(ClassId(2)));
+    /// assert_eq!(learner.classify(&[][..]).class, Some(ClassId(2)));
+    /// ```
+    pub fn library_mut(&mut self) -> &mut Library {
+        &mut self.library
+    }
+
     /// The price list charged.
     ///
     /// ```
