@@ -56,6 +56,26 @@
 //!   ([`QLearner`]) gives one to each state.
 //! * Reset ([`QTable::reset`]) sets every `Q` and `V` to 0 and keeps the rows, for CS-QL's
 //!   resetting strategy.
+//! * Theorem 1 is about exact arithmetic. In floating point, `Q + beta (target - Q)` can
+//!   land an ulp past the target (even with `beta = 1`), and the next update towards the
+//!   same target then lowers `V` by an ulp: a decrease the theorem rules out, which CS-QL
+//!   would take for aliasing. So with `beta = 1` the new `Q` is the target itself, and
+//!   with any other `beta` it is clamped to the target. The exact result always lies
+//!   between the old `Q` and the target, so this only undoes rounding. The property test
+//!   found such a case before the guard existed; its seed is kept in
+//!   `proptest-regressions/`.
+//!
+//! # Choices where the paper is silent
+//!
+//! * Greedy selection breaks ties by the lowest action id; [`QTable::greedy_actions`]
+//!   lists every action whose `Q` equals the row's maximum exactly.
+//! * [`QTable::greedy`] and [`QTable::epsilon_greedy`] are not in the paper; they are
+//!   here for comparison. [`QLearner`] always selects by Boltzmann, as Figure 1 does.
+//! * A trial starts in a state drawn uniformly from the non-terminal states (the paper's
+//!   "random empty state") or in a fixed state ([`Start`]), and ends on reaching a
+//!   terminal state or after [`Params::max_moves`] moves.
+//! * Rows of terminal states exist in [`QLearner`]'s table (row = state id) but are
+//!   never updated, so their `V` stays 0; a terminal transition never reads them.
 //!
 //! # Determinism
 //!
