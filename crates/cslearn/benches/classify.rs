@@ -7,9 +7,12 @@ use cslearn::{ClassId, DecisionTree, FeatureCosts, Library, TreeOptions, Value};
 use rand::{RngExt, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
+/// Objects as dense rows with their classes.
+type Objects = Vec<(Vec<Option<Value>>, ClassId)>;
+
 /// `n` objects over 20 features of 4 values with prices from 1 to 50; the class depends on
 /// four of the features, so a learner has something to find.
-fn objects(n: usize, seed: u64) -> (FeatureCosts, Vec<(Vec<Option<Value>>, ClassId)>) {
+fn objects(n: usize, seed: u64) -> (FeatureCosts, Objects) {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
     let costs: Vec<f64> = (0..20).map(|_| rng.random_range(1.0..50.0)).collect();
     let rows = (0..n)
@@ -22,7 +25,7 @@ fn objects(n: usize, seed: u64) -> (FeatureCosts, Vec<(Vec<Option<Value>>, Class
     (FeatureCosts::from_f64(&costs).unwrap(), rows)
 }
 
-fn trained(n: usize) -> (cslearn::CsId3, Vec<(Vec<Option<Value>>, ClassId)>) {
+fn trained(n: usize) -> (cslearn::CsId3, Objects) {
     let (costs, rows) = objects(n, 1);
     let mut learner = cslearn::cs_id3(costs);
     learner.stream(rows.iter().map(|(r, c)| (&r[..], *c)));

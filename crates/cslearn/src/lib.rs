@@ -60,6 +60,30 @@
 //! assert_eq!((result.class, result.cost.get()), (Some(ClassId(1)), 1.0));
 //! ```
 //!
+//! # On real data: the Cleveland heart-disease records
+//!
+//! The workspace ships the 304 Cleveland records of the UCI heart-disease data with
+//! Turney's (1995) test costs (`data/heart-disease/`, with its attribution). Streaming them
+//! once in a seeded random order, each object predicted with charged measurements and then
+//! learned with its true class (`num` 0 against greater than 0), gives, over seeds 1 to 10:
+//!
+//! | learner | accuracy, mean (min-max) | measuring cost per object, mean (min-max) |
+//! |---|---|---|
+//! | CS-ID3 | 0.654 (0.618-0.684) | 5.0 (4.2-6.4) |
+//! | CS-ID3 without the recheck | 0.656 (0.615-0.688) | 4.7 (4.1-6.2) |
+//! | CS-IBL, tolerance 1 | 0.651 (0.622-0.691) | 47.9 (41.8-51.2) |
+//! | ID3, cost-blind | 0.644 (0.605-0.688) | 148.8 (87.6-188.4) |
+//! | measuring everything | | 600.57 |
+//!
+//! CS-ID3 pays about a thirtieth of what cost-blind ID3 pays, at the same accuracy, and
+//! both far less than measuring every test. CS-IBL pays for its tolerance of a wrong value:
+//! an instance must be told apart from its rivals by two features instead of one. The
+//! table comes from `cargo run --release -p cslearn --example heart -- 10`; one row of it
+//! for one seed from
+//! `csrl classify --data data/heart-disease/cleveland.csv --costs data/heart-disease/costs.csv
+//! --target num --positive-if '>0' --learner cs-id3 --seed 1` (add `--json` for a JSON
+//! object).
+//!
 //! # Design choices
 //!
 //! * **Sparse examples, no closed world.** An [`Example`] is a sorted list of (feature,
@@ -76,6 +100,12 @@
 //! * **Discrimination reuses attending.** "Until the new example is told apart from the
 //!   conflicting examples" means "until the learner's own attending function drops them",
 //!   so CS-IBL's tolerance carries over to discrimination unchanged.
+//! * **A recheck after learning.** After updating the library, the learner classifies the
+//!   object again, replaying the values it already paid for, and discriminates further if
+//!   the object is still not recognised ([`Learner::recheck`]). Greedy selection can
+//!   otherwise, rarely, prefer a feature the new example lacks once that example is in the
+//!   library; with the recheck, an object just learned is recognised when it comes again
+//!   (on noiseless, non-contradictory data). It costs 0.3 per object on the heart data.
 //! * **No allocation per measurement.** The learner, the attention and the selector keep
 //!   their buffers between objects.
 //! * **Reproducible.** Ties are broken by documented rules, never by hash order; the only
@@ -94,6 +124,7 @@
 //!   values is still classified by its own stored instance.
 //! * Numeric columns are binned at quartiles before learning ([`Binning`]); the paper's
 //!   domains were nominal.
+//! * The recheck after learning (above) is not in the paper.
 //! * The ID3 baseline takes every cost as equal in selection and discriminates in a random
 //!   order: with equal costs and ties by column order, the heart data's column order
 //!   (nearly its cost order) would smuggle cost information in.

@@ -25,9 +25,15 @@ impl Sensor for Metered<'_> {
     }
 }
 
+/// Dense objects with their classes.
+type Objects = Vec<(Vec<Option<Value>>, ClassId)>;
+
+/// Learn an object of the given class, then classify it again.
+type LearnThenClassify<'a> = dyn FnMut(&[Option<Value>], ClassId) -> Option<ClassId> + 'a;
+
 /// Distinct complete objects over `features` features with up to 3 values each, and a
 /// class for each: noiseless and non-contradictory by construction.
-fn problem() -> impl Strategy<Value = (Vec<f64>, Vec<(Vec<Option<Value>>, ClassId)>)> {
+fn problem() -> impl Strategy<Value = (Vec<f64>, Objects)> {
     (1_usize..6).prop_flat_map(|features| {
         let costs = prop::collection::vec(prop_oneof![Just(0.0), 0.5_f64..20.0], features);
         let objects =
@@ -61,7 +67,7 @@ proptest! {
         which in 0_u8..3,
     ) {
         let costs = FeatureCosts::from_f64(&costs).unwrap();
-        let learn_then_classify = |learner: &mut dyn FnMut(&[Option<Value>], ClassId) -> Option<ClassId>| {
+        let learn_then_classify = |learner: &mut LearnThenClassify<'_>| {
             for &pick in &picks {
                 let (row, class) = &objects[pick % objects.len()];
                 prop_assert_eq!(learner(row, *class), Some(*class));
