@@ -6,7 +6,7 @@ use crate::run::{RunReport, Setup};
 
 /// The map as SVG with, for every state, its greedy action as an arrow, its description's
 /// label in the corner and, on hover, the description's features; a legend lists every
-/// description's features as `(dx, dy)=value`.
+/// description's features as `(dx,dy)` followed by `E` (empty), `O` (obstacle) or `G` (goal).
 ///
 /// ```
 /// use csql::{RunSettings, Setup, StrategyKind};
@@ -17,17 +17,27 @@ use crate::run::{RunReport, Setup};
 /// assert_eq!(svg.matches("<line").count(), 8); // one arrow per state
 /// ```
 pub fn policy_svg(setup: &Setup, report: &RunReport) -> String {
-    let features = |label: u32| -> String {
+    let features = |label: u32, short: bool| -> String {
         let d = &report.descriptions[label as usize];
         if d.features.is_empty() {
-            "(no features: matches every state)".to_string()
-        } else {
-            d.features
-                .iter()
-                .map(|f| format!("({}, {})={}", f.dx, f.dy, f.value))
-                .collect::<Vec<_>>()
-                .join(" ")
+            return "(no features: matches every state)".to_string();
         }
+        d.features
+            .iter()
+            .map(|f| {
+                if short {
+                    let code = match f.value {
+                        "empty" => 'E',
+                        "obstacle" => 'O',
+                        _ => 'G',
+                    };
+                    format!("({},{}){code}", f.dx, f.dy)
+                } else {
+                    format!("({}, {})={}", f.dx, f.dy, f.value)
+                }
+            })
+            .collect::<Vec<_>>()
+            .join(" ")
     };
     let mut o = Overlay {
         title: Some(format!(
@@ -63,15 +73,18 @@ pub fn policy_svg(setup: &Setup, report: &RunReport) -> String {
                     s.col,
                     s.value.unwrap_or(0.0),
                     s.v_star,
-                    features(label)
+                    features(label, false)
                 ),
             );
         }
     }
-    o.legend = report
-        .descriptions
-        .iter()
-        .map(|d| format!("d{}: {}", d.label, features(d.label)))
-        .collect();
+    o.legend =
+        vec!["Descriptions: (dx, dy) offset right and up, E empty, O obstacle, G goal".to_string()];
+    o.legend.extend(
+        report
+            .descriptions
+            .iter()
+            .map(|d| format!("d{}: {}", d.label, features(d.label, true))),
+    );
     mdp::render_svg(&setup.map, &o)
 }

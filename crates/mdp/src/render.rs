@@ -128,7 +128,23 @@ pub fn render_svg(map: &Map, overlay: &Overlay) -> String {
     const LINE: usize = 16;
     let (w, h) = (map.width() + 2, map.height() + 2);
     let top = if overlay.title.is_some() { 28 } else { 0 };
-    let width = w * CELL;
+    // Wide enough for the grid, the title and the legend (about 7 px per character).
+    let text_width = |chars: usize, px: usize| chars * px / 10 + 16;
+    let width = (w * CELL)
+        .max(
+            overlay
+                .title
+                .as_ref()
+                .map_or(0, |t| text_width(t.chars().count(), 92)),
+        )
+        .max(
+            overlay
+                .legend
+                .iter()
+                .map(|l| text_width(l.chars().count(), 70))
+                .max()
+                .unwrap_or(0),
+        );
     let height =
         top + h * CELL + overlay.legend.len() * LINE + usize::from(!overlay.legend.is_empty()) * 8;
     let mut s = String::new();

@@ -1,0 +1,48 @@
+//! `cargo xtask`: repository automation for csrl.
+//!
+//! * `cargo xtask reproduce`: the paper's Table 1 and figures beside ours.
+//! * `cargo xtask sweep` and `cargo xtask merge`: grids of settings, sharded across
+//!   machines (see `docs/sweeps.md`).
+
+mod figures;
+mod paper;
+mod reproduce;
+mod stats;
+mod sweep;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+#[derive(Parser)]
+#[command(name = "cargo xtask", about = "Repository automation for csrl")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Reproduce the paper's Table 1 and Figures 4b and 5, beside the paper's numbers.
+    Reproduce(reproduce::ReproduceArgs),
+    /// Run a grid of maps and strategies, optionally one shard of it.
+    Sweep(sweep::SweepArgs),
+    /// Merge the outputs of sweep shards into one table.
+    Merge(sweep::MergeArgs),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        Command::Reproduce(args) => reproduce::run(args),
+        Command::Sweep(args) => sweep::sweep(args),
+        Command::Merge(args) => sweep::merge(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,706 @@
+//! `cargo xtask reproduce`: the paper's Table 1 and Figures 4b and 5, beside ours.
+//!
+//! Seeds: run `i` (from 0) of every strategy uses seed `S + i`, so the strategies are
+//! compared on the same seeds and the full-sensing reference uses them too. The results
+//! are collected in job order, so they do not depend on the number of threads.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use csql::{Reference, RunReport, RunSettings, Setup, StateTree, StrategyKind};
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+
+use crate::figures;
+use crate::paper;
+use crate::stats::Summary;
+
+/// Arguments of `cargo xtask reproduce`.
+#[derive(Args, Clone, Debug)]
+pub struct ReproduceArgs {
+    /// Runs per strategy (the paper: 5).
+    #[arg(long, default_value_t = 5)]
+    pub runs: u64,
+    /// Base seed: run i uses seed S + i.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// The map: a built-in name or a map file.
+    #[arg(long, default_value = "tan8x8")]
+    pub map: String,
+    /// Strategies, comma-separated.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "resetting,lazy,random,eager"
+    )]
+    pub strategies: Vec<StrategyKind>,
+    /// Worker threads (default: every core). Results do not depend on it.
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Output folder.
+    #[arg(long, default_value = "results")]
+    pub out: PathBuf,
+    /// Recompute the default table and compare it with the committed docs/table1.md,
+    /// failing on any difference; writes nothing.
+    #[arg(long)]
+    pub check: bool,
+}
+
+impl ReproduceArgs {
+    fn is_default(&self) -> bool {
+        self.runs == 5
+            && self.seed == 1
+            && self.map == "tan8x8"
+            && self.strategies == StrategyKind::ALL
+    }
+}
+
+/// The committed copy of the default table.
+const COMMITTED: &str = "docs/table1.md";
+
+#[derive(Clone, Copy, Debug)]
+enum Job {
+    Csql { strategy: StrategyKind, run: u64 },
+    FullSensing { run: u64 },
+}
+
+enum Outcome {
+    Csql {
+        report: Box<RunReport>,
+        fixed: Reference,
+    },
+    FullSensing(Reference),
+}
+
+/// Everything the table and the figures are made of.
+pub struct Results {
+    pub args: ReproduceArgs,
+    pub setup: Setup,
+    /// Per strategy (in the order asked), its runs and the Q-learning-on-the-final-
+    /// representation reference of each run.
+    pub runs: Vec<(StrategyKind, Vec<RunReport>, Vec<Reference>)>,
+    pub full: Vec<Reference>,
+}
+
+fn progress(len: u64, what: &str) -> ProgressBar {
+    let bar = ProgressBar::new(len);
+    bar.set_style(
+        ProgressStyle::with_template("{msg} [{bar:30}] {pos}/{len} runs ({elapsed})")
+            .expect("a valid template")
+            .progress_chars("=> "),
+    );
+    bar.set_message(what.to_string());
+    bar
+}
+
+/// Build a thread pool of the asked size (0 or none: every core).
+pub fn pool(threads: Option<usize>) -> Result<rayon::ThreadPool> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .context("cannot start worker threads")
+}
+
+/// Run every job of a reproduction.
+pub fn compute(args: &ReproduceArgs) -> Result<Results> {
+    if args.runs == 0 {
+        bail!("--runs must be at least 1");
+    }
+    if args.strategies.is_empty() {
+        bail!("--strategies must name at least one strategy");
+    }
+    let base = RunSettings::tan1991(&args.map, StrategyKind::Resetting, args.seed);
+    let setup = Setup::new(&base)?;
+    let mut jobs = Vec::new();
+    for &strategy in &args.strategies {
+        jobs.extend((0..args.runs).map(|run| Job::Csql { strategy, run }));
+    }
+    jobs.extend((0..args.runs).map(|run| Job::FullSensing { run }));
+    let bar = progress(jobs.len() as u64, &format!("CS-QL on {}", setup.map.name()));
+    let outcomes: Vec<Outcome> = pool(args.threads)?.install(|| {
+        jobs.par_iter()
+            .map(|&job| {
+                let out = match job {
+                    Job::Csql { strategy, run } => {
+                        let mut settings = base.clone();
+                        settings.strategy = strategy;
+                        settings.seed = args.seed + run;
+                        let (report, rep) = csql::run_with_representation(&setup, &settings);
+                        let fixed = csql::fixed_representation_reference(&setup, &settings, rep);
+                        Outcome::Csql {
+                            report: Box::new(report),
+                            fixed,
+                        }
+                    }
+                    Job::FullSensing { run } => {
+                        let mut settings = base.clone();
+                        settings.seed = args.seed + run;
+                        Outcome::FullSensing(csql::full_sensing_reference(&setup, &settings))
+                    }
+                };
+                bar.inc(1);
+                out
+            })
+            .collect()
+    });
+    bar.finish_and_clear();
+    let mut runs: Vec<(StrategyKind, Vec<RunReport>, Vec<Reference>)> = args
+        .strategies
+        .iter()
+        .map(|&k| (k, Vec::new(), Vec::new()))
+        .collect();
+    let mut full = Vec::new();
+    for (job, outcome) in jobs.iter().zip(outcomes) {
+        match (job, outcome) {
+            (Job::Csql { strategy, .. }, Outcome::Csql { report, fixed }) => {
+                let slot = runs
+                    .iter_mut()
+                    .find(|r| r.0 == *strategy)
+                    .expect("asked for");
+                slot.1.push(*report);
+                slot.2.push(fixed);
+            }
+            (Job::FullSensing { .. }, Outcome::FullSensing(r)) => full.push(r),
+            _ => unreachable!("outcomes follow their jobs"),
+        }
+    }
+    Ok(Results {
+        args: args.clone(),
+        setup,
+        runs,
+        full,
+    })
+}
+
+/// The measures of Table 1 as (row label, decimals, extractor).
+type Row = (&'static str, usize, fn(&RunReport) -> Option<f64>);
+
+const ROWS: [Row; 9] = [
+    ("1 sensing cost to learn a representation", 0, |r| {
+        r.table1.cost_to_sufficient
+    }),
+    ("2 trials to learn a representation", 1, |r| {
+        r.table1.trials_to_sufficient.map(f64::from)
+    }),
+    ("3 sensing cost to convergence", 0, |r| {
+        r.table1.cost_to_converge
+    }),
+    ("4 trials to convergence", 1, |r| {
+        r.table1.trials_to_converge.map(f64::from)
+    }),
+    ("5 descriptions", 1, |r| {
+        r.table1.descriptions.map(|x| x as f64)
+    }),
+    ("6 mean features per description", 2, |r| {
+        r.table1.mean_features
+    }),
+    ("7 max features in a description", 1, |r| {
+        r.table1.max_features.map(|x| x as f64)
+    }),
+    ("8 mean sensing cost per state (decision tree)", 2, |r| {
+        r.table1.tree_cost_per_state
+    }),
+    (
+        "8' mean sensing cost per state (description features)",
+        2,
+        |r| r.table1.description_cost_per_state,
+    ),
+];
+
+fn summary(runs: &[RunReport], f: fn(&RunReport) -> Option<f64>) -> Option<Summary> {
+    let values: Vec<f64> = runs.iter().filter_map(f).collect();
+    Summary::of(&values)
+}
+
+impl Results {
+    fn strategy(&self, k: StrategyKind) -> Option<&(StrategyKind, Vec<RunReport>, Vec<Reference>)> {
+        self.runs.iter().find(|r| r.0 == k)
+    }
+
+    fn mean(&self, k: StrategyKind, row: usize) -> Option<f64> {
+        self.strategy(k)
+            .and_then(|r| summary(&r.1, ROWS[row].2))
+            .map(|s| s.mean)
+    }
+
+    /// `table1.csv`: one line per (row, strategy).
+    pub fn csv(&self) -> String {
+        let mut s = String::from("row,strategy,paper,n,mean,sd,min,max\n");
+        for (i, (name, _, f)) in ROWS.iter().enumerate() {
+            for (k, runs, _) in &self.runs {
+                let paper = paper::TABLE1
+                    .get(i)
+                    .filter(|_| i < 8)
+                    .and_then(|p| {
+                        paper::STRATEGIES
+                            .iter()
+                            .position(|n| *n == k.name())
+                            .map(|j| p.values[j])
+                    })
+                    .unwrap_or("");
+                let cell = |x: f64| format!("{x:.6}");
+                match summary(runs, *f) {
+                    Some(m) => {
+                        let _ = writeln!(
+                            s,
+                            "\"{name}\",{k},\"{paper}\",{},{},{},{},{}",
+                            m.n,
+                            cell(m.mean),
+                            cell(m.sd),
+                            cell(m.min),
+                            cell(m.max)
+                        );
+                    }
+                    None => {
+                        let _ = writeln!(s, "\"{name}\",{k},\"{paper}\",0,,,,");
+                    }
+                }
+            }
+        }
+        s
+    }
+
+    /// `table1.md`: the table beside the paper's, the references and the reading.
+    pub fn markdown(&self) -> String {
+        let a = &self.args;
+        let mut s = String::new();
+        let _ = writeln!(s, "# Table 1: the paper's figures and ours\n");
+        let _ = writeln!(
+            s,
+            "Map `{}` ({} states), {} runs per strategy with seeds {}..={}, the paper's parameters \
+             (beta 1, gamma 0.9, T 0.4, 100 moves per trial, 20 random moves). Ours: mean ± \
+             standard deviation [min–max] over the runs that reached the figure. Made by \
+             `cargo xtask reproduce{}`.\n",
+            self.setup.map.name(),
+            self.setup.map.states(),
+            a.runs,
+            a.seed,
+            a.seed + a.runs - 1,
+            if a.is_default() { "" } else { " ..." }
+        );
+        let converged: Vec<String> = self
+            .runs
+            .iter()
+            .map(|(k, runs, _)| {
+                format!(
+                    "{k} {}/{}",
+                    runs.iter().filter(|r| r.converged).count(),
+                    runs.len()
+                )
+            })
+            .collect();
+        let _ = writeln!(
+            s,
+            "Runs converged to an optimal policy: {}.\n",
+            converged.join(", ")
+        );
+        let _ = write!(s, "| row |");
+        for (k, _, _) in &self.runs {
+            let _ = write!(s, " {k} |");
+        }
+        let _ = write!(s, "\n|---|");
+        for _ in &self.runs {
+            let _ = write!(s, "---|");
+        }
+        s.push('\n');
+        for (i, (name, decimals, f)) in ROWS.iter().enumerate() {
+            if let Some(p) = paper::TABLE1.get(i).filter(|_| i < 8) {
+                let _ = write!(s, "| {name}, paper |");
+                for (k, _, _) in &self.runs {
+                    let j = paper::STRATEGIES
+                        .iter()
+                        .position(|n| *n == k.name())
+                        .expect("four");
+                    let _ = write!(s, " {} |", p.values[j]);
+                }
+                s.push('\n');
+            }
+            let _ = write!(s, "| {name}, ours |");
+            for (_, runs, _) in &self.runs {
+                let cell =
+                    summary(runs, *f).map_or("not reached".to_string(), |m| m.show(*decimals));
+                let _ = write!(s, " {cell} |");
+            }
+            s.push('\n');
+        }
+        self.references(&mut s);
+        self.reading(&mut s);
+        s
+    }
+
+    fn references(&self, s: &mut String) {
+        let _ = writeln!(s, "\n## Reference points\n");
+        let full = |f: fn(&Reference) -> f64| {
+            Summary::of(
+                &self
+                    .full
+                    .iter()
+                    .filter(|r| r.converged)
+                    .map(f)
+                    .collect::<Vec<_>>(),
+            )
+        };
+        let one_per_state = self.runs.iter().all(|(_, runs, _)| {
+            runs.iter()
+                .all(|r| r.table1.descriptions == Some(self.setup.map.states()))
+        });
+        if one_per_state {
+            let _ = writeln!(
+                s,
+                "With one description per state, Q-learning on a final representation follows the same trajectories as the plain learner on the same seeds, so their trials agree; only what a classification costs differs.\n"
+            );
+        }
+        let _ = writeln!(
+            s,
+            "| learner | runs converged | trials to convergence | sensing cost to convergence |"
+        );
+        let _ = writeln!(s, "|---|---|---|---|");
+        let n_full = self.full.iter().filter(|r| r.converged).count();
+        let _ = writeln!(
+            s,
+            "| plain Q-learning, every state identified, sensing the whole bordered world at every classification ({} per classification on average) | {}/{} | {} | {} |",
+            self.full
+                .first()
+                .and_then(|r| r.cost_per_classification)
+                .map_or("?".to_string(), |c| format!("{c:.1}")),
+            n_full,
+            self.full.len(),
+            full(|r| f64::from(r.trials)).map_or("not reached".into(), |m| m.show(1)),
+            full(|r| r.cost).map_or("not reached".into(), |m| m.show(0)),
+        );
+        for (k, _, fixed) in &self.runs {
+            let conv: Vec<&Reference> = fixed.iter().filter(|r| r.converged).collect();
+            let _ = writeln!(
+                s,
+                "| Q-learning from zero on the final representation of the {k} runs, classifying with CLASSIFY | {}/{} | {} | {} |",
+                conv.len(),
+                fixed.len(),
+                Summary::of(&conv.iter().map(|r| f64::from(r.trials)).collect::<Vec<_>>())
+                    .map_or("not reached".into(), |m| m.show(1)),
+                Summary::of(&conv.iter().map(|r| r.cost).collect::<Vec<_>>())
+                    .map_or("not reached".into(), |m| m.show(0)),
+            );
+        }
+        let cheapest = csql::cheapest_interior_cost(&self.setup.world, &self.setup.space);
+        let _ = writeln!(
+            s,
+            "\nSensing every interior cell once from the cheapest state costs {cheapest:.0} (the paper: at least 256 on its 8 by 8 map)."
+        );
+    }
+
+    fn reading(&self, s: &mut String) {
+        use StrategyKind::{Eager, Lazy, Random, Resetting};
+        let _ = writeln!(s, "\n## Reading\n");
+        let have = |k| self.strategy(k).is_some();
+        let all = |k: StrategyKind| {
+            self.strategy(k)
+                .is_some_and(|r| r.1.iter().all(|x| x.converged))
+        };
+        let verdict = |ok: bool| if ok { "holds" } else { "does not hold" };
+        // Claim: all four find the optimal policy.
+        let every = self.runs.iter().all(|r| all(r.0));
+        let _ = writeln!(
+            s,
+            "* Every strategy finds the optimal policy in every run: {}.",
+            verdict(every)
+        );
+        if have(Resetting) && have(Lazy) && have(Random) {
+            let (r, l, x) = (
+                self.mean(Resetting, 2),
+                self.mean(Lazy, 2),
+                self.mean(Random, 2),
+            );
+            if let (Some(r), Some(l), Some(x)) = (r, l, x) {
+                let _ = writeln!(
+                    s,
+                    "* Lazy and random cost far less than resetting before convergence: {} (resetting {r:.0}, {:.1} times lazy's {l:.0} and {:.1} times random's {x:.0}; the paper: about 7 times).",
+                    verdict(r > 2.0 * l && r > 2.0 * x),
+                    r / l,
+                    r / x
+                );
+            }
+        }
+        let features: Vec<(StrategyKind, f64)> = self
+            .runs
+            .iter()
+            .filter_map(|(k, _, _)| self.mean(*k, 5).map(|m| (*k, m)))
+            .collect();
+        let list = features
+            .iter()
+            .map(|(k, m)| format!("{k} {m:.2}"))
+            .collect::<Vec<_>>()
+            .join(", ");
+        if features.len() > 1 {
+            let min = features
+                .iter()
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .expect("some");
+            let max = features
+                .iter()
+                .max_by(|a, b| a.1.total_cmp(&b.1))
+                .expect("some");
+            if have(Resetting) {
+                let _ = writeln!(
+                    s,
+                    "* Resetting yields the most compact descriptions: {} (mean features per description: {list}).",
+                    verdict(min.0 == Resetting)
+                );
+            }
+            if have(Eager) {
+                let _ = writeln!(
+                    s,
+                    "* Eager yields the largest descriptions: {}.",
+                    verdict(max.0 == Eager)
+                );
+            }
+        }
+        if have(Eager) {
+            for k in [Lazy, Random] {
+                if let (Some(kc), Some(ec), Some(kt), Some(et), Some(kd), Some(ed)) = (
+                    self.mean(k, 2),
+                    self.mean(Eager, 2),
+                    self.mean(k, 7),
+                    self.mean(Eager, 7),
+                    self.mean(k, 8),
+                    self.mean(Eager, 8),
+                ) {
+                    let _ = writeln!(
+                        s,
+                        "* {k} is more efficient than eager both before convergence and per state after it (the paper's reason not to recommend eager): {} (cost to convergence {kc:.0} against {ec:.0}; tree cost per state {kt:.2} against {et:.2}; description cost per state {kd:.2} against {ed:.2}).",
+                        verdict(kc < ec && kt < et && kd < ed)
+                    );
+                }
+            }
+        }
+        let shares: Vec<String> = self
+            .runs
+            .iter()
+            .filter_map(|(k, _, _)| {
+                Some(format!(
+                    "{k} {:.0}%",
+                    100.0 * self.mean(*k, 0)? / self.mean(*k, 2)?
+                ))
+            })
+            .collect();
+        let _ = writeln!(
+            s,
+            "* Learning the representation takes 30% to 90% of the sensing cost to convergence (the paper): ours {}.",
+            shares.join(", ")
+        );
+        let cheapest = csql::cheapest_interior_cost(&self.setup.world, &self.setup.space);
+        let worst8 = self
+            .runs
+            .iter()
+            .filter_map(|(k, _, _)| Some(self.mean(*k, 7)?.max(self.mean(*k, 8)?)))
+            .fold(0.0, f64::max);
+        let _ = writeln!(
+            s,
+            "* Classifying a state after learning is far cheaper than sensing the whole grid once: {} (at most {worst8:.2} per state against {cheapest:.0}).",
+            verdict(worst8 < cheapest)
+        );
+        // The break-even remark.
+        if have(Resetting) {
+            for k in [Lazy, Random] {
+                let (Some(rc), Some(kc)) = (self.mean(Resetting, 2), self.mean(k, 2)) else {
+                    continue;
+                };
+                let extra = rc - kc;
+                let mut parts = Vec::new();
+                for (row, what) in [(7, "decision tree"), (8, "description features")] {
+                    let (Some(rs), Some(ks)) = (self.mean(Resetting, row), self.mean(k, row))
+                    else {
+                        continue;
+                    };
+                    let saving = ks - rs;
+                    parts.push(if saving > 0.0 {
+                        format!(
+                            "by the {what} cost, resetting saves {saving:.2} per state and pays off after {:.0} states",
+                            extra / saving
+                        )
+                    } else {
+                        format!("by the {what} cost, resetting saves nothing per state ({rs:.2} against {ks:.2}) and never pays off")
+                    });
+                }
+                let _ = writeln!(
+                    s,
+                    "* Break-even against {k} (the paper: about 220,000 future states): resetting spends {extra:.0} more before convergence; {}.",
+                    parts.join("; ")
+                );
+            }
+            if let (Some(r2), Some(r4), Some(r1), Some(r3)) = (
+                self.mean(Resetting, 1),
+                self.mean(Resetting, 3),
+                self.mean(Resetting, 0),
+                self.mean(Resetting, 2),
+            ) {
+                let fixed = self.strategy(Resetting).map(|r| &r.2).expect("have");
+                let ft = Summary::of(
+                    &fixed
+                        .iter()
+                        .map(|r| f64::from(r.trials))
+                        .collect::<Vec<_>>(),
+                );
+                let fc = Summary::of(&fixed.iter().map(|r| r.cost).collect::<Vec<_>>());
+                let extra: Vec<String> = [Lazy, Random]
+                    .into_iter()
+                    .filter_map(|k| Some(format!("{k} {:.0}", self.mean(k, 3)? - self.mean(k, 1)?)))
+                    .collect();
+                let _ = writeln!(
+                    s,
+                    "* After its representation is sufficient, resetting needs {:.0} more trials and {:.0} more sensing to converge (the paper: 76 and 38545); Q-learning started from zero on its final representation needs {} trials and {} sensing. The heuristic strategies need only {} more trials after theirs (the paper: 13 and 29): the utilities they learn while building the representation are not wasted.",
+                    r4 - r2,
+                    r3 - r1,
+                    ft.map_or("?".into(), |m| format!("{:.0}", m.mean)),
+                    fc.map_or("?".into(), |m| format!("{:.0}", m.mean)),
+                    extra.join(" and ")
+                );
+            }
+        }
+        let _ = writeln!(
+            s,
+            "\nThe map is a reconstruction (the paper's Figure 4a is not in its text), so the figures are compared in shape, not digit for digit."
+        );
+    }
+}
+
+/// The figures of a reproduction.
+fn write_figures(res: &Results, out: &Path) -> Result<Vec<PathBuf>> {
+    let mut written = Vec::new();
+    let name = res.setup.map.name().to_string();
+    let curves: Vec<(String, Vec<(f64, f64, f64)>)> = res
+        .runs
+        .iter()
+        .map(|(k, runs, _)| {
+            let traces: Vec<&[csql::TracePoint]> =
+                runs.iter().map(|r| r.trace.as_slice()).collect();
+            (k.to_string(), figures::spread(&traces))
+        })
+        .collect();
+    let path = out.join("learning_curves.svg");
+    figures::learning_curves(
+        &path,
+        &format!("CS-QL on {name}: cumulative sensing cost (mean, band = min to max over runs)"),
+        &curves,
+    )?;
+    written.push(path);
+    // Figure 4b: policy and descriptions of the first run of each strategy.
+    for (k, runs, _) in &res.runs {
+        let path = out.join(format!("policy_{name}_{k}.svg"));
+        std::fs::write(&path, csql::policy_svg(&res.setup, &runs[0]))?;
+        written.push(path);
+    }
+    // Figure 5d: the tree over the final descriptions of the first run of the first strategy.
+    let (k, runs, _) = &res.runs[0];
+    let settings = runs[0].settings.clone();
+    let (_, rep) = csql::run_with_representation(&res.setup, &settings);
+    let tree = StateTree::build(&rep, &res.setup.space);
+    let path = out.join(format!("tree_{name}_{k}.svg"));
+    std::fs::write(
+        &path,
+        figures::tree_svg(
+            tree.tree(),
+            &res.setup.space,
+            &format!(
+                "Decision tree over the {} descriptions ({k}, seed {})",
+                rep.len(),
+                settings.seed
+            ),
+        ),
+    )?;
+    written.push(path);
+    let path = out.join(format!("tree_{name}_{k}.dot"));
+    std::fs::write(&path, tree.to_dot(&res.setup.space))?;
+    written.push(path);
+    // Figure 5 for tan3x3: descriptions with policy, and tree.
+    let mut small = RunSettings::tan1991("tan3x3", res.runs[0].0, res.args.seed);
+    small.max_trials = settings.max_trials;
+    let setup3 = Setup::new(&small)?;
+    let (report3, rep3) = csql::run_with_representation(&setup3, &small);
+    let tree3 = StateTree::build(&rep3, &setup3.space);
+    let figure5 = figures::side_by_side(
+        &format!(
+            "Figure 5 on tan3x3: {} descriptions for {} states (the paper: 7)",
+            rep3.len(),
+            setup3.map.states()
+        ),
+        &[
+            csql::policy_svg(&setup3, &report3),
+            figures::tree_svg(tree3.tree(), &setup3.space, "decision tree"),
+        ],
+    );
+    let path = out.join("figure5_tan3x3.svg");
+    std::fs::write(&path, figure5)?;
+    written.push(path);
+    let path = out.join("tree_tan3x3.dot");
+    std::fs::write(&path, tree3.to_dot(&setup3.space))?;
+    written.push(path);
+    Ok(written)
+}
+
+/// `cargo xtask reproduce`.
+pub fn run(args: &ReproduceArgs) -> Result<()> {
+    if args.check {
+        let check = ReproduceArgs {
+            runs: 5,
+            seed: 1,
+            map: "tan8x8".into(),
+            strategies: StrategyKind::ALL.to_vec(),
+            ..args.clone()
+        };
+        let fresh = compute(&check)?.markdown();
+        let committed = std::fs::read_to_string(COMMITTED).with_context(|| {
+            format!("cannot read {COMMITTED}; run `cargo xtask reproduce` to write it")
+        })?;
+        if fresh == committed {
+            println!("{COMMITTED} is what the code produces today");
+            return Ok(());
+        }
+        for (i, (a, b)) in committed.lines().zip(fresh.lines()).enumerate() {
+            if a != b {
+                eprintln!(
+                    "{COMMITTED}:{}: differs\n  committed: {a}\n  now:       {b}",
+                    i + 1
+                );
+            }
+        }
+        if committed.lines().count() != fresh.lines().count() {
+            eprintln!(
+                "{COMMITTED}: {} lines committed, {} produced now",
+                committed.lines().count(),
+                fresh.lines().count()
+            );
+        }
+        bail!("{COMMITTED} is out of date: run `cargo xtask reproduce` and commit it");
+    }
+    let res = compute(args)?;
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("cannot create {}", args.out.display()))?;
+    let md = res.markdown();
+    let write = |name: &str, text: &str| -> Result<PathBuf> {
+        let path = args.out.join(name);
+        std::fs::write(&path, text).with_context(|| format!("cannot write {}", path.display()))?;
+        Ok(path)
+    };
+    let mut written = vec![write("table1.md", &md)?, write("table1.csv", &res.csv())?];
+    let mut jsonl = String::new();
+    for (_, runs, _) in &res.runs {
+        for r in runs {
+            jsonl.push_str(&serde_json::to_string(r)?);
+            jsonl.push('\n');
+        }
+    }
+    written.push(write("runs.jsonl", &jsonl)?);
+    written.extend(write_figures(&res, &args.out)?);
+    if args.is_default() {
+        std::fs::write(COMMITTED, &md).with_context(|| format!("cannot write {COMMITTED}"))?;
+        written.push(PathBuf::from(COMMITTED));
+    }
+    println!("{md}");
+    println!("Wrote:");
+    for p in written {
+        println!("  {}", p.display());
+    }
+    Ok(())
+}

@@ -1,0 +1,538 @@
+//! `cargo xtask sweep` and `cargo xtask merge`: a grid of maps and strategies, cut into
+//! shards that can run on different machines, and the merge of their outputs.
+//!
+//! The job list is built in a fixed order (map, then strategy, then run) and numbered
+//! from 0; shard `K/N` runs the jobs whose number is `K - 1` modulo `N`. Run `i` uses seed
+//! `S + i`. Each shard writes `shard-K-of-N/manifest.json` (through a temporary file and a
+//! rename) and appends one line per finished job to `shard-K-of-N/results.jsonl`, flushed
+//! at once: a shard that is killed and started again skips the jobs it already has.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use csql::{RunSettings, Setup, StrategyKind, Table1};
+use indicatif::ProgressBar;
+use mdp::{Map, Pos, RandomMap};
+use rand::SeedableRng;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::stats::Summary;
+
+/// Arguments of `cargo xtask sweep`.
+#[derive(Args, Clone, Debug)]
+pub struct SweepArgs {
+    /// Maps, comma-separated: built-in names, map files, `random:WxH:DENSITY:SEED`, or
+    /// `MAP@ROW:COL` for a map with its goal moved to (ROW, COL).
+    #[arg(long, value_delimiter = ',', required = true)]
+    maps: Vec<String>,
+    /// Strategies, comma-separated.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "resetting,lazy,random,eager"
+    )]
+    strategies: Vec<StrategyKind>,
+    /// Runs per map and strategy.
+    #[arg(long, default_value_t = 5)]
+    runs: u64,
+    /// Base seed: run i uses seed S + i.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Trial cap of each run.
+    #[arg(long, default_value_t = 20_000)]
+    max_trials: u32,
+    /// This machine's shard, `K/N` (K from 1 to N).
+    #[arg(long, default_value = "1/1")]
+    shard: String,
+    /// Worker threads (default: every core).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Output folder (shared by all shards).
+    #[arg(long)]
+    out: PathBuf,
+}
+
+/// Arguments of `cargo xtask merge`.
+#[derive(Args, Clone, Debug)]
+pub struct MergeArgs {
+    /// Folders holding shard outputs (`shard-K-of-N` folders, or folders of them).
+    #[arg(required = true)]
+    dirs: Vec<PathBuf>,
+    /// Where to write `sweep.md` and `sweep.csv`.
+    #[arg(long, default_value = "results/sweep")]
+    out: PathBuf,
+}
+
+/// What a sweep is: shards of the same sweep must agree on it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+struct Definition {
+    maps: Vec<String>,
+    strategies: Vec<StrategyKind>,
+    runs: u64,
+    seed: u64,
+    max_trials: u32,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+struct Manifest {
+    sweep: Definition,
+    shard: u64,
+    shards: u64,
+    total_jobs: u64,
+    job_ids: Vec<u64>,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+struct JobResult {
+    id: u64,
+    map: String,
+    strategy: StrategyKind,
+    seed: u64,
+    states: usize,
+    converged: bool,
+    trials: u32,
+    table1: Table1Row,
+}
+
+/// The Table 1 measures, in a form that reads back from JSON.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+struct Table1Row {
+    cost_to_sufficient: Option<f64>,
+    trials_to_sufficient: Option<u32>,
+    cost_to_converge: Option<f64>,
+    trials_to_converge: Option<u32>,
+    descriptions: Option<usize>,
+    mean_features: Option<f64>,
+    max_features: Option<usize>,
+    tree_cost_per_state: Option<f64>,
+    description_cost_per_state: Option<f64>,
+}
+
+impl From<&Table1> for Table1Row {
+    fn from(t: &Table1) -> Self {
+        Table1Row {
+            cost_to_sufficient: t.cost_to_sufficient,
+            trials_to_sufficient: t.trials_to_sufficient,
+            cost_to_converge: t.cost_to_converge,
+            trials_to_converge: t.trials_to_converge,
+            descriptions: t.descriptions,
+            mean_features: t.mean_features,
+            max_features: t.max_features,
+            tree_cost_per_state: t.tree_cost_per_state,
+            description_cost_per_state: t.description_cost_per_state,
+        }
+    }
+}
+
+/// Parse `K/N`.
+fn parse_shard(s: &str) -> Result<(u64, u64)> {
+    let (k, n) = s
+        .split_once('/')
+        .with_context(|| format!("--shard `{s}`: expected K/N, for example 2/8"))?;
+    let k: u64 = k
+        .trim()
+        .parse()
+        .with_context(|| format!("--shard `{s}`: K is not a number"))?;
+    let n: u64 = n
+        .trim()
+        .parse()
+        .with_context(|| format!("--shard `{s}`: N is not a number"))?;
+    if n == 0 || k == 0 || k > n {
+        bail!("--shard `{s}`: need 1 <= K <= N");
+    }
+    Ok((k, n))
+}
+
+/// Resolve a map spec (see [`SweepArgs::maps`]).
+fn resolve_map(spec: &str) -> Result<Map> {
+    if let Some(rest) = spec.strip_prefix("random:") {
+        let parts: Vec<&str> = rest.split(':').collect();
+        let [size, density, seed] = parts[..] else {
+            bail!("map `{spec}`: expected random:WxH:DENSITY:SEED");
+        };
+        let (w, h) = size
+            .split_once('x')
+            .with_context(|| format!("map `{spec}`: size `{size}` is not WxH"))?;
+        let params = RandomMap {
+            width: w
+                .parse()
+                .with_context(|| format!("map `{spec}`: bad width"))?,
+            height: h
+                .parse()
+                .with_context(|| format!("map `{spec}`: bad height"))?,
+            obstacle_density: density
+                .parse()
+                .with_context(|| format!("map `{spec}`: bad density"))?,
+        };
+        let seed: u64 = seed
+            .parse()
+            .with_context(|| format!("map `{spec}`: bad seed"))?;
+        let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(seed);
+        return Ok(params.generate(spec, &mut rng)?);
+    }
+    if let Some((base, goal)) = spec.rsplit_once('@') {
+        let map = mdp::resolve(base)?;
+        let (r, c) = goal
+            .split_once(':')
+            .with_context(|| format!("map `{spec}`: expected MAP@ROW:COL"))?;
+        let to = Pos::new(
+            r.parse()
+                .with_context(|| format!("map `{spec}`: bad row"))?,
+            c.parse()
+                .with_context(|| format!("map `{spec}`: bad column"))?,
+        );
+        if to.row >= map.height() || to.col >= map.width() || !map.cell(to).is_free() {
+            bail!("map `{spec}`: {to} is not a free cell of {base}");
+        }
+        let layout: String = (0..map.height())
+            .map(|row| {
+                (0..map.width())
+                    .map(|col| {
+                        let p = Pos::new(row, col);
+                        if p == to {
+                            'G'
+                        } else if p == map.goal() {
+                            '.'
+                        } else {
+                            map.cell(p).to_char()
+                        }
+                    })
+                    .collect::<String>()
+            })
+            .collect::<Vec<_>>()
+            .join("\n");
+        return Ok(Map::from_layout(spec, &layout)?);
+    }
+    Ok(mdp::resolve(spec)?)
+}
+
+/// Read a shard's finished jobs, dropping a last line cut short by a kill.
+fn read_results(path: &Path) -> Result<Vec<JobResult>> {
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+        Err(e) => return Err(e).with_context(|| format!("cannot read {}", path.display())),
+    };
+    let mut out = Vec::new();
+    let mut good_bytes = 0;
+    for line in text.split_inclusive('\n') {
+        if !line.ends_with('\n') {
+            break;
+        }
+        match serde_json::from_str::<JobResult>(line) {
+            Ok(r) => {
+                out.push(r);
+                good_bytes += line.len();
+            }
+            Err(_) => break,
+        }
+    }
+    if good_bytes != text.len() {
+        // Keep only whole lines, so that appending goes on cleanly.
+        std::fs::write(path, &text[..good_bytes])
+            .with_context(|| format!("cannot repair {}", path.display()))?;
+    }
+    Ok(out)
+}
+
+fn write_atomic(path: &Path, text: &str) -> Result<()> {
+    let tmp = path.with_extension("tmp");
+    std::fs::write(&tmp, text).with_context(|| format!("cannot write {}", tmp.display()))?;
+    std::fs::rename(&tmp, path).with_context(|| format!("cannot move {} into place", tmp.display()))
+}
+
+/// `cargo xtask sweep`.
+pub fn sweep(args: &SweepArgs) -> Result<()> {
+    let (k, n) = parse_shard(&args.shard)?;
+    if args.runs == 0 || args.strategies.is_empty() {
+        bail!("a sweep needs --runs >= 1 and at least one strategy");
+    }
+    let maps: Vec<Map> = args
+        .maps
+        .iter()
+        .map(|m| resolve_map(m))
+        .collect::<Result<_>>()?;
+    let definition = Definition {
+        maps: args.maps.clone(),
+        strategies: args.strategies.clone(),
+        runs: args.runs,
+        seed: args.seed,
+        max_trials: args.max_trials,
+    };
+    let mut jobs = Vec::new();
+    for (m, _) in maps.iter().enumerate() {
+        for &strategy in &args.strategies {
+            for run in 0..args.runs {
+                jobs.push((m, strategy, run));
+            }
+        }
+    }
+    let total = jobs.len() as u64;
+    let mine: Vec<u64> = (0..total).filter(|id| id % n == k - 1).collect();
+    let dir = args.out.join(format!("shard-{k}-of-{n}"));
+    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let manifest = Manifest {
+        sweep: definition,
+        shard: k,
+        shards: n,
+        total_jobs: total,
+        job_ids: mine.clone(),
+    };
+    let manifest_path = dir.join("manifest.json");
+    if let Ok(text) = std::fs::read_to_string(&manifest_path) {
+        let old: Manifest = serde_json::from_str(&text)
+            .with_context(|| format!("{} is not a sweep manifest", manifest_path.display()))?;
+        if old != manifest {
+            bail!(
+                "{} holds a different sweep; use another --out or remove it",
+                dir.display()
+            );
+        }
+    } else {
+        write_atomic(&manifest_path, &serde_json::to_string_pretty(&manifest)?)?;
+    }
+    let results_path = dir.join("results.jsonl");
+    let done: Vec<u64> = read_results(&results_path)?.iter().map(|r| r.id).collect();
+    let todo: Vec<u64> = mine.into_iter().filter(|id| !done.contains(id)).collect();
+    eprintln!(
+        "shard {k}/{n}: {} jobs of {total}, {} already done, {} to run",
+        todo.len() + done.len(),
+        done.len(),
+        todo.len()
+    );
+    let setups: Vec<Setup> = maps
+        .iter()
+        .map(|m| {
+            let s = RunSettings::tan1991(m.name(), StrategyKind::Resetting, 0);
+            Setup::for_map(m.clone(), &s)
+        })
+        .collect::<Result<_, _>>()?;
+    let file = std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(&results_path)
+        .with_context(|| format!("cannot open {}", results_path.display()))?;
+    let file = Mutex::new(file);
+    let bar = ProgressBar::new(todo.len() as u64);
+    crate::reproduce::pool(args.threads)?.install(|| {
+        todo.par_iter().try_for_each(|&id| -> Result<()> {
+            let (m, strategy, run) = jobs[id as usize];
+            let mut settings = RunSettings::tan1991(&args.maps[m], strategy, args.seed + run);
+            settings.max_trials = args.max_trials;
+            let report = csql::run_on(&setups[m], &settings);
+            let result = JobResult {
+                id,
+                map: args.maps[m].clone(),
+                strategy,
+                seed: settings.seed,
+                states: setups[m].map.states(),
+                converged: report.converged,
+                trials: report.trials,
+                table1: Table1Row::from(&report.table1),
+            };
+            let line = serde_json::to_string(&result)? + "\n";
+            let mut f = file.lock().expect("no writer panics");
+            f.write_all(line.as_bytes())?;
+            f.flush()?;
+            bar.inc(1);
+            Ok(())
+        })
+    })?;
+    bar.finish_and_clear();
+    eprintln!("shard {k}/{n} complete: {}", results_path.display());
+    Ok(())
+}
+
+/// Every `shard-*` folder in or at the given paths.
+fn shard_dirs(dirs: &[PathBuf]) -> Result<Vec<PathBuf>> {
+    let mut out = Vec::new();
+    for d in dirs {
+        if d.join("manifest.json").is_file() {
+            out.push(d.clone());
+            continue;
+        }
+        let entries =
+            std::fs::read_dir(d).with_context(|| format!("cannot read {}", d.display()))?;
+        let mut found: Vec<PathBuf> = entries
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| p.join("manifest.json").is_file())
+            .collect();
+        if found.is_empty() {
+            bail!("{} holds no sweep shard (no manifest.json)", d.display());
+        }
+        found.sort();
+        out.extend(found);
+    }
+    Ok(out)
+}
+
+/// `cargo xtask merge`.
+pub fn merge(args: &MergeArgs) -> Result<()> {
+    let dirs = shard_dirs(&args.dirs)?;
+    let mut definition: Option<(Definition, u64)> = None;
+    let mut by_id: BTreeMap<u64, JobResult> = BTreeMap::new();
+    for dir in &dirs {
+        let path = dir.join("manifest.json");
+        let text = std::fs::read_to_string(&path)
+            .with_context(|| format!("cannot read {}", path.display()))?;
+        let m: Manifest = serde_json::from_str(&text)
+            .with_context(|| format!("{} is not a sweep manifest", path.display()))?;
+        match &definition {
+            None => definition = Some((m.sweep.clone(), m.total_jobs)),
+            Some((d, _)) if *d != m.sweep => bail!(
+                "{} belongs to a different sweep than {}",
+                dir.display(),
+                dirs[0].display()
+            ),
+            Some(_) => {}
+        }
+        for r in read_results(&dir.join("results.jsonl"))? {
+            if !m.job_ids.contains(&r.id) {
+                bail!(
+                    "{}: job {} does not belong to this shard",
+                    dir.display(),
+                    r.id
+                );
+            }
+            if by_id.insert(r.id, r).is_some() {
+                bail!("job appears twice (in {} and another shard)", dir.display());
+            }
+        }
+    }
+    let (definition, total) = definition.expect("at least one shard");
+    let missing: Vec<u64> = (0..total).filter(|id| !by_id.contains_key(id)).collect();
+    if !missing.is_empty() {
+        let shown: Vec<String> = missing.iter().take(20).map(u64::to_string).collect();
+        bail!(
+            "{} of {total} jobs are missing (ids {}{}); run their shards (again) before merging",
+            missing.len(),
+            shown.join(", "),
+            if missing.len() > 20 { ", ..." } else { "" }
+        );
+    }
+    let mut md = String::from("# Sweep\n\n");
+    let _ = writeln!(
+        md,
+        "{} runs per map and strategy, seeds {}..={}, trial cap {}. Mean ± sd [min–max] over converged runs.\n",
+        definition.runs,
+        definition.seed,
+        definition.seed + definition.runs - 1,
+        definition.max_trials
+    );
+    md.push_str("| map | states | strategy | converged | trials to convergence | cost to convergence | descriptions | mean features | max features | tree cost/state |\n|---|---|---|---|---|---|---|---|---|---|\n");
+    let mut csv = String::from(
+        "map,states,strategy,runs,converged,trials_mean,cost_mean,descriptions_mean,mean_features_mean,max_features_mean,tree_cost_mean\n",
+    );
+    for map in &definition.maps {
+        for &k in &definition.strategies {
+            let rs: Vec<&JobResult> = by_id
+                .values()
+                .filter(|r| &r.map == map && r.strategy == k)
+                .collect();
+            let conv: Vec<&JobResult> = rs.iter().copied().filter(|r| r.converged).collect();
+            let col = |f: fn(&Table1Row) -> Option<f64>| {
+                Summary::of(&conv.iter().filter_map(|r| f(&r.table1)).collect::<Vec<_>>())
+            };
+            let cols = [
+                col(|t| t.trials_to_converge.map(f64::from)),
+                col(|t| t.cost_to_converge),
+                col(|t| t.descriptions.map(|x| x as f64)),
+                col(|t| t.mean_features),
+                col(|t| t.max_features.map(|x| x as f64)),
+                col(|t| t.tree_cost_per_state),
+            ];
+            let decimals = [1, 0, 1, 2, 1, 2];
+            let states = rs.first().map_or(0, |r| r.states);
+            let _ = write!(
+                md,
+                "| {map} | {states} | {k} | {}/{} |",
+                conv.len(),
+                rs.len()
+            );
+            let _ = write!(csv, "\"{map}\",{states},{k},{},{}", rs.len(), conv.len());
+            for (c, d) in cols.iter().zip(decimals) {
+                let _ = write!(md, " {} |", c.map_or("—".to_string(), |s| s.show(d)));
+                let _ = write!(
+                    csv,
+                    ",{}",
+                    c.map_or(String::new(), |s| format!("{:.6}", s.mean))
+                );
+            }
+            md.push('\n');
+            csv.push('\n');
+        }
+    }
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("cannot create {}", args.out.display()))?;
+    write_atomic(&args.out.join("sweep.md"), &md)?;
+    write_atomic(&args.out.join("sweep.csv"), &csv)?;
+    println!("{md}");
+    println!(
+        "Merged {} shards, {total} jobs: {}",
+        dirs.len(),
+        args.out.join("sweep.md").display()
+    );
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shards_parse_and_cover_the_jobs_once() {
+        assert_eq!(parse_shard("2/8").unwrap(), (2, 8));
+        for bad in ["0/3", "4/3", "x/3", "3", "1/0"] {
+            assert!(parse_shard(bad).is_err(), "{bad}");
+        }
+        let n = 3;
+        let mut seen = vec![0; 10];
+        for k in 1..=n {
+            for id in (0..10u64).filter(|id| id % n == k - 1) {
+                seen[id as usize] += 1;
+            }
+        }
+        assert!(seen.iter().all(|&c| c == 1));
+    }
+
+    #[test]
+    fn map_specs_resolve() {
+        assert_eq!(resolve_map("tan8x8").unwrap().states(), 50);
+        let moved = resolve_map("tan3x3@2:0").unwrap();
+        assert_eq!(moved.goal(), Pos::new(2, 0));
+        assert_eq!(moved.states(), 8);
+        assert!(resolve_map("tan8x8@0:5").is_err()); // an obstacle
+        let r = resolve_map("random:7x5:0.2:3").unwrap();
+        assert_eq!((r.width(), r.height()), (7, 5));
+        assert_eq!(r, resolve_map("random:7x5:0.2:3").unwrap());
+        assert!(resolve_map("random:7x5:0.2").is_err());
+    }
+
+    #[test]
+    fn a_cut_last_line_is_dropped_and_repaired() {
+        let dir = std::env::temp_dir().join(format!("xtask-sweep-test-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("results.jsonl");
+        let r = JobResult {
+            id: 4,
+            map: "m".into(),
+            strategy: StrategyKind::Lazy,
+            seed: 1,
+            states: 3,
+            converged: true,
+            trials: 2,
+            table1: Table1Row::default(),
+        };
+        let line = serde_json::to_string(&r).unwrap();
+        std::fs::write(&path, format!("{line}\n{}", &line[..10])).unwrap();
+        let back = read_results(&path).unwrap();
+        assert_eq!(back.len(), 1);
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), format!("{line}\n"));
+    }
+}
