@@ -694,8 +694,20 @@ pub fn run(args: &ReproduceArgs) -> Result<()> {
     written.push(write("runs.jsonl", &jsonl)?);
     written.extend(write_figures(&res, &args.out)?);
     if args.is_default() {
+        // The committed copies that the README shows and `--check` compares with.
         std::fs::write(COMMITTED, &md).with_context(|| format!("cannot write {COMMITTED}"))?;
         written.push(PathBuf::from(COMMITTED));
+        std::fs::create_dir_all("docs/figures").context("cannot create docs/figures")?;
+        for name in [
+            "learning_curves.svg",
+            "policy_tan8x8_lazy.svg",
+            "figure5_tan3x3.svg",
+        ] {
+            let to = Path::new("docs/figures").join(name);
+            std::fs::copy(args.out.join(name), &to)
+                .with_context(|| format!("cannot copy {name} to {}", to.display()))?;
+            written.push(to);
+        }
     }
     println!("{md}");
     println!("Wrote:");
