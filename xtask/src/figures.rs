@@ -22,6 +22,9 @@ fn register_font() {
     });
 }
 
+/// A learning curve: its name and, per trial, the mean, lowest and highest value.
+pub type Curve = (String, Vec<(f64, f64, f64)>);
+
 /// Mean, lowest and highest cumulative sensing cost at each trial over runs; a run that
 /// has ended keeps its final cost.
 pub fn spread(traces: &[&[TracePoint]]) -> Vec<(f64, f64, f64)> {
@@ -42,11 +45,7 @@ pub fn spread(traces: &[&[TracePoint]]) -> Vec<(f64, f64, f64)> {
 
 /// Cumulative sensing cost against trials, one line per strategy (the mean over runs)
 /// with a band from the lowest to the highest run.
-pub fn learning_curves(
-    path: &Path,
-    title: &str,
-    curves: &[(String, Vec<(f64, f64, f64)>)],
-) -> Result<()> {
+pub fn learning_curves(path: &Path, title: &str, curves: &[Curve]) -> Result<()> {
     register_font();
     let plot_err = |e: &dyn std::fmt::Display| anyhow!("drawing {}: {e}", path.display());
     let root = SVGBackend::new(path, (960, 600)).into_drawing_area();

@@ -569,7 +569,7 @@ impl Results {
 fn write_figures(res: &Results, out: &Path) -> Result<Vec<PathBuf>> {
     let mut written = Vec::new();
     let name = res.setup.map.name().to_string();
-    let curves: Vec<(String, Vec<(f64, f64, f64)>)> = res
+    let curves: Vec<figures::Curve> = res
         .runs
         .iter()
         .map(|(k, runs, _)| {

@@ -492,7 +492,7 @@ mod tests {
             assert!(parse_shard(bad).is_err(), "{bad}");
         }
         let n = 3;
-        let mut seen = vec![0; 10];
+        let mut seen = [0; 10];
         for k in 1..=n {
             for id in (0..10u64).filter(|id| id % n == k - 1) {
                 seen[id as usize] += 1;

@@ -203,26 +203,27 @@ pub fn run_trial<P: Perception + ?Sized, S: Strategy + ?Sized, R: Rng + ?Sized>(
         let mut row_y = next;
         if change.after < change.before - params.decrease_threshold {
             rec.decreases += 1;
-            if !random_move {
-                if let Reaction::Refine {
+            // Decreases during random moves are seen but never refine anything.
+            if !random_move
+                && let Reaction::Refine {
                     reset,
                     random_moves,
                 } = strategy.on_decrease()
-                {
-                    if let Some(cost) = perception.refine(world, row_x, x) {
-                        rec.cost += cost;
-                        rec.refinements += 1;
-                    }
-                    if reset {
-                        table.reset();
-                        rec.resets += 1;
-                    }
-                    random_left = random_moves;
-                    if !step.terminated {
-                        let (again, cost) = perception.classify(world, step.next, table);
-                        rec.cost += cost;
-                        row_y = Some(again);
-                    }
+            {
+                if let Some(cost) = perception.refine(world, row_x, x) {
+                    rec.cost += cost;
+                    rec.refinements += 1;
+                }
+                if reset {
+                    table.reset();
+                    rec.resets += 1;
+                }
+                random_left = random_moves;
+                if !step.terminated {
+                    // The refined description may no longer match the next state.
+                    let (again, cost) = perception.classify(world, step.next, table);
+                    rec.cost += cost;
+                    row_y = Some(again);
                 }
             }
         }
