@@ -48,6 +48,18 @@ pub struct Verdict {
 
 impl Verdict {
     /// Judge a mapping from states to rows: `rows[i]` is the row of `world.states()[i]`.
+    ///
+    /// ```
+    /// use csql::Verdict;
+    /// use mdp::{GridWorld, Oracle};
+    /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let oracle = Oracle::for_grid(&world, 0.9).unwrap();
+    /// let mut table = qlearn::QTable::new(4).unwrap();
+    /// // One row per state: sufficient, but nothing learned yet.
+    /// let rows: Vec<_> = world.states().iter().map(|_| Some(table.add_row())).collect();
+    /// let v = Verdict::judge(&world, &oracle, &table, &rows, 1e-9);
+    /// assert!(v.sufficient && v.consistent_literal && !v.converged);
+    /// ```
     pub fn judge(
         world: &GridWorld,
         oracle: &Oracle,

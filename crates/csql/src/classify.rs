@@ -33,6 +33,14 @@ use crate::learner::Perception;
 use crate::representation::{DescriptionId, Representation, feature_id, value_of};
 
 /// The result of one classification.
+///
+/// ```
+/// use mdp::{FeatureSpace, GridWorld, Manhattan};
+/// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+/// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+/// let out = csql::Classify::new(&space).classify_state(&world, world.states()[0]);
+/// assert!(out.created && out.measured.is_empty());
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Classification {
     /// The description returned.

@@ -122,6 +122,12 @@ impl Strategy for Never {
 }
 
 /// The loop's parameters (a validated subset of [`crate::RunSettings`]).
+///
+/// ```
+/// let s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
+/// let p = csql::LoopParams::from(&s);
+/// assert_eq!(p.max_moves, 100);
+/// ```
 #[derive(Clone, Copy, Debug)]
 pub struct LoopParams {
     /// Beta.
@@ -136,7 +142,7 @@ pub struct LoopParams {
     pub decrease_threshold: f64,
 }
 
-/// What happened in one trial.
+/// What happened in one trial (see [`run_trial`]).
 ///
 /// ```
 /// let t = csql::TrialRecord::default();
@@ -161,6 +167,23 @@ pub struct TrialRecord {
 }
 
 /// Run one trial from `start`: the loop of Figure 3 until the goal or the move cap.
+///
+/// ```
+/// use csql::{Classify, Lazy, LoopParams, RunSettings, Setup, StrategyKind};
+/// use rand::SeedableRng;
+/// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
+/// let setup = Setup::new(&settings).unwrap();
+/// let mut classify = Classify::new(&setup.space);
+/// let mut table = qlearn::QTable::new(4).unwrap();
+/// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
+/// let start = setup.world.states()[0];
+/// let rec = csql::run_trial(
+///     &setup.world, &mut classify, &mut Lazy::default(), &mut table,
+///     &LoopParams::from(&settings), start, 1, &mut rng,
+/// );
+/// assert!(rec.moves >= 1 && rec.moves <= 100);
+/// assert!(classify.representation().len() >= 1);
+/// ```
 #[allow(clippy::too_many_arguments)]
 pub fn run_trial<P: Perception + ?Sized, S: Strategy + ?Sized, R: Rng + ?Sized>(
     world: &GridWorld,

@@ -12,7 +12,7 @@
 //! and refined (given one more feature) by the strategies, never removed. Any two
 //! descriptions conflict on some feature, so a state matches at most one.
 
-use cslearn::{ClassId, Example, FeatureId, Library, Value};
+use cslearn::{AppendAll, ClassId, Example, FeatureId, Library, Update, Value};
 use mdp::{Cell, Feature, FeatureSpace, GridWorld, StateId};
 use serde::Serialize;
 
@@ -194,7 +194,8 @@ impl Representation {
             pairs.iter().map(|&(f, v)| (feature_id(f), value_of(v))),
             ClassId(id.0),
         );
-        self.library.push(example);
+        // CLASSIFY's library updating (Figure 3, step 4) is cslearn's: keep every new one.
+        AppendAll.update(&mut self.library, example, false);
         self.version += 1;
         id
     }

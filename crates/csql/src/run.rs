@@ -46,6 +46,12 @@ pub struct Table1 {
 }
 
 /// One line of the learning curve: the state of the run at the end of a trial.
+///
+/// ```
+/// let r = csql::run(&csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Eager, 1)).unwrap();
+/// let last = r.trace.last().unwrap();
+/// assert!(last.converged && last.cumulative_cost == r.total_cost);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct TracePoint {
     /// The trial, from 1.
@@ -67,6 +73,12 @@ pub struct TracePoint {
 }
 
 /// A state at the end of the run (row 0 is the top line of the map).
+///
+/// ```
+/// let r = csql::run(&csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1)).unwrap();
+/// let s = r.states.iter().find(|s| (s.row, s.col) == (0, 1)).unwrap();
+/// assert_eq!((s.greedy_action, s.value), (Some("right"), Some(1.0)));
+/// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct StateReport {
     /// Row.
@@ -84,6 +96,12 @@ pub struct StateReport {
 }
 
 /// One feature of a description.
+///
+/// ```
+/// let r = csql::run(&csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1)).unwrap();
+/// let f = r.descriptions.iter().flat_map(|d| &d.features).next().unwrap();
+/// assert_eq!(f.cost, (f.dx.abs() + f.dy.abs()) as f64);
+/// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct FeatureReport {
     /// Offset to the right.
@@ -97,6 +115,11 @@ pub struct FeatureReport {
 }
 
 /// A description at the end of the run.
+///
+/// ```
+/// let r = csql::run(&csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1)).unwrap();
+/// assert!(r.descriptions.iter().enumerate().all(|(i, d)| d.label as usize == i));
+/// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct DescriptionReport {
     /// Its unique label.
@@ -105,7 +128,13 @@ pub struct DescriptionReport {
     pub features: Vec<FeatureReport>,
 }
 
-/// Everything a run measured.
+/// Everything a run measured; `csrl run --json` prints it.
+///
+/// ```
+/// let r = csql::run(&csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Random, 2)).unwrap();
+/// assert!(r.converged);
+/// assert_eq!(r.trials as usize, r.trace.len());
+/// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RunReport {
     /// The map's name.
@@ -138,6 +167,12 @@ pub struct RunReport {
 }
 
 /// A prepared world: map, grid world, feature space and oracle.
+///
+/// ```
+/// let s = csql::RunSettings::tan1991("tan8x8", csql::StrategyKind::Lazy, 1);
+/// let setup = csql::Setup::new(&s).unwrap();
+/// assert_eq!(setup.world.states().len(), 50);
+/// ```
 #[derive(Clone, Debug)]
 pub struct Setup {
     /// The map.
@@ -182,8 +217,10 @@ impl Setup {
             oracle,
         })
     }
+}
 
-    pub(crate) fn loop_params(settings: &RunSettings) -> LoopParams {
+impl From<&RunSettings> for LoopParams {
+    fn from(settings: &RunSettings) -> LoopParams {
         LoopParams {
             beta: settings.beta,
             gamma: settings.gamma,
@@ -213,7 +250,7 @@ pub(crate) fn learn<P: Perception + ?Sized, S: Strategy + ?Sized>(
     table: &mut QTable,
     descriptions: impl Fn(&P) -> usize,
 ) -> Learned {
-    let params = Setup::loop_params(settings);
+    let params = LoopParams::from(settings);
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
     let starts = setup.world.states();
     let mut out = Learned {

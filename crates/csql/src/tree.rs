@@ -72,6 +72,15 @@ pub struct StateTree {
 
 impl StateTree {
     /// Build the tree over a representation.
+    ///
+    /// ```
+    /// use mdp::{Cell, Feature, FeatureSpace, Manhattan};
+    /// let space = FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &Manhattan).unwrap();
+    /// let mut rep = csql::Representation::default();
+    /// rep.push(&[(Feature(0), Cell::Empty)]);
+    /// rep.push(&[(Feature(0), Cell::Obstacle)]);
+    /// assert_eq!(csql::StateTree::build(&rep, &space).tree().depth(), 1);
+    /// ```
     pub fn build(rep: &Representation, space: &FeatureSpace) -> StateTree {
         let costs: Vec<Cost> = space
             .costs()
@@ -84,6 +93,18 @@ impl StateTree {
     }
 
     /// The description the tree gives a state, and the sensing cost of getting there.
+    ///
+    /// ```
+    /// use mdp::{Cell, Feature, FeatureSpace, GridWorld, Manhattan, Pos};
+    /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let mut rep = csql::Representation::default();
+    /// let open = rep.push(&[(Feature(0), Cell::Empty)]);
+    /// rep.push(&[(Feature(0), Cell::Obstacle)]);
+    /// let tree = csql::StateTree::build(&rep, &space);
+    /// let below = world.state_at(Pos::new(1, 1)).unwrap();
+    /// assert_eq!(tree.classify(&world, &space, below), (Some(open), 1.0));
+    /// ```
     pub fn classify(
         &self,
         world: &GridWorld,
@@ -99,6 +120,15 @@ impl StateTree {
     }
 
     /// The tree as Graphviz DOT, with features named by offset `(dx, dy)`.
+    ///
+    /// ```
+    /// use mdp::{Cell, Feature, FeatureSpace, Manhattan};
+    /// let space = FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &Manhattan).unwrap();
+    /// let mut rep = csql::Representation::default();
+    /// rep.push(&[(Feature(0), Cell::Empty)]);
+    /// rep.push(&[(Feature(0), Cell::Obstacle)]);
+    /// assert!(csql::StateTree::build(&rep, &space).to_dot(&space).contains("(0, 1)"));
+    /// ```
     pub fn to_dot(&self, space: &FeatureSpace) -> String {
         self.tree.to_dot(&GridLabels(space))
     }
