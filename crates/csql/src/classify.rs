@@ -387,6 +387,10 @@ impl Perception for Classify {
         self.add_feature(world, DescriptionId(row.0), s)
     }
 
+    fn rows(&self) -> usize {
+        self.rep.len()
+    }
+
     fn verdict(
         &self,
         world: &GridWorld,

@@ -48,6 +48,8 @@ pub trait Perception {
     /// Make `row` more specific, using state `s` (which it describes) for the new value;
     /// returns the cost charged, or `None` if the row cannot be refined further.
     fn refine(&mut self, world: &GridWorld, row: RowId, s: StateId) -> Option<f64>;
+    /// How many rows (descriptions) the perception has made so far.
+    fn rows(&self) -> usize;
     /// The oracle's verdict on the perception and the table (free, never seen by the learner).
     fn verdict(
         &self,
@@ -88,6 +90,9 @@ impl Perception for Identified {
     }
     fn refine(&mut self, _world: &GridWorld, _row: RowId, _s: StateId) -> Option<f64> {
         None
+    }
+    fn rows(&self) -> usize {
+        self.rows.iter().flatten().count()
     }
     fn verdict(
         &self,

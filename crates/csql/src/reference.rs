@@ -11,7 +11,7 @@ use qlearn::QTable;
 use serde::Serialize;
 
 use crate::classify::Classify;
-use crate::learner::{Identified, Never};
+use crate::learner::{Identified, Never, Perception};
 use crate::representation::Representation;
 use crate::run::{Setup, learn};
 use crate::settings::RunSettings;
@@ -34,6 +34,22 @@ pub struct Reference {
     pub cost_per_classification: Option<f64>,
 }
 
+/// The summed cost of sensing, from state `s`, every cell within `margin` cells of the
+/// interior (0: the interior only; 1: the interior and its boundary).
+fn sensing_cost(world: &GridWorld, space: &FeatureSpace, s: StateId, margin: i64) -> f64 {
+    let p = world.pos(s);
+    let (h, w) = (world.map().height() as i64, world.map().width() as i64);
+    space
+        .features()
+        .filter(|&f| {
+            let o = space.offset(f);
+            let (r, c) = (p.row as i64 - o.dy as i64, p.col as i64 + o.dx as i64);
+            (-margin..h + margin).contains(&r) && (-margin..w + margin).contains(&c)
+        })
+        .map(|f| space.cost(f))
+        .sum()
+}
+
 /// The cost of sensing every cell of the bordered world (the interior and its boundary)
 /// from state `s`: the price of identifying a state by brute force.
 ///
@@ -46,17 +62,7 @@ pub struct Reference {
 /// assert_eq!(csql::whole_world_cost(&world, &space, centre), 4.0 + 16.0 + 24.0 + 16.0);
 /// ```
 pub fn whole_world_cost(world: &GridWorld, space: &FeatureSpace, s: StateId) -> f64 {
-    let p = world.pos(s);
-    let (h, w) = (world.map().height() as i64, world.map().width() as i64);
-    space
-        .features()
-        .filter(|&f| {
-            let o = space.offset(f);
-            let (r, c) = (p.row as i64 - o.dy as i64, p.col as i64 + o.dx as i64);
-            (-1..=h).contains(&r) && (-1..=w).contains(&c)
-        })
-        .map(|f| space.cost(f))
-        .sum()
+    sensing_cost(world, space, s, 1)
 }
 
 /// The cost of sensing only the interior cells from the cheapest state: the paper's
@@ -69,23 +75,28 @@ pub fn whole_world_cost(world: &GridWorld, space: &FeatureSpace, s: StateId) -> 
 /// assert_eq!(csql::cheapest_interior_cost(&world, &space), 256.0);
 /// ```
 pub fn cheapest_interior_cost(world: &GridWorld, space: &FeatureSpace) -> f64 {
-    let (h, w) = (world.map().height() as i64, world.map().width() as i64);
     world
         .states()
         .iter()
-        .map(|&s| {
-            let p = world.pos(s);
-            space
-                .features()
-                .filter(|&f| {
-                    let o = space.offset(f);
-                    let (r, c) = (p.row as i64 - o.dy as i64, p.col as i64 + o.dx as i64);
-                    (0..h).contains(&r) && (0..w).contains(&c)
-                })
-                .map(|f| space.cost(f))
-                .sum::<f64>()
-        })
+        .map(|&s| sensing_cost(world, space, s, 0))
         .fold(f64::INFINITY, f64::min)
+}
+
+/// Learn on a fixed perception with the run's settings until convergence.
+fn reference<P: Perception>(
+    setup: &Setup,
+    settings: &RunSettings,
+    mut perception: P,
+    mut table: QTable,
+    cost_per_classification: Option<f64>,
+) -> Reference {
+    let learned = learn(setup, settings, &mut perception, &mut Never, &mut table);
+    Reference {
+        converged: learned.first_converged.is_some(),
+        trials: learned.trace.len() as u32,
+        cost: learned.cost,
+        cost_per_classification,
+    }
 }
 
 /// Plain Q-learning with every state identified, charged [`whole_world_cost`] per
@@ -103,22 +114,14 @@ pub fn full_sensing_reference(setup: &Setup, settings: &RunSettings) -> Referenc
         .collect();
     let states = setup.world.states();
     let mean = states.iter().map(|s| cost[s.index()]).sum::<f64>() / states.len() as f64;
-    let mut perception = Identified::new(&setup.world, cost);
-    let mut table = QTable::new(4).expect("four actions");
-    let learned = learn(
+    let perception = Identified::new(&setup.world, cost);
+    reference(
         setup,
         settings,
-        &mut perception,
-        &mut Never,
-        &mut table,
-        |_| 0,
-    );
-    Reference {
-        converged: learned.first_converged.is_some(),
-        trials: learned.trace.len() as u32,
-        cost: learned.cost,
-        cost_per_classification: Some(mean),
-    }
+        perception,
+        QTable::new(4).expect("four actions"),
+        Some(mean),
+    )
 }
 
 /// Q-learning from zero on a fixed representation (for example the one a run ended
@@ -137,21 +140,7 @@ pub fn fixed_representation_reference(
     settings: &RunSettings,
     rep: Representation,
 ) -> Reference {
-    let rows = rep.len();
-    let mut perception = Classify::with_representation(&setup.space, rep);
-    let mut table = QTable::with_rows(4, rows).expect("four actions");
-    let learned = learn(
-        setup,
-        settings,
-        &mut perception,
-        &mut Never,
-        &mut table,
-        |p| p.representation().len(),
-    );
-    Reference {
-        converged: learned.first_converged.is_some(),
-        trials: learned.trace.len() as u32,
-        cost: learned.cost,
-        cost_per_classification: None,
-    }
+    let table = QTable::with_rows(4, rep.len()).expect("four actions");
+    let perception = Classify::with_representation(&setup.space, rep);
+    reference(setup, settings, perception, table, None)
 }

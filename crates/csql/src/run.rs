@@ -248,7 +248,6 @@ pub(crate) fn learn<P: Perception + ?Sized, S: Strategy + ?Sized>(
     perception: &mut P,
     strategy: &mut S,
     table: &mut QTable,
-    descriptions: impl Fn(&P) -> usize,
 ) -> Learned {
     let params = LoopParams::from(settings);
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
@@ -285,7 +284,7 @@ pub(crate) fn learn<P: Perception + ?Sized, S: Strategy + ?Sized>(
             trial,
             moves: rec.moves,
             cumulative_cost: out.cost,
-            descriptions: descriptions(perception),
+            descriptions: perception.rows(),
             decreases: rec.decreases,
             refinements: rec.refinements,
             sufficient: verdict.sufficient,
@@ -369,7 +368,6 @@ fn run_classify(
         &mut perception,
         strategy.as_mut(),
         &mut table,
-        |p| p.representation().len(),
     );
     let report = report(
         setup,
