@@ -17,8 +17,7 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use csql::{RunSettings, Setup, StrategyKind, Table1};
 use indicatif::ProgressBar;
-use mdp::{Map, Pos, RandomMap};
-use rand::SeedableRng;
+use mdp::Map;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -149,69 +148,6 @@ fn parse_shard(s: &str) -> Result<(u64, u64)> {
     Ok((k, n))
 }
 
-/// Resolve a map spec (see [`SweepArgs::maps`]).
-fn resolve_map(spec: &str) -> Result<Map> {
-    if let Some(rest) = spec.strip_prefix("random:") {
-        let parts: Vec<&str> = rest.split(':').collect();
-        let [size, density, seed] = parts[..] else {
-            bail!("map `{spec}`: expected random:WxH:DENSITY:SEED");
-        };
-        let (w, h) = size
-            .split_once('x')
-            .with_context(|| format!("map `{spec}`: size `{size}` is not WxH"))?;
-        let params = RandomMap {
-            width: w
-                .parse()
-                .with_context(|| format!("map `{spec}`: bad width"))?,
-            height: h
-                .parse()
-                .with_context(|| format!("map `{spec}`: bad height"))?,
-            obstacle_density: density
-                .parse()
-                .with_context(|| format!("map `{spec}`: bad density"))?,
-        };
-        let seed: u64 = seed
-            .parse()
-            .with_context(|| format!("map `{spec}`: bad seed"))?;
-        let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(seed);
-        return Ok(params.generate(spec, &mut rng)?);
-    }
-    if let Some((base, goal)) = spec.rsplit_once('@') {
-        let map = mdp::resolve(base)?;
-        let (r, c) = goal
-            .split_once(':')
-            .with_context(|| format!("map `{spec}`: expected MAP@ROW:COL"))?;
-        let to = Pos::new(
-            r.parse()
-                .with_context(|| format!("map `{spec}`: bad row"))?,
-            c.parse()
-                .with_context(|| format!("map `{spec}`: bad column"))?,
-        );
-        if to.row >= map.height() || to.col >= map.width() || !map.cell(to).is_free() {
-            bail!("map `{spec}`: {to} is not a free cell of {base}");
-        }
-        let layout: String = (0..map.height())
-            .map(|row| {
-                (0..map.width())
-                    .map(|col| {
-                        let p = Pos::new(row, col);
-                        if p == to {
-                            'G'
-                        } else if p == map.goal() {
-                            '.'
-                        } else {
-                            map.cell(p).to_char()
-                        }
-                    })
-                    .collect::<String>()
-            })
-            .collect::<Vec<_>>()
-            .join("\n");
-        return Ok(Map::from_layout(spec, &layout)?);
-    }
-    Ok(mdp::resolve(spec)?)
-}
-
 /// Read a shard's finished jobs, dropping a last line cut short by a kill.
 fn read_results(path: &Path) -> Result<Vec<JobResult>> {
     let text = match std::fs::read_to_string(path) {
@@ -256,8 +192,8 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
     let maps: Vec<Map> = args
         .maps
         .iter()
-        .map(|m| resolve_map(m))
-        .collect::<Result<_>>()?;
+        .map(|m| mdp::resolve(m))
+        .collect::<Result<_, _>>()?;
     let definition = Definition {
         maps: args.maps.clone(),
         strategies: args.strategies.clone(),
@@ -499,19 +435,6 @@ mod tests {
             }
         }
         assert!(seen.iter().all(|&c| c == 1));
-    }
-
-    #[test]
-    fn map_specs_resolve() {
-        assert_eq!(resolve_map("tan8x8").unwrap().states(), 50);
-        let moved = resolve_map("tan3x3@2:0").unwrap();
-        assert_eq!(moved.goal(), Pos::new(2, 0));
-        assert_eq!(moved.states(), 8);
-        assert!(resolve_map("tan8x8@0:5").is_err()); // an obstacle
-        let r = resolve_map("random:7x5:0.2:3").unwrap();
-        assert_eq!((r.width(), r.height()), (7, 5));
-        assert_eq!(r, resolve_map("random:7x5:0.2:3").unwrap());
-        assert!(resolve_map("random:7x5:0.2").is_err());
     }
 
     #[test]

@@ -3,6 +3,8 @@
 
 use std::path::PathBuf;
 
+use std::io::Write;
+
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use cslearn::{Dataset, DatasetOptions, LearnerKind};
@@ -50,7 +52,7 @@ pub struct ClassifyArgs {
 }
 
 /// Run `csrl classify`.
-pub fn run(args: &ClassifyArgs) -> Result<()> {
+pub fn run(args: &ClassifyArgs, out: &mut dyn Write) -> Result<()> {
     let mut options = DatasetOptions::new(args.target.as_str());
     options.positive_if.clone_from(&args.positive_if);
     let data = Dataset::load(&args.data, &args.costs, &options).context("cannot load the data")?;
@@ -79,24 +81,26 @@ pub fn run(args: &ClassifyArgs) -> Result<()> {
             "mean_cost": report.mean_cost,
             "full_cost": report.full_cost,
         });
-        println!("{json}");
+        writeln!(out, "{json}")?;
     } else {
-        println!("learner     {name} (seed {})", args.seed);
-        println!(
+        writeln!(out, "learner     {name} (seed {})", args.seed)?;
+        writeln!(
+            out,
             "data        {} ({} features, {} classes)",
             args.data.display(),
             data.feature_count(),
             data.class_count()
-        );
-        println!("objects     {}", report.objects);
-        println!("errors      {}", report.errors);
-        println!("accuracy    {:.3}", report.accuracy);
-        println!("total cost  {:.2}", report.total_cost);
-        println!("mean cost   {:.2} per object", report.mean_cost);
-        println!(
+        )?;
+        writeln!(out, "objects     {}", report.objects)?;
+        writeln!(out, "errors      {}", report.errors)?;
+        writeln!(out, "accuracy    {:.3}", report.accuracy)?;
+        writeln!(out, "total cost  {:.2}", report.total_cost)?;
+        writeln!(out, "mean cost   {:.2} per object", report.mean_cost)?;
+        writeln!(
+            out,
             "full cost   {:.2} per object (measuring every feature)",
             report.full_cost
-        );
+        )?;
     }
     Ok(())
 }

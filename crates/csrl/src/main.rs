@@ -7,6 +7,7 @@ mod classify;
 mod maps;
 mod run;
 
+use std::io::Write;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
@@ -35,17 +36,29 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    let stdout = std::io::stdout();
+    let mut out = stdout.lock();
     let result = match &cli.command {
-        Command::Maps => maps::list(),
-        Command::Map(cmd) => maps::run(cmd),
-        Command::Run(args) => run::run(args),
-        Command::Classify(args) => classify::run(args),
-    };
+        Command::Maps => maps::list(&mut out),
+        Command::Map(cmd) => maps::run(cmd, &mut out),
+        Command::Run(args) => run::run(args, &mut out),
+        Command::Classify(args) => classify::run(args, &mut out),
+    }
+    .and_then(|()| out.flush().map_err(anyhow::Error::from));
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        // A reader that stops early (`csrl ... | head`) is not an error of ours.
+        Err(e) if is_broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e:#}");
             ExitCode::FAILURE
         }
     }
+}
+
+fn is_broken_pipe(e: &anyhow::Error) -> bool {
+    e.chain().any(|c| {
+        c.downcast_ref::<std::io::Error>()
+            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+    })
 }

@@ -1,5 +1,6 @@
 //! `csrl maps`, `csrl map show` and `csrl map check`.
 
+use std::io::Write;
 use std::path::PathBuf;
 
 use anyhow::Result;
@@ -10,9 +11,10 @@ use serde::Serialize;
 /// The `map` subcommands.
 #[derive(Subcommand)]
 pub enum MapCommand {
-    /// Print a map (a built-in name or a file path) with its figures.
+    /// Print a map (a built-in name, a file path, `random:WxH:DENSITY:SEED` or
+    /// `MAP@ROW:COL`) with its figures.
     Show {
-        /// A built-in map name (see `csrl maps`) or a path to a map file.
+        /// A built-in map name (see `csrl maps`), a path to a map file, or a spec.
         map: String,
         /// Print one JSON object instead of text.
         #[arg(long)]
@@ -26,7 +28,7 @@ pub enum MapCommand {
 }
 
 /// `csrl maps`.
-pub fn list() -> Result<()> {
+pub fn list(out: &mut dyn Write) -> Result<()> {
     for name in mdp::builtin_names() {
         let map = mdp::builtin(name).expect("listed built-ins exist");
         let first = map
@@ -34,25 +36,30 @@ pub fn list() -> Result<()> {
             .and_then(|d| d.split(". ").next())
             .unwrap_or("")
             .trim_end_matches('.');
-        println!(
+        writeln!(
+            out,
             "{name:<14} {:>2}x{:<2} {:>3} states  {first}",
             map.width(),
             map.height(),
             map.states()
-        );
+        )?;
     }
     Ok(())
 }
 
 /// `csrl map ...`.
-pub fn run(cmd: &MapCommand) -> Result<()> {
+pub fn run(cmd: &MapCommand, out: &mut dyn Write) -> Result<()> {
     match cmd {
         MapCommand::Show { map, json } => {
             let map = mdp::resolve(map)?;
             if *json {
-                println!("{}", serde_json::to_string_pretty(&MapJson::new(&map))?);
+                writeln!(
+                    out,
+                    "{}",
+                    serde_json::to_string_pretty(&MapJson::new(&map))?
+                )?;
             } else {
-                show(&map);
+                show(&map, out)?;
             }
             Ok(())
         }
@@ -71,15 +78,15 @@ pub fn run(cmd: &MapCommand) -> Result<()> {
     }
 }
 
-fn show(map: &Map) {
+fn show(map: &Map, out: &mut dyn Write) -> std::io::Result<()> {
     let world = GridWorld::new(map);
     let oracle = Oracle::for_grid(&world, 0.9).expect("0.9 is a valid discount");
-    println!("{}", map.name());
+    writeln!(out, "{}", map.name())?;
     if let Some(d) = map.description() {
-        println!("{d}");
+        writeln!(out, "{d}")?;
     }
-    println!();
-    print!("{}", mdp::render_text(map, &mdp::Overlay::default()));
+    writeln!(out)?;
+    write!(out, "{}", mdp::render_text(map, &mdp::Overlay::default()))?;
     let distances: Vec<u32> = world
         .states()
         .iter()
@@ -87,17 +94,26 @@ fn show(map: &Map) {
         .collect();
     let longest = distances.iter().max().copied().unwrap_or(0);
     let mean = distances.iter().sum::<u32>() as f64 / distances.len().max(1) as f64;
-    println!();
-    println!("size        {} x {}", map.width(), map.height());
-    println!("obstacles   {}", map.obstacles());
-    println!(
+    writeln!(out)?;
+    writeln!(out, "size        {} x {}", map.width(), map.height())?;
+    writeln!(out, "obstacles   {}", map.obstacles())?;
+    writeln!(
+        out,
         "states      {} (free cells other than the goal)",
         map.states()
-    );
-    println!("goal        row {}, col {}", map.goal().row, map.goal().col);
-    println!("distance    mean {mean:.2}, longest {longest} moves to the goal");
-    println!();
-    println!("Moves to the goal:");
+    )?;
+    writeln!(
+        out,
+        "goal        row {}, col {}",
+        map.goal().row,
+        map.goal().col
+    )?;
+    writeln!(
+        out,
+        "distance    mean {mean:.2}, longest {longest} moves to the goal"
+    )?;
+    writeln!(out)?;
+    writeln!(out, "Moves to the goal:")?;
     for r in 0..map.height() {
         let line: Vec<String> = (0..map.width())
             .map(|c| match world.state_at(Pos::new(r, c)) {
@@ -108,8 +124,9 @@ fn show(map: &Map) {
                 None => "  #".to_string(),
             })
             .collect();
-        println!("{}", line.join(""));
+        writeln!(out, "{}", line.join(""))?;
     }
+    Ok(())
 }
 
 #[derive(Serialize)]

@@ -1,5 +1,6 @@
 //! `csrl run`: one CS-QL run.
 
+use std::io::Write;
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
@@ -9,7 +10,8 @@ use csql::{RunReport, RunSettings, Setup, StrategyKind};
 /// Arguments of `csrl run`.
 #[derive(Args)]
 pub struct RunArgs {
-    /// A built-in map name or a map file (default: the config's map, else tan8x8).
+    /// A map: a built-in name, a map file, `random:WxH:DENSITY:SEED`, or `MAP@ROW:COL`
+    /// for MAP with its goal moved (default: the config's map, else tan8x8).
     #[arg(long)]
     map: Option<String>,
     /// resetting, lazy, random or eager (default: the config's, else resetting).
@@ -58,7 +60,7 @@ impl RunArgs {
 }
 
 /// Run `csrl run`.
-pub fn run(args: &RunArgs) -> Result<()> {
+pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     let settings = args.settings()?;
     let setup = Setup::new(&settings)?;
     let report = csql::run_on(&setup, &settings);
@@ -67,9 +69,9 @@ pub fn run(args: &RunArgs) -> Result<()> {
             .with_context(|| format!("cannot write {}", path.display()))?;
     }
     if args.json {
-        println!("{}", serde_json::to_string(&report)?);
+        writeln!(out, "{}", serde_json::to_string(&report)?)?;
     } else {
-        print_report(&report);
+        print_report(&report, out)?;
     }
     Ok(())
 }
@@ -78,8 +80,9 @@ fn fmt_opt<T: std::fmt::Display>(x: Option<T>) -> String {
     x.map_or_else(|| "not reached".to_string(), |v| v.to_string())
 }
 
-fn print_report(r: &RunReport) {
-    println!(
+fn print_report(r: &RunReport, out: &mut dyn Write) -> std::io::Result<()> {
+    writeln!(
+        out,
         "CS-QL on {} with the {} strategy, seed {}: {} after {} trials ({} moves, sensing cost {:.0})",
         r.map,
         r.strategy,
@@ -92,7 +95,7 @@ fn print_report(r: &RunReport) {
         r.trials,
         r.moves,
         r.total_cost
-    );
+    )?;
     let t = &r.table1;
     let rows = [
         (
@@ -120,9 +123,10 @@ fn print_report(r: &RunReport) {
             fmt_opt(t.description_cost_per_state.map(|x| format!("{x:.2}"))),
         ),
     ];
-    println!();
-    println!("{:<42} {:>12}", "Table 1 row", "value");
+    writeln!(out)?;
+    writeln!(out, "{:<42} {:>12}", "Table 1 row", "value")?;
     for (name, value) in rows {
-        println!("{name:<42} {value:>12}");
+        writeln!(out, "{name:<42} {value:>12}")?;
     }
+    Ok(())
 }

@@ -174,3 +174,21 @@ fn svg_shows_the_policy() {
     assert_eq!(svg.matches("<line").count(), 8);
     assert!(svg.contains("<title>"));
 }
+
+#[test]
+fn a_reader_that_stops_early_is_no_error() {
+    use std::process::Stdio;
+    // The JSON of a resetting run is far larger than a pipe's buffer, so the program is
+    // still writing when the reader goes away.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_csrl"))
+        .args(["run", "--map", "tan8x8", "--json"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+}

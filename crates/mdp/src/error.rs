@@ -178,6 +178,14 @@ pub enum MapError {
         /// The cell.
         cell: Pos,
     },
+    /// A map spec that cannot be read (see [`crate::resolve`]).
+    #[error("map `{spec}`: {reason}")]
+    BadSpec {
+        /// The spec.
+        spec: String,
+        /// What is wrong with it.
+        reason: String,
+    },
     /// Random map parameters out of range.
     #[error("invalid random map parameter `{name}`: {reason}")]
     InvalidRandomParameter {

@@ -714,25 +714,96 @@ pub fn builtin(name: &str) -> Option<Map> {
     })
 }
 
-/// A map by built-in name or, failing that, by file path.
+/// A map from a spec:
+///
+/// | spec | map |
+/// |---|---|
+/// | `tan8x8` | a built-in map |
+/// | `path/to/map.toml` | a map file |
+/// | `random:WxH:DENSITY:SEED` | a [`RandomMap`](crate::RandomMap) drawn with `Xoshiro256PlusPlus` seeded by SEED |
+/// | `SPEC@ROW:COL` | the map of SPEC with its goal moved to (ROW, COL), which must be free |
+///
+/// A built-in name or an existing file wins over the other readings.
 ///
 /// ```
 /// assert_eq!(mdp::resolve("tan3x3").unwrap().states(), 8);
+/// assert_eq!(mdp::resolve("tan3x3@2:0").unwrap().goal(), mdp::Pos::new(2, 0));
+/// let r = mdp::resolve("random:7x5:0.2:3").unwrap();
+/// assert_eq!((r.width(), r.height()), (7, 5));
 /// let err = mdp::resolve("no-such-map.toml").unwrap_err();
 /// assert!(err.to_string().contains("no-such-map.toml"));
 /// ```
-pub fn resolve(name_or_path: &str) -> Result<Map, MapError> {
-    match builtin(name_or_path) {
-        Some(map) => Ok(map),
-        None => {
-            let path = Path::new(name_or_path);
-            if !path.exists() {
-                return Err(MapError::UnknownMap {
-                    name: name_or_path.to_string(),
-                    builtins: builtin_names().join(", "),
-                });
-            }
-            Map::load(path)
+pub fn resolve(spec: &str) -> Result<Map, MapError> {
+    if let Some(map) = builtin(spec) {
+        return Ok(map);
+    }
+    let path = Path::new(spec);
+    if path.exists() {
+        return Map::load(path);
+    }
+    let bad = |reason: &str| MapError::BadSpec {
+        spec: spec.to_string(),
+        reason: reason.to_string(),
+    };
+    if let Some(rest) = spec.strip_prefix("random:") {
+        let parts: Vec<&str> = rest.split(':').collect();
+        let [size, density, seed] = parts[..] else {
+            return Err(bad("expected random:WxH:DENSITY:SEED"));
+        };
+        let (w, h) = size
+            .split_once('x')
+            .ok_or_else(|| bad("the size is not WxH"))?;
+        let params = crate::RandomMap {
+            width: w.parse().map_err(|_| bad("the width is not a number"))?,
+            height: h.parse().map_err(|_| bad("the height is not a number"))?,
+            obstacle_density: density
+                .parse()
+                .map_err(|_| bad("the density is not a number"))?,
+        };
+        let seed: u64 = seed.parse().map_err(|_| bad("the seed is not a number"))?;
+        let mut rng = <rand_xoshiro::Xoshiro256PlusPlus as rand::SeedableRng>::seed_from_u64(seed);
+        return params.generate(spec, &mut rng);
+    }
+    if let Some((base, goal)) = spec.rsplit_once('@') {
+        let (r, c) = goal
+            .split_once(':')
+            .ok_or_else(|| bad("expected SPEC@ROW:COL"))?;
+        let to = Pos::new(
+            r.parse().map_err(|_| bad("the row is not a number"))?,
+            c.parse().map_err(|_| bad("the column is not a number"))?,
+        );
+        return resolve(base)?.with_goal(to, spec);
+    }
+    Err(MapError::UnknownMap {
+        name: spec.to_string(),
+        builtins: builtin_names().join(", "),
+    })
+}
+
+impl Map {
+    /// The same map with its goal moved to `to` (a free cell), under a new name.
+    ///
+    /// ```
+    /// let map = mdp::builtin("tan3x3").unwrap().with_goal(mdp::Pos::new(2, 2), "moved").unwrap();
+    /// assert_eq!((map.goal(), map.name()), (mdp::Pos::new(2, 2), "moved"));
+    /// assert!(mdp::builtin("tan8x8").unwrap().with_goal(mdp::Pos::new(0, 5), "x").is_err());
+    /// ```
+    pub fn with_goal(&self, to: Pos, name: &str) -> Result<Map, MapError> {
+        if to.row >= self.height || to.col >= self.width || !self.cell(to).is_free() {
+            return Err(MapError::BadSpec {
+                spec: name.to_string(),
+                reason: format!("{to} is not a free cell of {}", self.name),
+            });
         }
+        let mut cells = self.cells.clone();
+        cells[self.index(self.goal)] = Cell::Empty;
+        cells[self.index(to)] = Cell::Goal;
+        let description = format!("The map {} with its goal moved to {to}.", self.name);
+        Ok(Map::from_parts(
+            name.to_string(),
+            Some(description),
+            self.width,
+            cells,
+        ))
     }
 }

@@ -205,3 +205,29 @@ mod never_panics {
         }
     }
 }
+
+#[test]
+fn map_specs_resolve_and_bad_ones_say_why() {
+    let moved = mdp::resolve("tan3x3@2:0").unwrap();
+    assert_eq!(
+        (moved.goal(), moved.states(), moved.name()),
+        (mdp::Pos::new(2, 0), 8, "tan3x3@2:0")
+    );
+    let r = mdp::resolve("random:9x4:0.3:11").unwrap();
+    assert_eq!(r, mdp::resolve("random:9x4:0.3:11").unwrap());
+    assert_ne!(r, mdp::resolve("random:9x4:0.3:12").unwrap());
+    for (spec, says) in [
+        ("tan8x8@0:5", "not a free cell"),
+        ("tan8x8@9:0", "not a free cell"),
+        ("tan8x8@1", "ROW:COL"),
+        ("tan8x8@a:1", "row"),
+        ("random:7x5:0.2", "random:WxH"),
+        ("random:75:0.2:1", "WxH"),
+        ("random:7x5:1.5:1", "obstacle_density"),
+        ("random:0x5:0.2:1", "width"),
+        ("nowhere@1:1", "nowhere"),
+    ] {
+        let err = mdp::resolve(spec).unwrap_err();
+        assert!(err.to_string().contains(says), "{spec}: {err}");
+    }
+}
