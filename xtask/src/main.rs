@@ -31,6 +31,17 @@ enum Command {
     Merge(sweep::MergeArgs),
 }
 
+/// Print to stdout; a reader that has gone away (`cargo xtask ... | head`) ends the output
+/// quietly instead of panicking.
+pub fn emit(text: &str) -> std::io::Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        other => other,
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {

@@ -654,7 +654,7 @@ pub fn run(args: &ReproduceArgs) -> Result<()> {
             format!("cannot read {COMMITTED}; run `cargo xtask reproduce` to write it")
         })?;
         if fresh == committed {
-            println!("{COMMITTED} is what the code produces today");
+            crate::emit(&format!("{COMMITTED} is what the code produces today\n"))?;
             return Ok(());
         }
         for (i, (a, b)) in committed.lines().zip(fresh.lines()).enumerate() {
@@ -709,11 +709,11 @@ pub fn run(args: &ReproduceArgs) -> Result<()> {
             written.push(to);
         }
     }
-    println!("{md}");
-    println!("Wrote:");
+    let mut text = format!("{md}\nWrote:\n");
     for p in written {
-        println!("  {}", p.display());
+        let _ = writeln!(text, "  {}", p.display());
     }
+    crate::emit(&text)?;
     Ok(())
 }
 

@@ -408,12 +408,11 @@ pub fn merge(args: &MergeArgs) -> Result<()> {
         .with_context(|| format!("cannot create {}", args.out.display()))?;
     write_atomic(&args.out.join("sweep.md"), &md)?;
     write_atomic(&args.out.join("sweep.csv"), &csv)?;
-    println!("{md}");
-    println!(
-        "Merged {} shards, {total} jobs: {}",
+    crate::emit(&format!(
+        "{md}\nMerged {} shards, {total} jobs: {}\n",
         dirs.len(),
         args.out.join("sweep.md").display()
-    );
+    ))?;
     Ok(())
 }
 
