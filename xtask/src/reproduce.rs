@@ -590,6 +590,9 @@ fn write_figures(res: &Results, out: &Path) -> Result<Vec<PathBuf>> {
         let path = out.join(format!("policy_{name}_{k}.svg"));
         std::fs::write(&path, csql::policy_svg(&res.setup, &runs[0]))?;
         written.push(path);
+        let path = out.join(format!("descriptions_{name}_{k}.svg"));
+        std::fs::write(&path, csql::descriptions_svg(&runs[0]))?;
+        written.push(path);
     }
     // Figure 5d: the tree over the final descriptions of the first run of the first strategy.
     let (k, runs, _) = &res.runs[0];
@@ -701,6 +704,7 @@ pub fn run(args: &ReproduceArgs) -> Result<()> {
         for name in [
             "learning_curves.svg",
             "policy_tan8x8_lazy.svg",
+            "descriptions_tan8x8_lazy.svg",
             "figure5_tan3x3.svg",
         ] {
             let to = Path::new("docs/figures").join(name);
