@@ -194,11 +194,20 @@ impl Classify {
     /// assert_eq!(c.classify_state(&world, s).description.0, 0);
     /// ```
     pub fn classify_state(&mut self, world: &GridWorld, s: StateId) -> Classification {
-        if self.use_cache {
-            self.classify_cached(world, s)
+        let (d, created) = self.classify_quietly(world, s);
+        self.report(d, created)
+    }
+
+    /// Classify without building a [`Classification`]: the hot path of the main loop, which
+    /// allocates nothing once the cache is warm. The measured features stay in
+    /// `self.measured`.
+    fn classify_quietly(&mut self, world: &GridWorld, s: StateId) -> (DescriptionId, bool) {
+        let found = if self.use_cache {
+            self.walk_cached(world, s)
         } else {
-            self.classify_plain(world, s)
-        }
+            self.walk_plain(world, s)
+        };
+        self.settle(found)
     }
 
     /// The plain procedure of Figure 3, step by step, with no cache: the reference the
@@ -218,15 +227,20 @@ impl Classify {
     /// assert!(out.created && out.cost == 1.0);
     /// ```
     pub fn classify_plain(&mut self, world: &GridWorld, s: StateId) -> Classification {
+        let found = self.walk_plain(world, s);
+        let (d, created) = self.settle(found);
+        self.report(d, created)
+    }
+
+    /// Run the plain procedure until it finds a description (`Some`) or decides to create
+    /// one (`None`).
+    fn walk_plain(&mut self, world: &GridWorld, s: StateId) -> Option<DescriptionId> {
         self.measured.clear();
         RuleAttending.start(self.rep.library(), &mut self.attention);
         loop {
             match self.decide() {
-                Step::Found(d) => return self.finish(d, false),
-                Step::Create => {
-                    let d = self.rep.push(&self.measured);
-                    return self.finish(d, true);
-                }
+                Step::Found(d) => return Some(d),
+                Step::Create => return None,
                 Step::Measure(f) => {
                     let v = self.space.measure(world, s, f);
                     self.measured.push((f, v));
@@ -239,6 +253,20 @@ impl Classify {
                 }
             }
         }
+    }
+
+    /// Step 2's ending: the description found, or a new one made of the features
+    /// measured (library updating); whether it was created.
+    fn settle(&mut self, found: Option<DescriptionId>) -> (DescriptionId, bool) {
+        match found {
+            Some(d) => (d, false),
+            None => (self.rep.push(&self.measured), true),
+        }
+    }
+
+    /// The sensing cost of the last classification.
+    fn measured_cost(&self) -> f64 {
+        self.measured.iter().map(|&(f, _)| self.space.cost(f)).sum()
     }
 
     /// Step 2 and 3 for the current attended candidates and measured features.
@@ -280,18 +308,19 @@ impl Classify {
         }
     }
 
-    fn finish(&self, d: DescriptionId, created: bool) -> Classification {
+    fn report(&self, d: DescriptionId, created: bool) -> Classification {
         Classification {
             description: d,
             created,
-            cost: self.measured.iter().map(|&(f, _)| self.space.cost(f)).sum(),
+            cost: self.measured_cost(),
             measured: self.measured.clone(),
         }
     }
 
     /// The cached path: walk the decision tree of the procedure, computing a node the
-    /// first time it is reached.
-    fn classify_cached(&mut self, world: &GridWorld, s: StateId) -> Classification {
+    /// first time it is reached (like `walk_plain`, whose decisions it stores). A
+    /// representation that changed since the cache was grown empties it first.
+    fn walk_cached(&mut self, world: &GridWorld, s: StateId) -> Option<DescriptionId> {
         if self.cached_version != self.rep.version() {
             self.nodes.clear();
             self.cached_version = self.rep.version();
@@ -307,15 +336,8 @@ impl Classify {
         let mut at = 0usize;
         loop {
             match self.nodes[at].step {
-                Step::Found(d) => return self.finish(d, false),
-                Step::Create => {
-                    let d = self.rep.push(&self.measured);
-                    let out = self.finish(d, true);
-                    // The representation changed: the cache is stale.
-                    self.nodes.clear();
-                    self.cached_version = self.rep.version();
-                    return out;
-                }
+                Step::Found(d) => return Some(d),
+                Step::Create => return None,
                 Step::Measure(f) => {
                     let v = self.space.measure(world, s, f);
                     self.measured.push((f, v));
@@ -375,12 +397,12 @@ impl Classify {
 
 impl Perception for Classify {
     fn classify(&mut self, world: &GridWorld, s: StateId, table: &mut QTable) -> (RowId, f64) {
-        let out = self.classify_state(world, s);
-        if out.created {
+        let (d, created) = self.classify_quietly(world, s);
+        if created {
             let row = table.add_row();
-            debug_assert_eq!(row, out.description.row());
+            debug_assert_eq!(row, d.row());
         }
-        (out.description.row(), out.cost)
+        (d.row(), self.measured_cost())
     }
 
     fn refine(&mut self, world: &GridWorld, row: RowId, s: StateId) -> Option<f64> {

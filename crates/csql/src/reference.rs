@@ -119,7 +119,7 @@ pub fn full_sensing_reference(setup: &Setup, settings: &RunSettings) -> Referenc
         setup,
         settings,
         perception,
-        QTable::new(4).expect("four actions"),
+        QTable::new(setup.world.num_actions()).expect("grid worlds have four actions"),
         Some(mean),
     )
 }
@@ -140,7 +140,8 @@ pub fn fixed_representation_reference(
     settings: &RunSettings,
     rep: Representation,
 ) -> Reference {
-    let table = QTable::with_rows(4, rep.len()).expect("four actions");
+    let table = QTable::with_rows(setup.world.num_actions(), rep.len())
+        .expect("grid worlds have four actions");
     let perception = Classify::with_representation(&setup.space, rep);
     reference(setup, settings, perception, table, None)
 }

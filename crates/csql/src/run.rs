@@ -1,6 +1,6 @@
 //! One CS-QL run from settings to the measures of the paper's Table 1.
 
-use mdp::{Action, FeatureSpace, GridWorld, Manhattan, Map, Oracle};
+use mdp::{Action, FeatureSpace, GridWorld, Manhattan, Map, Mdp, Oracle};
 use qlearn::QTable;
 use rand::{RngExt, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -361,7 +361,7 @@ fn run_classify(
 ) -> (RunReport, Representation) {
     let mut perception = classify;
     let mut strategy = settings.strategy.build(settings.random_moves);
-    let mut table = QTable::new(setup.world_actions()).expect("grid worlds have four actions");
+    let mut table = QTable::new(setup.world.num_actions()).expect("grid worlds have four actions");
     let learned = learn(
         setup,
         settings,
@@ -377,12 +377,6 @@ fn run_classify(
         learned,
     );
     (report, perception.into_representation())
-}
-
-impl Setup {
-    fn world_actions(&self) -> usize {
-        Action::ALL.len()
-    }
 }
 
 fn report(

@@ -31,16 +31,18 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
-fn classify_heart(learner: &str, seed: &str) -> serde_json::Value {
+/// `csrl classify` on the shipped heart data with target `num`, plus `extra` arguments.
+fn on_heart(extra: &[&str]) -> Output {
     let (data, costs) = (heart("cleveland.csv"), heart("costs.csv"));
-    let out = csrl(&[
-        "classify",
-        "--data",
-        &data,
-        "--costs",
-        &costs,
-        "--target",
-        "num",
+    let mut args = vec![
+        "classify", "--data", &data, "--costs", &costs, "--target", "num",
+    ];
+    args.extend_from_slice(extra);
+    csrl(&args)
+}
+
+fn classify_heart(learner: &str, seed: &str) -> serde_json::Value {
+    let out = on_heart(&[
         "--positive-if",
         ">0",
         "--learner",
@@ -102,20 +104,7 @@ fn json_is_the_same_for_the_same_seed_and_changes_with_it() {
 
 #[test]
 fn text_output_names_every_figure() {
-    let (data, costs) = (heart("cleveland.csv"), heart("costs.csv"));
-    let out = csrl(&[
-        "classify",
-        "--data",
-        &data,
-        "--costs",
-        &costs,
-        "--target",
-        "num",
-        "--positive-if",
-        "!=0",
-        "--learner",
-        "cs-ibl",
-    ]);
+    let out = on_heart(&["--positive-if", "!=0", "--learner", "cs-ibl"]);
     assert!(out.status.success(), "{}", stderr(&out));
     let text = String::from_utf8(out.stdout).unwrap();
     for word in [
