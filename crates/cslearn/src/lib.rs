@@ -159,7 +159,7 @@ pub use learner::{
     Classified, CsIbl, CsId3, Id3, Learner, Outcome, StreamReport, cs_ibl, cs_id3, id3,
 };
 pub use predict::{Decision, Nearest, Predict, Unanimous};
-pub use select::{InfoCost, MissingRule, Select};
+pub use select::{InfoCost, MissingRule, Select, same_score};
 pub use sensing::{Ledger, Probe, Sensor};
 pub use stream::{LearnerKind, stream_dataset};
 pub use tree::{Branch, DecisionTree, Labels, Node, NodeId, PlainLabels, TreeOptions};

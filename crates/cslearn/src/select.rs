@@ -72,7 +72,15 @@ fn xlogx(x: u32) -> f64 {
     }
 }
 
-fn same_score(a: f64, b: f64) -> bool {
+/// Whether two I^2/C scores count as a tie: equal to a relative 1e-9, so that rounding
+/// cannot decide between features that score the same in exact arithmetic. (Not
+/// transitive: compare candidates in a fixed order, as [`InfoCost`] does.)
+///
+/// ```
+/// assert!(cslearn::same_score(1.0, 1.0 + 1e-12));
+/// assert!(!cslearn::same_score(1.0, 1.001));
+/// ```
+pub fn same_score(a: f64, b: f64) -> bool {
     a == b || (a - b).abs() <= 1e-9 * a.abs().max(b.abs())
 }
 

@@ -18,18 +18,32 @@
 //! Which feature step 3 picks depends only on the representation and on the values
 //! measured so far in the call, so the whole procedure is a decision tree over the
 //! current representation. [`Classify`] grows that tree lazily (a node is computed the
-//! first time a classification reaches it) and throws it away whenever the
-//! representation changes. A cached classification measures exactly the features, in
-//! the same order, that the plain procedure measures: the cache saves computation, never
-//! sensing. `tests/classify.rs` checks this feature for feature against
-//! [`Classify::classify_plain`].
+//! first time a classification reaches it) and keeps it across changes of the
+//! representation: each node holds its candidates and the value counts its choice is
+//! computed from, a new or refined description updates only the nodes where it is a
+//! candidate, and a node's choice is recomputed from its counts when it is next reached
+//! (the subtree below survives when the choice stays the same). A cached classification
+//! measures exactly the features, in the same order, that the plain procedure measures:
+//! the cache saves computation, never sensing. `tests/classify.rs` checks this feature
+//! for feature against [`Classify::classify_plain`].
+//!
+//! # The free view
+//!
+//! [`Classify::lookup`] tells which description a state belongs to, without charging and
+//! without creating anything: the oracle's view, used to judge the representation at the
+//! end of a trial. It remembers each state's answer and asks the tree again only when the
+//! answer may have changed (the state's description was refined, or the state matched
+//! nothing and descriptions were added since): descriptions are pairwise disjoint and only
+//! grow more specific, so nothing else can change it.
+
+mod cache;
 
 use cslearn::{Attend, Attention, Cost, FeatureId, InfoCost, MissingRule, RuleAttending};
-use mdp::{Cell, Feature, FeatureSpace, GridWorld, Oracle, StateId};
+use mdp::{Cell, Feature, FeatureSpace, GridWorld, Mdp, StateId};
 use qlearn::{QTable, RowId};
 
-use crate::check::Verdict;
-use crate::learner::Perception;
+use self::cache::{Cache, Step};
+use crate::perception::Perception;
 use crate::representation::{DescriptionId, Representation, feature_id, value_of};
 
 /// The result of one classification.
@@ -51,27 +65,6 @@ pub struct Classification {
     pub measured: Vec<(Feature, Cell)>,
     /// Their summed cost.
     pub cost: f64,
-}
-
-/// What step 2 or 3 decides at one point of the procedure.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Step {
-    /// Return this description.
-    Found(DescriptionId),
-    /// Add the new description and return it.
-    Create,
-    /// Measure this feature next.
-    Measure(Feature),
-}
-
-const UNEXPANDED: u32 = u32::MAX;
-
-/// A node of the cached decision tree.
-#[derive(Clone, Copy, Debug)]
-struct Node {
-    step: Step,
-    /// For `Measure`: the child for each cell code.
-    children: [u32; 3],
 }
 
 /// The CLASSIFY perception of CS-QL: the representation, the selection part and the
@@ -98,9 +91,23 @@ pub struct Classify {
     select: InfoCost,
     attention: Attention,
     measured: Vec<(Feature, Cell)>,
-    nodes: Vec<Node>,
-    cached_version: u64,
+    cache: Cache,
     use_cache: bool,
+    /// Per description, how many times it was refined (for the free view).
+    refinements: Vec<u32>,
+    /// Per state, the free view's last answer.
+    seen: Vec<Seen>,
+}
+
+/// What the free view last found for a state, and when that answer expires.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Seen {
+    /// Never looked up.
+    Unknown,
+    /// The state matched this description, refined this many times then.
+    Matched(DescriptionId, u32),
+    /// The state matched nothing when there were this many descriptions.
+    Unmatched(usize),
 }
 
 impl Classify {
@@ -131,13 +138,14 @@ impl Classify {
         Classify {
             space: space.clone(),
             costs,
+            refinements: vec![0; rep.len()],
             rep,
             select: InfoCost::new(MissingRule::C45),
             attention: Attention::new(),
             measured: Vec::new(),
-            nodes: Vec::new(),
-            cached_version: u64::MAX,
+            cache: Cache::default(),
             use_cache: true,
+            seen: Vec::new(),
         }
     }
 
@@ -260,7 +268,12 @@ impl Classify {
     fn settle(&mut self, found: Option<DescriptionId>) -> (DescriptionId, bool) {
         match found {
             Some(d) => (d, false),
-            None => (self.rep.push(&self.measured), true),
+            None => {
+                let d = self.rep.push(&self.measured);
+                self.refinements.push(0);
+                self.cache.on_push(self.rep.library(), d);
+                (d, true)
+            }
         }
     }
 
@@ -317,61 +330,56 @@ impl Classify {
         }
     }
 
-    /// The cached path: walk the decision tree of the procedure, computing a node the
-    /// first time it is reached (like `walk_plain`, whose decisions it stores). A
-    /// representation that changed since the cache was grown empties it first.
+    /// The cached path: walk the decision tree of the procedure, growing it where no
+    /// classification has been before.
     fn walk_cached(&mut self, world: &GridWorld, s: StateId) -> Option<DescriptionId> {
-        if self.cached_version != self.rep.version() {
-            self.nodes.clear();
-            self.cached_version = self.rep.version();
-        }
         self.measured.clear();
-        if self.nodes.is_empty() {
-            let step = self.expand();
-            self.nodes.push(Node {
-                step,
-                children: [UNEXPANDED; 3],
-            });
-        }
-        let mut at = 0usize;
-        loop {
-            match self.nodes[at].step {
-                Step::Found(d) => return Some(d),
-                Step::Create => return None,
-                Step::Measure(f) => {
-                    let v = self.space.measure(world, s, f);
-                    self.measured.push((f, v));
-                    let child = self.nodes[at].children[v.code() as usize];
-                    at = if child == UNEXPANDED {
-                        let step = self.expand();
-                        self.nodes.push(Node {
-                            step,
-                            children: [UNEXPANDED; 3],
-                        });
-                        let new = self.nodes.len() - 1;
-                        self.nodes[at].children[v.code() as usize] = new as u32;
-                        new
-                    } else {
-                        child as usize
-                    };
-                }
-            }
-        }
+        let (space, measured) = (&self.space, &mut self.measured);
+        self.cache
+            .walk(self.rep.library(), &self.costs, |f| {
+                let v = space.measure(world, s, f);
+                measured.push((f, v));
+                v
+            })
     }
 
-    /// Compute the step of the procedure after the measurements so far: attend from
-    /// scratch over the measured values, then decide.
-    fn expand(&mut self) -> Step {
-        RuleAttending.start(self.rep.library(), &mut self.attention);
-        for &(f, v) in &self.measured {
-            RuleAttending.attend(
-                self.rep.library(),
-                feature_id(f),
-                Some(value_of(v)),
-                &mut self.attention,
-            );
+    /// The description state `s` belongs to, found without charging and without adding a
+    /// description (`None` if CLASSIFY would create one): the oracle's view. The answer
+    /// is what [`Classify::classify_state`] would return if the state matches a
+    /// description.
+    ///
+    /// ```
+    /// use mdp::{FeatureSpace, GridWorld, Manhattan};
+    /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let mut c = csql::Classify::new(&space);
+    /// let s = world.states()[0];
+    /// assert_eq!(c.lookup(&world, s), None); // nothing yet, and nothing is created
+    /// let d = c.classify_state(&world, s).description;
+    /// assert_eq!(c.lookup(&world, s), Some(d));
+    /// assert_eq!(c.representation().len(), 1);
+    /// ```
+    pub fn lookup(&mut self, world: &GridWorld, s: StateId) -> Option<DescriptionId> {
+        if self.seen.len() < world.num_states() {
+            self.seen.resize(world.num_states(), Seen::Unknown);
         }
-        self.decide()
+        match self.seen[s.index()] {
+            Seen::Matched(d, n) if self.refinements[d.index()] == n => return Some(d),
+            Seen::Unmatched(len) if len == self.rep.len() => return None,
+            _ => {}
+        }
+        let space = &self.space;
+        let found = if self.use_cache {
+            self.cache
+                .walk(self.rep.library(), &self.costs, |f| space.measure(world, s, f))
+        } else {
+            self.rep.matching(world, space, s)
+        };
+        self.seen[s.index()] = match found {
+            Some(d) => Seen::Matched(d, self.refinements[d.index()]),
+            None => Seen::Unmatched(self.rep.len()),
+        };
+        found
     }
 
     /// Add the next cheapest feature a description lacks, valued at state `s`; returns the
@@ -391,6 +399,8 @@ impl Classify {
         let f = self.rep.get(d).next_missing(self.space.len())?;
         let v = self.space.measure(world, s, f);
         self.rep.refine(d, f, v);
+        self.refinements[d.index()] += 1;
+        self.cache.on_refine(self.rep.library(), d, f, v);
         Some(self.space.cost(f))
     }
 }
@@ -413,18 +423,7 @@ impl Perception for Classify {
         self.rep.len()
     }
 
-    fn verdict(
-        &self,
-        world: &GridWorld,
-        oracle: &Oracle,
-        table: &QTable,
-        tolerance: f64,
-    ) -> Verdict {
-        let rows: Vec<Option<RowId>> = world
-            .states()
-            .iter()
-            .map(|&s| self.rep.matching(world, &self.space, s).map(|d| d.row()))
-            .collect();
-        Verdict::judge(world, oracle, table, &rows, tolerance)
+    fn lookup(&mut self, world: &GridWorld, s: StateId) -> Option<RowId> {
+        Classify::lookup(self, world, s).map(DescriptionId::row)
     }
 }

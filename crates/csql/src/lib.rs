@@ -32,8 +32,9 @@
 //! | [`Representation`], [`Description`] | the descriptions: rules over grid features, stored as a cslearn library |
 //! | [`Classify`] | CLASSIFY, with a cache that never changes what is charged |
 //! | [`Strategy`]: [`Resetting`], [`Lazy`], [`RandomMoves`], [`Eager`] | the reaction to a decrease |
-//! | [`Perception`], [`run_trial`] | the main loop, generic over perception and strategy |
-//! | [`Verdict`] | the oracle's end-of-trial checks: consistent, sufficient, converged |
+//! | [`Perception`], [`Identified`] | how states become Q rows, with a free view for the oracle |
+//! | [`Agent`], [`Agent::run_trial`] | the main loop of Figure 3 over a perception, a strategy and a Q table |
+//! | [`Verdict`], [`Judge`] | the oracle's end-of-trial checks: consistent, sufficient, converged |
 //! | [`run`], [`RunReport`], [`Table1`] | a whole run and the eight measures of Table 1 |
 //! | [`StateTree`] | the cost-sensitive decision tree over the final descriptions (row 8) |
 //! | [`full_sensing_reference`], [`fixed_representation_reference`] | the paper's two points of comparison |
@@ -97,11 +98,12 @@
 
 #![deny(missing_docs)]
 
-mod check;
 mod classify;
 mod error;
 mod figure;
-mod learner;
+mod judge;
+mod main_loop;
+mod perception;
 mod reference;
 mod representation;
 mod run;
@@ -109,11 +111,12 @@ mod settings;
 mod strategy;
 mod tree;
 
-pub use check::Verdict;
+pub use judge::{Judge, Verdict};
 pub use classify::{Classification, Classify};
 pub use error::Error;
 pub use figure::{descriptions_svg, policy_svg};
-pub use learner::{Identified, LoopParams, Never, Perception, TrialRecord, run_trial};
+pub use main_loop::{Agent, LoopParams, TrialRecord};
+pub use perception::{Identified, Perception};
 pub use reference::{
     Reference, cheapest_interior_cost, fixed_representation_reference, full_sensing_reference,
     whole_world_cost,
@@ -125,6 +128,6 @@ pub use run::{
 };
 pub use settings::RunSettings;
 pub use strategy::{
-    Eager, Lazy, RandomMoves, Reaction, Resetting, Strategy, StrategyKind, UnknownStrategy,
+    Eager, Lazy, Never, RandomMoves, Reaction, Resetting, Strategy, StrategyKind, UnknownStrategy,
 };
 pub use tree::{StateSensor, StateTree};

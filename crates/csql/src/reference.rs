@@ -11,7 +11,9 @@ use qlearn::QTable;
 use serde::Serialize;
 
 use crate::classify::Classify;
-use crate::learner::{Identified, Never, Perception};
+use crate::main_loop::{Agent, LoopParams};
+use crate::perception::{Identified, Perception};
+use crate::strategy::Never;
 use crate::representation::Representation;
 use crate::run::{Setup, learn};
 use crate::settings::RunSettings;
@@ -86,11 +88,17 @@ pub fn cheapest_interior_cost(world: &GridWorld, space: &FeatureSpace) -> f64 {
 fn reference<P: Perception>(
     setup: &Setup,
     settings: &RunSettings,
-    mut perception: P,
-    mut table: QTable,
+    perception: P,
+    table: QTable,
     cost_per_classification: Option<f64>,
 ) -> Reference {
-    let learned = learn(setup, settings, &mut perception, &mut Never, &mut table);
+    let mut agent = Agent {
+        perception,
+        strategy: Never,
+        table,
+        params: LoopParams::from(settings),
+    };
+    let learned = learn(setup, settings, &mut agent);
     Reference {
         converged: learned.first_converged.is_some(),
         trials: learned.trace.len() as u32,

@@ -8,7 +8,9 @@ use serde::Serialize;
 
 use crate::classify::Classify;
 use crate::error::Error;
-use crate::learner::{LoopParams, Perception, TrialRecord, run_trial};
+use crate::judge::Judge;
+use crate::main_loop::{Agent, LoopParams};
+use crate::perception::Perception;
 use crate::representation::{DescriptionId, Representation};
 use crate::settings::RunSettings;
 use crate::strategy::Strategy;
@@ -240,17 +242,15 @@ pub(crate) struct Learned {
     pub cost: f64,
 }
 
-/// Run trials until the oracle says converged or the trial cap; the oracle looks at the
-/// end of every trial.
-pub(crate) fn learn<P: Perception + ?Sized, S: Strategy + ?Sized>(
+/// Run trials until the oracle says converged or the trial cap; the oracle judges the
+/// agent at the end of every trial, through the perception's free view.
+pub(crate) fn learn<P: Perception, S: Strategy>(
     setup: &Setup,
     settings: &RunSettings,
-    perception: &mut P,
-    strategy: &mut S,
-    table: &mut QTable,
+    agent: &mut Agent<P, S>,
 ) -> Learned {
-    let params = LoopParams::from(settings);
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
+    let mut judge = Judge::default();
     let starts = setup.world.states();
     let mut out = Learned {
         trace: Vec::new(),
@@ -261,19 +261,16 @@ pub(crate) fn learn<P: Perception + ?Sized, S: Strategy + ?Sized>(
     };
     for trial in 1..=settings.max_trials {
         let start = starts[rng.random_range(0..starts.len())];
-        let rec: TrialRecord = run_trial(
-            &setup.world,
-            perception,
-            strategy,
-            table,
-            &params,
-            start,
-            trial,
-            &mut rng,
-        );
+        let rec = agent.run_trial(&setup.world, start, trial, &mut rng);
         out.moves += rec.moves as u64;
         out.cost += rec.cost;
-        let verdict = perception.verdict(&setup.world, &setup.oracle, table, settings.tolerance);
+        let verdict = judge.judge_perception(
+            &setup.world,
+            &setup.oracle,
+            &mut agent.perception,
+            &agent.table,
+            settings.tolerance,
+        );
         if verdict.sufficient && out.first_sufficient.is_none() {
             out.first_sufficient = Some((trial, out.cost));
         }
@@ -284,7 +281,7 @@ pub(crate) fn learn<P: Perception + ?Sized, S: Strategy + ?Sized>(
             trial,
             moves: rec.moves,
             cumulative_cost: out.cost,
-            descriptions: perception.rows(),
+            descriptions: agent.perception.rows(),
             decreases: rec.decreases,
             refinements: rec.refinements,
             sufficient: verdict.sufficient,
@@ -359,38 +356,30 @@ fn run_classify(
     settings: &RunSettings,
     classify: Classify,
 ) -> (RunReport, Representation) {
-    let mut perception = classify;
-    let mut strategy = settings.strategy.build(settings.random_moves);
-    let mut table = QTable::new(setup.world.num_actions()).expect("grid worlds have four actions");
-    let learned = learn(
-        setup,
-        settings,
-        &mut perception,
-        strategy.as_mut(),
-        &mut table,
-    );
-    let report = report(
-        setup,
-        settings,
-        perception.representation(),
-        &table,
-        learned,
-    );
-    (report, perception.into_representation())
+    let mut agent = Agent {
+        perception: classify,
+        strategy: settings.strategy.build(settings.random_moves),
+        table: QTable::new(setup.world.num_actions()).expect("grid worlds have four actions"),
+        params: LoopParams::from(settings),
+    };
+    let learned = learn(setup, settings, &mut agent);
+    let report = report(setup, settings, &mut agent.perception, &agent.table, learned);
+    (report, agent.perception.into_representation())
 }
 
 fn report(
     setup: &Setup,
     settings: &RunSettings,
-    rep: &Representation,
+    classify: &mut Classify,
     table: &QTable,
     learned: Learned,
 ) -> RunReport {
     let states = setup.world.states();
     let labels: Vec<Option<DescriptionId>> = states
         .iter()
-        .map(|&s| rep.matching(&setup.world, &setup.space, s))
+        .map(|&s| classify.lookup(&setup.world, s))
         .collect();
+    let rep = classify.representation();
     let converged = learned.first_converged.is_some();
     let mut table1 = Table1 {
         cost_to_sufficient: learned.first_sufficient.map(|x| x.1),
@@ -427,7 +416,7 @@ fn report(
             .iter()
             .map(|l| l.map(|d| qlearn::RowId(d.0)))
             .collect();
-        crate::check::Verdict::judge(
+        crate::judge::Verdict::judge(
             &setup.world,
             &setup.oracle,
             table,

@@ -54,6 +54,15 @@ pub trait Strategy {
     fn on_decrease(&mut self) -> Reaction;
 }
 
+impl<S: Strategy + ?Sized> Strategy for Box<S> {
+    fn start_trial(&mut self) {
+        (**self).start_trial();
+    }
+    fn on_decrease(&mut self) -> Reaction {
+        (**self).on_decrease()
+    }
+}
+
 /// The paper's strategy: refine, then reset every Q and V to 0, so that no utility keeps
 /// an overestimate that came from an inconsistent description (Theorem 2 applies again).
 ///
@@ -241,5 +250,21 @@ impl FromStr for StrategyKind {
             .into_iter()
             .find(|k| k.name() == s)
             .ok_or_else(|| UnknownStrategy(s.to_string()))
+    }
+}
+
+/// A strategy that never refines: for learning on a fixed perception.
+///
+/// ```
+/// use csql::{Never, Reaction, Strategy};
+/// assert_eq!(Never.on_decrease(), Reaction::Ignore);
+/// ```
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Never;
+
+impl Strategy for Never {
+    fn start_trial(&mut self) {}
+    fn on_decrease(&mut self) -> Reaction {
+        Reaction::Ignore
     }
 }

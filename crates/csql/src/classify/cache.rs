@@ -1,0 +1,434 @@
+//! CLASSIFY's decision-tree cache, kept up to date as the representation changes.
+//!
+//! Which feature step 3 of CLASSIFY measures next depends only on the candidates still
+//! attended and on the features already measured, so the whole procedure is a decision
+//! tree over the representation. This cache grows that tree lazily and keeps, at every
+//! node, what the decision there is computed from:
+//!
+//! * the candidates (descriptions consistent with the values measured on the way to the
+//!   node, in ascending id order), and
+//! * for every feature some candidate has and the path has not measured, how many
+//!   candidates require each value: the counts the I^2/C score is a function of.
+//!
+//! When a description is added or refined, only the nodes where it is (or was) a
+//! candidate change: their candidates and counts are updated in place and their decision
+//! is marked stale. A stale decision is recomputed from the counts when a walk next
+//! reaches the node; if it is unchanged the subtree below survives, otherwise the subtree
+//! is dropped and regrown lazily. A decision therefore costs a pass over the node's
+//! counts, never a pass over the library, and a refinement costs work in proportion to
+//! the nodes that involve the refined description.
+//!
+//! The score is computed with the same floating-point operations, in the same order, as
+//! [`cslearn::InfoCost::select_from`] with the C4.5 rule when every candidate is a class of
+//! its own (as descriptions are), so the cached tree measures exactly the features the
+//! plain procedure measures (`tests/classify.rs` checks it, feature for feature).
+
+use cslearn::{Cost, Library};
+use mdp::{Cell, Feature};
+
+use crate::representation::DescriptionId;
+
+/// What step 2 or 3 of CLASSIFY decides at one point of the procedure.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Step {
+    /// Return this description.
+    Found(DescriptionId),
+    /// Add the new description and return it.
+    Create,
+    /// Measure this feature next.
+    Measure(Feature),
+}
+
+const NONE: u32 = u32::MAX;
+/// Cell codes are 0, 1 and 2: one count per value.
+const VALUES: usize = 3;
+
+/// A node of the cached tree.
+#[derive(Clone, Debug)]
+struct Node {
+    step: Step,
+    /// The decision must be recomputed from `cands` and `counts` before it is used.
+    stale: bool,
+    /// For `Measure`: the child for each cell code, or `NONE`.
+    children: [u32; VALUES],
+    /// Candidate descriptions, ascending.
+    cands: Vec<u32>,
+    /// (feature, candidates requiring each value) for every feature some candidate has
+    /// and the path has not measured, ascending by feature; no all-zero entry.
+    counts: Vec<(u32, [u32; VALUES])>,
+}
+
+impl Node {
+    fn empty() -> Node {
+        Node {
+            step: Step::Create,
+            stale: true,
+            children: [NONE; VALUES],
+            cands: Vec::new(),
+            counts: Vec::new(),
+        }
+    }
+
+    fn has_cand(&self, d: u32) -> bool {
+        self.cands.binary_search(&d).is_ok()
+    }
+
+    /// Add `delta` (+1 or -1) to the count of `value` for `feature`.
+    fn count(&mut self, feature: u32, value: u32, delta: i32) {
+        match self.counts.binary_search_by_key(&feature, |e| e.0) {
+            Ok(i) => {
+                let c = &mut self.counts[i].1[value as usize];
+                *c = c.wrapping_add_signed(delta);
+                if self.counts[i].1 == [0; VALUES] {
+                    self.counts.remove(i);
+                }
+            }
+            Err(i) => {
+                debug_assert_eq!(delta, 1, "a count below zero");
+                let mut c = [0; VALUES];
+                c[value as usize] = 1;
+                self.counts.insert(i, (feature, c));
+            }
+        }
+    }
+}
+
+/// Features measured on the way to a node, with their values.
+type Path = Vec<(u32, u32)>;
+
+fn on_path(path: &[(u32, u32)], feature: u32) -> Option<u32> {
+    path.iter().find(|e| e.0 == feature).map(|e| e.1)
+}
+
+/// The cached decision tree of CLASSIFY (see the module docs).
+#[derive(Clone, Debug, Default)]
+pub(super) struct Cache {
+    nodes: Vec<Node>,
+    free: Vec<u32>,
+    /// `x log2 x` for every count seen so far, computed as cslearn computes it.
+    xlogx: Vec<f64>,
+    /// Dense per-feature scratch for building a node's counts.
+    scratch: Vec<[u32; VALUES]>,
+    touched: Vec<u32>,
+    marks: Vec<bool>,
+    /// Traversal stack: (node, path length above it, edge into it).
+    stack: Vec<(u32, usize, (u32, u32))>,
+    path: Path,
+}
+
+impl Cache {
+    /// Walk the tree for one object: `measure` reads a feature of it (and is the only
+    /// place where sensing happens). Returns the description found, or `None` when
+    /// CLASSIFY would create a new one.
+    pub(super) fn walk(
+        &mut self,
+        library: &Library,
+        costs: &[Cost],
+        mut measure: impl FnMut(Feature) -> Cell,
+    ) -> Option<DescriptionId> {
+        if self.nodes.is_empty() {
+            let root = self.alloc();
+            debug_assert_eq!(root, 0);
+            self.nodes[0].cands.extend(0..library.len() as u32);
+            self.fill_counts(0, library, &[]);
+        }
+        self.path.clear();
+        let mut at = 0u32;
+        loop {
+            if self.nodes[at as usize].stale {
+                self.refresh(at, costs);
+            }
+            match self.nodes[at as usize].step {
+                Step::Found(d) => return Some(d),
+                Step::Create => return None,
+                Step::Measure(f) => {
+                    let code = measure(f).code();
+                    self.path.push((f.0, code));
+                    let child = self.nodes[at as usize].children[code as usize];
+                    at = if child == NONE {
+                        self.grow(at, f.0, code, library)
+                    } else {
+                        child
+                    };
+                }
+            }
+        }
+    }
+
+    /// Description `d` was just added to `library` (it has the highest id).
+    pub(super) fn on_push(&mut self, library: &Library, d: DescriptionId) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let pairs = library.examples()[d.index()].pairs();
+        self.stack.clear();
+        self.stack.push((0, 0, (NONE, 0)));
+        while let Some((at, depth, edge)) = self.stack.pop() {
+            self.path.truncate(depth);
+            if edge.0 != NONE {
+                self.path.push(edge);
+            }
+            let node = &mut self.nodes[at as usize];
+            debug_assert!(node.cands.last().is_none_or(|&c| c < d.0));
+            node.cands.push(d.0);
+            for &(f, v) in pairs {
+                if on_path(&self.path, f.0).is_none() {
+                    node.count(f.0, v.0, 1);
+                }
+            }
+            node.stale = true;
+            if let Step::Measure(g) = node.step {
+                let wanted = pairs
+                    .binary_search_by_key(&g.0, |p| p.0.0)
+                    .ok()
+                    .map(|i| pairs[i].1.0);
+                for (code, &child) in node.children.iter().enumerate() {
+                    if child != NONE && wanted.is_none_or(|w| w == code as u32) {
+                        self.stack.push((child, self.path.len(), (g.0, code as u32)));
+                    }
+                }
+            }
+        }
+    }
+
+    /// Description `d` of `library` was just given `feature` = `value`.
+    pub(super) fn on_refine(&mut self, library: &Library, d: DescriptionId, f: Feature, v: Cell) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let (feature, value) = (f.0, v.code());
+        self.stack.clear();
+        self.stack.push((0, 0, (NONE, 0)));
+        while let Some((at, depth, edge)) = self.stack.pop() {
+            self.path.truncate(depth);
+            if edge.0 != NONE {
+                self.path.push(edge);
+            }
+            if !self.nodes[at as usize].has_cand(d.0) {
+                continue;
+            }
+            match on_path(&self.path, feature) {
+                // Measured above with the value now required: nothing below changes.
+                Some(w) if w == value => {}
+                // Measured above with another value: `d` no longer belongs here.
+                Some(_) => self.remove_below(at, library, d),
+                None => {
+                    let node = &mut self.nodes[at as usize];
+                    node.count(feature, value, 1);
+                    node.stale = true;
+                    if let Step::Measure(g) = node.step {
+                        for (code, &child) in node.children.iter().enumerate() {
+                            if child != NONE {
+                                self.stack.push((child, self.path.len(), (g.0, code as u32)));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Take `d` out of the subtree at `top` (whose path is `self.path`).
+    fn remove_below(&mut self, top: u32, library: &Library, d: DescriptionId) {
+        let pairs = library.examples()[d.index()].pairs();
+        let base = self.path.len();
+        let mut stack = vec![(top, base, (NONE, 0))];
+        while let Some((at, depth, edge)) = stack.pop() {
+            self.path.truncate(depth);
+            if edge.0 != NONE {
+                self.path.push(edge);
+            }
+            let node = &mut self.nodes[at as usize];
+            let Ok(i) = node.cands.binary_search(&d.0) else {
+                continue;
+            };
+            node.cands.remove(i);
+            for &(f, v) in pairs {
+                if on_path(&self.path, f.0).is_none() {
+                    node.count(f.0, v.0, -1);
+                }
+            }
+            node.stale = true;
+            if let Step::Measure(g) = node.step {
+                for (code, &child) in node.children.iter().enumerate() {
+                    if child != NONE {
+                        stack.push((child, self.path.len(), (g.0, code as u32)));
+                    }
+                }
+            }
+        }
+        self.path.truncate(base);
+    }
+
+    /// Recompute a stale decision; drop the subtree if it changed.
+    fn refresh(&mut self, at: u32, costs: &[Cost]) {
+        let step = self.decide(at, costs);
+        let node = &mut self.nodes[at as usize];
+        node.stale = false;
+        if node.step != step {
+            node.step = step;
+            let children = std::mem::replace(&mut node.children, [NONE; VALUES]);
+            for child in children {
+                if child != NONE {
+                    self.release(child);
+                }
+            }
+        }
+    }
+
+    /// Steps 2 and 3 at a node: I^2/C over the counts, as cslearn's `InfoCost` with the
+    /// C4.5 rule computes it when every candidate is its own class.
+    fn decide(&mut self, at: u32, costs: &[Cost]) -> Step {
+        let node = &self.nodes[at as usize];
+        let Some(&first) = node.cands.first() else {
+            return Step::Create;
+        };
+        if node.counts.is_empty() {
+            // Every feature of every candidate is measured and matched; candidates are
+            // pairwise disjoint, so there is one.
+            return Step::Found(DescriptionId(first));
+        }
+        let n = node.cands.len();
+        if self.xlogx.len() <= n {
+            let from = self.xlogx.len();
+            self.xlogx.extend((from..=n).map(|x| {
+                if x == 0 {
+                    0.0
+                } else {
+                    let x = x as f64;
+                    x * x.log2()
+                }
+            }));
+        }
+        let node = &self.nodes[at as usize];
+        let xl = &self.xlogx;
+        let mut best: Option<(f64, Cost, u32)> = None;
+        for &(feature, counts) in &node.counts {
+            // Each class (candidate) occurs once, so every within-class term is zero:
+            // the gain on the candidates having the feature, times their share, is
+            // (g(having) - sum over values of g(count)) / n with g = x log2 x.
+            let mut branches = 0.0;
+            for &c in &counts {
+                if c > 0 {
+                    branches += xl[c as usize];
+                }
+            }
+            let having = counts.iter().sum::<u32>();
+            let gain = ((xl[having as usize] - branches) / n as f64).max(0.0);
+            let cost = costs[feature as usize];
+            let score = if cost.get() > 0.0 {
+                gain * gain / cost.get()
+            } else if gain > 0.0 {
+                f64::INFINITY
+            } else {
+                0.0
+            };
+            let better = match best {
+                None => true,
+                Some((s, c, f)) => {
+                    if cslearn::same_score(score, s) {
+                        (cost, feature) < (c, f)
+                    } else {
+                        score > s
+                    }
+                }
+            };
+            if better {
+                best = Some((score, cost, feature));
+            }
+        }
+        let (_, _, f) = best.expect("a node with counts has a candidate feature");
+        Step::Measure(Feature(f))
+    }
+
+    /// The child of `parent` (which measures `feature`) for `code`, built from the
+    /// parent's candidates; `self.path` is the child's path.
+    fn grow(&mut self, parent: u32, feature: u32, code: u32, library: &Library) -> u32 {
+        let child = self.alloc();
+        let examples = library.examples();
+        let (p, c) = if parent < child {
+            let (a, b) = self.nodes.split_at_mut(child as usize);
+            (&a[parent as usize], &mut b[0])
+        } else {
+            let (a, b) = self.nodes.split_at_mut(parent as usize);
+            (&b[0], &mut a[child as usize])
+        };
+        c.cands.extend(p.cands.iter().copied().filter(|&d| {
+            examples[d as usize]
+                .get(cslearn::FeatureId(feature))
+                .is_none_or(|v| v.0 == code)
+        }));
+        self.nodes[parent as usize].children[code as usize] = child;
+        let path = std::mem::take(&mut self.path);
+        self.fill_counts(child, library, &path);
+        self.path = path;
+        child
+    }
+
+    /// Count, for a node whose candidates are set, the values of every unmeasured feature.
+    fn fill_counts(&mut self, at: u32, library: &Library, path: &[(u32, u32)]) {
+        let examples = library.examples();
+        for &(f, _) in path {
+            self.mark(f, true);
+        }
+        let node = &self.nodes[at as usize];
+        for &d in &node.cands {
+            for &(f, v) in examples[d as usize].pairs() {
+                let f = f.0 as usize;
+                if f >= self.scratch.len() {
+                    self.scratch.resize(f + 1, [0; VALUES]);
+                }
+                if self.marks.get(f).copied().unwrap_or(false) {
+                    continue;
+                }
+                if self.scratch[f] == [0; VALUES] {
+                    self.touched.push(f as u32);
+                }
+                self.scratch[f][v.0 as usize] += 1;
+            }
+        }
+        self.touched.sort_unstable();
+        let node = &mut self.nodes[at as usize];
+        node.counts.clear();
+        for &f in &self.touched {
+            node.counts.push((f, std::mem::take(&mut self.scratch[f as usize])));
+        }
+        self.touched.clear();
+        for &(f, _) in path {
+            self.mark(f, false);
+        }
+    }
+
+    fn mark(&mut self, feature: u32, on: bool) {
+        let f = feature as usize;
+        if f >= self.marks.len() {
+            self.marks.resize(f + 1, false);
+        }
+        self.marks[f] = on;
+    }
+
+    fn alloc(&mut self) -> u32 {
+        match self.free.pop() {
+            Some(i) => i,
+            None => {
+                self.nodes.push(Node::empty());
+                (self.nodes.len() - 1) as u32
+            }
+        }
+    }
+
+    /// Return a subtree's nodes to the free list.
+    fn release(&mut self, top: u32) {
+        let mut stack = vec![top];
+        while let Some(at) = stack.pop() {
+            let node = &mut self.nodes[at as usize];
+            stack.extend(node.children.iter().copied().filter(|&c| c != NONE));
+            node.step = Step::Create;
+            node.stale = true;
+            node.children = [NONE; VALUES];
+            node.cands.clear();
+            node.counts.clear();
+            self.free.push(at);
+        }
+    }
+}

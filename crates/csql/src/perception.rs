@@ -1,0 +1,73 @@
+//! How states become rows of the Q table: the learner's side of sensing.
+//!
+//! CS-QL's perception is [`crate::Classify`]; [`Identified`] gives every state its own
+//! row, which makes the main loop plain Q-learning (the baseline and the paper's
+//! full-sensing reference).
+
+use mdp::{GridWorld, Mdp, StateId};
+use qlearn::{QTable, RowId};
+
+/// How states become rows of the Q table, and what that costs.
+///
+/// ```
+/// use csql::{Identified, Perception};
+/// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+/// let mut p = Identified::new(&world, vec![5.0; 9]);
+/// let mut table = qlearn::QTable::new(4).unwrap();
+/// let (row, cost) = p.classify(&world, mdp::StateId(0), &mut table);
+/// assert_eq!((row.0, cost), (0, 5.0));
+/// ```
+pub trait Perception {
+    /// The row of a non-terminal state, adding rows to `table` if the perception grows;
+    /// returns the sensing cost charged.
+    fn classify(&mut self, world: &GridWorld, s: StateId, table: &mut QTable) -> (RowId, f64);
+    /// Make `row` more specific, using state `s` (which it describes) for the new value;
+    /// returns the cost charged, or `None` if the row cannot be refined further.
+    fn refine(&mut self, world: &GridWorld, row: RowId, s: StateId) -> Option<f64>;
+    /// How many rows (descriptions) the perception has made so far.
+    fn rows(&self) -> usize;
+    /// The row state `s` belongs to now, found without charging and without adding a
+    /// row (`None` if classifying it would add one). This is the view the oracle judges
+    /// the perception through; the learner never uses it.
+    fn lookup(&mut self, world: &GridWorld, s: StateId) -> Option<RowId>;
+}
+
+/// Every state identified by its own row, at a fixed price per classification (for
+/// example the cost of sensing the whole world): plain Q-learning.
+#[derive(Clone, Debug)]
+pub struct Identified {
+    rows: Vec<Option<RowId>>,
+    cost: Vec<f64>,
+}
+
+impl Identified {
+    /// A perception that charges `cost[s]` each time state `s` is classified.
+    ///
+    /// ```
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let p = csql::Identified::new(&world, vec![1.0; 9]);
+    /// ```
+    pub fn new(world: &GridWorld, cost: Vec<f64>) -> Identified {
+        Identified {
+            rows: vec![None; world.num_states()],
+            cost,
+        }
+    }
+}
+
+impl Perception for Identified {
+    fn classify(&mut self, _world: &GridWorld, s: StateId, table: &mut QTable) -> (RowId, f64) {
+        let row = *self.rows[s.index()].get_or_insert_with(|| table.add_row());
+        (row, self.cost[s.index()])
+    }
+    fn refine(&mut self, _world: &GridWorld, _row: RowId, _s: StateId) -> Option<f64> {
+        None
+    }
+    fn rows(&self) -> usize {
+        self.rows.iter().flatten().count()
+    }
+    fn lookup(&mut self, _world: &GridWorld, s: StateId) -> Option<RowId> {
+        self.rows[s.index()]
+    }
+}
+
