@@ -4,7 +4,7 @@
 
 use std::ops::ControlFlow;
 
-use csql::{Identified, LoopParams, Never, Perception, RunSettings, Setup, StrategyKind};
+use csql::{Agent, Identified, LoopParams, Never, Perception, RunSettings, Setup, StrategyKind};
 use mdp::Mdp;
 use qlearn::{Params, QLearner, QTable, RowId, Start};
 use rand::{RngExt, SeedableRng};
@@ -28,30 +28,24 @@ fn csql_loop_on_identified_states_is_qlearn() {
         });
 
         // csql's main loop, one row per state, never refining.
-        let mut perception = Identified::new(world, vec![0.0; world.num_states()]);
-        let mut table = QTable::new(4).unwrap();
+        let mut agent = Agent {
+            perception: Identified::new(world, vec![0.0; world.num_states()]),
+            strategy: Never,
+            table: QTable::new(4).unwrap(),
+            params: LoopParams::from(&settings),
+        };
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
         let starts = world.states();
-        let params = LoopParams::from(&settings);
         let mut ours_moves = Vec::new();
         for trial in 1..=trials as u32 {
             let start = starts[rng.random_range(0..starts.len())];
-            let rec = csql::run_trial(
-                world,
-                &mut perception,
-                &mut Never,
-                &mut table,
-                &params,
-                start,
-                trial,
-                &mut rng,
-            );
-            ours_moves.push(rec.moves);
+            ours_moves.push(agent.run_trial(world, start, trial, &mut rng).moves);
         }
         assert_eq!(plain_moves, ours_moves, "{map}");
         // Same values for every state (rows are numbered differently).
         for s in world.states() {
-            let (row, _) = perception.classify(world, s, &mut table);
+            let (row, _) = agent.perception.classify(world, s, &mut agent.table);
+            let table = &agent.table;
             assert_eq!(table.v(row), plain.table().v(RowId(s.0)), "{map} {s}");
             assert_eq!(
                 table.q_row(row),

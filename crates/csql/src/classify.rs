@@ -335,12 +335,11 @@ impl Classify {
     fn walk_cached(&mut self, world: &GridWorld, s: StateId) -> Option<DescriptionId> {
         self.measured.clear();
         let (space, measured) = (&self.space, &mut self.measured);
-        self.cache
-            .walk(self.rep.library(), &self.costs, |f| {
-                let v = space.measure(world, s, f);
-                measured.push((f, v));
-                v
-            })
+        self.cache.walk(self.rep.library(), &self.costs, |f| {
+            let v = space.measure(world, s, f);
+            measured.push((f, v));
+            v
+        })
     }
 
     /// The description state `s` belongs to, found without charging and without adding a
@@ -370,8 +369,9 @@ impl Classify {
         }
         let space = &self.space;
         let found = if self.use_cache {
-            self.cache
-                .walk(self.rep.library(), &self.costs, |f| space.measure(world, s, f))
+            self.cache.walk(self.rep.library(), &self.costs, |f| {
+                space.measure(world, s, f)
+            })
         } else {
             self.rep.matching(world, space, s)
         };

@@ -1,8 +1,9 @@
 //! The learned policy and descriptions drawn on the map (the paper's Figure 4b).
 
-use mdp::{Action, Overlay, Pos};
+use mdp::{Cell, Overlay, Pos};
 
-use crate::run::{RunReport, Setup};
+use crate::report::RunReport;
+use crate::run::Setup;
 
 /// The map as SVG with, for every state, its greedy action as an arrow, its description's
 /// label in the corner and, on hover, the description's features; a legend lists every
@@ -27,13 +28,13 @@ pub fn policy_svg(setup: &Setup, report: &RunReport) -> String {
             .map(|f| {
                 if short {
                     let code = match f.value {
-                        "empty" => 'E',
-                        "obstacle" => 'O',
-                        _ => 'G',
+                        Cell::Empty => 'E',
+                        Cell::Obstacle => 'O',
+                        Cell::Goal => 'G',
                     };
                     format!("({},{}){code}", f.dx, f.dy)
                 } else {
-                    format!("({}, {})={}", f.dx, f.dy, f.value)
+                    format!("({}, {})={}", f.dx, f.dy, f.value.name())
                 }
             })
             .collect::<Vec<_>>()
@@ -56,11 +57,7 @@ pub fn policy_svg(setup: &Setup, report: &RunReport) -> String {
     };
     for s in &report.states {
         let p = Pos::new(s.row, s.col);
-        if let Some(name) = s.greedy_action {
-            let a = Action::ALL
-                .into_iter()
-                .find(|a| a.name() == name)
-                .expect("reports name grid actions");
+        if let Some(a) = s.greedy_action {
             o.arrow(p, a);
         }
         if let Some(label) = s.description {
@@ -148,14 +145,17 @@ pub fn descriptions_svg(report: &RunReport) -> String {
         for f in &d.features {
             let (x, y) = cell_at(f.dx, f.dy);
             let fill = match f.value {
-                "obstacle" => "#555555",
-                "goal" => "#ffcc33",
-                _ => "#ffffff",
+                Cell::Obstacle => "#555555",
+                Cell::Goal => "#ffcc33",
+                Cell::Empty => "#ffffff",
             };
             let _ = write!(
                 s,
                 "<rect x=\"{x}\" y=\"{y}\" width=\"{CELL}\" height=\"{CELL}\" fill=\"{fill}\" stroke=\"#888\" stroke-width=\"0.6\"><title>({}, {}) = {}, cost {}</title></rect>",
-                f.dx, f.dy, f.value, f.cost
+                f.dx,
+                f.dy,
+                f.value.name(),
+                f.cost
             );
         }
         let (x, y) = cell_at(0, 0);

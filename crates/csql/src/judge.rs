@@ -192,10 +192,12 @@ impl Judge {
             if !(same_v && shared_action) {
                 inconsistent += 1;
             }
-            let first_set = oracle.optimal_actions(first);
-            literal &= rest
-                .iter()
-                .all(|&i| oracle.optimal_actions(states[i as usize]) == first_set);
+            literal &= rest.iter().all(|&i| {
+                mdp::Action::ALL.iter().all(|a| {
+                    oracle.is_optimal(states[i as usize], a.id())
+                        == oracle.is_optimal(first, a.id())
+                })
+            });
         }
         let sufficient = unmatched == 0 && inconsistent == 0;
         let converged = sufficient

@@ -105,27 +105,29 @@ mod judge;
 mod main_loop;
 mod perception;
 mod reference;
+mod report;
 mod representation;
 mod run;
 mod settings;
 mod strategy;
 mod tree;
 
-pub use judge::{Judge, Verdict};
 pub use classify::{Classification, Classify};
 pub use error::Error;
 pub use figure::{descriptions_svg, policy_svg};
+pub use judge::{Judge, Verdict};
 pub use main_loop::{Agent, LoopParams, TrialRecord};
 pub use perception::{Identified, Perception};
 pub use reference::{
     Reference, cheapest_interior_cost, fixed_representation_reference, full_sensing_reference,
     whole_world_cost,
 };
-pub use representation::{Description, DescriptionId, Representation};
-pub use run::{
-    DescriptionReport, FeatureReport, RunReport, Setup, StateReport, Table1, TracePoint, run,
-    run_on, run_on_with, run_with_representation,
+pub use report::{
+    DescriptionReport, FeatureReport, PaperValue, RunReport, StateReport, Table1, Table1Row,
+    TracePoint,
 };
+pub use representation::{Description, DescriptionId, Representation};
+pub use run::{Setup, run, run_on, run_on_with, run_with_representation};
 pub use settings::RunSettings;
 pub use strategy::{
     Eager, Lazy, Never, RandomMoves, Reaction, Resetting, Strategy, StrategyKind, UnknownStrategy,

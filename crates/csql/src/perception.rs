@@ -70,4 +70,3 @@ impl Perception for Identified {
         self.rows[s.index()]
     }
 }
-

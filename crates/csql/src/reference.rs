@@ -13,10 +13,10 @@ use serde::Serialize;
 use crate::classify::Classify;
 use crate::main_loop::{Agent, LoopParams};
 use crate::perception::{Identified, Perception};
-use crate::strategy::Never;
 use crate::representation::Representation;
 use crate::run::{Setup, learn};
 use crate::settings::RunSettings;
+use crate::strategy::Never;
 
 /// What a reference learner needed to converge.
 ///

@@ -1,172 +1,19 @@
 //! One CS-QL run from settings to the measures of the paper's Table 1.
 
-use mdp::{Action, FeatureSpace, GridWorld, Manhattan, Map, Mdp, Oracle};
+use mdp::{FeatureSpace, GridWorld, Manhattan, Map, Mdp, Oracle};
 use qlearn::QTable;
 use rand::{RngExt, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
-use serde::Serialize;
 
 use crate::classify::Classify;
 use crate::error::Error;
 use crate::judge::Judge;
 use crate::main_loop::{Agent, LoopParams};
 use crate::perception::Perception;
-use crate::representation::{DescriptionId, Representation};
+use crate::report::{RunReport, TracePoint, report};
+use crate::representation::Representation;
 use crate::settings::RunSettings;
 use crate::strategy::Strategy;
-use crate::tree::StateTree;
-
-/// The eight measures of the paper's Table 1 for one run. A figure the run did not reach
-/// is `None` (null in JSON); rows 5 to 8 are measured after convergence only.
-///
-/// ```
-/// let t = csql::Table1::default();
-/// assert!(t.trials_to_converge.is_none());
-/// ```
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
-pub struct Table1 {
-    /// Row 1: sensing cost until the representation was first sufficient.
-    pub cost_to_sufficient: Option<f64>,
-    /// Row 2: trials until then.
-    pub trials_to_sufficient: Option<u32>,
-    /// Row 3: sensing cost until convergence (row 1 included).
-    pub cost_to_converge: Option<f64>,
-    /// Row 4: trials until convergence.
-    pub trials_to_converge: Option<u32>,
-    /// Row 5: descriptions after convergence.
-    pub descriptions: Option<usize>,
-    /// Row 6: mean features per description.
-    pub mean_features: Option<f64>,
-    /// Row 7: most features in one description.
-    pub max_features: Option<usize>,
-    /// Row 8: mean sensing cost per state of the cost-sensitive decision tree built from
-    /// the final descriptions.
-    pub tree_cost_per_state: Option<f64>,
-    /// Row 8, plain form: mean over states of the summed cost of their description's
-    /// features.
-    pub description_cost_per_state: Option<f64>,
-}
-
-/// One line of the learning curve: the state of the run at the end of a trial.
-///
-/// ```
-/// let r = csql::run(&csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Eager, 1)).unwrap();
-/// let last = r.trace.last().unwrap();
-/// assert!(last.converged && last.cumulative_cost == r.total_cost);
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct TracePoint {
-    /// The trial, from 1.
-    pub trial: u32,
-    /// Moves in this trial.
-    pub moves: u32,
-    /// Sensing cost charged so far in the run.
-    pub cumulative_cost: f64,
-    /// Descriptions at the end of the trial.
-    pub descriptions: usize,
-    /// Decreases seen in this trial.
-    pub decreases: u32,
-    /// Features added in this trial.
-    pub refinements: u32,
-    /// The representation is sufficient.
-    pub sufficient: bool,
-    /// The run has converged.
-    pub converged: bool,
-}
-
-/// A state at the end of the run (row 0 is the top line of the map).
-///
-/// ```
-/// let r = csql::run(&csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1)).unwrap();
-/// let s = r.states.iter().find(|s| (s.row, s.col) == (0, 1)).unwrap();
-/// assert_eq!((s.greedy_action, s.value), (Some("right"), Some(1.0)));
-/// ```
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct StateReport {
-    /// Row.
-    pub row: usize,
-    /// Column.
-    pub col: usize,
-    /// The label of the state's description, if it has one.
-    pub description: Option<u32>,
-    /// The greedy action of that description (lowest action id among ties).
-    pub greedy_action: Option<&'static str>,
-    /// V of that description.
-    pub value: Option<f64>,
-    /// The optimal utility (for comparison).
-    pub v_star: f64,
-}
-
-/// One feature of a description.
-///
-/// ```
-/// let r = csql::run(&csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1)).unwrap();
-/// let f = r.descriptions.iter().flat_map(|d| &d.features).next().unwrap();
-/// assert_eq!(f.cost, (f.dx.abs() + f.dy.abs()) as f64);
-/// ```
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct FeatureReport {
-    /// Offset to the right.
-    pub dx: i32,
-    /// Offset up.
-    pub dy: i32,
-    /// The condition required there: `empty`, `obstacle` or `goal`.
-    pub value: &'static str,
-    /// Its sensing cost.
-    pub cost: f64,
-}
-
-/// A description at the end of the run.
-///
-/// ```
-/// let r = csql::run(&csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1)).unwrap();
-/// assert!(r.descriptions.iter().enumerate().all(|(i, d)| d.label as usize == i));
-/// ```
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct DescriptionReport {
-    /// Its unique label.
-    pub label: u32,
-    /// Its features, in the feature order.
-    pub features: Vec<FeatureReport>,
-}
-
-/// Everything a run measured; `csrl run --json` prints it.
-///
-/// ```
-/// let r = csql::run(&csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Random, 2)).unwrap();
-/// assert!(r.converged);
-/// assert_eq!(r.trials as usize, r.trace.len());
-/// ```
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct RunReport {
-    /// The map's name.
-    pub map: String,
-    /// The strategy's name.
-    pub strategy: &'static str,
-    /// The seed.
-    pub seed: u64,
-    /// Whether the run converged before the trial cap.
-    pub converged: bool,
-    /// Trials run.
-    pub trials: u32,
-    /// Moves made, random moves included.
-    pub moves: u64,
-    /// Sensing cost charged in the whole run.
-    pub total_cost: f64,
-    /// The measures of Table 1.
-    pub table1: Table1,
-    /// Whether the final representation is consistent in the literal reading too (equal
-    /// sets of optimal actions), if it is sufficient.
-    pub consistent_literal: Option<bool>,
-    /// Every non-goal free cell.
-    pub states: Vec<StateReport>,
-    /// Every description.
-    pub descriptions: Vec<DescriptionReport>,
-    /// The learning curve, one point per trial.
-    pub trace: Vec<TracePoint>,
-    /// The settings of the run.
-    pub settings: RunSettings,
-}
 
 /// A prepared world: map, grid world, feature space and oracle.
 ///
@@ -363,117 +210,12 @@ fn run_classify(
         params: LoopParams::from(settings),
     };
     let learned = learn(setup, settings, &mut agent);
-    let report = report(setup, settings, &mut agent.perception, &agent.table, learned);
+    let report = report(
+        setup,
+        settings,
+        &mut agent.perception,
+        &agent.table,
+        learned,
+    );
     (report, agent.perception.into_representation())
-}
-
-fn report(
-    setup: &Setup,
-    settings: &RunSettings,
-    classify: &mut Classify,
-    table: &QTable,
-    learned: Learned,
-) -> RunReport {
-    let states = setup.world.states();
-    let labels: Vec<Option<DescriptionId>> = states
-        .iter()
-        .map(|&s| classify.lookup(&setup.world, s))
-        .collect();
-    let rep = classify.representation();
-    let converged = learned.first_converged.is_some();
-    let mut table1 = Table1 {
-        cost_to_sufficient: learned.first_sufficient.map(|x| x.1),
-        trials_to_sufficient: learned.first_sufficient.map(|x| x.0),
-        cost_to_converge: learned.first_converged.map(|x| x.1),
-        trials_to_converge: learned.first_converged.map(|x| x.0),
-        ..Table1::default()
-    };
-    if converged {
-        let n = rep.len();
-        let counts: Vec<usize> = rep.iter().map(|(_, d)| d.len()).collect();
-        table1.descriptions = Some(n);
-        table1.mean_features = Some(counts.iter().sum::<usize>() as f64 / n as f64);
-        table1.max_features = counts.iter().max().copied();
-        let tree = StateTree::build(rep, &setup.space);
-        let costs: Vec<f64> = states
-            .iter()
-            .map(|&s| tree.classify(&setup.world, &setup.space, s).1)
-            .collect();
-        table1.tree_cost_per_state = Some(costs.iter().sum::<f64>() / states.len() as f64);
-        let plain: f64 = labels
-            .iter()
-            .map(|l| {
-                rep.get(l.expect("converged: every state matches"))
-                    .cost(&setup.space)
-            })
-            .sum();
-        table1.description_cost_per_state = Some(plain / states.len() as f64);
-    }
-    let last = learned.trace.last().copied();
-    let sufficient_now = last.is_some_and(|t| t.sufficient);
-    let consistent_literal = sufficient_now.then(|| {
-        let rows: Vec<_> = labels
-            .iter()
-            .map(|l| l.map(|d| qlearn::RowId(d.0)))
-            .collect();
-        crate::judge::Verdict::judge(
-            &setup.world,
-            &setup.oracle,
-            table,
-            &rows,
-            settings.tolerance,
-        )
-        .consistent_literal
-    });
-    RunReport {
-        map: setup.map.name().to_string(),
-        strategy: settings.strategy.name(),
-        seed: settings.seed,
-        converged,
-        trials: learned.trace.len() as u32,
-        moves: learned.moves,
-        total_cost: learned.cost,
-        table1,
-        consistent_literal,
-        states: states
-            .iter()
-            .zip(&labels)
-            .map(|(&s, l)| {
-                let p = setup.world.pos(s);
-                let row = l.map(|d| qlearn::RowId(d.0));
-                StateReport {
-                    row: p.row,
-                    col: p.col,
-                    description: l.map(|d| d.0),
-                    greedy_action: row.map(|r| {
-                        Action::from_id(table.greedy(r))
-                            .expect("grid action")
-                            .name()
-                    }),
-                    value: row.map(|r| table.v(r)),
-                    v_star: setup.oracle.v_star(s),
-                }
-            })
-            .collect(),
-        descriptions: rep
-            .iter()
-            .map(|(id, d)| DescriptionReport {
-                label: id.0,
-                features: d
-                    .features()
-                    .map(|(f, v)| {
-                        let o = setup.space.offset(f);
-                        FeatureReport {
-                            dx: o.dx,
-                            dy: o.dy,
-                            value: v.name(),
-                            cost: setup.space.cost(f),
-                        }
-                    })
-                    .collect(),
-            })
-            .collect(),
-        trace: learned.trace,
-        settings: settings.clone(),
-    }
 }

@@ -2,7 +2,7 @@
 //! and on random maps, and the measures have the paper's shape.
 
 use csql::{RunReport, RunSettings, Setup, StrategyKind};
-use mdp::{Action, Oracle, Pos};
+use mdp::{Oracle, Pos};
 
 fn run(map: &str, strategy: StrategyKind, seed: u64) -> (Setup, RunReport) {
     let settings = RunSettings::tan1991(map, strategy, seed);
@@ -21,10 +21,7 @@ fn assert_optimal(setup: &Setup, r: &RunReport) {
     let oracle = Oracle::for_grid(&setup.world, 0.9).unwrap();
     for s in &r.states {
         let state = setup.world.state_at(Pos::new(s.row, s.col)).unwrap();
-        let a = Action::ALL
-            .into_iter()
-            .find(|a| Some(a.name()) == s.greedy_action)
-            .unwrap();
+        let a = s.greedy_action.unwrap();
         assert!(
             oracle.is_optimal(state, a.id()),
             "{} at ({}, {})",

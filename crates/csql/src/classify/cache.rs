@@ -184,7 +184,8 @@ impl Cache {
                     .map(|i| pairs[i].1.0);
                 for (code, &child) in node.children.iter().enumerate() {
                     if child != NONE && wanted.is_none_or(|w| w == code as u32) {
-                        self.stack.push((child, self.path.len(), (g.0, code as u32)));
+                        self.stack
+                            .push((child, self.path.len(), (g.0, code as u32)));
                     }
                 }
             }
@@ -219,7 +220,8 @@ impl Cache {
                     if let Step::Measure(g) = node.step {
                         for (code, &child) in node.children.iter().enumerate() {
                             if child != NONE {
-                                self.stack.push((child, self.path.len(), (g.0, code as u32)));
+                                self.stack
+                                    .push((child, self.path.len(), (g.0, code as u32)));
                             }
                         }
                     }
@@ -391,7 +393,8 @@ impl Cache {
         let node = &mut self.nodes[at as usize];
         node.counts.clear();
         for &f in &self.touched {
-            node.counts.push((f, std::mem::take(&mut self.scratch[f as usize])));
+            node.counts
+                .push((f, std::mem::take(&mut self.scratch[f as usize])));
         }
         self.touched.clear();
         for &(f, _) in path {

@@ -1,0 +1,468 @@
+//! What a run reports: the measures of the paper's Table 1 (one definition of its rows),
+//! the learning curve, every state and description at the end, and the builder that
+//! computes them from a finished run.
+
+use std::fmt;
+
+use mdp::{Action, Cell};
+use qlearn::QTable;
+use serde::Serialize;
+
+use crate::classify::Classify;
+use crate::judge::Verdict;
+use crate::representation::DescriptionId;
+use crate::run::{Learned, Setup};
+use crate::settings::RunSettings;
+use crate::strategy::StrategyKind;
+use crate::tree::StateTree;
+
+/// The eight measures of the paper's Table 1 for one run. A figure the run did not reach
+/// is `None` (null in JSON); rows 5 to 8 are measured after convergence only.
+///
+/// ```
+/// let t = csql::Table1::default();
+/// assert!(t.trials_to_converge.is_none());
+/// ```
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Table1 {
+    /// Row 1: sensing cost until the representation was first sufficient.
+    pub cost_to_sufficient: Option<f64>,
+    /// Row 2: trials until then.
+    pub trials_to_sufficient: Option<u32>,
+    /// Row 3: sensing cost until convergence (row 1 included).
+    pub cost_to_converge: Option<f64>,
+    /// Row 4: trials until convergence.
+    pub trials_to_converge: Option<u32>,
+    /// Row 5: descriptions after convergence.
+    pub descriptions: Option<usize>,
+    /// Row 6: mean features per description.
+    pub mean_features: Option<f64>,
+    /// Row 7: most features in one description.
+    pub max_features: Option<usize>,
+    /// Row 8: mean sensing cost per state of the cost-sensitive decision tree built from
+    /// the final descriptions.
+    pub tree_cost_per_state: Option<f64>,
+    /// Row 8, plain form: mean over states of the summed cost of their description's
+    /// features.
+    pub description_cost_per_state: Option<f64>,
+}
+
+/// One line of the learning curve: the state of the run at the end of a trial.
+///
+/// ```
+/// let r = csql::run(&csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Eager, 1)).unwrap();
+/// let last = r.trace.last().unwrap();
+/// assert!(last.converged && last.cumulative_cost == r.total_cost);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct TracePoint {
+    /// The trial, from 1.
+    pub trial: u32,
+    /// Moves in this trial.
+    pub moves: u32,
+    /// Sensing cost charged so far in the run.
+    pub cumulative_cost: f64,
+    /// Descriptions at the end of the trial.
+    pub descriptions: usize,
+    /// Decreases seen in this trial.
+    pub decreases: u32,
+    /// Features added in this trial.
+    pub refinements: u32,
+    /// The representation is sufficient.
+    pub sufficient: bool,
+    /// The run has converged.
+    pub converged: bool,
+}
+
+/// A state at the end of the run (row 0 is the top line of the map).
+///
+/// ```
+/// let r = csql::run(&csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1)).unwrap();
+/// let s = r.states.iter().find(|s| (s.row, s.col) == (0, 1)).unwrap();
+/// assert_eq!((s.greedy_action, s.value), (Some(mdp::Action::Right), Some(1.0)));
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct StateReport {
+    /// Row.
+    pub row: usize,
+    /// Column.
+    pub col: usize,
+    /// The label of the state's description, if it has one.
+    pub description: Option<u32>,
+    /// The greedy action of that description (lowest action id among ties).
+    pub greedy_action: Option<Action>,
+    /// V of that description.
+    pub value: Option<f64>,
+    /// The optimal utility (for comparison).
+    pub v_star: f64,
+}
+
+/// One feature of a description.
+///
+/// ```
+/// let r = csql::run(&csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1)).unwrap();
+/// let f = r.descriptions.iter().flat_map(|d| &d.features).next().unwrap();
+/// assert_eq!(f.cost, (f.dx.abs() + f.dy.abs()) as f64);
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FeatureReport {
+    /// Offset to the right.
+    pub dx: i32,
+    /// Offset up.
+    pub dy: i32,
+    /// The condition required there (`empty`, `obstacle` or `goal` in JSON).
+    pub value: Cell,
+    /// Its sensing cost.
+    pub cost: f64,
+}
+
+/// A description at the end of the run.
+///
+/// ```
+/// let r = csql::run(&csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1)).unwrap();
+/// assert!(r.descriptions.iter().enumerate().all(|(i, d)| d.label as usize == i));
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DescriptionReport {
+    /// Its unique label.
+    pub label: u32,
+    /// Its features, in the feature order.
+    pub features: Vec<FeatureReport>,
+}
+
+/// Everything a run measured; `csrl run --json` prints it.
+///
+/// ```
+/// let r = csql::run(&csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Random, 2)).unwrap();
+/// assert!(r.converged);
+/// assert_eq!(r.trials as usize, r.trace.len());
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RunReport {
+    /// The map's name.
+    pub map: String,
+    /// The strategy (its name in JSON).
+    pub strategy: StrategyKind,
+    /// The seed.
+    pub seed: u64,
+    /// Whether the run converged before the trial cap.
+    pub converged: bool,
+    /// Trials run.
+    pub trials: u32,
+    /// Moves made, random moves included.
+    pub moves: u64,
+    /// Sensing cost charged in the whole run.
+    pub total_cost: f64,
+    /// The measures of Table 1.
+    pub table1: Table1,
+    /// Whether the final representation is consistent in the literal reading too (equal
+    /// sets of optimal actions), if it is sufficient.
+    pub consistent_literal: Option<bool>,
+    /// Every non-goal free cell.
+    pub states: Vec<StateReport>,
+    /// Every description.
+    pub descriptions: Vec<DescriptionReport>,
+    /// The learning curve, one point per trial.
+    pub trace: Vec<TracePoint>,
+    /// The settings of the run.
+    pub settings: RunSettings,
+}
+
+/// A figure of the paper's Table 1 as the paper prints it.
+///
+/// ```
+/// use csql::{PaperValue, StrategyKind, Table1Row};
+/// assert_eq!(Table1Row::Trials.paper(StrategyKind::Lazy), Some(PaperValue::Exact(127.0)));
+/// assert_eq!(PaperValue::AtMost(9.0).to_string(), "≤ 9");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PaperValue {
+    /// A number.
+    Exact(f64),
+    /// An upper bound (row 8).
+    AtMost(f64),
+}
+
+impl fmt::Display for PaperValue {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            PaperValue::Exact(x) => write!(f, "{x}"),
+            PaperValue::AtMost(x) => write!(f, "≤ {x}"),
+        }
+    }
+}
+
+/// The rows of Table 1: one definition of their numbers, labels, the paper's values and
+/// where each comes from in a [`Table1`], shared by every program that prints the table.
+///
+/// ```
+/// use csql::Table1Row;
+/// assert_eq!(Table1Row::ALL.len(), 9);
+/// assert_eq!(Table1Row::MaxFeatures.number(), "7");
+/// let t = csql::Table1 { max_features: Some(12), ..Default::default() };
+/// assert_eq!(Table1Row::MaxFeatures.of(&t), Some(12.0));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Table1Row {
+    /// 1: sensing cost until the representation was first sufficient.
+    CostToSufficient,
+    /// 2: trials until then.
+    TrialsToSufficient,
+    /// 3: sensing cost until convergence.
+    CostToConverge,
+    /// 4: trials until convergence.
+    Trials,
+    /// 5: descriptions.
+    Descriptions,
+    /// 6: mean features per description.
+    MeanFeatures,
+    /// 7: most features in one description.
+    MaxFeatures,
+    /// 8: mean sensing cost per state through the decision tree.
+    TreeCostPerState,
+    /// 8': mean summed cost of each state's description (ours only).
+    DescriptionCostPerState,
+}
+
+impl Table1Row {
+    /// Every row, in the table's order.
+    pub const ALL: [Table1Row; 9] = [
+        Table1Row::CostToSufficient,
+        Table1Row::TrialsToSufficient,
+        Table1Row::CostToConverge,
+        Table1Row::Trials,
+        Table1Row::Descriptions,
+        Table1Row::MeanFeatures,
+        Table1Row::MaxFeatures,
+        Table1Row::TreeCostPerState,
+        Table1Row::DescriptionCostPerState,
+    ];
+
+    /// The row's number in the paper (`8'` for the plain form of row 8).
+    ///
+    /// ```
+    /// assert_eq!(csql::Table1Row::DescriptionCostPerState.number(), "8'");
+    /// ```
+    pub fn number(self) -> &'static str {
+        ["1", "2", "3", "4", "5", "6", "7", "8", "8'"][self as usize]
+    }
+
+    /// What the row measures.
+    ///
+    /// ```
+    /// assert_eq!(csql::Table1Row::Descriptions.label(), "descriptions");
+    /// ```
+    pub fn label(self) -> &'static str {
+        match self {
+            Table1Row::CostToSufficient => "sensing cost to learn a representation",
+            Table1Row::TrialsToSufficient => "trials to learn a representation",
+            Table1Row::CostToConverge => "sensing cost to convergence",
+            Table1Row::Trials => "trials to convergence",
+            Table1Row::Descriptions => "descriptions",
+            Table1Row::MeanFeatures => "mean features per description",
+            Table1Row::MaxFeatures => "max features in a description",
+            Table1Row::TreeCostPerState => "mean sensing cost per state (decision tree)",
+            Table1Row::DescriptionCostPerState => {
+                "mean sensing cost per state (description features)"
+            }
+        }
+    }
+
+    /// Decimal places to print the row's value with (mean over runs aside).
+    ///
+    /// ```
+    /// assert_eq!(csql::Table1Row::MeanFeatures.decimals(), 2);
+    /// ```
+    pub fn decimals(self) -> usize {
+        match self {
+            Table1Row::MeanFeatures
+            | Table1Row::TreeCostPerState
+            | Table1Row::DescriptionCostPerState => 2,
+            _ => 0,
+        }
+    }
+
+    /// The paper's figure for a strategy (`None` for row 8', which the paper has not).
+    ///
+    /// ```
+    /// use csql::{PaperValue, StrategyKind, Table1Row};
+    /// assert_eq!(Table1Row::TreeCostPerState.paper(StrategyKind::Eager), Some(PaperValue::AtMost(16.0)));
+    /// ```
+    pub fn paper(self, strategy: StrategyKind) -> Option<PaperValue> {
+        const PAPER: [[f64; 4]; 8] = [
+            [467768.0, 62984.0, 37550.0, 27184.0],
+            [851.0, 114.0, 58.0, 30.0],
+            [506313.0, 70562.0, 61051.0, 88585.0],
+            [927.0, 127.0, 91.0, 86.0],
+            [50.0, 50.0, 50.0, 50.0],
+            [6.4, 6.9, 7.5, 10.2],
+            [9.2, 10.6, 12.3, 16.8],
+            [9.0, 10.0, 11.0, 16.0],
+        ];
+        let column = StrategyKind::ALL.iter().position(|&k| k == strategy)?;
+        let x = PAPER.get(self as usize)?[column];
+        Some(if self == Table1Row::TreeCostPerState {
+            PaperValue::AtMost(x)
+        } else {
+            PaperValue::Exact(x)
+        })
+    }
+
+    /// The row's value in one run's measures (`None` if the run did not reach it).
+    ///
+    /// ```
+    /// let t = csql::Table1 { trials_to_converge: Some(40), ..Default::default() };
+    /// assert_eq!(csql::Table1Row::Trials.of(&t), Some(40.0));
+    /// assert_eq!(csql::Table1Row::Descriptions.of(&t), None);
+    /// ```
+    pub fn of(self, t: &Table1) -> Option<f64> {
+        match self {
+            Table1Row::CostToSufficient => t.cost_to_sufficient,
+            Table1Row::TrialsToSufficient => t.trials_to_sufficient.map(f64::from),
+            Table1Row::CostToConverge => t.cost_to_converge,
+            Table1Row::Trials => t.trials_to_converge.map(f64::from),
+            Table1Row::Descriptions => t.descriptions.map(|n| n as f64),
+            Table1Row::MeanFeatures => t.mean_features,
+            Table1Row::MaxFeatures => t.max_features.map(|n| n as f64),
+            Table1Row::TreeCostPerState => t.tree_cost_per_state,
+            Table1Row::DescriptionCostPerState => t.description_cost_per_state,
+        }
+    }
+}
+
+/// One run's Table 1 as text: a row per measure, `not reached` where the run did not get
+/// there.
+///
+/// ```
+/// let t = csql::Table1 { descriptions: Some(50), ..Default::default() };
+/// let text = t.to_string();
+/// assert!(text.lines().any(|l| l.starts_with("5 ") && l.ends_with(" 50")));
+/// assert!(text.contains("not reached"));
+/// ```
+impl fmt::Display for Table1 {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let width = Table1Row::ALL
+            .iter()
+            .map(|r| r.number().len() + 1 + r.label().len())
+            .max()
+            .unwrap_or(0);
+        for row in Table1Row::ALL {
+            let name = format!("{} {}", row.number(), row.label());
+            let value = row.of(self).map_or_else(
+                || "not reached".to_string(),
+                |x| format!("{x:.*}", row.decimals()),
+            );
+            writeln!(f, "{name:<width$} {value:>12}")?;
+        }
+        Ok(())
+    }
+}
+
+pub(crate) fn report(
+    setup: &Setup,
+    settings: &RunSettings,
+    classify: &mut Classify,
+    table: &QTable,
+    learned: Learned,
+) -> RunReport {
+    let states = setup.world.states();
+    let labels: Vec<Option<DescriptionId>> = states
+        .iter()
+        .map(|&s| classify.lookup(&setup.world, s))
+        .collect();
+    let rep = classify.representation();
+    let converged = learned.first_converged.is_some();
+    let mut table1 = Table1 {
+        cost_to_sufficient: learned.first_sufficient.map(|x| x.1),
+        trials_to_sufficient: learned.first_sufficient.map(|x| x.0),
+        cost_to_converge: learned.first_converged.map(|x| x.1),
+        trials_to_converge: learned.first_converged.map(|x| x.0),
+        ..Table1::default()
+    };
+    if converged {
+        let n = rep.len();
+        let counts: Vec<usize> = rep.iter().map(|(_, d)| d.len()).collect();
+        table1.descriptions = Some(n);
+        table1.mean_features = Some(counts.iter().sum::<usize>() as f64 / n as f64);
+        table1.max_features = counts.iter().max().copied();
+        let tree = StateTree::build(rep, &setup.space);
+        let costs: Vec<f64> = states
+            .iter()
+            .map(|&s| tree.classify(&setup.world, &setup.space, s).1)
+            .collect();
+        table1.tree_cost_per_state = Some(costs.iter().sum::<f64>() / states.len() as f64);
+        let plain: f64 = labels
+            .iter()
+            .map(|l| {
+                rep.get(l.expect("converged: every state matches"))
+                    .cost(&setup.space)
+            })
+            .sum();
+        table1.description_cost_per_state = Some(plain / states.len() as f64);
+    }
+    let last = learned.trace.last().copied();
+    let sufficient_now = last.is_some_and(|t| t.sufficient);
+    let consistent_literal = sufficient_now.then(|| {
+        let rows: Vec<_> = labels
+            .iter()
+            .map(|l| l.map(|d| qlearn::RowId(d.0)))
+            .collect();
+        Verdict::judge(
+            &setup.world,
+            &setup.oracle,
+            table,
+            &rows,
+            settings.tolerance,
+        )
+        .consistent_literal
+    });
+    RunReport {
+        map: setup.map.name().to_string(),
+        strategy: settings.strategy,
+        seed: settings.seed,
+        converged,
+        trials: learned.trace.len() as u32,
+        moves: learned.moves,
+        total_cost: learned.cost,
+        table1,
+        consistent_literal,
+        states: states
+            .iter()
+            .zip(&labels)
+            .map(|(&s, l)| {
+                let p = setup.world.pos(s);
+                let row = l.map(|d| qlearn::RowId(d.0));
+                StateReport {
+                    row: p.row,
+                    col: p.col,
+                    description: l.map(|d| d.0),
+                    greedy_action: row.map(|r| {
+                        Action::from_id(table.greedy(r)).expect("grid worlds have four actions")
+                    }),
+                    value: row.map(|r| table.v(r)),
+                    v_star: setup.oracle.v_star(s),
+                }
+            })
+            .collect(),
+        descriptions: rep
+            .iter()
+            .map(|(id, d)| DescriptionReport {
+                label: id.0,
+                features: d
+                    .features()
+                    .map(|(f, v)| {
+                        let o = setup.space.offset(f);
+                        FeatureReport {
+                            dx: o.dx,
+                            dy: o.dy,
+                            value: v,
+                            cost: setup.space.cost(f),
+                        }
+                    })
+                    .collect(),
+            })
+            .collect(),
+        trace: learned.trace,
+        settings: settings.clone(),
+    }
+}
