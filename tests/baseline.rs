@@ -28,12 +28,12 @@ fn csql_loop_on_identified_states_is_qlearn() {
         });
 
         // csql's main loop, one row per state, never refining.
-        let mut agent = Agent {
-            perception: Identified::new(world, vec![0.0; world.num_states()]),
-            strategy: Never,
-            table: QTable::new(4).unwrap(),
-            params: LoopParams::from(&settings),
-        };
+        let mut agent = Agent::new(
+            Identified::new(world, vec![0.0; world.num_states()]),
+            Never,
+            QTable::new(4).unwrap(),
+            LoopParams::from(&settings),
+        );
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
         let starts = world.states();
         let mut ours_moves = Vec::new();

@@ -3,7 +3,10 @@
 //! * `cargo xtask reproduce`: the paper's Table 1 and figures beside ours.
 //! * `cargo xtask sweep` and `cargo xtask merge`: grids of settings, sharded across
 //!   machines (see `docs/sweeps.md`).
+//! * `cargo xtask bench scale` and `cargo xtask bench throughput`: how CS-QL's cost grows
+//!   with the world, and its moves per second against a plain Q-learning loop.
 
+mod bench;
 mod figures;
 mod paper;
 mod reproduce;
@@ -29,6 +32,8 @@ enum Command {
     Sweep(sweep::SweepArgs),
     /// Merge the outputs of sweep shards into one table.
     Merge(sweep::MergeArgs),
+    /// Benchmarks: CS-QL's growth with the world's size, and its moves per second.
+    Bench(bench::BenchArgs),
 }
 
 /// Print to stdout; a reader that has gone away (`cargo xtask ... | head`) ends the output
@@ -48,6 +53,7 @@ fn main() -> ExitCode {
         Command::Reproduce(args) => reproduce::run(args),
         Command::Sweep(args) => sweep::sweep(args),
         Command::Merge(args) => sweep::merge(args),
+        Command::Bench(args) => bench::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

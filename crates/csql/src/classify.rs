@@ -31,15 +31,12 @@
 //!
 //! [`Classify::lookup`] tells which description a state belongs to, without charging and
 //! without creating anything: the oracle's view, used to judge the representation at the
-//! end of a trial. It remembers each state's answer and asks the tree again only when the
-//! answer may have changed (the state's description was refined, or the state matched
-//! nothing and descriptions were added since): descriptions are pairwise disjoint and only
-//! grow more specific, so nothing else can change it.
+//! end of a trial (it walks the same tree, reading the state for free).
 
 mod cache;
 
 use cslearn::{Attend, Attention, Cost, FeatureId, InfoCost, MissingRule, RuleAttending};
-use mdp::{Cell, Feature, FeatureSpace, GridWorld, Mdp, StateId};
+use mdp::{Cell, Feature, FeatureSpace, GridWorld, StateId};
 use qlearn::{QTable, RowId};
 
 use self::cache::{Cache, Step};
@@ -93,21 +90,6 @@ pub struct Classify {
     measured: Vec<(Feature, Cell)>,
     cache: Cache,
     use_cache: bool,
-    /// Per description, how many times it was refined (for the free view).
-    refinements: Vec<u32>,
-    /// Per state, the free view's last answer.
-    seen: Vec<Seen>,
-}
-
-/// What the free view last found for a state, and when that answer expires.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Seen {
-    /// Never looked up.
-    Unknown,
-    /// The state matched this description, refined this many times then.
-    Matched(DescriptionId, u32),
-    /// The state matched nothing when there were this many descriptions.
-    Unmatched(usize),
 }
 
 impl Classify {
@@ -138,14 +120,12 @@ impl Classify {
         Classify {
             space: space.clone(),
             costs,
-            refinements: vec![0; rep.len()],
             rep,
             select: InfoCost::new(MissingRule::C45),
             attention: Attention::new(),
             measured: Vec::new(),
             cache: Cache::default(),
             use_cache: true,
-            seen: Vec::new(),
         }
     }
 
@@ -270,7 +250,6 @@ impl Classify {
             Some(d) => (d, false),
             None => {
                 let d = self.rep.push(&self.measured);
-                self.refinements.push(0);
                 self.cache.on_push(self.rep.library(), d);
                 (d, true)
             }
@@ -359,27 +338,14 @@ impl Classify {
     /// assert_eq!(c.representation().len(), 1);
     /// ```
     pub fn lookup(&mut self, world: &GridWorld, s: StateId) -> Option<DescriptionId> {
-        if self.seen.len() < world.num_states() {
-            self.seen.resize(world.num_states(), Seen::Unknown);
-        }
-        match self.seen[s.index()] {
-            Seen::Matched(d, n) if self.refinements[d.index()] == n => return Some(d),
-            Seen::Unmatched(len) if len == self.rep.len() => return None,
-            _ => {}
-        }
         let space = &self.space;
-        let found = if self.use_cache {
+        if self.use_cache {
             self.cache.walk(self.rep.library(), &self.costs, |f| {
                 space.measure(world, s, f)
             })
         } else {
             self.rep.matching(world, space, s)
-        };
-        self.seen[s.index()] = match found {
-            Some(d) => Seen::Matched(d, self.refinements[d.index()]),
-            None => Seen::Unmatched(self.rep.len()),
-        };
-        found
+        }
     }
 
     /// Add the next cheapest feature a description lacks, valued at state `s`; returns the
@@ -399,7 +365,6 @@ impl Classify {
         let f = self.rep.get(d).next_missing(self.space.len())?;
         let v = self.space.measure(world, s, f);
         self.rep.refine(d, f, v);
-        self.refinements[d.index()] += 1;
         self.cache.on_refine(self.rep.library(), d, f, v);
         Some(self.space.cost(f))
     }

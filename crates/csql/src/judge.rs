@@ -3,10 +3,11 @@
 //! Nothing here is charged and nothing here reaches the learner: it only decides when a
 //! run has found a sufficient representation and when it has converged.
 
-use mdp::{GridWorld, Oracle};
+use mdp::{GridWorld, Oracle, StateId};
 use qlearn::{QTable, RowId};
 use serde::Serialize;
 
+use crate::main_loop::Agent;
 use crate::perception::Perception;
 
 /// What the oracle sees at one moment.
@@ -23,7 +24,7 @@ use crate::perception::Perception;
 ///
 /// ```
 /// use csql::Verdict;
-/// use mdp::{GridWorld, Oracle};
+/// use mdp::{GridWorld, Oracle, StateId};
 /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
 /// let oracle = Oracle::for_grid(&world, 0.9).unwrap();
 /// let mut table = qlearn::QTable::new(4).unwrap();
@@ -53,7 +54,7 @@ impl Verdict {
     ///
     /// ```
     /// use csql::Verdict;
-    /// use mdp::{GridWorld, Oracle};
+    /// use mdp::{GridWorld, Oracle, StateId};
     /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let oracle = Oracle::for_grid(&world, 0.9).unwrap();
     /// let mut table = qlearn::QTable::new(4).unwrap();
@@ -69,135 +70,32 @@ impl Verdict {
         rows: &[Option<RowId>],
         tolerance: f64,
     ) -> Verdict {
-        Judge::default().judge(world, oracle, table, rows, tolerance)
-    }
-}
-
-/// The oracle's judge, with the buffers it reuses from one trial to the next: judging
-/// costs a pass over the states (and over each state's actions) and allocates nothing
-/// once warm. A perception is judged through its free view ([`Perception::lookup`]),
-/// never through anything the learner pays for or sees.
-///
-/// ```
-/// use csql::{Classify, Judge, Perception};
-/// use mdp::{FeatureSpace, GridWorld, Manhattan, Oracle};
-/// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
-/// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
-/// let oracle = Oracle::for_grid(&world, 0.9).unwrap();
-/// let mut classify = Classify::new(&space);
-/// let mut table = qlearn::QTable::new(4).unwrap();
-/// classify.classify(&world, world.states()[0], &mut table); // the empty description
-/// let v = Judge::default().judge_perception(&world, &oracle, &mut classify, &table, 1e-6);
-/// assert_eq!((v.unmatched, v.inconsistent, v.sufficient), (0, 1, false));
-/// ```
-#[derive(Clone, Debug, Default)]
-pub struct Judge {
-    rows: Vec<Option<RowId>>,
-    /// Indices into the states, grouped by row.
-    order: Vec<u32>,
-    /// Where each row's group starts in `order` (one more entry than rows).
-    starts: Vec<u32>,
-    /// Where the next state of each row goes while grouping.
-    cursor: Vec<u32>,
-}
-
-impl Judge {
-    /// Judge a perception and a table: every state's row comes from the perception's
-    /// free view.
-    ///
-    /// ```
-    /// use csql::{Identified, Judge};
-    /// use mdp::{GridWorld, Mdp, Oracle};
-    /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
-    /// let oracle = Oracle::for_grid(&world, 0.9).unwrap();
-    /// let mut p = Identified::new(&world, vec![0.0; world.num_states()]);
-    /// let table = qlearn::QTable::new(4).unwrap();
-    /// // Nothing classified yet: no state has a row.
-    /// let v = Judge::default().judge_perception(&world, &oracle, &mut p, &table, 1e-6);
-    /// assert_eq!(v.unmatched, 8);
-    /// ```
-    pub fn judge_perception<P: Perception + ?Sized>(
-        &mut self,
-        world: &GridWorld,
-        oracle: &Oracle,
-        perception: &mut P,
-        table: &QTable,
-        tolerance: f64,
-    ) -> Verdict {
-        let mut rows = std::mem::take(&mut self.rows);
-        rows.clear();
-        rows.extend(world.states().iter().map(|&s| perception.lookup(world, s)));
-        let verdict = self.judge(world, oracle, table, &rows, tolerance);
-        self.rows = rows;
-        verdict
-    }
-
-    /// Judge a mapping from states to rows: `rows[i]` is the row of `world.states()[i]`
-    /// (as [`Verdict::judge`], reusing this judge's buffers).
-    ///
-    /// ```
-    /// use csql::Judge;
-    /// use mdp::{GridWorld, Oracle};
-    /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
-    /// let oracle = Oracle::for_grid(&world, 0.9).unwrap();
-    /// let table = qlearn::QTable::new(4).unwrap();
-    /// let v = Judge::default().judge(&world, &oracle, &table, &vec![None; 8], 1e-6);
-    /// assert!(!v.sufficient && v.unmatched == 8);
-    /// ```
-    pub fn judge(
-        &mut self,
-        world: &GridWorld,
-        oracle: &Oracle,
-        table: &QTable,
-        rows: &[Option<RowId>],
-        tolerance: f64,
-    ) -> Verdict {
         let states = world.states();
         let unmatched = rows.iter().filter(|m| m.is_none()).count();
-        // Group the states by row (a counting sort, stable in state order).
-        self.starts.clear();
-        self.starts.resize(table.rows() + 1, 0);
-        for r in rows.iter().flatten() {
-            self.starts[r.index() + 1] += 1;
-        }
-        for i in 1..self.starts.len() {
-            self.starts[i] += self.starts[i - 1];
-        }
-        self.order.clear();
-        self.order.resize(rows.len() - unmatched, 0);
-        self.cursor.clone_from(&self.starts);
-        for (i, r) in rows.iter().enumerate() {
-            if let Some(r) = r {
-                self.order[self.cursor[r.index()] as usize] = i as u32;
-                self.cursor[r.index()] += 1;
+        let mut members: Vec<Vec<StateId>> = vec![Vec::new(); table.rows()];
+        for (&s, m) in states.iter().zip(rows) {
+            if let Some(r) = m {
+                members[r.index()].push(s);
             }
         }
         let mut inconsistent = 0;
         let mut literal = true;
-        for w in self.starts.windows(2) {
-            let group = &self.order[w[0] as usize..w[1] as usize];
+        for group in &members {
             let Some((&first, rest)) = group.split_first() else {
                 continue;
             };
-            let first = states[first as usize];
             let v0 = oracle.v_star(first);
-            let same_v = rest.iter().all(|&i| {
-                (oracle.v_star(states[i as usize]) - v0).abs() <= 1e-12 * v0.abs().max(1.0)
-            });
-            let shared_action = mdp::Action::ALL.iter().any(|a| {
-                group
-                    .iter()
-                    .all(|&i| oracle.is_optimal(states[i as usize], a.id()))
-            });
+            let same_v = rest
+                .iter()
+                .all(|&s| (oracle.v_star(s) - v0).abs() <= 1e-12 * v0.abs().max(1.0));
+            let shared_action = mdp::Action::ALL
+                .iter()
+                .any(|a| group.iter().all(|&s| oracle.is_optimal(s, a.id())));
             if !(same_v && shared_action) {
                 inconsistent += 1;
             }
-            literal &= rest.iter().all(|&i| {
-                mdp::Action::ALL.iter().all(|a| {
-                    oracle.is_optimal(states[i as usize], a.id())
-                        == oracle.is_optimal(first, a.id())
-                })
-            });
+            let first_set = oracle.optimal_actions(first);
+            literal &= rest.iter().all(|&s| oracle.optimal_actions(s) == first_set);
         }
         let sufficient = unmatched == 0 && inconsistent == 0;
         let converged = sufficient
@@ -213,5 +111,179 @@ impl Judge {
             consistent_literal: sufficient && literal,
             converged,
         }
+    }
+}
+
+/// The oracle's judge of one agent through its run, at the end of every trial.
+///
+/// It re-examines only what the agent changed since it last looked (the agent keeps a
+/// journal for it, which the agent itself never reads): the states of refined rows and
+/// the states that had no row (when rows were added) are looked up again through the
+/// perception's free view ([`Perception::lookup`]), and a row's verdicts (consistent,
+/// consistent in the literal reading, converged) are recomputed only when its states or
+/// its Q values changed. The verdict is exactly [`Verdict::judge`]'s on the whole mapping
+/// (`tests/judge.rs` checks it at every trial), at a cost proportional to the changes
+/// instead of the number of states.
+///
+/// This relies on the contract of [`Perception`]: a state's row changes only when that
+/// row is refined, or when a state without a row gets one.
+///
+/// ```
+/// use csql::{Agent, Classify, Judge, Lazy, LoopParams, RunSettings, Setup, StrategyKind};
+/// use rand::SeedableRng;
+/// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
+/// let setup = Setup::new(&settings).unwrap();
+/// let table = qlearn::QTable::new(4).unwrap();
+/// let mut agent = Agent::new(Classify::new(&setup.space), Lazy::default(), table, LoopParams::from(&settings));
+/// let mut judge = Judge::default();
+/// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
+/// agent.run_trial(&setup.world, setup.world.states()[0], 1, &mut rng);
+/// let v = judge.judge(&setup.world, &setup.oracle, &mut agent, 1e-6);
+/// assert!(!v.converged);
+/// ```
+#[derive(Clone, Debug, Default)]
+pub struct Judge {
+    started: bool,
+    states: Vec<StateId>,
+    /// Per state (index into `states`): its row.
+    row_of: Vec<Option<RowId>>,
+    /// Per row: its states, ascending.
+    members: Vec<Vec<u32>>,
+    /// States with no row.
+    unmatched: Vec<u32>,
+    /// Rows the perception had when last looked at.
+    rows_seen: usize,
+    /// Per row: consistent, literally consistent, converged (all true for no states).
+    flags: Vec<[bool; 3]>,
+    /// Rows failing each flag.
+    failing: [usize; 3],
+    /// Rows whose flags must be recomputed.
+    dirty: Vec<u32>,
+    is_dirty: Vec<bool>,
+}
+
+impl Judge {
+    /// Judge an agent at the end of a trial.
+    pub fn judge<P: Perception, S>(
+        &mut self,
+        world: &GridWorld,
+        oracle: &Oracle,
+        agent: &mut Agent<P, S>,
+        tolerance: f64,
+    ) -> Verdict {
+        let journal = agent.take_journal();
+        let perception = &mut agent.perception;
+        if !self.started {
+            self.started = true;
+            self.states = world.states();
+            self.row_of = vec![None; self.states.len()];
+            self.unmatched = (0..self.states.len() as u32).collect();
+            self.rows_seen = usize::MAX;
+        }
+        let rows = perception.rows();
+        if self.members.len() < rows {
+            self.members.resize_with(rows, Vec::new);
+            self.flags.resize(rows, [true; 3]);
+            self.is_dirty.resize(rows, false);
+        }
+        for &r in &journal.refined {
+            let moved = std::mem::take(&mut self.members[r.index()]);
+            self.mark(r);
+            for i in moved {
+                let found = perception.lookup(world, self.states[i as usize]);
+                self.place(i, found);
+            }
+        }
+        if rows != self.rows_seen {
+            self.rows_seen = rows;
+            for i in std::mem::take(&mut self.unmatched) {
+                let found = perception.lookup(world, self.states[i as usize]);
+                self.place(i, found);
+            }
+        }
+        if journal.reset {
+            for r in 0..rows {
+                self.mark(RowId(r as u32));
+            }
+        } else {
+            for &r in &journal.updated {
+                self.mark(r);
+            }
+        }
+        let table = &agent.table;
+        for r in std::mem::take(&mut self.dirty) {
+            self.is_dirty[r as usize] = false;
+            let new = self.row_flags(oracle, table, RowId(r), tolerance);
+            let old = std::mem::replace(&mut self.flags[r as usize], new);
+            for k in 0..3 {
+                if old[k] != new[k] {
+                    if new[k] {
+                        self.failing[k] -= 1;
+                    } else {
+                        self.failing[k] += 1;
+                    }
+                }
+            }
+        }
+        let sufficient = self.unmatched.is_empty() && self.failing[0] == 0;
+        Verdict {
+            unmatched: self.unmatched.len(),
+            inconsistent: self.failing[0],
+            sufficient,
+            consistent_literal: sufficient && self.failing[1] == 0,
+            converged: sufficient && self.failing[2] == 0,
+        }
+    }
+
+    /// Give state `i` its row (or none).
+    fn place(&mut self, i: u32, row: Option<RowId>) {
+        self.row_of[i as usize] = row;
+        match row {
+            Some(r) => {
+                let m = &mut self.members[r.index()];
+                let at = m.partition_point(|&j| j < i);
+                m.insert(at, i);
+                self.mark(r);
+            }
+            None => self.unmatched.push(i),
+        }
+    }
+
+    fn mark(&mut self, r: RowId) {
+        if !std::mem::replace(&mut self.is_dirty[r.index()], true) {
+            self.dirty.push(r.0);
+        }
+    }
+
+    /// A row's verdicts from its states: consistent (shared `V*` and an optimal action
+    /// in common), literally consistent (equal sets of optimal actions), converged (`V`
+    /// within the tolerance of every state's `V*` and only optimal greedy actions).
+    fn row_flags(&self, oracle: &Oracle, table: &QTable, r: RowId, tolerance: f64) -> [bool; 3] {
+        let group = &self.members[r.index()];
+        let Some((&first, rest)) = group.split_first() else {
+            return [true; 3];
+        };
+        let states = &self.states;
+        let first = states[first as usize];
+        let v0 = oracle.v_star(first);
+        let same_v = rest
+            .iter()
+            .all(|&i| (oracle.v_star(states[i as usize]) - v0).abs() <= 1e-12 * v0.abs().max(1.0));
+        let shared_action = mdp::Action::ALL.iter().any(|a| {
+            group
+                .iter()
+                .all(|&i| oracle.is_optimal(states[i as usize], a.id()))
+        });
+        let literal = rest.iter().all(|&i| {
+            mdp::Action::ALL.iter().all(|a| {
+                oracle.is_optimal(states[i as usize], a.id()) == oracle.is_optimal(first, a.id())
+            })
+        });
+        let settled = group.iter().all(|&i| {
+            let s = states[i as usize];
+            (table.v(r) - oracle.v_star(s)).abs() <= tolerance
+                && table.greedy_actions(r).all(|a| oracle.is_optimal(s, a))
+        });
+        [same_v && shared_action, literal, settled]
     }
 }

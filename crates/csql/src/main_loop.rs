@@ -28,7 +28,7 @@
 //! for Boltzmann selection, or one `random_range(0..4)` for a random move.
 
 use mdp::{GridWorld, Mdp, StateId};
-use qlearn::{QTable, Target};
+use qlearn::{QTable, RowId, Target};
 use rand::{Rng, RngExt};
 use serde::Serialize;
 
@@ -89,12 +89,12 @@ pub struct TrialRecord {
 /// use rand::SeedableRng;
 /// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
 /// let setup = Setup::new(&settings).unwrap();
-/// let mut agent = Agent {
-///     perception: Classify::new(&setup.space),
-///     strategy: Lazy::default(),
-///     table: qlearn::QTable::new(4).unwrap(),
-///     params: LoopParams::from(&settings),
-/// };
+/// let mut agent = Agent::new(
+///     Classify::new(&setup.space),
+///     Lazy::default(),
+///     qlearn::QTable::new(4).unwrap(),
+///     LoopParams::from(&settings),
+/// );
 /// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
 /// let rec = agent.run_trial(&setup.world, setup.world.states()[0], 1, &mut rng);
 /// assert!(rec.moves >= 1 && rec.moves <= 100);
@@ -110,6 +110,49 @@ pub struct Agent<P, S> {
     pub table: QTable,
     /// Beta, gamma, T, the move cap and the decrease threshold.
     pub params: LoopParams,
+    /// What changed since the oracle last looked (never read by the agent itself).
+    journal: Journal,
+}
+
+/// What an agent changed since the oracle's judge last looked, so that the judge
+/// re-examines only that: the rows whose Q values were updated, the rows refined (whose
+/// states may now belong elsewhere), and whether the table was reset. Keeping it costs a
+/// push per move; the agent never reads it.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Journal {
+    pub updated: Vec<RowId>,
+    pub refined: Vec<RowId>,
+    pub reset: bool,
+}
+
+impl<P, S> Agent<P, S> {
+    /// An agent with a perception, a strategy, a table and the loop's parameters.
+    ///
+    /// ```
+    /// use csql::{Agent, Identified, LoopParams, Never, RunSettings, StrategyKind};
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let params = LoopParams::from(&RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1));
+    /// let agent = Agent::new(Identified::new(&world, vec![0.0; 9]), Never, qlearn::QTable::new(4).unwrap(), params);
+    /// assert_eq!(agent.table.rows(), 0);
+    /// ```
+    pub fn new(perception: P, strategy: S, table: QTable, params: LoopParams) -> Agent<P, S> {
+        Agent {
+            perception,
+            strategy,
+            table,
+            params,
+            journal: Journal::default(),
+        }
+    }
+
+    /// Hand over the journal and start a new one.
+    pub(crate) fn take_journal(&mut self) -> Journal {
+        let fresh = Journal {
+            updated: Vec::with_capacity(self.journal.updated.capacity()),
+            ..Journal::default()
+        };
+        std::mem::replace(&mut self.journal, fresh)
+    }
 }
 
 impl<P: Perception, S: Strategy> Agent<P, S> {
@@ -121,12 +164,12 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
     /// use rand::SeedableRng;
     /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
-    /// let mut agent = Agent {
-    ///     perception: Identified::new(&world, vec![1.0; 9]),
-    ///     strategy: Never,
-    ///     table: qlearn::QTable::new(4).unwrap(),
-    ///     params: LoopParams::from(&settings),
-    /// };
+    /// let mut agent = Agent::new(
+    ///     Identified::new(&world, vec![1.0; 9]),
+    ///     Never,
+    ///     qlearn::QTable::new(4).unwrap(),
+    ///     LoopParams::from(&settings),
+    /// );
     /// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(3);
     /// let rec = agent.run_trial(&world, world.states()[2], 1, &mut rng);
     /// // Every classification costs 1 here: the start and each move but the last.
@@ -144,6 +187,7 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
             strategy,
             table,
             params,
+            journal,
         } = self;
         let mut rec = TrialRecord {
             trial,
@@ -179,6 +223,7 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
             // 4./5. Equation 2 for Q(descrip(x), a), then V(descrip(x)).
             let target = next.map_or(Target::Terminal, Target::Bootstrap);
             let change = table.update(row_x, a, step.reward, target, params.beta, params.gamma);
+            journal.updated.push(row_x);
             let mut row_y = next;
             // 6. If V(descrip(x)) decreased, descrip(x) is inconsistent (Theorem 2): the
             //    strategy decides. Decreases during random moves never refine anything.
@@ -195,10 +240,12 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
                     if let Some(cost) = perception.refine(world, row_x, x) {
                         rec.cost += cost;
                         rec.refinements += 1;
+                        journal.refined.push(row_x);
                     }
                     if reset {
                         table.reset();
                         rec.resets += 1;
+                        journal.reset = true;
                     }
                     random_left = random_moves;
                     if !step.terminated {

@@ -9,6 +9,10 @@ use qlearn::{QTable, RowId};
 
 /// How states become rows of the Q table, and what that costs.
 ///
+/// The contract the oracle relies on to judge incrementally ([`crate::Judge`]): the row
+/// of a state changes only when that row is refined, or when a state that had no row
+/// gets one because rows were added. Rows are never removed.
+///
 /// ```
 /// use csql::{Identified, Perception};
 /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());

@@ -92,12 +92,7 @@ fn reference<P: Perception>(
     table: QTable,
     cost_per_classification: Option<f64>,
 ) -> Reference {
-    let mut agent = Agent {
-        perception,
-        strategy: Never,
-        table,
-        params: LoopParams::from(settings),
-    };
+    let mut agent = Agent::new(perception, Never, table, LoopParams::from(settings));
     let learned = learn(setup, settings, &mut agent);
     Reference {
         converged: learned.first_converged.is_some(),

@@ -111,13 +111,7 @@ pub(crate) fn learn<P: Perception, S: Strategy>(
         let rec = agent.run_trial(&setup.world, start, trial, &mut rng);
         out.moves += rec.moves as u64;
         out.cost += rec.cost;
-        let verdict = judge.judge_perception(
-            &setup.world,
-            &setup.oracle,
-            &mut agent.perception,
-            &agent.table,
-            settings.tolerance,
-        );
+        let verdict = judge.judge(&setup.world, &setup.oracle, agent, settings.tolerance);
         if verdict.sufficient && out.first_sufficient.is_none() {
             out.first_sufficient = Some((trial, out.cost));
         }
@@ -203,12 +197,12 @@ fn run_classify(
     settings: &RunSettings,
     classify: Classify,
 ) -> (RunReport, Representation) {
-    let mut agent = Agent {
-        perception: classify,
-        strategy: settings.strategy.build(settings.random_moves),
-        table: QTable::new(setup.world.num_actions()).expect("grid worlds have four actions"),
-        params: LoopParams::from(settings),
-    };
+    let mut agent = Agent::new(
+        classify,
+        settings.strategy.build(settings.random_moves),
+        QTable::new(setup.world.num_actions()).expect("grid worlds have four actions"),
+        LoopParams::from(settings),
+    );
     let learned = learn(setup, settings, &mut agent);
     let report = report(
         setup,
