@@ -5,9 +5,9 @@ use std::fmt;
 use serde::{Deserialize, Serialize};
 
 use crate::error::MdpError;
-use crate::map::{Cell, Map, Pos};
+use crate::geometry::{Cell, Offset, Pos};
+use crate::map::Map;
 use crate::process::{ActionId, Mdp, StateId, Step};
-use crate::sensing::Offset;
 use crate::tabular::{NegativeRewards, TabularMdp};
 
 /// The four moves of a grid world, with action ids 0 to 3 in this order.
@@ -296,7 +296,9 @@ impl GridWorld {
         }
     }
 
-    /// The non-goal free cells, as states in id order: where trials start.
+    /// The states: the non-goal free cells, in id order (row-major), where trials start.
+    /// The same cells, in the same order, as [`Map::states`] gives as positions; the MDP's
+    /// [`num_states`](Mdp::num_states) also counts the goal.
     ///
     /// ```
     /// let w = mdp::GridWorld::new(&mdp::builtin("tan8x8").unwrap());

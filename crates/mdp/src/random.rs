@@ -7,7 +7,8 @@ use rand::{Rng, RngExt};
 use serde::{Deserialize, Serialize};
 
 use crate::error::MapError;
-use crate::map::{Cell, MAX_SIDE, Map};
+use crate::geometry::Cell;
+use crate::map::{MAX_SIDE, Map};
 
 /// Parameters of a random map.
 ///

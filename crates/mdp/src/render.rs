@@ -7,7 +7,8 @@
 use std::fmt::Write as _;
 
 use crate::grid::Action;
-use crate::map::{Cell, Map, Pos};
+use crate::geometry::{Cell, Pos};
+use crate::map::Map;
 
 /// What to draw on top of a map.
 ///
