@@ -274,7 +274,7 @@ impl Results {
              standard deviation [min–max] over the runs that reached the figure. Made by \
              `cargo xtask reproduce{}`.\n",
             self.setup.map.name(),
-            self.setup.map.states(),
+            self.setup.map.states().len(),
             a.runs,
             a.seed,
             a.seed + a.runs - 1,
@@ -344,7 +344,7 @@ impl Results {
         };
         let one_per_state = self.runs.iter().all(|(_, runs, _)| {
             runs.iter()
-                .all(|r| r.table1.descriptions == Some(self.setup.map.states()))
+                .all(|r| r.table1.descriptions == Some(self.setup.map.states().len()))
         });
         if one_per_state {
             let _ = writeln!(
@@ -626,7 +626,7 @@ fn write_figures(res: &Results, out: &Path) -> Result<Vec<PathBuf>> {
         &format!(
             "Figure 5 on tan3x3: {} descriptions for {} states (the paper: 7)",
             rep3.len(),
-            setup3.map.states()
+            setup3.map.states().len()
         ),
         &[
             csql::policy_svg(&setup3, &report3),

@@ -267,7 +267,7 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
                 map: args.maps[m].clone(),
                 strategy,
                 seed: settings.seed,
-                states: setups[m].map.states(),
+                states: setups[m].map.states().len(),
                 converged: report.converged,
                 trials: report.trials,
                 table1: Table1Row::from(&report.table1),

@@ -41,7 +41,7 @@ pub fn list(out: &mut dyn Write) -> Result<()> {
             "{name:<14} {:>2}x{:<2} {:>3} states  {first}",
             map.width(),
             map.height(),
-            map.states()
+            map.states().len()
         )?;
     }
     Ok(())
@@ -71,7 +71,7 @@ pub fn run(cmd: &MapCommand, out: &mut dyn Write) -> Result<()> {
                 map.name(),
                 map.width(),
                 map.height(),
-                map.states()
+                map.states().len()
             );
             Ok(())
         }
@@ -100,7 +100,7 @@ fn show(map: &Map, out: &mut dyn Write) -> std::io::Result<()> {
     writeln!(
         out,
         "states      {} (free cells other than the goal)",
-        map.states()
+        map.states().len()
     )?;
     writeln!(
         out,
@@ -165,7 +165,7 @@ impl MapJson {
             description: map.description().map(str::to_string),
             width: map.width(),
             height: map.height(),
-            states: map.states(),
+            states: map.states().len(),
             obstacles: map.obstacles(),
             goal: RowCol {
                 row: map.goal().row,
