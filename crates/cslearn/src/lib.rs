@@ -151,7 +151,7 @@ mod update;
 pub use attend::{
     Attend, Attention, ObservationAttending, RankedAttending, RuleAttending, Semantics,
 };
-pub use dataset::{Binning, Dataset, DatasetOptions};
+pub use dataset::{Binning, Dataset, DatasetOptions, MAX_FILE_BYTES};
 pub use discriminate::{CheapestFirst, Discriminate, RandomOrder};
 pub use error::Error;
 pub use example::{Example, Library};
@@ -161,7 +161,7 @@ pub use learner::{
 pub use predict::{Decision, Nearest, Predict, Unanimous};
 pub use select::{InfoCost, MissingRule, Select};
 pub use sensing::{Ledger, Probe, Sensor};
-pub use stream::{LearnerKind, stream_dataset};
+pub use stream::{LearnerKind, stream_dataset, stream_dataset_with_progress};
 pub use tree::{Branch, DecisionTree, Labels, Node, NodeId, PlainLabels, TreeOptions};
 pub use types::{ClassId, Cost, CostBlind, Costs, FeatureCosts, FeatureId, Value};
 pub use update::{AppendAll, AppendErrors, Update};

@@ -102,6 +102,7 @@ mod classify;
 mod error;
 mod figure;
 mod learner;
+mod observe;
 mod reference;
 mod representation;
 mod run;
@@ -114,6 +115,7 @@ pub use classify::{Classification, Classify};
 pub use error::Error;
 pub use figure::{descriptions_svg, policy_svg};
 pub use learner::{Identified, LoopParams, Never, Perception, TrialRecord, run_trial};
+pub use observe::{Flow, KeepTrace, Observer};
 pub use reference::{
     Reference, cheapest_interior_cost, fixed_representation_reference, full_sensing_reference,
     whole_world_cost,
@@ -121,9 +123,9 @@ pub use reference::{
 pub use representation::{Description, DescriptionId, Representation};
 pub use run::{
     DescriptionReport, FeatureReport, RunReport, Setup, StateReport, Table1, TracePoint, run,
-    run_on, run_on_with, run_with_representation,
+    run_observed, run_on, run_on_with, run_with_representation,
 };
-pub use settings::RunSettings;
+pub use settings::{MAX_SETTINGS_BYTES, RunSettings};
 pub use strategy::{
     Eager, Lazy, RandomMoves, Reaction, Resetting, Strategy, StrategyKind, UnknownStrategy,
 };

@@ -90,10 +90,17 @@ fn reference<P: Perception>(
     mut table: QTable,
     cost_per_classification: Option<f64>,
 ) -> Reference {
-    let learned = learn(setup, settings, &mut perception, &mut Never, &mut table);
+    let learned = learn(
+        setup,
+        settings,
+        &mut perception,
+        &mut Never,
+        &mut table,
+        &mut crate::observe::KeepTrace,
+    );
     Reference {
         converged: learned.first_converged.is_some(),
-        trials: learned.trace.len() as u32,
+        trials: learned.trials,
         cost: learned.cost,
         cost_per_classification,
     }

@@ -9,6 +9,7 @@ use serde::Serialize;
 use crate::classify::Classify;
 use crate::error::Error;
 use crate::learner::{LoopParams, Perception, TrialRecord, run_trial};
+use crate::observe::{Flow, KeepTrace, Observer};
 use crate::representation::{DescriptionId, Representation};
 use crate::settings::RunSettings;
 use crate::strategy::Strategy;
@@ -160,7 +161,8 @@ pub struct RunReport {
     pub states: Vec<StateReport>,
     /// Every description.
     pub descriptions: Vec<DescriptionReport>,
-    /// The learning curve, one point per trial.
+    /// The learning curve, one point per trial (empty when an [`Observer`] asked for no
+    /// trace: see [`run_observed`]).
     pub trace: Vec<TracePoint>,
     /// The settings of the run.
     pub settings: RunSettings,
@@ -234,6 +236,10 @@ impl From<&RunSettings> for LoopParams {
 /// The outcome of a learning loop over trials, before reporting.
 pub(crate) struct Learned {
     pub trace: Vec<TracePoint>,
+    /// Trials run (the trace's length when it is kept).
+    pub trials: u32,
+    /// The last trial's point, kept or not.
+    pub last: Option<TracePoint>,
     pub first_sufficient: Option<(u32, f64)>,
     pub first_converged: Option<(u32, f64)>,
     pub moves: u64,
@@ -248,12 +254,15 @@ pub(crate) fn learn<P: Perception + ?Sized, S: Strategy + ?Sized>(
     perception: &mut P,
     strategy: &mut S,
     table: &mut QTable,
+    observer: &mut dyn Observer,
 ) -> Learned {
     let params = LoopParams::from(settings);
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
     let starts = setup.world.states();
     let mut out = Learned {
         trace: Vec::new(),
+        trials: 0,
+        last: None,
         first_sufficient: None,
         first_converged: None,
         moves: 0,
@@ -280,7 +289,7 @@ pub(crate) fn learn<P: Perception + ?Sized, S: Strategy + ?Sized>(
         if verdict.converged {
             out.first_converged = Some((trial, out.cost));
         }
-        out.trace.push(TracePoint {
+        let point = TracePoint {
             trial,
             moves: rec.moves,
             cumulative_cost: out.cost,
@@ -289,8 +298,14 @@ pub(crate) fn learn<P: Perception + ?Sized, S: Strategy + ?Sized>(
             refinements: rec.refinements,
             sufficient: verdict.sufficient,
             converged: verdict.converged,
-        });
-        if verdict.converged {
+        };
+        out.trials = trial;
+        out.last = Some(point);
+        if observer.keep_trace() {
+            out.trace.push(point);
+        }
+        let flow = observer.trial(&point);
+        if verdict.converged || flow == Flow::Stop {
             break;
         }
     }
@@ -337,7 +352,33 @@ pub fn run_with_representation(
     setup: &Setup,
     settings: &RunSettings,
 ) -> (RunReport, Representation) {
-    run_classify(setup, settings, Classify::new(&setup.space))
+    run_classify(setup, settings, Classify::new(&setup.space), &mut KeepTrace)
+}
+
+/// Run CS-QL on a prepared world with an [`Observer`] called after every trial: for
+/// progress, for streaming the trace instead of keeping it, or for stopping early (the
+/// report then says what the run reached when it stopped, as at a trial cap).
+///
+/// ```
+/// use csql::{Flow, Observer, RunSettings, Setup, StrategyKind, TracePoint};
+/// struct Count(u32);
+/// impl Observer for Count {
+///     fn keep_trace(&self) -> bool { false }
+///     fn trial(&mut self, _: &TracePoint) -> Flow { self.0 += 1; Flow::Continue }
+/// }
+/// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Eager, 1);
+/// let setup = Setup::new(&settings).unwrap();
+/// let mut count = Count(0);
+/// let report = csql::run_observed(&setup, &settings, &mut count);
+/// assert!(report.trace.is_empty() && report.converged);
+/// assert_eq!(count.0, report.trials);
+/// ```
+pub fn run_observed(
+    setup: &Setup,
+    settings: &RunSettings,
+    observer: &mut dyn Observer,
+) -> RunReport {
+    run_classify(setup, settings, Classify::new(&setup.space), observer).0
 }
 
 /// Run CS-QL with a given CLASSIFY (for example with its cache off, or starting from a
@@ -351,13 +392,14 @@ pub fn run_with_representation(
 /// assert_eq!(csql::run_on_with(&setup, &settings, plain), csql::run_on(&setup, &settings));
 /// ```
 pub fn run_on_with(setup: &Setup, settings: &RunSettings, classify: Classify) -> RunReport {
-    run_classify(setup, settings, classify).0
+    run_classify(setup, settings, classify, &mut KeepTrace).0
 }
 
 fn run_classify(
     setup: &Setup,
     settings: &RunSettings,
     classify: Classify,
+    observer: &mut dyn Observer,
 ) -> (RunReport, Representation) {
     let mut perception = classify;
     let mut strategy = settings.strategy.build(settings.random_moves);
@@ -368,6 +410,7 @@ fn run_classify(
         &mut perception,
         strategy.as_mut(),
         &mut table,
+        observer,
     );
     let report = report(
         setup,
@@ -420,7 +463,7 @@ fn report(
             .sum();
         table1.description_cost_per_state = Some(plain / states.len() as f64);
     }
-    let last = learned.trace.last().copied();
+    let last = learned.last;
     let sufficient_now = last.is_some_and(|t| t.sufficient);
     let consistent_literal = sufficient_now.then(|| {
         let rows: Vec<_> = labels
@@ -441,7 +484,7 @@ fn report(
         strategy: settings.strategy.name(),
         seed: settings.seed,
         converged,
-        trials: learned.trace.len() as u32,
+        trials: learned.trials,
         moves: learned.moves,
         total_cost: learned.cost,
         table1,

@@ -204,7 +204,6 @@ fn line_col(bytes: &[u8], offset: usize) -> (usize, usize) {
     (line, column)
 }
 
-
 /// Why [`read_regular_file`] read nothing.
 pub(crate) enum ReadFailure {
     /// The operating system refused.

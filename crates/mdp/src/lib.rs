@@ -63,11 +63,11 @@ mod sensing;
 mod spec;
 mod tabular;
 
-pub use error::{MapError, MdpError, Position};
-pub use grid::{Action, Blocked, GridOptions, GridWorld};
 pub use builtin::{builtin, builtin_names};
+pub use error::{MapError, MdpError, Position};
 pub use format::MAX_FILE_BYTES;
 pub use geometry::{Cell, Offset, Pos};
+pub use grid::{Action, Blocked, GridOptions, GridWorld};
 pub use map::{MAX_SIDE, Map};
 pub use oracle::Oracle;
 pub use process::{ActionId, Mdp, StateId, Step};

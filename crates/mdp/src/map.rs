@@ -35,9 +35,7 @@ pub struct Map {
     goal: Pos,
 }
 
-
 impl Map {
-
     /// Build a map from a bare layout (rows separated by newlines), for code and tests.
     ///
     /// Errors report positions as layout rows and columns (1-based).

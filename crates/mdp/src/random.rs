@@ -133,7 +133,8 @@ impl RandomMap {
         }
         let description = format!(
             "A random {w} by {h} map with obstacle density {}.",
-            self.obstacle_density
+            // Adding 0 turns a density of -0 into 0, so no "-0" is ever printed.
+            self.obstacle_density + 0.0
         );
         Ok(Map::from_parts(
             name.to_string(),

@@ -6,8 +6,8 @@
 
 use std::fmt::Write as _;
 
-use crate::grid::Action;
 use crate::geometry::{Cell, Pos};
+use crate::grid::Action;
 use crate::map::Map;
 
 /// What to draw on top of a map.

@@ -21,7 +21,12 @@ fn a_good_file_parses_with_its_fields() {
     assert_eq!(map.name(), "t");
     assert_eq!(map.description(), Some("d"));
     assert_eq!(
-        (map.width(), map.height(), map.states().len(), map.obstacles()),
+        (
+            map.width(),
+            map.height(),
+            map.states().len(),
+            map.obstacles()
+        ),
         (3, 2, 4, 1)
     );
 }
@@ -178,7 +183,12 @@ fn builtins_are_valid_and_as_specified() {
     }
     let tan8 = builtin("tan8x8").unwrap();
     assert_eq!(
-        (tan8.width(), tan8.height(), tan8.obstacles(), tan8.states().len()),
+        (
+            tan8.width(),
+            tan8.height(),
+            tan8.obstacles(),
+            tan8.states().len()
+        ),
         (8, 8, 13, 50)
     );
     let tan3 = builtin("tan3x3").unwrap();
