@@ -133,6 +133,7 @@
 //!   (nearly its cost order) would smuggle cost information in.
 
 #![deny(missing_docs)]
+#![cfg_attr(not(test), warn(clippy::unwrap_used, clippy::expect_used))]
 
 mod attend;
 mod dataset;

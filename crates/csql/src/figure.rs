@@ -57,6 +57,10 @@ pub fn policy_svg(setup: &Setup, report: &RunReport) -> String {
     for s in &report.states {
         let p = Pos::new(s.row, s.col);
         if let Some(name) = s.greedy_action {
+            #[allow(
+                clippy::expect_used,
+                reason = "report names come from Action::name, so each names an action"
+            )]
             let a = Action::ALL
                 .into_iter()
                 .find(|a| a.name() == name)

@@ -96,15 +96,32 @@
 //! 360 times faster than the plain procedure (6.9 us against 2.5 ms).
 
 #![deny(missing_docs)]
+#![cfg_attr(not(test), warn(clippy::unwrap_used, clippy::expect_used))]
 
+#[allow(
+    clippy::expect_used,
+    reason = "internal invariants: every state of a sufficient representation has a row"
+)]
 mod check;
+#[allow(
+    clippy::expect_used,
+    reason = "internal invariants: feature spaces hold valid costs"
+)]
 mod classify;
 mod error;
 mod figure;
 mod learner;
 mod observe;
 mod reference;
+#[allow(
+    clippy::expect_used,
+    reason = "internal invariants: descriptions hold cell codes and ids index the representation"
+)]
 mod representation;
+#[allow(
+    clippy::expect_used,
+    reason = "internal invariants: grid worlds have four actions, a converged run matches every state, greedy ids are grid actions"
+)]
 mod run;
 mod settings;
 mod strategy;

@@ -115,6 +115,10 @@ fn reference<P: Perception>(
 /// let r = csql::full_sensing_reference(&Setup::new(&settings).unwrap(), &settings);
 /// assert!(r.converged && r.cost > 0.0);
 /// ```
+#[allow(
+    clippy::expect_used,
+    reason = "grid worlds have four actions, which a table accepts"
+)]
 pub fn full_sensing_reference(setup: &Setup, settings: &RunSettings) -> Reference {
     let cost: Vec<f64> = (0..setup.world.num_states() as u32)
         .map(|s| whole_world_cost(&setup.world, &setup.space, StateId(s)))
@@ -147,6 +151,10 @@ pub fn fixed_representation_reference(
     settings: &RunSettings,
     rep: Representation,
 ) -> Reference {
+    #[allow(
+        clippy::expect_used,
+        reason = "grid worlds have four actions, which a table accepts"
+    )]
     let table = QTable::with_rows(setup.world.num_actions(), rep.len())
         .expect("grid worlds have four actions");
     let perception = Classify::with_representation(&setup.space, rep);

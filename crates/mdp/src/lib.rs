@@ -48,6 +48,7 @@
 //! * A move from a terminal state stays there with reward 0 (trials end before it).
 
 #![deny(missing_docs)]
+#![cfg_attr(not(test), warn(clippy::unwrap_used, clippy::expect_used))]
 
 mod builtin;
 mod error;

@@ -84,3 +84,84 @@ fn a_device_is_refused_unread() {
     let err = within_seconds(|| mdp::Map::load(std::path::Path::new("/dev/zero"))).unwrap_err();
     assert!(matches!(err, MapError::NotAFile { .. }), "{err:?}");
 }
+
+mod generated {
+    use proptest::prelude::*;
+
+    /// Map files built from the pieces that matter to the TOML reader and the layout
+    /// checker, so that most cases get past the TOML parser.
+    fn mapish() -> impl Strategy<Value = String> {
+        let layout = proptest::collection::vec(
+            prop_oneof![
+                Just("."),
+                Just("#"),
+                Just("G"),
+                Just("\n"),
+                Just(" "),
+                Just("\r"),
+                Just("x"),
+                Just("'"),
+                Just("\\"),
+                Just("\u{e9}"),
+            ],
+            0..80,
+        )
+        .prop_map(|p| p.concat());
+        let key = prop_oneof![
+            Just("name = \"m\"\n"),
+            Just("name = \"\"\n"),
+            Just("description = \"d\"\n"),
+            Just("colour = 1\n"),
+            Just("name = 3\n"),
+            Just(""),
+        ];
+        let quote = prop_oneof![Just("'''"), Just("\"\"\""), Just("'"), Just("\"")];
+        (key, quote, layout).prop_map(|(k, q, l)| format!("{k}layout = {q}\n{l}{q}\n"))
+    }
+
+    /// Map specs from the pieces of the spec grammar.
+    fn specish() -> impl Strategy<Value = String> {
+        proptest::collection::vec(
+            prop_oneof![
+                Just("tan3x3"),
+                Just("tan8x8"),
+                Just("random:"),
+                Just("8x8"),
+                Just("0x0"),
+                Just("300x2"),
+                Just(":"),
+                Just("0.2"),
+                Just("-0.0"),
+                Just("NaN"),
+                Just("1e308"),
+                Just("@"),
+                Just("0"),
+                Just("18446744073709551616"),
+                Just("x"),
+            ],
+            0..12,
+        )
+        .prop_map(|p| p.concat())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(256))]
+
+        #[test]
+        fn malformed_map_files_never_panic(text in mapish()) {
+            if let Err(e) = mdp::Map::from_toml_str(&text, "gen.toml") {
+                prop_assert!(e.to_string().contains("gen.toml"), "{e}");
+            }
+        }
+
+        #[test]
+        fn arbitrary_bytes_never_panic(bytes in proptest::collection::vec(any::<u8>(), 0..200)) {
+            let _ = mdp::Map::from_toml_bytes(&bytes, "bytes.toml");
+        }
+
+        #[test]
+        fn malformed_specs_never_panic(spec in specish()) {
+            let _ = mdp::resolve(&spec);
+        }
+    }
+}
