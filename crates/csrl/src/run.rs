@@ -87,7 +87,7 @@ impl Observer for Watch {
 
     fn trial(&mut self, point: &TracePoint) -> Flow {
         self.bar.set_position(u64::from(point.trial));
-        if point.trial % 16 == 0 {
+        if point.trial.is_multiple_of(16) {
             self.bar.set_message(format!(
                 "{} descriptions, sensing cost {:.0}",
                 point.descriptions, point.cumulative_cost
