@@ -48,7 +48,9 @@ pub fn spread(traces: &[&[TracePoint]]) -> Vec<(f64, f64, f64)> {
 pub fn learning_curves(path: &Path, title: &str, curves: &[Curve]) -> Result<()> {
     register_font();
     let plot_err = |e: &dyn std::fmt::Display| anyhow!("drawing {}: {e}", path.display());
-    let root = SVGBackend::new(path, (960, 600)).into_drawing_area();
+    // Drawn into memory, then written through a temporary file and a rename.
+    let mut svg = String::new();
+    let root = SVGBackend::with_string(&mut svg, (960, 600)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| plot_err(&e))?;
     let trials = curves.iter().map(|c| c.1.len()).max().unwrap_or(1).max(2) as f64;
     let top = curves
@@ -102,7 +104,9 @@ pub fn learning_curves(path: &Path, title: &str, curves: &[Curve]) -> Result<()>
         .draw()
         .map_err(|e| plot_err(&e))?;
     root.present().map_err(|e| plot_err(&e))?;
-    Ok(())
+    drop(chart);
+    drop(root);
+    crate::files::write_atomic(path, svg)
 }
 
 fn escape(s: &str) -> String {

@@ -8,6 +8,7 @@
 
 mod bench;
 mod figures;
+mod files;
 mod paper;
 mod reproduce;
 mod stats;
@@ -58,8 +59,14 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e:#}");
+            note(&format!("error: {e:#}"));
             ExitCode::FAILURE
         }
     }
+}
+
+/// Print a line to stderr; a full or closed stderr loses the line instead of panicking.
+pub fn note(line: &str) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr().lock(), "{line}");
 }

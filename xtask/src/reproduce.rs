@@ -29,14 +29,14 @@ pub struct ReproduceArgs {
     /// The map: a built-in name or a map file.
     #[arg(long, default_value = "tan8x8")]
     pub map: String,
-    /// Strategies, comma-separated.
+    /// Strategies, comma-separated, each named once.
     #[arg(
         long,
         value_delimiter = ',',
         default_value = "resetting,lazy,random,eager"
     )]
     pub strategies: Vec<StrategyKind>,
-    /// Worker threads (default: every core). Results do not depend on it.
+    /// Worker threads, at most 256 (default or 0: every core). Results do not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
     /// Output folder.
@@ -98,19 +98,18 @@ fn progress(len: u64, what: &str) -> ProgressBar {
 /// Build a thread pool of the asked size (0 or none: every core).
 pub fn pool(threads: Option<usize>) -> Result<rayon::ThreadPool> {
     rayon::ThreadPoolBuilder::new()
-        .num_threads(threads.unwrap_or(0))
+        .num_threads(crate::files::threads(threads)?)
         .build()
         .context("cannot start worker threads")
 }
 
 /// Run every job of a reproduction.
 pub fn compute(args: &ReproduceArgs) -> Result<Results> {
-    if args.runs == 0 {
-        bail!("--runs must be at least 1");
-    }
+    crate::files::seeds(args.seed, args.runs)?;
     if args.strategies.is_empty() {
         bail!("--strategies must name at least one strategy");
     }
+    crate::files::distinct("--strategies", &args.strategies)?;
     let base = RunSettings::tan1991(&args.map, StrategyKind::Resetting, args.seed);
     let setup = Setup::new(&base)?;
     let mut jobs = Vec::new();
@@ -274,7 +273,7 @@ impl Results {
              standard deviation [min–max] over the runs that reached the figure. Made by \
              `cargo xtask reproduce{}`.\n",
             self.setup.map.name(),
-            self.setup.map.states(),
+            self.setup.map.states().len(),
             a.runs,
             a.seed,
             a.seed + a.runs - 1,
@@ -344,7 +343,7 @@ impl Results {
         };
         let one_per_state = self.runs.iter().all(|(_, runs, _)| {
             runs.iter()
-                .all(|r| r.table1.descriptions == Some(self.setup.map.states()))
+                .all(|r| r.table1.descriptions == Some(self.setup.map.states().len()))
         });
         if one_per_state {
             let _ = writeln!(
@@ -568,7 +567,8 @@ impl Results {
 /// The figures of a reproduction.
 fn write_figures(res: &Results, out: &Path) -> Result<Vec<PathBuf>> {
     let mut written = Vec::new();
-    let name = res.setup.map.name().to_string();
+    // The map's name comes from input: made safe before it becomes part of a file name.
+    let name = crate::files::safe_name(res.setup.map.name());
     let curves: Vec<figures::Curve> = res
         .runs
         .iter()
@@ -588,10 +588,10 @@ fn write_figures(res: &Results, out: &Path) -> Result<Vec<PathBuf>> {
     // Figure 4b: policy and descriptions of the first run of each strategy.
     for (k, runs, _) in &res.runs {
         let path = out.join(format!("policy_{name}_{k}.svg"));
-        std::fs::write(&path, csql::policy_svg(&res.setup, &runs[0]))?;
+        crate::files::write_atomic(&path, csql::policy_svg(&res.setup, &runs[0]))?;
         written.push(path);
         let path = out.join(format!("descriptions_{name}_{k}.svg"));
-        std::fs::write(&path, csql::descriptions_svg(&runs[0]))?;
+        crate::files::write_atomic(&path, csql::descriptions_svg(&runs[0]))?;
         written.push(path);
     }
     // Figure 5d: the tree over the final descriptions of the first run of the first strategy.
@@ -600,7 +600,7 @@ fn write_figures(res: &Results, out: &Path) -> Result<Vec<PathBuf>> {
     let (_, rep) = csql::run_with_representation(&res.setup, &settings);
     let tree = StateTree::build(&rep, &res.setup.space);
     let path = out.join(format!("tree_{name}_{k}.svg"));
-    std::fs::write(
+    crate::files::write_atomic(
         &path,
         figures::tree_svg(
             tree.tree(),
@@ -614,7 +614,7 @@ fn write_figures(res: &Results, out: &Path) -> Result<Vec<PathBuf>> {
     )?;
     written.push(path);
     let path = out.join(format!("tree_{name}_{k}.dot"));
-    std::fs::write(&path, tree.to_dot(&res.setup.space))?;
+    crate::files::write_atomic(&path, tree.to_dot(&res.setup.space))?;
     written.push(path);
     // Figure 5 for tan3x3: descriptions with policy, and tree.
     let mut small = RunSettings::tan1991("tan3x3", res.runs[0].0, res.args.seed);
@@ -626,7 +626,7 @@ fn write_figures(res: &Results, out: &Path) -> Result<Vec<PathBuf>> {
         &format!(
             "Figure 5 on tan3x3: {} descriptions for {} states (the paper: 7)",
             rep3.len(),
-            setup3.map.states()
+            setup3.map.states().len()
         ),
         &[
             csql::policy_svg(&setup3, &report3),
@@ -634,10 +634,10 @@ fn write_figures(res: &Results, out: &Path) -> Result<Vec<PathBuf>> {
         ],
     );
     let path = out.join("figure5_tan3x3.svg");
-    std::fs::write(&path, figure5)?;
+    crate::files::write_atomic(&path, figure5)?;
     written.push(path);
     let path = out.join("tree_tan3x3.dot");
-    std::fs::write(&path, tree3.to_dot(&setup3.space))?;
+    crate::files::write_atomic(&path, tree3.to_dot(&setup3.space))?;
     written.push(path);
     Ok(written)
 }
@@ -662,28 +662,30 @@ pub fn run(args: &ReproduceArgs) -> Result<()> {
         }
         for (i, (a, b)) in committed.lines().zip(fresh.lines()).enumerate() {
             if a != b {
-                eprintln!(
+                crate::note(&format!(
                     "{COMMITTED}:{}: differs\n  committed: {a}\n  now:       {b}",
                     i + 1
-                );
+                ));
             }
         }
         if committed.lines().count() != fresh.lines().count() {
-            eprintln!(
+            crate::note(&format!(
                 "{COMMITTED}: {} lines committed, {} produced now",
                 committed.lines().count(),
                 fresh.lines().count()
-            );
+            ));
         }
         bail!("{COMMITTED} is out of date: run `cargo xtask reproduce` and commit it");
     }
     let res = compute(args)?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
+    let _lock = crate::files::OutLock::acquire(&args.out)?;
     let md = res.markdown();
     let write = |name: &str, text: &str| -> Result<PathBuf> {
         let path = args.out.join(name);
-        std::fs::write(&path, text).with_context(|| format!("cannot write {}", path.display()))?;
+        crate::files::write_atomic(&path, text)
+            .with_context(|| format!("cannot write {}", path.display()))?;
         Ok(path)
     };
     let mut written = vec![write("table1.md", &md)?, write("table1.csv", &res.csv())?];
@@ -698,7 +700,7 @@ pub fn run(args: &ReproduceArgs) -> Result<()> {
     written.extend(write_figures(&res, &args.out)?);
     if args.is_default() {
         // The committed copies that the README shows and `--check` compares with.
-        std::fs::write(COMMITTED, &md).with_context(|| format!("cannot write {COMMITTED}"))?;
+        crate::files::write_atomic(Path::new(COMMITTED), &md)?;
         written.push(PathBuf::from(COMMITTED));
         std::fs::create_dir_all("docs/figures").context("cannot create docs/figures")?;
         for name in [
@@ -708,8 +710,10 @@ pub fn run(args: &ReproduceArgs) -> Result<()> {
             "figure5_tan3x3.svg",
         ] {
             let to = Path::new("docs/figures").join(name);
-            std::fs::copy(args.out.join(name), &to)
-                .with_context(|| format!("cannot copy {name} to {}", to.display()))?;
+            let from = args.out.join(name);
+            let bytes =
+                std::fs::read(&from).with_context(|| format!("cannot read {}", from.display()))?;
+            crate::files::write_atomic(&to, bytes)?;
             written.push(to);
         }
     }
@@ -758,5 +762,41 @@ mod tests {
         let mut a = args(1);
         a.map = "no-such-map".into();
         assert!(compute(&a).is_err());
+        // Once a panic: a strategy named twice.
+        let mut a = args(1);
+        a.strategies = vec![StrategyKind::Lazy, StrategyKind::Lazy];
+        let err = compute(&a).err().unwrap().to_string();
+        assert!(err.contains("twice"), "{err}");
+        // Once wrapped around silently: seeds beyond the integer limit.
+        let mut a = args(1);
+        (a.seed, a.runs) = (u64::MAX, 2);
+        let err = compute(&a).err().unwrap().to_string();
+        assert!(err.contains("--seed"), "{err}");
+        let mut a = args(1);
+        a.threads = Some(1_000_000);
+        assert!(compute(&a).is_err());
+    }
+
+    #[test]
+    fn a_map_name_with_path_separators_stays_inside_out() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("evil.toml");
+        std::fs::write(&file, "name = \"../../escaped\"\nlayout = '''\n..G\n'''\n").unwrap();
+        let mut a = args(1);
+        a.map = file.display().to_string();
+        a.runs = 1;
+        a.strategies = vec![StrategyKind::Eager];
+        let res = compute(&a).unwrap();
+        let out = dir.path().join("out").join("deeper");
+        std::fs::create_dir_all(&out).unwrap();
+        let written = write_figures(&res, &out).unwrap();
+        for p in &written {
+            assert!(
+                p.starts_with(&out) && p.parent() == Some(out.as_path()),
+                "{}",
+                p.display()
+            );
+        }
+        assert!(!dir.path().join("escaped_eager.svg").exists());
     }
 }

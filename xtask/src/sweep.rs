@@ -148,39 +148,79 @@ fn parse_shard(s: &str) -> Result<(u64, u64)> {
     Ok((k, n))
 }
 
-/// Read a shard's finished jobs, dropping a last line cut short by a kill.
-fn read_results(path: &Path) -> Result<Vec<JobResult>> {
-    let text = match std::fs::read_to_string(path) {
-        Ok(t) => t,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+/// A shard's results file as read: the good results, and the lines that are not results.
+struct ReadResults {
+    results: Vec<JobResult>,
+    /// `(line number, text)` of every line that is not a result: a last line cut short by
+    /// a kill (no newline), or a corrupt line anywhere.
+    bad: Vec<(usize, String)>,
+}
+
+/// Read a shard's results, line by line; nothing is changed on disk.
+fn read_results(path: &Path) -> Result<ReadResults> {
+    let text = match std::fs::read(path) {
+        Ok(t) => String::from_utf8_lossy(&t).into_owned(),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            return Ok(ReadResults {
+                results: Vec::new(),
+                bad: Vec::new(),
+            });
+        }
         Err(e) => return Err(e).with_context(|| format!("cannot read {}", path.display())),
     };
-    let mut out = Vec::new();
-    let mut good_bytes = 0;
-    for line in text.split_inclusive('\n') {
-        if !line.ends_with('\n') {
-            break;
+    let mut out = ReadResults {
+        results: Vec::new(),
+        bad: Vec::new(),
+    };
+    for (i, line) in text.split_inclusive('\n').enumerate() {
+        let parsed = line
+            .ends_with('\n')
+            .then(|| serde_json::from_str::<JobResult>(line).ok())
+            .flatten();
+        match parsed {
+            Some(r) => out.results.push(r),
+            None => out.bad.push((i + 1, line.to_string())),
         }
-        match serde_json::from_str::<JobResult>(line) {
-            Ok(r) => {
-                out.push(r);
-                good_bytes += line.len();
-            }
-            Err(_) => break,
-        }
-    }
-    if good_bytes != text.len() {
-        // Keep only whole lines, so that appending goes on cleanly.
-        std::fs::write(path, &text[..good_bytes])
-            .with_context(|| format!("cannot repair {}", path.display()))?;
     }
     Ok(out)
 }
 
-fn write_atomic(path: &Path, text: &str) -> Result<()> {
-    let tmp = path.with_extension("tmp");
-    std::fs::write(&tmp, text).with_context(|| format!("cannot write {}", tmp.display()))?;
-    std::fs::rename(&tmp, path).with_context(|| format!("cannot move {} into place", tmp.display()))
+/// Before a shard resumes: move every line of its results file that is not a result
+/// into `results.corrupt.jsonl` beside it (appended, never deleted), say so, and rewrite
+/// the results file with the good lines only. Their jobs then run again.
+fn set_aside_bad_lines(path: &Path, read: &ReadResults) -> Result<()> {
+    if read.bad.is_empty() {
+        return Ok(());
+    }
+    let aside = path.with_file_name("results.corrupt.jsonl");
+    let mut kept = std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(&aside)
+        .with_context(|| format!("cannot open {}", aside.display()))?;
+    for (line, text) in &read.bad {
+        crate::note(&format!(
+            "{}:{line}: not a result line{}; set aside in {} and its job will run again",
+            path.display(),
+            if text.ends_with('\n') {
+                ""
+            } else {
+                " (cut short)"
+            },
+            aside.display()
+        ));
+        kept.write_all(text.as_bytes())?;
+        if !text.ends_with('\n') {
+            kept.write_all(b"\n")?;
+        }
+    }
+    kept.sync_all()?;
+    let mut good = String::new();
+    for r in &read.results {
+        good.push_str(&serde_json::to_string(r)?);
+        good.push('\n');
+    }
+    crate::files::write_atomic(path, good)
 }
 
 /// `cargo xtask sweep`.
@@ -189,6 +229,9 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
     if args.runs == 0 || args.strategies.is_empty() {
         bail!("a sweep needs --runs >= 1 and at least one strategy");
     }
+    crate::files::seeds(args.seed, args.runs)?;
+    crate::files::distinct("--maps", &args.maps)?;
+    crate::files::distinct("--strategies", &args.strategies)?;
     let maps: Vec<Map> = args
         .maps
         .iter()
@@ -213,6 +256,7 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
     let mine: Vec<u64> = (0..total).filter(|id| id % n == k - 1).collect();
     let dir = args.out.join(format!("shard-{k}-of-{n}"));
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let _lock = crate::files::OutLock::acquire(&dir)?;
     let manifest = Manifest {
         sweep: definition,
         shard: k,
@@ -231,17 +275,19 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
             );
         }
     } else {
-        write_atomic(&manifest_path, &serde_json::to_string_pretty(&manifest)?)?;
+        crate::files::write_atomic(&manifest_path, serde_json::to_string_pretty(&manifest)?)?;
     }
     let results_path = dir.join("results.jsonl");
-    let done: Vec<u64> = read_results(&results_path)?.iter().map(|r| r.id).collect();
+    let read = read_results(&results_path)?;
+    set_aside_bad_lines(&results_path, &read)?;
+    let done: Vec<u64> = read.results.iter().map(|r| r.id).collect();
     let todo: Vec<u64> = mine.into_iter().filter(|id| !done.contains(id)).collect();
-    eprintln!(
+    crate::note(&format!(
         "shard {k}/{n}: {} jobs of {total}, {} already done, {} to run",
         todo.len() + done.len(),
         done.len(),
         todo.len()
-    );
+    ));
     let setups: Vec<Setup> = maps
         .iter()
         .map(|m| {
@@ -267,13 +313,15 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
                 map: args.maps[m].clone(),
                 strategy,
                 seed: settings.seed,
-                states: setups[m].map.states(),
+                states: setups[m].map.states().len(),
                 converged: report.converged,
                 trials: report.trials,
                 table1: Table1Row::from(&report.table1),
             };
             let line = serde_json::to_string(&result)? + "\n";
-            let mut f = file.lock().expect("no writer panics");
+            let mut f = file
+                .lock()
+                .map_err(|_| anyhow::anyhow!("a writer of {} failed", results_path.display()))?;
             f.write_all(line.as_bytes())?;
             f.flush()?;
             bar.inc(1);
@@ -281,7 +329,10 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
         })
     })?;
     bar.finish_and_clear();
-    eprintln!("shard {k}/{n} complete: {}", results_path.display());
+    crate::note(&format!(
+        "shard {k}/{n} complete: {}",
+        results_path.display()
+    ));
     Ok(())
 }
 
@@ -328,7 +379,18 @@ pub fn merge(args: &MergeArgs) -> Result<()> {
             ),
             Some(_) => {}
         }
-        for r in read_results(&dir.join("results.jsonl"))? {
+        let path = dir.join("results.jsonl");
+        let read = read_results(&path)?;
+        // A corrupt line is never dropped silently: the merge stops and names it. A last
+        // line cut short by a kill is a job that did not finish, reported as missing below.
+        if let Some((line, _)) = read.bad.iter().find(|(_, t)| t.ends_with('\n')) {
+            bail!(
+                "{}:{line}: not a result line; nothing was merged. Run this shard's sweep again: \
+                 it sets such lines aside in results.corrupt.jsonl and runs their jobs again",
+                path.display()
+            );
+        }
+        for r in read.results {
             if !m.job_ids.contains(&r.id) {
                 bail!(
                     "{}: job {} does not belong to this shard",
@@ -341,7 +403,9 @@ pub fn merge(args: &MergeArgs) -> Result<()> {
             }
         }
     }
-    let (definition, total) = definition.expect("at least one shard");
+    let Some((definition, total)) = definition else {
+        bail!("no sweep shard to merge");
+    };
     let missing: Vec<u64> = (0..total).filter(|id| !by_id.contains_key(id)).collect();
     if !missing.is_empty() {
         let shown: Vec<String> = missing.iter().take(20).map(u64::to_string).collect();
@@ -406,8 +470,9 @@ pub fn merge(args: &MergeArgs) -> Result<()> {
     }
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
-    write_atomic(&args.out.join("sweep.md"), &md)?;
-    write_atomic(&args.out.join("sweep.csv"), &csv)?;
+    let _lock = crate::files::OutLock::acquire(&args.out)?;
+    crate::files::write_atomic(&args.out.join("sweep.md"), &md)?;
+    crate::files::write_atomic(&args.out.join("sweep.csv"), &csv)?;
     crate::emit(&format!(
         "{md}\nMerged {} shards, {total} jobs: {}\n",
         dirs.len(),
@@ -436,13 +501,9 @@ mod tests {
         assert!(seen.iter().all(|&c| c == 1));
     }
 
-    #[test]
-    fn a_cut_last_line_is_dropped_and_repaired() {
-        let dir = std::env::temp_dir().join(format!("xtask-sweep-test-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("results.jsonl");
+    fn result(id: u64) -> String {
         let r = JobResult {
-            id: 4,
+            id,
             map: "m".into(),
             strategy: StrategyKind::Lazy,
             seed: 1,
@@ -451,10 +512,77 @@ mod tests {
             trials: 2,
             table1: Table1Row::default(),
         };
-        let line = serde_json::to_string(&r).unwrap();
+        serde_json::to_string(&r).unwrap()
+    }
+
+    #[test]
+    fn a_cut_last_line_is_set_aside_not_lost() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("results.jsonl");
+        let line = result(4);
         std::fs::write(&path, format!("{line}\n{}", &line[..10])).unwrap();
-        let back = read_results(&path).unwrap();
-        assert_eq!(back.len(), 1);
+        let read = read_results(&path).unwrap();
+        assert_eq!((read.results.len(), read.bad.len()), (1, 1));
+        set_aside_bad_lines(&path, &read).unwrap();
         assert_eq!(std::fs::read_to_string(&path).unwrap(), format!("{line}\n"));
+        let aside = std::fs::read_to_string(dir.path().join("results.corrupt.jsonl")).unwrap();
+        assert_eq!(aside, format!("{}\n", &line[..10]));
+    }
+
+    #[test]
+    fn a_corrupt_middle_line_keeps_every_later_result() {
+        // Once: the file was cut at the corrupt line, deleting every later result.
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("results.jsonl");
+        let text = format!("{}\n{{not json\n{}\n{}\n", result(0), result(1), result(2));
+        std::fs::write(&path, &text).unwrap();
+        let read = read_results(&path).unwrap();
+        let ids: Vec<u64> = read.results.iter().map(|r| r.id).collect();
+        assert_eq!(ids, [0, 1, 2]);
+        assert_eq!(read.bad, [(2, "{not json\n".to_string())]);
+        // Reading changes nothing on disk.
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), text);
+        set_aside_bad_lines(&path, &read).unwrap();
+        let kept = std::fs::read_to_string(&path).unwrap();
+        assert_eq!(kept.lines().count(), 3);
+        let aside = std::fs::read_to_string(dir.path().join("results.corrupt.jsonl")).unwrap();
+        assert_eq!(aside, "{not json\n");
+    }
+
+    #[test]
+    fn merge_refuses_a_corrupt_line_and_names_it() {
+        let dir = tempfile::tempdir().unwrap();
+        let shard = dir.path().join("shard-1-of-1");
+        std::fs::create_dir_all(&shard).unwrap();
+        let manifest = Manifest {
+            sweep: Definition {
+                maps: vec!["m".into()],
+                strategies: vec![StrategyKind::Lazy],
+                runs: 2,
+                seed: 1,
+                max_trials: 10,
+            },
+            shard: 1,
+            shards: 1,
+            total_jobs: 2,
+            job_ids: vec![0, 1],
+        };
+        std::fs::write(
+            shard.join("manifest.json"),
+            serde_json::to_string(&manifest).unwrap(),
+        )
+        .unwrap();
+        let text = format!("{}\ngarbage\n{}\n", result(0), result(1));
+        std::fs::write(shard.join("results.jsonl"), &text).unwrap();
+        let args = MergeArgs {
+            dirs: vec![dir.path().to_path_buf()],
+            out: dir.path().join("merged"),
+        };
+        let err = merge(&args).err().unwrap().to_string();
+        assert!(err.contains("results.jsonl:2"), "{err}");
+        assert_eq!(
+            std::fs::read_to_string(shard.join("results.jsonl")).unwrap(),
+            text
+        );
     }
 }

@@ -18,6 +18,9 @@
 //!   for the target column is ignored (it is never measured).
 //!
 //! Every problem is an [`Error`] naming the file and, where there is one, the line.
+//! [`Dataset::load`] reads regular files only (a directory, a device or a pipe is refused
+//! before it is opened), and every reader stops after [`MAX_FILE_BYTES`] bytes, whatever
+//! the file's metadata says.
 
 use std::cmp::Ordering;
 use std::io::Read;
@@ -253,11 +256,78 @@ fn csv_error(path: &Path, err: csv::Error) -> Error {
     }
 }
 
+/// The most bytes a data or costs file may have (256 MiB); reading stops after them.
+///
+/// ```
+/// assert_eq!(cslearn::MAX_FILE_BYTES, 256 << 20);
+/// ```
+pub const MAX_FILE_BYTES: u64 = 256 << 20;
+
+/// Read at most [`MAX_FILE_BYTES`] bytes, refusing anything longer.
+fn read_bounded(mut reader: impl Read, path: &Path) -> Result<Vec<u8>, Error> {
+    let mut bytes = Vec::new();
+    (&mut reader)
+        .take(MAX_FILE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|source| Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(Error::TooLarge {
+            path: path.to_path_buf(),
+            max: MAX_FILE_BYTES,
+        });
+    }
+    Ok(bytes)
+}
+
+/// The line of a quote that opens a field and is never closed, if there is one. The CSV
+/// reader takes such a quote to the end of the file and then reports a field count, which
+/// points at the wrong line and the wrong cause.
+fn unterminated_quote(bytes: &[u8]) -> Option<u64> {
+    let (mut line, mut open_line) = (1u64, 0u64);
+    let (mut in_quotes, mut field_start) = (false, true);
+    let mut i = 0;
+    while i < bytes.len() {
+        let b = bytes[i];
+        if in_quotes {
+            if b == b'"' {
+                if bytes.get(i + 1) == Some(&b'"') {
+                    i += 1;
+                } else {
+                    in_quotes = false;
+                }
+            }
+        } else if b == b'"' && field_start {
+            in_quotes = true;
+            open_line = line;
+        }
+        if b == b'\n' {
+            line += 1;
+        }
+        // Cells are trimmed, so a quote may follow blanks at the start of a field.
+        field_start = !in_quotes
+            && (b == b','
+                || b == b'\n'
+                || (field_start && (b == b' ' || b == b'\t' || b == b'\r')));
+        i += 1;
+    }
+    in_quotes.then_some(open_line)
+}
+
 fn read_table(reader: impl Read, path: &Path) -> Result<Table, Error> {
+    let bytes = read_bounded(reader, path)?;
+    if let Some(line) = unterminated_quote(&bytes) {
+        return Err(Error::UnterminatedQuote {
+            path: path.to_path_buf(),
+            line,
+        });
+    }
     let mut reader = csv::ReaderBuilder::new()
         .has_headers(true)
         .trim(csv::Trim::All)
-        .from_reader(reader);
+        .from_reader(bytes.as_slice());
     let header: Vec<String> = reader
         .headers()
         .map_err(|e| csv_error(path, e))?
@@ -376,10 +446,23 @@ impl Dataset {
     /// ```
     pub fn load(data: &Path, costs: &Path, options: &DatasetOptions) -> Result<Dataset, Error> {
         let open = |path: &Path| {
-            std::fs::File::open(path).map_err(|source| Error::Io {
+            let io = |source| Error::Io {
                 path: path.to_path_buf(),
                 source,
-            })
+            };
+            let not_a_file = || Error::NotAFile {
+                path: path.to_path_buf(),
+            };
+            // Judged from the metadata first: opening a FIFO would block until a writer
+            // comes; then on the opened file, in case the path changed in between.
+            if !std::fs::metadata(path).map_err(io)?.is_file() {
+                return Err(not_a_file());
+            }
+            let file = std::fs::File::open(path).map_err(io)?;
+            if !file.metadata().map_err(io)?.is_file() {
+                return Err(not_a_file());
+            }
+            Ok(file)
         };
         let data_file = open(data)?;
         let costs_file = open(costs)?;

@@ -21,6 +21,29 @@ pub enum Error {
         /// The rejected number.
         value: f64,
     },
+    /// A path that is not a regular file (a directory, a device, a pipe), refused before
+    /// it is opened.
+    #[error("{}: not a regular file", path.display())]
+    NotAFile {
+        /// The path.
+        path: PathBuf,
+    },
+    /// A file longer than [`MAX_FILE_BYTES`](crate::MAX_FILE_BYTES); reading stopped there.
+    #[error("{}: longer than the {max} bytes a data or costs file may have", path.display())]
+    TooLarge {
+        /// The file.
+        path: PathBuf,
+        /// The limit.
+        max: u64,
+    },
+    /// A quoted field is never closed: the quote opens on `line` and the file ends inside it.
+    #[error("{}: line {line}: a quoted field is never closed (its quote opens here)", path.display())]
+    UnterminatedQuote {
+        /// The file.
+        path: PathBuf,
+        /// The line of the opening quote.
+        line: u64,
+    },
     /// A file could not be opened or read.
     #[error("{}: cannot read", path.display())]
     Io {

@@ -133,6 +133,7 @@
 //!   (nearly its cost order) would smuggle cost information in.
 
 #![deny(missing_docs)]
+#![cfg_attr(not(test), warn(clippy::unwrap_used, clippy::expect_used))]
 
 mod attend;
 mod dataset;
@@ -151,7 +152,7 @@ mod update;
 pub use attend::{
     Attend, Attention, ObservationAttending, RankedAttending, RuleAttending, Semantics,
 };
-pub use dataset::{Binning, Dataset, DatasetOptions};
+pub use dataset::{Binning, Dataset, DatasetOptions, MAX_FILE_BYTES};
 pub use discriminate::{CheapestFirst, Discriminate, RandomOrder};
 pub use error::Error;
 pub use example::{Example, Library};
@@ -161,7 +162,7 @@ pub use learner::{
 pub use predict::{Decision, Nearest, Predict, Unanimous};
 pub use select::{InfoCost, MissingRule, Select, same_score};
 pub use sensing::{Ledger, Probe, Sensor};
-pub use stream::{LearnerKind, stream_dataset};
+pub use stream::{LearnerKind, stream_dataset, stream_dataset_with_progress};
 pub use tree::{Branch, DecisionTree, Labels, Node, NodeId, PlainLabels, TreeOptions};
 pub use types::{ClassId, Cost, CostBlind, Costs, FeatureCosts, FeatureId, Value};
 pub use update::{AppendAll, AppendErrors, Update};

@@ -43,11 +43,34 @@ pub enum LearnerKind {
 /// assert_eq!(report, cslearn::stream_dataset(&ds, LearnerKind::CsId3, 7));
 /// ```
 pub fn stream_dataset(dataset: &Dataset, kind: LearnerKind, seed: u64) -> StreamReport {
+    stream_dataset_with_progress(dataset, kind, seed, &mut |_, _| {})
+}
+
+/// [`stream_dataset`], calling `progress(done, total)` as each object is taken up, so a
+/// long stream can show a sign of life. The report is exactly [`stream_dataset`]'s.
+///
+/// ```
+/// use cslearn::{Dataset, DatasetOptions, LearnerKind};
+/// let data = "a,t\n0,n\n1,y\n0,n\n";
+/// let ds = Dataset::from_readers(data.as_bytes(), "d.csv", "feature,cost\na,1\n".as_bytes(), "c.csv", &DatasetOptions::new("t")).unwrap();
+/// let mut seen = Vec::new();
+/// let report = cslearn::stream_dataset_with_progress(&ds, LearnerKind::CsId3, 1, &mut |done, total| seen.push((done, total)));
+/// assert_eq!(seen, [(0, 3), (1, 3), (2, 3)]);
+/// assert_eq!(report, cslearn::stream_dataset(&ds, LearnerKind::CsId3, 1));
+/// ```
+pub fn stream_dataset_with_progress(
+    dataset: &Dataset,
+    kind: LearnerKind,
+    seed: u64,
+    progress: &mut dyn FnMut(usize, usize),
+) -> StreamReport {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
     let order = dataset.shuffled(&mut rng);
-    let objects = order
-        .iter()
-        .map(|&i| (dataset.object(i), dataset.labels()[i]));
+    let total = order.len();
+    let objects = order.iter().enumerate().map(|(done, &i)| {
+        progress(done, total);
+        (dataset.object(i), dataset.labels()[i])
+    });
     let costs = dataset.costs().clone();
     match kind {
         LearnerKind::CsId3 => cs_id3(costs).stream(objects),

@@ -97,16 +97,42 @@
 //! 360 times faster than the plain procedure (6.9 us against 2.5 ms).
 
 #![deny(missing_docs)]
+#![cfg_attr(not(test), warn(clippy::unwrap_used, clippy::expect_used))]
 
+#[allow(
+    clippy::expect_used,
+    reason = "internal invariants: feature spaces hold valid costs; a node with counts has a candidate feature"
+)]
 mod classify;
 mod error;
 mod figure;
+#[allow(
+    clippy::expect_used,
+    reason = "internal invariants: every state of a sufficient representation has a row"
+)]
 mod judge;
 mod main_loop;
+mod observe;
 mod perception;
+#[allow(
+    clippy::expect_used,
+    reason = "grid worlds have four actions, which a table accepts"
+)]
 mod reference;
+#[allow(
+    clippy::expect_used,
+    reason = "internal invariants: grid worlds have four actions, a converged run matches every state"
+)]
 mod report;
+#[allow(
+    clippy::expect_used,
+    reason = "internal invariants: descriptions hold cell codes and ids index the representation"
+)]
 mod representation;
+#[allow(
+    clippy::expect_used,
+    reason = "internal invariants: grid worlds have four actions"
+)]
 mod run;
 mod settings;
 mod strategy;
@@ -117,6 +143,7 @@ pub use error::Error;
 pub use figure::{descriptions_svg, policy_svg};
 pub use judge::{Judge, Verdict};
 pub use main_loop::{Agent, LoopParams, TrialRecord};
+pub use observe::{Flow, KeepTrace, Observer};
 pub use perception::{Identified, Perception};
 pub use reference::{
     Reference, cheapest_interior_cost, fixed_representation_reference, full_sensing_reference,
@@ -127,8 +154,8 @@ pub use report::{
     TracePoint,
 };
 pub use representation::{Description, DescriptionId, Representation};
-pub use run::{Setup, run, run_on, run_on_with, run_with_representation};
-pub use settings::RunSettings;
+pub use run::{Setup, run, run_observed, run_on, run_on_with, run_with_representation};
+pub use settings::{MAX_SETTINGS_BYTES, RunSettings};
 pub use strategy::{
     Eager, Lazy, Never, RandomMoves, Reaction, Resetting, Strategy, StrategyKind, UnknownStrategy,
 };

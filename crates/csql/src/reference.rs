@@ -12,6 +12,7 @@ use serde::Serialize;
 
 use crate::classify::Classify;
 use crate::main_loop::{Agent, LoopParams};
+use crate::observe::KeepTrace;
 use crate::perception::{Identified, Perception};
 use crate::representation::Representation;
 use crate::run::{Setup, learn};
@@ -93,10 +94,10 @@ fn reference<P: Perception>(
     cost_per_classification: Option<f64>,
 ) -> Reference {
     let mut agent = Agent::new(perception, Never, table, LoopParams::from(settings));
-    let learned = learn(setup, settings, &mut agent);
+    let learned = learn(setup, settings, &mut agent, &mut KeepTrace);
     Reference {
         converged: learned.first_converged.is_some(),
-        trials: learned.trace.len() as u32,
+        trials: learned.trials,
         cost: learned.cost,
         cost_per_classification,
     }

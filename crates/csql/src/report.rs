@@ -162,7 +162,8 @@ pub struct RunReport {
     pub states: Vec<StateReport>,
     /// Every description.
     pub descriptions: Vec<DescriptionReport>,
-    /// The learning curve, one point per trial.
+    /// The learning curve, one point per trial (empty when an [`crate::Observer`] asked
+    /// for no trace: see [`crate::run_observed`]).
     pub trace: Vec<TracePoint>,
     /// The settings of the run.
     pub settings: RunSettings,
@@ -400,7 +401,7 @@ pub(crate) fn report(
             .sum();
         table1.description_cost_per_state = Some(plain / states.len() as f64);
     }
-    let last = learned.trace.last().copied();
+    let last = learned.last;
     let sufficient_now = last.is_some_and(|t| t.sufficient);
     let consistent_literal = sufficient_now.then(|| {
         let rows: Vec<_> = labels
@@ -421,7 +422,7 @@ pub(crate) fn report(
         strategy: settings.strategy,
         seed: settings.seed,
         converged,
-        trials: learned.trace.len() as u32,
+        trials: learned.trials,
         moves: learned.moves,
         total_cost: learned.cost,
         table1,

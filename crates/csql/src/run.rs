@@ -9,6 +9,7 @@ use crate::classify::Classify;
 use crate::error::Error;
 use crate::judge::Judge;
 use crate::main_loop::{Agent, LoopParams};
+use crate::observe::{Flow, KeepTrace, Observer};
 use crate::perception::Perception;
 use crate::report::{RunReport, TracePoint, report};
 use crate::representation::Representation;
@@ -83,6 +84,10 @@ impl From<&RunSettings> for LoopParams {
 /// The outcome of a learning loop over trials, before reporting.
 pub(crate) struct Learned {
     pub trace: Vec<TracePoint>,
+    /// Trials run (the trace's length when it is kept).
+    pub trials: u32,
+    /// The last trial's point, kept or not.
+    pub last: Option<TracePoint>,
     pub first_sufficient: Option<(u32, f64)>,
     pub first_converged: Option<(u32, f64)>,
     pub moves: u64,
@@ -95,12 +100,15 @@ pub(crate) fn learn<P: Perception, S: Strategy>(
     setup: &Setup,
     settings: &RunSettings,
     agent: &mut Agent<P, S>,
+    observer: &mut dyn Observer,
 ) -> Learned {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
     let mut judge = Judge::default();
     let starts = setup.world.states();
     let mut out = Learned {
         trace: Vec::new(),
+        trials: 0,
+        last: None,
         first_sufficient: None,
         first_converged: None,
         moves: 0,
@@ -118,7 +126,7 @@ pub(crate) fn learn<P: Perception, S: Strategy>(
         if verdict.converged {
             out.first_converged = Some((trial, out.cost));
         }
-        out.trace.push(TracePoint {
+        let point = TracePoint {
             trial,
             moves: rec.moves,
             cumulative_cost: out.cost,
@@ -127,8 +135,14 @@ pub(crate) fn learn<P: Perception, S: Strategy>(
             refinements: rec.refinements,
             sufficient: verdict.sufficient,
             converged: verdict.converged,
-        });
-        if verdict.converged {
+        };
+        out.trials = trial;
+        out.last = Some(point);
+        if observer.keep_trace() {
+            out.trace.push(point);
+        }
+        let flow = observer.trial(&point);
+        if verdict.converged || flow == Flow::Stop {
             break;
         }
     }
@@ -175,7 +189,33 @@ pub fn run_with_representation(
     setup: &Setup,
     settings: &RunSettings,
 ) -> (RunReport, Representation) {
-    run_classify(setup, settings, Classify::new(&setup.space))
+    run_classify(setup, settings, Classify::new(&setup.space), &mut KeepTrace)
+}
+
+/// Run CS-QL on a prepared world with an [`Observer`] called after every trial: for
+/// progress, for streaming the trace instead of keeping it, or for stopping early (the
+/// report then says what the run reached when it stopped, as at a trial cap).
+///
+/// ```
+/// use csql::{Flow, Observer, RunSettings, Setup, StrategyKind, TracePoint};
+/// struct Count(u32);
+/// impl Observer for Count {
+///     fn keep_trace(&self) -> bool { false }
+///     fn trial(&mut self, _: &TracePoint) -> Flow { self.0 += 1; Flow::Continue }
+/// }
+/// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Eager, 1);
+/// let setup = Setup::new(&settings).unwrap();
+/// let mut count = Count(0);
+/// let report = csql::run_observed(&setup, &settings, &mut count);
+/// assert!(report.trace.is_empty() && report.converged);
+/// assert_eq!(count.0, report.trials);
+/// ```
+pub fn run_observed(
+    setup: &Setup,
+    settings: &RunSettings,
+    observer: &mut dyn Observer,
+) -> RunReport {
+    run_classify(setup, settings, Classify::new(&setup.space), observer).0
 }
 
 /// Run CS-QL with a given CLASSIFY (for example with its cache off, or starting from a
@@ -189,13 +229,14 @@ pub fn run_with_representation(
 /// assert_eq!(csql::run_on_with(&setup, &settings, plain), csql::run_on(&setup, &settings));
 /// ```
 pub fn run_on_with(setup: &Setup, settings: &RunSettings, classify: Classify) -> RunReport {
-    run_classify(setup, settings, classify).0
+    run_classify(setup, settings, classify, &mut KeepTrace).0
 }
 
 fn run_classify(
     setup: &Setup,
     settings: &RunSettings,
     classify: Classify,
+    observer: &mut dyn Observer,
 ) -> (RunReport, Representation) {
     let mut agent = Agent::new(
         classify,
@@ -203,7 +244,7 @@ fn run_classify(
         QTable::new(setup.world.num_actions()).expect("grid worlds have four actions"),
         LoopParams::from(settings),
     );
-    let learned = learn(setup, settings, &mut agent);
+    let learned = learn(setup, settings, &mut agent, observer);
     let report = report(
         setup,
         settings,

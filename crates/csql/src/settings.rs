@@ -1,5 +1,6 @@
 //! Run settings: one validated struct, the paper's preset, and a TOML file form.
 
+use std::io::Read;
 use std::path::Path;
 
 use qlearn::{Discount, LearningRate, MoveCap, Temperature};
@@ -46,6 +47,13 @@ pub struct RunSettings {
     /// The seed of the run's one random generator.
     pub seed: u64,
 }
+
+/// The most bytes a settings file may have (64 KiB; the longest useful one is under 1 KiB).
+///
+/// ```
+/// assert_eq!(csql::MAX_SETTINGS_BYTES, 65536);
+/// ```
+pub const MAX_SETTINGS_BYTES: u64 = 64 << 10;
 
 /// The TOML file form: every key optional, each one overriding the preset.
 #[derive(Deserialize)]
@@ -124,18 +132,42 @@ impl RunSettings {
         self.validate()
     }
 
-    /// Override fields from a TOML file.
+    /// Override fields from a TOML file. Only a regular file of at most
+    /// [`MAX_SETTINGS_BYTES`] is read: a directory, a device or a pipe is refused before it
+    /// is opened, and reading stops at the limit whatever the file's metadata says.
     ///
     /// ```
     /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
     /// assert!(s.apply_file(std::path::Path::new("/no/such.toml")).is_err());
     /// ```
     pub fn apply_file(&mut self, path: &Path) -> Result<(), Error> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::Settings {
-            source_name: path.display().to_string(),
-            message: e.to_string(),
-        })?;
-        self.apply_toml(&text, &path.display().to_string())
+        let source = path.display().to_string();
+        let fail = |message: String| Error::Settings {
+            source_name: source.clone(),
+            message,
+        };
+        let not_a_file = || fail("not a regular file".to_string());
+        if !std::fs::metadata(path)
+            .map_err(|e| fail(e.to_string()))?
+            .is_file()
+        {
+            return Err(not_a_file());
+        }
+        let file = std::fs::File::open(path).map_err(|e| fail(e.to_string()))?;
+        if !file.metadata().map_err(|e| fail(e.to_string()))?.is_file() {
+            return Err(not_a_file());
+        }
+        let mut bytes = Vec::new();
+        file.take(MAX_SETTINGS_BYTES + 1)
+            .read_to_end(&mut bytes)
+            .map_err(|e| fail(e.to_string()))?;
+        if bytes.len() as u64 > MAX_SETTINGS_BYTES {
+            return Err(fail(format!(
+                "longer than the {MAX_SETTINGS_BYTES} bytes a settings file may have"
+            )));
+        }
+        let text = String::from_utf8(bytes).map_err(|_| fail("not UTF-8 text".to_string()))?;
+        self.apply_toml(&text, &source)
     }
 
     /// Check the fields that have no type of their own.

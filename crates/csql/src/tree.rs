@@ -82,6 +82,10 @@ impl StateTree {
     /// assert_eq!(csql::StateTree::build(&rep, &space).tree().depth(), 1);
     /// ```
     pub fn build(rep: &Representation, space: &FeatureSpace) -> StateTree {
+        #[allow(
+            clippy::expect_used,
+            reason = "a FeatureSpace validates its costs with the same rule as Cost::new"
+        )]
         let costs: Vec<Cost> = space
             .costs()
             .iter()

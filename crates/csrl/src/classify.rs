@@ -66,7 +66,15 @@ pub fn run(args: &ClassifyArgs, out: &mut dyn Write) -> Result<()> {
         ),
         Learner::Id3 => (LearnerKind::Id3, "id3"),
     };
-    let report = cslearn::stream_dataset(&data, kind, args.seed);
+    // A sign of life on long streams: a bar on a terminal's stderr, nothing otherwise.
+    let bar = indicatif::ProgressBar::with_draw_target(
+        Some(data.len() as u64),
+        indicatif::ProgressDrawTarget::stderr(),
+    );
+    let report = cslearn::stream_dataset_with_progress(&data, kind, args.seed, &mut |done, _| {
+        bar.set_position(done as u64);
+    });
+    bar.finish_and_clear();
     if args.json {
         let json = serde_json::json!({
             "learner": name,

@@ -1,7 +1,12 @@
 //! `csrl`: the command-line program of the csrl workspace.
 //!
-//! Run `csrl --help` for the commands. Results go to stdout, errors to stderr with a
-//! non-zero exit (2 for usage errors, 1 for anything else); no input makes it panic.
+//! Run `csrl --help` for the commands. Results go to stdout, errors and notes to stderr.
+//!
+//! Exit codes: 0 success (also when a reader of stdout stops early, as `head` does);
+//! 1 a failure, said on stderr as `error: ...`; 2 a usage error (clap's); 3 `run
+//! --require-convergence` on a run that did not converge; 130 a run stopped by Ctrl-C,
+//! after printing what it reached. No input makes it panic, and a full or closed stderr
+//! loses the message but not the exit code.
 
 mod classify;
 mod maps;
@@ -24,7 +29,11 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// List the built-in maps.
-    Maps,
+    Maps {
+        /// Print one JSON array instead of text.
+        #[arg(long)]
+        json: bool,
+    },
     /// Show or check a map.
     #[command(subcommand)]
     Map(maps::MapCommand),
@@ -39,7 +48,7 @@ fn main() -> ExitCode {
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
     let result = match &cli.command {
-        Command::Maps => maps::list(&mut out),
+        Command::Maps { json } => maps::list(*json, &mut out),
         Command::Map(cmd) => maps::run(cmd, &mut out),
         Command::Run(args) => run::run(args, &mut out),
         Command::Classify(args) => classify::run(args, &mut out),
@@ -49,12 +58,61 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         // A reader that stops early (`csrl ... | head`) is not an error of ours.
         Err(e) if is_broken_pipe(&e) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e:#}");
-            ExitCode::FAILURE
+        Err(e) => match e.downcast_ref::<Status>() {
+            Some(status) => {
+                note(format_args!("{status}"));
+                ExitCode::from(status.code)
+            }
+            None => {
+                note(format_args!("error: {e:#}"));
+                ExitCode::FAILURE
+            }
+        },
+    }
+}
+
+/// Write a line to stderr. Unlike `eprintln!`, a full or closed stderr is no panic: the
+/// line is lost, and the exit code still says what happened.
+pub(crate) fn note(line: std::fmt::Arguments<'_>) {
+    let _ = writeln!(std::io::stderr().lock(), "{line}");
+}
+
+/// An ending that is not a plain failure: its own exit code and a line for stderr.
+#[derive(Debug)]
+pub(crate) struct Status {
+    code: u8,
+    message: String,
+}
+
+impl Status {
+    /// `run --require-convergence` on a run that did not converge.
+    pub(crate) fn not_converged(trials: u32) -> Status {
+        Status {
+            code: 3,
+            message: format!(
+                "error: the run did not converge in {trials} trials (--require-convergence)"
+            ),
+        }
+    }
+
+    /// A run stopped by Ctrl-C.
+    pub(crate) fn interrupted(trials: u32) -> Status {
+        Status {
+            code: 130,
+            message: format!(
+                "interrupted after {trials} trials: the report above is what the run reached"
+            ),
         }
     }
 }
+
+impl std::fmt::Display for Status {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for Status {}
 
 fn is_broken_pipe(e: &anyhow::Error) -> bool {
     e.chain().any(|c| {

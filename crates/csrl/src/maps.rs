@@ -1,7 +1,6 @@
 //! `csrl maps`, `csrl map show` and `csrl map check`.
 
 use std::io::Write;
-use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Subcommand;
@@ -20,17 +19,30 @@ pub enum MapCommand {
         #[arg(long)]
         json: bool,
     },
-    /// Validate a map file: exit 0 if it is valid, otherwise print why and exit 1.
+    /// Validate a map (a file, a built-in name or a spec, as for `show`): print a line on
+    /// stdout and exit 0 if it is valid, otherwise print why on stderr and exit 1.
     Check {
-        /// The map file.
-        file: PathBuf,
+        /// A map file, a built-in map name, or a spec.
+        map: String,
     },
 }
 
 /// `csrl maps`.
-pub fn list(out: &mut dyn Write) -> Result<()> {
+pub fn list(json: bool, out: &mut dyn Write) -> Result<()> {
+    let mut all = Vec::new();
     for name in mdp::builtin_names() {
-        let map = mdp::builtin(name).expect("listed built-ins exist");
+        let map = mdp::resolve(name)?;
+        if json {
+            all.push(serde_json::json!({
+                "name": name,
+                "width": map.width(),
+                "height": map.height(),
+                "states": map.states().len(),
+                "obstacles": map.obstacles(),
+                "description": map.description(),
+            }));
+            continue;
+        }
         let first = map
             .description()
             .and_then(|d| d.split(". ").next())
@@ -41,8 +53,11 @@ pub fn list(out: &mut dyn Write) -> Result<()> {
             "{name:<14} {:>2}x{:<2} {:>3} states  {first}",
             map.width(),
             map.height(),
-            map.states()
+            map.states().len()
         )?;
+    }
+    if json {
+        writeln!(out, "{}", serde_json::to_string_pretty(&all)?)?;
     }
     Ok(())
 }
@@ -56,31 +71,31 @@ pub fn run(cmd: &MapCommand, out: &mut dyn Write) -> Result<()> {
                 writeln!(
                     out,
                     "{}",
-                    serde_json::to_string_pretty(&MapJson::new(&map))?
+                    serde_json::to_string_pretty(&MapJson::new(&map)?)?
                 )?;
             } else {
                 show(&map, out)?;
             }
             Ok(())
         }
-        MapCommand::Check { file } => {
-            let map = Map::load(file)?;
-            eprintln!(
-                "{}: valid map `{}`, {}x{}, {} states",
-                file.display(),
+        MapCommand::Check { map: spec } => {
+            let map = mdp::resolve(spec)?;
+            writeln!(
+                out,
+                "{spec}: valid map `{}`, {}x{}, {} states",
                 map.name(),
                 map.width(),
                 map.height(),
-                map.states()
-            );
+                map.states().len()
+            )?;
             Ok(())
         }
     }
 }
 
-fn show(map: &Map, out: &mut dyn Write) -> std::io::Result<()> {
+fn show(map: &Map, out: &mut dyn Write) -> Result<()> {
     let world = GridWorld::new(map);
-    let oracle = Oracle::for_grid(&world, 0.9).expect("0.9 is a valid discount");
+    let oracle = Oracle::for_grid(&world, 0.9)?;
     writeln!(out, "{}", map.name())?;
     if let Some(d) = map.description() {
         writeln!(out, "{d}")?;
@@ -100,7 +115,7 @@ fn show(map: &Map, out: &mut dyn Write) -> std::io::Result<()> {
     writeln!(
         out,
         "states      {} (free cells other than the goal)",
-        map.states()
+        map.states().len()
     )?;
     writeln!(
         out,
@@ -117,10 +132,9 @@ fn show(map: &Map, out: &mut dyn Write) -> std::io::Result<()> {
     for r in 0..map.height() {
         let line: Vec<String> = (0..map.width())
             .map(|c| match world.state_at(Pos::new(r, c)) {
-                Some(s) => format!(
-                    "{:>3}",
-                    oracle.distance(s).expect("valid maps are connected")
-                ),
+                Some(s) => oracle
+                    .distance(s)
+                    .map_or_else(|| "  ?".to_string(), |d| format!("{d:>3}")),
                 None => "  #".to_string(),
             })
             .collect();
@@ -157,15 +171,15 @@ struct MapJson {
 }
 
 impl MapJson {
-    fn new(map: &Map) -> MapJson {
+    fn new(map: &Map) -> Result<MapJson> {
         let world = GridWorld::new(map);
-        let oracle = Oracle::for_grid(&world, 0.9).expect("0.9 is a valid discount");
-        MapJson {
+        let oracle = Oracle::for_grid(&world, 0.9)?;
+        Ok(MapJson {
             name: map.name().to_string(),
             description: map.description().map(str::to_string),
             width: map.width(),
             height: map.height(),
-            states: map.states(),
+            states: map.states().len(),
             obstacles: map.obstacles(),
             goal: RowCol {
                 row: map.goal().row,
@@ -181,6 +195,6 @@ impl MapJson {
                     distance: world.state_at(p).and_then(|s| oracle.distance(s)),
                 })
                 .collect(),
-        }
+        })
     }
 }

@@ -2,7 +2,7 @@
 
 use std::fmt;
 
-use crate::map::Pos;
+use crate::geometry::Pos;
 
 /// A 1-based line and column in a map file (or in a bare layout).
 ///

@@ -5,9 +5,9 @@ use std::fmt;
 use serde::{Deserialize, Serialize};
 
 use crate::error::MdpError;
-use crate::map::{Cell, Map, Pos};
+use crate::geometry::{Cell, Offset, Pos};
+use crate::map::Map;
 use crate::process::{ActionId, Mdp, StateId, Step};
-use crate::sensing::Offset;
 use crate::tabular::{NegativeRewards, TabularMdp};
 
 /// The four moves of a grid world, with action ids 0 to 3 in this order.
@@ -182,6 +182,10 @@ impl GridWorld {
     /// let w = mdp::GridWorld::new(&mdp::builtin("tan8x8").unwrap());
     /// assert_eq!(mdp::Mdp::num_states(&w), 51);
     /// ```
+    #[allow(
+        clippy::expect_used,
+        reason = "the default options have non-negative, finite rewards, the only thing with_options refuses"
+    )]
     pub fn new(map: &Map) -> GridWorld {
         GridWorld::with_options(map, GridOptions::default())
             .expect("the default options have no negative reward")
@@ -207,6 +211,10 @@ impl GridWorld {
                 positions.push(p);
             }
         }
+        #[allow(
+            clippy::expect_used,
+            reason = "a valid map's goal is a free cell, and every free cell got a state above"
+        )]
         let goal = state_of[map.goal().row * map.width() + map.goal().col].expect("goal is free");
         let n = positions.len();
         let mut next = Vec::with_capacity(n * 4);
@@ -221,6 +229,10 @@ impl GridWorld {
                     },
                     _ => Pos::new(r as usize, c as usize),
                 };
+                #[allow(
+                    clippy::expect_used,
+                    reason = "a move lands on a free cell: the target if free, else the robot's own cell"
+                )]
                 let t = state_of[target.row * map.width() + target.col].expect("free");
                 next.push(t.0);
                 reward.push(if t == goal && p != map.goal() {
@@ -296,7 +308,9 @@ impl GridWorld {
         }
     }
 
-    /// The non-goal free cells, as states in id order: where trials start.
+    /// The states: the non-goal free cells, in id order (row-major), where trials start.
+    /// The same cells, in the same order, as [`Map::states`] gives as positions; the MDP's
+    /// [`num_states`](Mdp::num_states) also counts the goal.
     ///
     /// ```
     /// let w = mdp::GridWorld::new(&mdp::builtin("tan8x8").unwrap());

@@ -48,8 +48,12 @@
 //! * A move from a terminal state stays there with reward 0 (trials end before it).
 
 #![deny(missing_docs)]
+#![cfg_attr(not(test), warn(clippy::unwrap_used, clippy::expect_used))]
 
+mod builtin;
 mod error;
+mod format;
+mod geometry;
 mod grid;
 mod map;
 mod oracle;
@@ -57,14 +61,19 @@ mod process;
 mod random;
 mod render;
 mod sensing;
+mod spec;
 mod tabular;
 
+pub use builtin::{builtin, builtin_names};
 pub use error::{MapError, MdpError, Position};
+pub use format::MAX_FILE_BYTES;
+pub use geometry::{Cell, Offset, Pos};
 pub use grid::{Action, Blocked, GridOptions, GridWorld};
-pub use map::{Cell, MAX_FILE_BYTES, MAX_SIDE, Map, Pos, builtin, builtin_names, resolve};
+pub use map::{MAX_SIDE, Map};
 pub use oracle::Oracle;
 pub use process::{ActionId, Mdp, StateId, Step};
 pub use random::RandomMap;
 pub use render::{Overlay, render_svg, render_text};
-pub use sensing::{BadCost, CostModel, Feature, FeatureSpace, Manhattan, Offset};
+pub use sensing::{BadCost, CostModel, Feature, FeatureSpace, Manhattan};
+pub use spec::{MAX_GOAL_MOVES, resolve};
 pub use tabular::{NegativeRewards, TabularMdp};

@@ -7,7 +7,8 @@ use rand::{Rng, RngExt};
 use serde::{Deserialize, Serialize};
 
 use crate::error::MapError;
-use crate::map::{Cell, MAX_SIDE, Map};
+use crate::geometry::Cell;
+use crate::map::{MAX_SIDE, Map};
 
 /// Parameters of a random map.
 ///
@@ -132,7 +133,8 @@ impl RandomMap {
         }
         let description = format!(
             "A random {w} by {h} map with obstacle density {}.",
-            self.obstacle_density
+            // Adding 0 turns a density of -0 into 0, so no "-0" is ever printed.
+            self.obstacle_density + 0.0
         );
         Ok(Map::from_parts(
             name.to_string(),

@@ -6,8 +6,9 @@
 
 use std::fmt::Write as _;
 
+use crate::geometry::{Cell, Pos};
 use crate::grid::Action;
-use crate::map::{Cell, Map, Pos};
+use crate::map::Map;
 
 /// What to draw on top of a map.
 ///

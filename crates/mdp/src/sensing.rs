@@ -10,63 +10,12 @@
 //! The order is exact (integer arithmetic, no floating-point angles), so runs are
 //! reproducible on every machine.
 
-use std::cmp::Ordering;
-use std::fmt;
-
 use serde::{Deserialize, Serialize};
 
+use crate::geometry::{Cell, Offset};
 use crate::grid::GridWorld;
-use crate::map::{Cell, Map};
+use crate::map::Map;
 use crate::process::StateId;
-
-/// A Cartesian offset from the robot: `dx` to the right, `dy` up.
-///
-/// ```
-/// let o = mdp::Offset::new(-2, 1);
-/// assert_eq!((o.dx, o.dy), (-2, 1));
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
-pub struct Offset {
-    /// Columns to the right (negative: left).
-    pub dx: i32,
-    /// Rows up (negative: down).
-    pub dy: i32,
-}
-
-impl Offset {
-    /// An offset from its two components.
-    ///
-    /// ```
-    /// assert_eq!(mdp::Offset::new(1, 0).dx, 1);
-    /// ```
-    pub const fn new(dx: i32, dy: i32) -> Offset {
-        Offset { dx, dy }
-    }
-
-    /// Compare two offsets by clockwise angle from straight up, exactly.
-    ///
-    /// ```
-    /// use mdp::Offset;
-    /// use std::cmp::Ordering;
-    /// assert_eq!(Offset::new(0, 1).clockwise_cmp(&Offset::new(1, 0)), Ordering::Less);
-    /// assert_eq!(Offset::new(-1, 0).clockwise_cmp(&Offset::new(0, -1)), Ordering::Greater);
-    /// ```
-    pub fn clockwise_cmp(&self, other: &Offset) -> Ordering {
-        // Half 0 covers angles [0, pi): straight up and everything to the right.
-        let half = |o: &Offset| u8::from(!(o.dx > 0 || (o.dx == 0 && o.dy > 0)));
-        half(self).cmp(&half(other)).then_with(|| {
-            // Within a half, b is clockwise from a when the cross product a x b is negative.
-            let cross = self.dx as i64 * other.dy as i64 - self.dy as i64 * other.dx as i64;
-            cross.cmp(&0)
-        })
-    }
-}
-
-impl fmt::Display for Offset {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "({}, {})", self.dx, self.dy)
-    }
-}
 
 /// The price of sensing the cell at an offset. Implement it to change the cost model.
 ///

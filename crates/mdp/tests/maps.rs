@@ -21,7 +21,12 @@ fn a_good_file_parses_with_its_fields() {
     assert_eq!(map.name(), "t");
     assert_eq!(map.description(), Some("d"));
     assert_eq!(
-        (map.width(), map.height(), map.states(), map.obstacles()),
+        (
+            map.width(),
+            map.height(),
+            map.states().len(),
+            map.obstacles()
+        ),
         (3, 2, 4, 1)
     );
 }
@@ -178,11 +183,16 @@ fn builtins_are_valid_and_as_specified() {
     }
     let tan8 = builtin("tan8x8").unwrap();
     assert_eq!(
-        (tan8.width(), tan8.height(), tan8.obstacles(), tan8.states()),
+        (
+            tan8.width(),
+            tan8.height(),
+            tan8.obstacles(),
+            tan8.states().len()
+        ),
         (8, 8, 13, 50)
     );
     let tan3 = builtin("tan3x3").unwrap();
-    assert_eq!((tan3.obstacles(), tan3.states()), (0, 8));
+    assert_eq!((tan3.obstacles(), tan3.states().len()), (0, 8));
 }
 
 mod never_panics {
@@ -200,7 +210,7 @@ mod never_panics {
             let text = format!("name = \"f\"\nlayout = '''\n{layout}'''\n");
             if let Ok(map) = mdp::Map::from_toml_str(&text, "fuzz") {
                 prop_assert_eq!(map.cells().filter(|(_, c)| *c == mdp::Cell::Goal).count(), 1);
-                prop_assert!(map.states() >= 1);
+                prop_assert!(!map.states().is_empty());
             }
         }
     }
@@ -210,7 +220,7 @@ mod never_panics {
 fn map_specs_resolve_and_bad_ones_say_why() {
     let moved = mdp::resolve("tan3x3@2:0").unwrap();
     assert_eq!(
-        (moved.goal(), moved.states(), moved.name()),
+        (moved.goal(), moved.states().len(), moved.name()),
         (mdp::Pos::new(2, 0), 8, "tan3x3@2:0")
     );
     let r = mdp::resolve("random:9x4:0.3:11").unwrap();

@@ -124,6 +124,7 @@
 //! million steps per iteration (about 18 and 46 million steps a second there).
 
 #![deny(missing_docs)]
+#![cfg_attr(not(test), warn(clippy::unwrap_used, clippy::expect_used))]
 
 mod error;
 mod learner;

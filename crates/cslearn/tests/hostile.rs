@@ -1,0 +1,101 @@
+//! The CSV reader under hostile input: malformed text never panics, every refusal names
+//! its file, and what is not a regular file is refused unread.
+
+use cslearn::{Dataset, DatasetOptions, Error};
+use proptest::prelude::*;
+
+const COSTS: &str = "feature,cost\na,1\nb,2\n";
+
+fn read(data: &str) -> Result<Dataset, Error> {
+    Dataset::from_readers(
+        data.as_bytes(),
+        "d.csv",
+        COSTS.as_bytes(),
+        "c.csv",
+        &DatasetOptions::new("t"),
+    )
+}
+
+#[test]
+fn an_unterminated_quote_is_named_with_its_line() {
+    // Once reported as a field-count mismatch on the wrong line.
+    let err = read("a,b,t\n1,2,x\n\"3,4,y\n5,6,z\n").unwrap_err();
+    assert!(
+        matches!(err, Error::UnterminatedQuote { line: 3, .. }),
+        "{err:?}"
+    );
+    assert!(err.to_string().contains("d.csv: line 3"), "{err}");
+    // Closed quotes, doubled quotes and quoted newlines are fine.
+    let ok = read("a,b,t\n\"1\",\"2\"\"\",x\n\"3\n\",4,y\n").unwrap();
+    assert_eq!(ok.len(), 2);
+}
+
+#[cfg(unix)]
+#[test]
+fn what_is_not_a_regular_file_is_refused_unread() {
+    let costs = tempfile::NamedTempFile::new().unwrap();
+    std::fs::write(costs.path(), COSTS).unwrap();
+    let options = DatasetOptions::new("t");
+    let err = Dataset::load("/dev/zero".as_ref(), costs.path(), &options).unwrap_err();
+    assert!(matches!(err, Error::NotAFile { .. }), "{err:?}");
+    let dir = tempfile::tempdir().unwrap();
+    let err = Dataset::load(dir.path(), costs.path(), &options).unwrap_err();
+    assert!(matches!(err, Error::NotAFile { .. }), "{err:?}");
+}
+
+#[test]
+fn a_reader_that_never_ends_is_cut_at_the_limit() {
+    let endless = std::io::repeat(b'1');
+    let err = Dataset::from_readers(
+        endless,
+        "endless.csv",
+        COSTS.as_bytes(),
+        "c.csv",
+        &DatasetOptions::new("t"),
+    )
+    .unwrap_err();
+    assert!(matches!(err, Error::TooLarge { .. }), "{err:?}");
+}
+
+/// CSV-like text built from the characters that matter to a CSV reader.
+fn csvish() -> impl Strategy<Value = String> {
+    proptest::collection::vec(
+        prop_oneof![
+            Just(","),
+            Just("\n"),
+            Just("\r\n"),
+            Just("\""),
+            Just("?"),
+            Just(" "),
+            Just("a"),
+            Just("b"),
+            Just("t"),
+            Just("1"),
+            Just("-2.5"),
+            Just("NaN"),
+            Just("inf"),
+            Just("x"),
+            Just("\u{fffd}"),
+        ],
+        0..60,
+    )
+    .prop_map(|parts| parts.concat())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    #[test]
+    fn malformed_data_never_panics(body in csvish()) {
+        let text = format!("a,b,t\n{body}");
+        if let Err(e) = read(&text) {
+            prop_assert!(e.to_string().contains("d.csv"), "{e}");
+        }
+    }
+
+    #[test]
+    fn malformed_costs_never_panic(costs in csvish(), bytes in proptest::collection::vec(any::<u8>(), 0..64)) {
+        let _ = Dataset::from_readers("a,b,t\n1,2,x\n".as_bytes(), "d.csv", costs.as_bytes(), "c.csv", &DatasetOptions::new("t"));
+        let _ = Dataset::from_readers(bytes.as_slice(), "d.csv", COSTS.as_bytes(), "c.csv", &DatasetOptions::new("t"));
+    }
+}

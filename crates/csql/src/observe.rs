@@ -1,0 +1,70 @@
+//! Watching a run as it goes: one call per trial, with the power to stop it.
+//!
+//! A long run (a huge trial cap, a tiny temperature) needs a sign of life, a bound on its
+//! memory and a clean way out. [`run_observed`](crate::run_observed) calls an
+//! [`Observer`] at the end of every trial with that trial's [`TracePoint`]; the observer
+//! can show progress, write the point somewhere, or answer [`Flow::Stop`] (on Ctrl-C, for
+//! example), and it decides whether the report keeps the whole per-trial trace in memory.
+//! Observing changes nothing the run computes: a run observed to its end reports exactly
+//! what [`run_on`](crate::run_on) reports, except for the trace when it is not kept.
+
+use crate::report::TracePoint;
+
+/// What the run does after an observed trial.
+///
+/// ```
+/// assert_ne!(csql::Flow::Continue, csql::Flow::Stop);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Flow {
+    /// Go on with the next trial (if the run has not converged or reached its cap).
+    Continue,
+    /// End the run now and report what it reached.
+    Stop,
+}
+
+/// Watches a run trial by trial.
+///
+/// ```
+/// use csql::{Flow, Observer, RunSettings, Setup, StrategyKind, TracePoint};
+/// /// Stops after three trials and keeps no trace.
+/// struct Three(u32);
+/// impl Observer for Three {
+///     fn keep_trace(&self) -> bool { false }
+///     fn trial(&mut self, _: &TracePoint) -> Flow {
+///         self.0 += 1;
+///         if self.0 == 3 { Flow::Stop } else { Flow::Continue }
+///     }
+/// }
+/// let settings = RunSettings::tan1991("tan8x8", StrategyKind::Resetting, 1);
+/// let setup = Setup::new(&settings).unwrap();
+/// let report = csql::run_observed(&setup, &settings, &mut Three(0));
+/// assert_eq!((report.trials, report.converged, report.trace.len()), (3, false, 0));
+/// ```
+pub trait Observer {
+    /// Whether the report keeps one [`TracePoint`] per trial (memory grows with the
+    /// run's length when it does). The default keeps it, as [`run_on`](crate::run_on) does.
+    fn keep_trace(&self) -> bool {
+        true
+    }
+
+    /// Called at the end of every trial, after the oracle's judgement.
+    fn trial(&mut self, point: &TracePoint) -> Flow;
+}
+
+/// The observer of a plain run: keeps the trace and never stops it.
+///
+/// ```
+/// use csql::{KeepTrace, RunSettings, Setup, StrategyKind};
+/// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
+/// let setup = Setup::new(&settings).unwrap();
+/// assert_eq!(csql::run_observed(&setup, &settings, &mut KeepTrace), csql::run_on(&setup, &settings));
+/// ```
+#[derive(Clone, Copy, Debug, Default)]
+pub struct KeepTrace;
+
+impl Observer for KeepTrace {
+    fn trial(&mut self, _: &TracePoint) -> Flow {
+        Flow::Continue
+    }
+}

@@ -1,0 +1,231 @@
+//! The command surface under hostile or careless use: every case once made `csrl` panic,
+//! hang, or say something wrong.
+
+use std::process::{Command, Output, Stdio};
+
+fn csrl(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_csrl"))
+        .args(args)
+        .output()
+        .expect("run csrl")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Run csrl with stderr sent to `/dev/full`, where every write fails.
+#[cfg(target_os = "linux")]
+fn with_full_stderr(args: &[&str]) -> Output {
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .expect("/dev/full");
+    Command::new(env!("CARGO_BIN_EXE_csrl"))
+        .args(args)
+        .stderr(Stdio::from(full))
+        .output()
+        .expect("run csrl")
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_stderr_is_no_panic() {
+    // Once exit 101: the note of `map check` and every error went through eprintln!.
+    let ok = with_full_stderr(&["map", "check", "tan8x8"]);
+    assert_eq!(ok.status.code(), Some(0));
+    let bad = with_full_stderr(&["map", "check", "/no/such/map.toml"]);
+    assert_eq!(bad.status.code(), Some(1));
+}
+
+#[test]
+fn a_closed_stderr_is_no_panic() {
+    let out = Command::new(env!("CARGO_BIN_EXE_csrl"))
+        .args(["run", "--map", "nope"])
+        .stderr(Stdio::null())
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+}
+
+#[test]
+fn map_check_takes_built_in_names_and_specs() {
+    // Once: "cannot read" for a built-in name that `map show` takes.
+    for spec in [
+        "tan8x8",
+        "tan3x3@2:0",
+        "random:8x8:0.2:7",
+        "random:8x8:0.2:7@0:0",
+    ] {
+        let out = csrl(&["map", "check", spec]);
+        assert!(out.status.success(), "{spec}: {}", stderr(&out));
+        assert!(String::from_utf8_lossy(&out.stdout).contains("valid map"));
+    }
+}
+
+#[test]
+fn maps_lists_as_json() {
+    let out = csrl(&["maps", "--json"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let names: Vec<&str> = v
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m["name"].as_str().unwrap())
+        .collect();
+    assert!(names.contains(&"tan8x8"), "{names:?}");
+    assert_eq!(v[0]["states"], 8);
+}
+
+#[test]
+fn a_long_goal_chain_is_an_error_not_an_abort() {
+    let spec = format!("tan3x3{}", "@0:0".repeat(30_000));
+    let out = csrl(&["map", "show", &spec]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(stderr(&out).contains("goal moves"));
+    // From a config file too.
+    let dir = tempfile::tempdir().unwrap();
+    let config = dir.path().join("c.toml");
+    std::fs::write(&config, format!("map = \"{spec}\"\n")).unwrap();
+    let out = csrl(&["run", "--config", config.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+}
+
+#[test]
+fn non_convergence_has_its_exit_code_on_request() {
+    let out = csrl(&["run", "--map", "tan3x3", "--max-trials", "1"]);
+    assert_eq!(out.status.code(), Some(0));
+    let out = csrl(&[
+        "run",
+        "--map",
+        "tan3x3",
+        "--max-trials",
+        "1",
+        "--require-convergence",
+    ]);
+    assert_eq!(out.status.code(), Some(3), "{}", stderr(&out));
+    assert!(stderr(&out).contains("did not converge"));
+    let out = csrl(&["run", "--map", "tan3x3", "--require-convergence"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+}
+
+#[test]
+fn the_trace_is_kept_only_on_request() {
+    let args = ["run", "--map", "tan3x3", "--strategy", "lazy", "--json"];
+    let out = csrl(&args);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["trace"].as_array().unwrap().len(), 0);
+    let mut with = args.to_vec();
+    with.push("--trace");
+    let out = csrl(&with);
+    let w: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(
+        w["trace"].as_array().unwrap().len() as u64,
+        w["trials"].as_u64().unwrap()
+    );
+    // Everything else is the same run.
+    assert_eq!((&v["table1"], &v["moves"]), (&w["table1"], &w["moves"]));
+}
+
+#[test]
+fn the_run_table_lines_up() {
+    let out = csrl(&["run", "--map", "tan3x3", "--max-trials", "1"]);
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    let widths: Vec<usize> = text
+        .lines()
+        .skip_while(|l| !l.starts_with("Table 1 row"))
+        .map(|l| l.chars().count())
+        .collect();
+    assert!(widths.len() == 10, "{text}");
+    assert!(widths.windows(2).all(|w| w[0] == w[1]), "{text}");
+}
+
+#[test]
+fn svg_says_where_it_wrote() {
+    let dir = tempfile::tempdir().unwrap();
+    let svg = dir.path().join("p.svg");
+    let out = csrl(&["run", "--map", "tan3x3", "--svg", svg.to_str().unwrap()]);
+    assert!(out.status.success());
+    assert!(
+        stderr(&out).contains(svg.to_str().unwrap()),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn a_negative_zero_density_prints_no_minus_sign() {
+    let out = csrl(&["map", "show", "random:4x4:-0.0:3"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(!String::from_utf8_lossy(&out.stdout).contains("density -0"));
+}
+
+#[cfg(unix)]
+#[test]
+fn pipes_and_devices_are_refused_where_files_are_needed() {
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("fifo");
+    let made = Command::new("mkfifo").arg(&fifo).status();
+    let fifo = fifo.to_str().unwrap();
+    let costs = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../data/heart-disease/costs.csv"
+    );
+    let mut cases: Vec<Vec<&str>> = vec![
+        vec!["run", "--config", "/dev/zero"],
+        vec!["map", "check", "/dev/zero"],
+        vec![
+            "classify",
+            "--data",
+            "/dev/zero",
+            "--costs",
+            costs,
+            "--target",
+            "num",
+            "--learner",
+            "cs-id3",
+        ],
+    ];
+    if made.is_ok_and(|s| s.success()) {
+        cases.push(vec!["run", "--config", fifo]);
+        cases.push(vec!["map", "check", fifo]);
+        cases.push(vec![
+            "classify",
+            "--data",
+            fifo,
+            "--costs",
+            costs,
+            "--target",
+            "num",
+            "--learner",
+            "cs-id3",
+        ]);
+    }
+    for args in cases {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_csrl"))
+            .args(&args)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let deadline = std::time::Instant::now() + std::time::Duration::from_secs(20);
+        let status = loop {
+            if let Some(s) = child.try_wait().unwrap() {
+                break s;
+            }
+            if std::time::Instant::now() > deadline {
+                let _ = child.kill();
+                panic!("{args:?} did not finish");
+            }
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        };
+        let out = child.wait_with_output().unwrap();
+        assert_eq!(status.code(), Some(1), "{args:?}: {}", stderr(&out));
+        assert!(
+            stderr(&out).contains("not a regular file"),
+            "{args:?}: {}",
+            stderr(&out)
+        );
+    }
+}
