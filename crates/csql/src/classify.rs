@@ -256,6 +256,11 @@ impl Classify {
         }
     }
 
+    /// The features measured by the last classification, in order, with their values.
+    pub(crate) fn last_measured(&self) -> &[(Feature, Cell)] {
+        &self.measured
+    }
+
     /// The sensing cost of the last classification.
     fn measured_cost(&self) -> f64 {
         self.measured.iter().map(|&(f, _)| self.space.cost(f)).sum()

@@ -112,8 +112,10 @@ mod figure;
 )]
 mod judge;
 mod main_loop;
+mod navigate;
 mod observe;
 mod perception;
+mod predict;
 #[allow(
     clippy::expect_used,
     reason = "grid worlds have four actions, which a table accepts"
@@ -143,8 +145,10 @@ pub use error::Error;
 pub use figure::{descriptions_svg, policy_svg};
 pub use judge::{Judge, Verdict};
 pub use main_loop::{Agent, LoopParams, TrialRecord};
+pub use navigate::{Navigation, navigate};
 pub use observe::{Flow, KeepTrace, Observer};
 pub use perception::{Identified, Perception};
+pub use predict::{PredictSensing, Predicting, Prediction, PredictionStats, TransitionModel};
 pub use reference::{
     Reference, cheapest_interior_cost, fixed_representation_reference, full_sensing_reference,
     whole_world_cost,

@@ -216,7 +216,8 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
             let next = if step.terminated {
                 None
             } else {
-                let (row_y, cost) = perception.classify(world, step.next, table);
+                let (row_y, cost) =
+                    perception.classify_next(world, row_x, a, step.next, table, rng);
                 rec.cost += cost;
                 Some(row_y)
             };
@@ -248,9 +249,10 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
                         journal.reset = true;
                     }
                     random_left = random_moves;
-                    if !step.terminated {
+                    if let Some(current) = row_y {
                         // The refined description may no longer match the next state.
-                        let (again, cost) = perception.classify(world, step.next, table);
+                        let (again, cost) =
+                            perception.classify_again(world, row_x, current, step.next, table);
                         rec.cost += cost;
                         row_y = Some(again);
                     }

@@ -4,8 +4,9 @@
 //! row, which makes the main loop plain Q-learning (the baseline and the paper's
 //! full-sensing reference).
 
-use mdp::{GridWorld, Mdp, StateId};
+use mdp::{ActionId, GridWorld, Mdp, StateId};
 use qlearn::{QTable, RowId};
+use rand::Rng;
 
 /// How states become rows of the Q table, and what that costs.
 ///
@@ -25,6 +26,56 @@ pub trait Perception {
     /// The row of a non-terminal state, adding rows to `table` if the perception grows;
     /// returns the sensing cost charged.
     fn classify(&mut self, world: &GridWorld, s: StateId, table: &mut QTable) -> (RowId, f64);
+    /// The row of a non-terminal state `s` reached by action `a` from a state of row
+    /// `from`: a perception that predicts may skip measurements here (see
+    /// [`crate::Predicting`]). By default, [`Perception::classify`], drawing nothing from
+    /// `rng`.
+    ///
+    /// ```
+    /// use csql::{Identified, Perception};
+    /// use rand::SeedableRng;
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let mut p = Identified::new(&world, vec![5.0; 9]);
+    /// let mut table = qlearn::QTable::new(4).unwrap();
+    /// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
+    /// let (from, _) = p.classify(&world, mdp::StateId(0), &mut table);
+    /// let (row, cost) = p.classify_next(&world, from, mdp::ActionId(3), mdp::StateId(1), &mut table, &mut rng);
+    /// assert_eq!((row.0, cost), (1, 5.0));
+    /// ```
+    fn classify_next<R: Rng + ?Sized>(
+        &mut self,
+        world: &GridWorld,
+        from: RowId,
+        a: ActionId,
+        s: StateId,
+        table: &mut QTable,
+        rng: &mut R,
+    ) -> (RowId, f64) {
+        let _ = (from, a, rng);
+        self.classify(world, s, table)
+    }
+    /// The row of state `s` after row `refined` was refined, when `s` was given row
+    /// `current` just before: the paper classifies again (charged), the default.
+    ///
+    /// ```
+    /// use csql::{Identified, Perception};
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let mut p = Identified::new(&world, vec![5.0; 9]);
+    /// let mut table = qlearn::QTable::new(4).unwrap();
+    /// let (row, _) = p.classify(&world, mdp::StateId(0), &mut table);
+    /// assert_eq!(p.classify_again(&world, row, row, mdp::StateId(0), &mut table), (row, 5.0));
+    /// ```
+    fn classify_again(
+        &mut self,
+        world: &GridWorld,
+        refined: RowId,
+        current: RowId,
+        s: StateId,
+        table: &mut QTable,
+    ) -> (RowId, f64) {
+        let _ = (refined, current);
+        self.classify(world, s, table)
+    }
     /// Make `row` more specific, using state `s` (which it describes) for the new value;
     /// returns the cost charged, or `None` if the row cannot be refined further.
     fn refine(&mut self, world: &GridWorld, row: RowId, s: StateId) -> Option<f64>;

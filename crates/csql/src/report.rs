@@ -167,6 +167,18 @@ pub struct RunReport {
     pub trace: Vec<TracePoint>,
     /// The settings of the run.
     pub settings: RunSettings,
+    /// Sensing cost per move of navigation after learning (see [`crate::navigate`]);
+    /// present only when `predict_sensing` is not `off`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub navigation_cost_per_move: Option<f64>,
+    /// The share of navigation's evaluation trials that reached the goal by an optimal
+    /// path; present only when `predict_sensing` is not `off`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub navigation_success: Option<f64>,
+    /// What prediction did while learning; present only when `predict_sensing` is not
+    /// `off`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub prediction: Option<crate::predict::PredictionStats>,
 }
 
 /// A figure of the paper's Table 1 as the paper prints it.
@@ -465,5 +477,8 @@ pub(crate) fn report(
             .collect(),
         trace: learned.trace,
         settings: settings.clone(),
+        navigation_cost_per_move: None,
+        navigation_success: None,
+        prediction: None,
     }
 }

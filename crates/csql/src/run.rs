@@ -9,8 +9,10 @@ use crate::classify::Classify;
 use crate::error::Error;
 use crate::judge::Judge;
 use crate::main_loop::{Agent, LoopParams};
+use crate::navigate::navigate;
 use crate::observe::{Flow, KeepTrace, Observer};
 use crate::perception::Perception;
+use crate::predict::{PredictSensing, Predicting};
 use crate::report::{RunReport, TracePoint, report};
 use crate::representation::Representation;
 use crate::settings::RunSettings;
@@ -238,19 +240,61 @@ fn run_classify(
     classify: Classify,
     observer: &mut dyn Observer,
 ) -> (RunReport, Representation) {
-    let mut agent = Agent::new(
-        classify,
-        settings.strategy.build(settings.random_moves),
-        QTable::new(setup.world.num_actions()).expect("grid worlds have four actions"),
-        LoopParams::from(settings),
-    );
+    let predicting = match settings.predict_sensing {
+        PredictSensing::Off => {
+            let mut agent = new_agent(setup, settings, classify);
+            let learned = learn(setup, settings, &mut agent, observer);
+            let report = report(
+                setup,
+                settings,
+                &mut agent.perception,
+                &agent.table,
+                learned,
+            );
+            return (report, agent.perception.into_representation());
+        }
+        PredictSensing::Learned => Predicting::learned(classify, &settings.prediction),
+        PredictSensing::Motion => Predicting::motion(classify, &settings.prediction, &setup.world),
+    };
+    let mut agent = new_agent(setup, settings, predicting);
     let learned = learn(setup, settings, &mut agent, observer);
-    let report = report(
+    let mut out = report(
         setup,
         settings,
-        &mut agent.perception,
+        agent.perception.classify_mut(),
         &agent.table,
         learned,
     );
-    (report, agent.perception.into_representation())
+    out.prediction = Some(agent.perception.stats());
+    agent.perception.set_recheck(settings.prediction.verify);
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed ^ NAVIGATION_STREAM);
+    let nav = navigate(
+        &setup.world,
+        &setup.oracle,
+        &mut agent.perception,
+        &mut agent.table,
+        settings.prediction.navigation_trials,
+        settings.max_moves.get(),
+        &mut rng,
+    );
+    out.navigation_cost_per_move = Some(nav.cost_per_move());
+    out.navigation_success = Some(nav.success());
+    (out, agent.perception.into_classify().into_representation())
+}
+
+/// Navigation's generator is seeded with the run's seed exclusive-or this constant, so
+/// that its draws are not those of learning (the digits of pi's fraction, as a name).
+const NAVIGATION_STREAM: u64 = 0x243F_6A88_85A3_08D3;
+
+fn new_agent<P>(
+    setup: &Setup,
+    settings: &RunSettings,
+    perception: P,
+) -> Agent<P, Box<dyn Strategy + Send>> {
+    Agent::new(
+        perception,
+        settings.strategy.build(settings.random_moves),
+        QTable::new(setup.world.num_actions()).expect("grid worlds have four actions"),
+        LoopParams::from(settings),
+    )
 }

@@ -7,6 +7,7 @@ use qlearn::{Discount, LearningRate, MoveCap, Temperature};
 use serde::{Deserialize, Serialize};
 
 use crate::error::Error;
+use crate::predict::{PredictSensing, Prediction};
 use crate::strategy::StrategyKind;
 
 /// Everything a CS-QL run depends on. A run is a pure function of these settings.
@@ -46,6 +47,15 @@ pub struct RunSettings {
     pub max_trials: u32,
     /// The seed of the run's one random generator.
     pub seed: u64,
+    /// Whether, and with what knowledge, the agent predicts instead of sensing (`off`,
+    /// the paper's procedure, by default; see [`crate::Predicting`]). Absent from the
+    /// JSON when `off`.
+    #[serde(default, skip_serializing_if = "PredictSensing::is_off")]
+    pub predict_sensing: PredictSensing,
+    /// The confidence rule, re-check rates and navigation trials of prediction (the
+    /// TOML table `[prediction]`). Absent from the JSON when every value is the default.
+    #[serde(default, skip_serializing_if = "Prediction::is_default")]
+    pub prediction: Prediction,
 }
 
 /// The most bytes a settings file may have (64 KiB; the longest useful one is under 1 KiB).
@@ -70,6 +80,8 @@ struct SettingsFile {
     decrease_threshold: Option<f64>,
     max_trials: Option<u32>,
     seed: Option<u64>,
+    predict_sensing: Option<PredictSensing>,
+    prediction: Option<Prediction>,
 }
 
 impl RunSettings {
@@ -94,6 +106,8 @@ impl RunSettings {
             decrease_threshold: 0.0,
             max_trials: 20_000,
             seed,
+            predict_sensing: PredictSensing::Off,
+            prediction: Prediction::default(),
         }
     }
 
@@ -127,7 +141,9 @@ impl RunSettings {
             tolerance,
             decrease_threshold,
             max_trials,
-            seed
+            seed,
+            predict_sensing,
+            prediction
         );
         self.validate()
     }
@@ -202,6 +218,6 @@ impl RunSettings {
         if self.max_trials == 0 {
             return bad("max_trials", "0".to_string(), "at least 1");
         }
-        Ok(())
+        self.prediction.validate()
     }
 }

@@ -1,0 +1,816 @@
+//! Sensing less: predict the next description instead of measuring it (off by default).
+//!
+//! The paper charges every measurement and leaves a "task-dependent world model (e.g., a
+//! reduced map)" built from the learned representation as future work. In a
+//! deterministic world most of CLASSIFY's measurements after a move can be predicted from
+//! the description the robot left and the action it took. Two levels, never mixed in a
+//! report (the setting `predict_sensing`, [`PredictSensing`]):
+//!
+//! | level | what the agent knows | type |
+//! |---|---|---|
+//! | `off` | nothing: every next state is classified (the paper's procedure) | [`crate::Classify`] alone |
+//! | `learned` | a model learned on the way: (description, action) -> next description | [`Predicting::learned`], [`TransitionModel`] |
+//! | `motion` | the learned model, and how its moves shift its view (dead reckoning) | [`Predicting::motion`] |
+//!
+//! # The learned model
+//!
+//! [`TransitionModel`] counts, for each description and action, the next description
+//! measured. A transition is *trusted* once it has been measured
+//! [`Prediction::confirmations`] times in a row with the same answer and never with
+//! another one. When the agent leaves a description by a trusted transition it does not
+//! classify the next state: it takes the predicted description, uncharged. It still
+//! re-checks (classifies, charged) with probability [`Prediction::recheck`], and always
+//! after [`Prediction::max_skips`] unmeasured uses in a row. A re-check that disagrees
+//! marks the transition as not deterministic: it is never trusted again until one of its
+//! two descriptions is refined.
+//!
+//! The model is kept as the representation changes. A new description takes states that
+//! matched no description, so it invalidates nothing. A refinement of description `d`
+//! moves some of `d`'s states out of it, so it invalidates the transitions that leave `d`
+//! and those that lead to `d`, and no other.
+//!
+//! # The bound on wrong predictions
+//!
+//! No transition is ever used more than `max_skips` times in a row without a
+//! measurement. So a wrong prediction of a transition is followed, within `max_skips`
+//! uses of that transition, by a measured use, and the Q table receives at most
+//! `max_skips` updates from one run of unmeasured uses (of which some may be wrong).
+//! When that measurement disagrees with the model, the transition is distrusted for
+//! good (until a refinement invalidates it). The oracle counts the wrong predictions
+//! (without charging, never shown to the learner) in [`PredictionStats`];
+//! `longest_wrong_run <= max_skips` is the bound, checked in this module's tests and on
+//! whole runs in `tests/predict.rs`. A measurement that agrees does not prove a
+//! transition right for all its states: a description whose states lead to different
+//! descriptions may be measured on one that agrees. Such a transition is measured again
+//! at least every `max_skips` uses, and distrusted at the first disagreement.
+//!
+//! # The motion prior
+//!
+//! At the `motion` level the agent also knows that after a move that was not blocked a
+//! cell sensed at offset `(dx, dy)` lies at `(dx - 1, dy)` (for a move right). It keeps
+//! the cells it sensed in the last [`Prediction::memory_moves`] moves, placed by dead
+//! reckoning from the start of the trial, and a measurement CLASSIFY asks for a cell it
+//! remembers is free. It knows whether a move was blocked only when it remembers the cell
+//! it moved towards; otherwise it forgets everything and starts over from where it is.
+//! CLASSIFY chooses the same features either way, so the learned representation does not
+//! change; only the charge does. This is prior knowledge the paper's agent does not
+//! have, and the motion level is reported apart from the learned one.
+//!
+//! # Navigation after learning
+//!
+//! [`crate::navigate`]: the descriptions and the model form a reduced map; the agent
+//! localises once (CLASSIFY, charged) and then follows its greedy policy on the graph,
+//! measuring only where the model does not trust the transition, or to verify it with
+//! probability [`Prediction::verify`] (and after `max_skips` unmeasured uses).
+
+use mdp::{Action, ActionId, Cell, FeatureSpace, GridWorld, Offset, StateId};
+use qlearn::{QTable, RowId};
+use rand::{Rng, RngExt};
+use serde::{Deserialize, Serialize};
+
+use crate::classify::Classify;
+use crate::error::Error;
+use crate::perception::Perception;
+
+/// Which knowledge lets the agent skip measurements (the run setting `predict_sensing`).
+///
+/// ```
+/// use csql::PredictSensing;
+/// assert_eq!(PredictSensing::default(), PredictSensing::Off);
+/// assert_eq!(PredictSensing::Motion.name(), "motion");
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PredictSensing {
+    /// Classify every next state (the paper's procedure; the default).
+    #[default]
+    Off,
+    /// A learned model of (description, action) -> next description.
+    Learned,
+    /// The learned model, and features carried over by dead reckoning.
+    Motion,
+}
+
+impl PredictSensing {
+    /// The three levels, in order.
+    ///
+    /// ```
+    /// assert_eq!(csql::PredictSensing::ALL.len(), 3);
+    /// ```
+    pub const ALL: [PredictSensing; 3] = [
+        PredictSensing::Off,
+        PredictSensing::Learned,
+        PredictSensing::Motion,
+    ];
+
+    /// The setting's value: `off`, `learned` or `motion`.
+    ///
+    /// ```
+    /// assert_eq!(csql::PredictSensing::Learned.name(), "learned");
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            PredictSensing::Off => "off",
+            PredictSensing::Learned => "learned",
+            PredictSensing::Motion => "motion",
+        }
+    }
+
+    /// Whether this is `off` (for serde's `skip_serializing_if`).
+    ///
+    /// ```
+    /// assert!(csql::PredictSensing::Off.is_off());
+    /// ```
+    pub fn is_off(&self) -> bool {
+        *self == PredictSensing::Off
+    }
+}
+
+impl std::fmt::Display for PredictSensing {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for PredictSensing {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<PredictSensing, Error> {
+        PredictSensing::ALL
+            .into_iter()
+            .find(|l| l.name() == s)
+            .ok_or_else(|| Error::InvalidSetting {
+                name: "predict_sensing",
+                value: s.to_string(),
+                expected: "one of off, learned, motion",
+            })
+    }
+}
+
+/// The confidence rule, the re-check rates and the evaluation of navigation (the TOML
+/// table `[prediction]`; every key optional). Used only when `predict_sensing` is not
+/// `off`.
+///
+/// ```
+/// let p = csql::Prediction::default();
+/// assert_eq!((p.confirmations, p.max_skips, p.navigation_trials, p.memory_moves), (2, 16, 10, 1));
+/// assert_eq!((p.recheck, p.verify), (0.05, 0.05));
+/// assert!(p.validate().is_ok());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Prediction {
+    /// Equal measurements in a row, and none different, before a transition is trusted
+    /// (default 2).
+    pub confirmations: u32,
+    /// Probability of re-checking a trusted transition while learning (default 0.05).
+    pub recheck: f64,
+    /// Most unmeasured uses of one transition in a row: the bound on how long a wrong
+    /// prediction can go unmeasured (default 16).
+    pub max_skips: u32,
+    /// Probability of verifying a trusted transition while navigating (default 0.05).
+    pub verify: f64,
+    /// Evaluation trials of navigation from each non-goal free state (default 10).
+    pub navigation_trials: u32,
+    /// At the motion level, for how many moves a sensed cell is remembered (default 1:
+    /// what was sensed at the previous state).
+    pub memory_moves: u32,
+}
+
+impl Default for Prediction {
+    fn default() -> Prediction {
+        Prediction {
+            confirmations: 2,
+            recheck: 0.05,
+            max_skips: 16,
+            verify: 0.05,
+            navigation_trials: 10,
+            memory_moves: 1,
+        }
+    }
+}
+
+impl Prediction {
+    /// Whether every value is the default (for serde's `skip_serializing_if`).
+    ///
+    /// ```
+    /// assert!(csql::Prediction::default().is_default());
+    /// ```
+    pub fn is_default(&self) -> bool {
+        *self == Prediction::default()
+    }
+
+    /// Check the ranges: probabilities in [0, 1], at least one confirmation, skip,
+    /// evaluation trial and remembered move.
+    ///
+    /// ```
+    /// let p = csql::Prediction { recheck: 1.5, ..Default::default() };
+    /// assert!(matches!(p.validate(), Err(csql::Error::InvalidSetting { name: "prediction.recheck", .. })));
+    /// ```
+    pub fn validate(&self) -> Result<(), Error> {
+        let bad = |name: &'static str, value: String, expected: &'static str| {
+            Err(Error::InvalidSetting {
+                name,
+                value,
+                expected,
+            })
+        };
+        for (name, p) in [
+            ("prediction.recheck", self.recheck),
+            ("prediction.verify", self.verify),
+        ] {
+            if !(0.0..=1.0).contains(&p) {
+                return bad(name, p.to_string(), "a probability in [0, 1]");
+            }
+        }
+        for (name, n) in [
+            ("prediction.confirmations", self.confirmations),
+            ("prediction.max_skips", self.max_skips),
+            ("prediction.navigation_trials", self.navigation_trials),
+            ("prediction.memory_moves", self.memory_moves),
+        ] {
+            if n == 0 {
+                return bad(name, "0".to_string(), "at least 1");
+            }
+        }
+        Ok(())
+    }
+}
+
+/// What prediction did in a run (the JSON's `prediction`, present only when
+/// `predict_sensing` is not `off`). The last two figures are the oracle's: it looks up
+/// the true description of every state reached unmeasured, without charging.
+///
+/// ```
+/// let s = csql::PredictionStats::default();
+/// assert_eq!(s.skipped + s.rechecks, 0);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct PredictionStats {
+    /// Classifications skipped (the next description predicted, uncharged).
+    pub skipped: u64,
+    /// Trusted transitions measured anyway (charged).
+    pub rechecks: u64,
+    /// Re-checks that found the model wrong (the transition is distrusted).
+    pub caught: u64,
+    /// Classifications skipped whose prediction was wrong (the oracle's count).
+    pub wrong: u64,
+    /// The most wrong predictions of one transition between two of its measurements
+    /// (the guarantee: at most `max_skips`).
+    pub longest_wrong_run: u32,
+}
+
+/// What the model knows of one (description, action).
+#[derive(Clone, Copy, Debug, Default)]
+struct Entry {
+    /// The last next description measured.
+    next: Option<RowId>,
+    /// Measurements in a row that gave `next`.
+    agree: u32,
+    /// Whether two measurements disagreed since the entry was last invalidated.
+    conflicted: bool,
+    /// Unmeasured uses since the last measurement.
+    unmeasured: u32,
+    /// Wrong unmeasured uses since the last measurement (the oracle's count).
+    wrong: u32,
+}
+
+/// The learned transition model at the level of descriptions: (description, action) ->
+/// next description, with the confidence rule of [`Prediction::confirmations`].
+///
+/// ```
+/// use csql::TransitionModel;
+/// use mdp::ActionId;
+/// use qlearn::RowId;
+/// let mut m = TransitionModel::new(4, 2);
+/// let (d, e) = (RowId(0), RowId(1));
+/// m.observe(d, ActionId(1), e);
+/// assert_eq!(m.trusted(d, ActionId(1)), None); // one measurement is not enough
+/// m.observe(d, ActionId(1), e);
+/// assert_eq!(m.trusted(d, ActionId(1)), Some(e));
+/// m.invalidate(e); // refining e invalidates what leads to it
+/// assert_eq!(m.trusted(d, ActionId(1)), None);
+/// ```
+#[derive(Clone, Debug)]
+pub struct TransitionModel {
+    actions: usize,
+    confirmations: u32,
+    entries: Vec<Entry>,
+}
+
+impl TransitionModel {
+    /// An empty model for `actions` actions that trusts a transition after
+    /// `confirmations` equal measurements.
+    ///
+    /// ```
+    /// let m = csql::TransitionModel::new(4, 3);
+    /// assert_eq!(m.trusted(qlearn::RowId(7), mdp::ActionId(0)), None);
+    /// ```
+    pub fn new(actions: usize, confirmations: u32) -> TransitionModel {
+        TransitionModel {
+            actions,
+            confirmations,
+            entries: Vec::new(),
+        }
+    }
+
+    fn index(&self, from: RowId, a: ActionId) -> usize {
+        from.index() * self.actions + a.index()
+    }
+
+    fn entry(&self, from: RowId, a: ActionId) -> Option<&Entry> {
+        self.entries.get(self.index(from, a))
+    }
+
+    fn entry_mut(&mut self, from: RowId, a: ActionId) -> &mut Entry {
+        let i = self.index(from, a);
+        if i >= self.entries.len() {
+            self.entries.resize(i + 1, Entry::default());
+        }
+        &mut self.entries[i]
+    }
+
+    /// The predicted next description, if the transition is trusted.
+    ///
+    /// ```
+    /// let mut m = csql::TransitionModel::new(4, 1);
+    /// let (d, a) = (qlearn::RowId(0), mdp::ActionId(0));
+    /// m.observe(d, a, qlearn::RowId(2));
+    /// assert_eq!(m.trusted(d, a), Some(qlearn::RowId(2)));
+    /// m.observe(d, a, qlearn::RowId(3)); // disagrees: distrusted for good
+    /// m.observe(d, a, qlearn::RowId(3));
+    /// assert_eq!(m.trusted(d, a), None);
+    /// ```
+    pub fn trusted(&self, from: RowId, a: ActionId) -> Option<RowId> {
+        self.entry(from, a)
+            .filter(|e| !e.conflicted && e.agree >= self.confirmations)
+            .and_then(|e| e.next)
+    }
+
+    /// Record a measured transition; returns whether it agreed with what the model held
+    /// (true for the first measurement).
+    ///
+    /// ```
+    /// let mut m = csql::TransitionModel::new(4, 2);
+    /// let (d, a) = (qlearn::RowId(0), mdp::ActionId(3));
+    /// assert!(m.observe(d, a, qlearn::RowId(1)));
+    /// assert!(!m.observe(d, a, qlearn::RowId(2)));
+    /// ```
+    pub fn observe(&mut self, from: RowId, a: ActionId, to: RowId) -> bool {
+        let e = self.entry_mut(from, a);
+        e.unmeasured = 0;
+        e.wrong = 0;
+        match e.next {
+            Some(n) if n == to => {
+                e.agree = e.agree.saturating_add(1);
+                true
+            }
+            Some(_) => {
+                e.next = Some(to);
+                e.agree = 1;
+                e.conflicted = true;
+                false
+            }
+            None => {
+                e.next = Some(to);
+                e.agree = 1;
+                true
+            }
+        }
+    }
+
+    /// Forget what a refinement of `row` may have made wrong: the transitions that leave
+    /// it and those that lead to it.
+    ///
+    /// ```
+    /// let mut m = csql::TransitionModel::new(4, 1);
+    /// let a = mdp::ActionId(0);
+    /// m.observe(qlearn::RowId(0), a, qlearn::RowId(1));
+    /// m.observe(qlearn::RowId(2), a, qlearn::RowId(3));
+    /// m.invalidate(qlearn::RowId(0));
+    /// assert_eq!(m.trusted(qlearn::RowId(0), a), None);
+    /// assert_eq!(m.trusted(qlearn::RowId(2), a), Some(qlearn::RowId(3))); // untouched
+    /// ```
+    pub fn invalidate(&mut self, row: RowId) {
+        let actions = self.actions;
+        for (i, e) in self.entries.iter_mut().enumerate() {
+            if i / actions == row.index() || e.next == Some(row) {
+                *e = Entry::default();
+            }
+        }
+    }
+
+    /// Whether every transition measured since its last invalidation gave one answer, for
+    /// the transitions of `rows` rows (the reduced map is deterministic where this holds).
+    ///
+    /// ```
+    /// let mut m = csql::TransitionModel::new(4, 1);
+    /// m.observe(qlearn::RowId(0), mdp::ActionId(0), qlearn::RowId(0));
+    /// assert_eq!(m.conflicts(), 0);
+    /// ```
+    pub fn conflicts(&self) -> usize {
+        self.entries.iter().filter(|e| e.conflicted).count()
+    }
+}
+
+/// The cells sensed in the last few moves, placed by dead reckoning.
+#[derive(Clone, Debug)]
+struct Memory {
+    /// Half the width and height of the area a trial can reach, offsets included.
+    half: (i32, i32),
+    cells: Vec<Option<(Cell, u32)>>,
+    /// The robot's position relative to where the memory was last anchored.
+    pos: (i32, i32),
+    /// Moves since the memory was anchored.
+    now: u32,
+    keep: u32,
+}
+
+impl Memory {
+    fn new(world: &GridWorld, keep: u32) -> Memory {
+        // Displacements stay within the map and offsets within its bordered size.
+        let half = (
+            2 * world.map().width() as i32 + 2,
+            2 * world.map().height() as i32 + 2,
+        );
+        let len = ((2 * half.0 + 1) * (2 * half.1 + 1)) as usize;
+        Memory {
+            half,
+            cells: vec![None; len],
+            pos: (0, 0),
+            now: 0,
+            keep,
+        }
+    }
+
+    fn clear(&mut self) {
+        self.cells.fill(None);
+        self.pos = (0, 0);
+        self.now = 0;
+    }
+
+    fn index(&self, o: Offset) -> Option<usize> {
+        let (x, y) = (self.pos.0 + o.dx, self.pos.1 + o.dy);
+        if x.abs() > self.half.0 || y.abs() > self.half.1 {
+            return None;
+        }
+        Some(((y + self.half.1) * (2 * self.half.0 + 1) + x + self.half.0) as usize)
+    }
+
+    /// The cell at offset `o` from the robot, if sensed recently enough.
+    fn known(&self, o: Offset) -> Option<Cell> {
+        let (cell, when) = self.cells[self.index(o)?]?;
+        (self.now - when <= self.keep).then_some(cell)
+    }
+
+    fn record(&mut self, o: Offset, cell: Cell) {
+        if let Some(i) = self.index(o) {
+            self.cells[i] = Some((cell, self.now));
+        }
+    }
+
+    /// Dead reckoning: the robot moved by `step` unless the cell there is an obstacle. If
+    /// it does not remember that cell it cannot tell, and starts over.
+    fn moved(&mut self, step: Offset) {
+        let ahead = self.known(step);
+        self.now += 1;
+        match ahead {
+            Some(Cell::Obstacle) => {}
+            Some(_) => self.pos = (self.pos.0 + step.dx, self.pos.1 + step.dy),
+            None => self.clear(),
+        }
+    }
+}
+
+/// CLASSIFY with a learned transition model (and, at the motion level, a memory placed
+/// by dead reckoning): the perception of a run whose `predict_sensing` is not `off`.
+/// It changes what is charged and which states are measured, never how CLASSIFY chooses
+/// its features.
+///
+/// ```
+/// use csql::{Agent, Classify, LoopParams, Predicting, Prediction, RunSettings, Setup, StrategyKind};
+/// use rand::SeedableRng;
+/// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
+/// let setup = Setup::new(&settings).unwrap();
+/// let mut agent = Agent::new(
+///     Predicting::learned(Classify::new(&setup.space), &Prediction::default()),
+///     csql::Lazy::default(),
+///     qlearn::QTable::new(4).unwrap(),
+///     LoopParams::from(&settings),
+/// );
+/// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
+/// for trial in 1..=50 {
+///     let start = setup.world.states()[trial as usize % 8];
+///     agent.run_trial(&setup.world, start, trial, &mut rng);
+/// }
+/// assert!(agent.perception.stats().skipped > 0);
+/// ```
+#[derive(Clone, Debug)]
+pub struct Predicting {
+    inner: Classify,
+    model: TransitionModel,
+    memory: Option<Memory>,
+    recheck: f64,
+    max_skips: u32,
+    stats: PredictionStats,
+}
+
+impl Predicting {
+    /// The learned level: CLASSIFY and a transition model.
+    ///
+    /// ```
+    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
+    /// let p = csql::Predicting::learned(csql::Classify::new(&space), &Default::default());
+    /// assert_eq!(p.level(), csql::PredictSensing::Learned);
+    /// ```
+    pub fn learned(classify: Classify, settings: &Prediction) -> Predicting {
+        Predicting {
+            inner: classify,
+            model: TransitionModel::new(Action::ALL.len(), settings.confirmations),
+            memory: None,
+            recheck: settings.recheck,
+            max_skips: settings.max_skips,
+            stats: PredictionStats::default(),
+        }
+    }
+
+    /// The motion level: the learned level and a memory of the cells sensed in the last
+    /// [`Prediction::memory_moves`] moves, placed by dead reckoning in `world`'s grid.
+    ///
+    /// ```
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let p = csql::Predicting::motion(csql::Classify::new(&space), &Default::default(), &world);
+    /// assert_eq!(p.level(), csql::PredictSensing::Motion);
+    /// ```
+    pub fn motion(classify: Classify, settings: &Prediction, world: &GridWorld) -> Predicting {
+        Predicting {
+            memory: Some(Memory::new(world, settings.memory_moves)),
+            ..Predicting::learned(classify, settings)
+        }
+    }
+
+    /// Which level this is.
+    ///
+    /// ```
+    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
+    /// let p = csql::Predicting::learned(csql::Classify::new(&space), &Default::default());
+    /// assert_ne!(p.level(), csql::PredictSensing::Off);
+    /// ```
+    pub fn level(&self) -> PredictSensing {
+        match self.memory {
+            None => PredictSensing::Learned,
+            Some(_) => PredictSensing::Motion,
+        }
+    }
+
+    /// What prediction has done so far.
+    ///
+    /// ```
+    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
+    /// let p = csql::Predicting::learned(csql::Classify::new(&space), &Default::default());
+    /// assert_eq!(p.stats().skipped, 0);
+    /// ```
+    pub fn stats(&self) -> PredictionStats {
+        self.stats
+    }
+
+    /// The transition model (the reduced map's edges).
+    ///
+    /// ```
+    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
+    /// let p = csql::Predicting::learned(csql::Classify::new(&space), &Default::default());
+    /// assert_eq!(p.model().conflicts(), 0);
+    /// ```
+    pub fn model(&self) -> &TransitionModel {
+        &self.model
+    }
+
+    /// CLASSIFY underneath.
+    ///
+    /// ```
+    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
+    /// let mut p = csql::Predicting::learned(csql::Classify::new(&space), &Default::default());
+    /// assert!(p.classify_mut().representation().is_empty());
+    /// ```
+    pub fn classify_mut(&mut self) -> &mut Classify {
+        &mut self.inner
+    }
+
+    /// Give up CLASSIFY.
+    ///
+    /// ```
+    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
+    /// let p = csql::Predicting::learned(csql::Classify::new(&space), &Default::default());
+    /// assert!(p.into_classify().representation().is_empty());
+    /// ```
+    pub fn into_classify(self) -> Classify {
+        self.inner
+    }
+
+    /// Change the re-check probability (navigation verifies at its own rate).
+    ///
+    /// ```
+    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
+    /// let mut p = csql::Predicting::learned(csql::Classify::new(&space), &Default::default());
+    /// p.set_recheck(1.0); // measure every move
+    /// ```
+    pub fn set_recheck(&mut self, probability: f64) {
+        self.recheck = probability;
+    }
+
+    /// Classify `s` (charged), less what the memory already holds at the motion level.
+    fn measure(&mut self, world: &GridWorld, s: StateId, table: &mut QTable) -> (RowId, f64) {
+        let (row, full) = self.inner.classify(world, s, table);
+        let Some(memory) = &mut self.memory else {
+            return (row, full);
+        };
+        let space: &FeatureSpace = self.inner.space();
+        let mut cost = 0.0;
+        for &(f, cell) in self.inner.last_measured() {
+            let o = space.offset(f);
+            match memory.known(o) {
+                Some(remembered) => {
+                    debug_assert_eq!(remembered, cell, "dead reckoning placed a cell wrongly");
+                }
+                None => cost += space.cost(f),
+            }
+            // What the robot knows here, measured or carried, is carried to the next state.
+            memory.record(o, cell);
+        }
+        (row, cost)
+    }
+}
+
+impl Perception for Predicting {
+    /// Localise: classify with no knowledge of where the robot came from (the memory is
+    /// anchored afresh).
+    fn classify(&mut self, world: &GridWorld, s: StateId, table: &mut QTable) -> (RowId, f64) {
+        if let Some(memory) = &mut self.memory {
+            memory.clear();
+        }
+        self.measure(world, s, table)
+    }
+
+    fn classify_next<R: Rng + ?Sized>(
+        &mut self,
+        world: &GridWorld,
+        from: RowId,
+        a: ActionId,
+        s: StateId,
+        table: &mut QTable,
+        rng: &mut R,
+    ) -> (RowId, f64) {
+        if let (Some(memory), Some(action)) = (&mut self.memory, Action::from_id(a)) {
+            memory.moved(action.offset());
+        }
+        let Some(predicted) = self.model.trusted(from, a) else {
+            let (row, cost) = self.measure(world, s, table);
+            self.model.observe(from, a, row);
+            return (row, cost);
+        };
+        // One draw per use of a trusted transition, re-check or not.
+        let draw: f64 = rng.random();
+        let due = self.model.entry_mut(from, a).unmeasured >= self.max_skips;
+        if due || draw < self.recheck {
+            self.stats.rechecks += 1;
+            let (row, cost) = self.measure(world, s, table);
+            if !self.model.observe(from, a, row) {
+                self.stats.caught += 1;
+            }
+            return (row, cost);
+        }
+        self.stats.skipped += 1;
+        let wrong = Perception::lookup(&mut self.inner, world, s) != Some(predicted);
+        let entry = self.model.entry_mut(from, a);
+        entry.unmeasured += 1;
+        if wrong {
+            entry.wrong += 1;
+            let run = entry.wrong;
+            self.stats.wrong += 1;
+            self.stats.longest_wrong_run = self.stats.longest_wrong_run.max(run);
+        }
+        (predicted, 0.0)
+    }
+
+    /// A refinement of `refined` changes the description of no state outside it: the
+    /// next state keeps its description unless that is the one refined.
+    fn classify_again(
+        &mut self,
+        world: &GridWorld,
+        refined: RowId,
+        current: RowId,
+        s: StateId,
+        table: &mut QTable,
+    ) -> (RowId, f64) {
+        if current == refined {
+            self.measure(world, s, table)
+        } else {
+            (current, 0.0)
+        }
+    }
+
+    fn refine(&mut self, world: &GridWorld, row: RowId, s: StateId) -> Option<f64> {
+        let cost = self.inner.refine(world, row, s)?;
+        self.model.invalidate(row);
+        Some(cost)
+    }
+
+    fn rows(&self) -> usize {
+        self.inner.rows()
+    }
+
+    fn lookup(&mut self, world: &GridWorld, s: StateId) -> Option<RowId> {
+        Perception::lookup(&mut self.inner, world, s)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_disagreement_distrusts_until_invalidated() {
+        let mut m = TransitionModel::new(4, 2);
+        let (d, a) = (RowId(3), ActionId(2));
+        for _ in 0..5 {
+            m.observe(d, a, RowId(1));
+        }
+        assert_eq!(m.trusted(d, a), Some(RowId(1)));
+        m.observe(d, a, RowId(2));
+        for _ in 0..5 {
+            m.observe(d, a, RowId(2));
+        }
+        assert_eq!(m.trusted(d, a), None);
+        assert_eq!(m.conflicts(), 1);
+        m.invalidate(RowId(2));
+        assert_eq!(m.conflicts(), 0);
+        m.observe(d, a, RowId(2));
+        m.observe(d, a, RowId(2));
+        assert_eq!(m.trusted(d, a), Some(RowId(2)));
+    }
+
+    #[test]
+    fn invalidation_touches_only_the_refined_row() {
+        let mut m = TransitionModel::new(4, 1);
+        for from in 0..5u32 {
+            for a in 0..4u32 {
+                m.observe(RowId(from), ActionId(a), RowId((from + a) % 5));
+            }
+        }
+        m.invalidate(RowId(2));
+        for from in 0..5u32 {
+            for a in 0..4u32 {
+                let to = (from + a) % 5;
+                let kept = from != 2 && to != 2;
+                assert_eq!(
+                    m.trusted(RowId(from), ActionId(a)).is_some(),
+                    kept,
+                    "{from} {a}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn dead_reckoning_moves_unless_blocked_and_forgets_when_unsure() {
+        let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+        let mut m = Memory::new(&world, 1);
+        m.record(Offset::new(1, 0), Cell::Empty);
+        m.record(Offset::new(2, 0), Cell::Obstacle);
+        m.record(Offset::new(0, 1), Cell::Obstacle);
+        m.moved(Offset::new(1, 0));
+        assert_eq!(m.known(Offset::new(1, 0)), Some(Cell::Obstacle));
+        assert_eq!(m.known(Offset::new(-1, 1)), Some(Cell::Obstacle));
+        m.moved(Offset::new(1, 0)); // blocked: stays
+        assert_eq!(m.pos, (1, 0));
+        // Sensed two moves ago: forgotten with a memory of one move.
+        assert_eq!(m.known(Offset::new(1, 0)), None);
+        m.moved(Offset::new(0, -1)); // unknown: starts over
+        assert_eq!((m.pos, m.known(Offset::new(-1, 1))), ((0, 0), None));
+    }
+
+    #[test]
+    fn settings_are_checked() {
+        for bad in [
+            Prediction {
+                verify: -0.1,
+                ..Default::default()
+            },
+            Prediction {
+                max_skips: 0,
+                ..Default::default()
+            },
+            Prediction {
+                confirmations: 0,
+                ..Default::default()
+            },
+        ] {
+            assert!(bad.validate().is_err());
+        }
+        assert_eq!(
+            "motion".parse::<PredictSensing>(),
+            Ok(PredictSensing::Motion)
+        );
+        assert!("on".parse::<PredictSensing>().is_err());
+    }
+}
