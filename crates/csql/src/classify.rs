@@ -229,16 +229,88 @@ impl Classify {
             match self.decide() {
                 Step::Found(d) => return Some(d),
                 Step::Create => return None,
-                Step::Measure(f) => {
-                    let v = self.space.measure(world, s, f);
-                    self.measured.push((f, v));
-                    RuleAttending.attend(
-                        self.rep.library(),
-                        feature_id(f),
-                        Some(value_of(v)),
-                        &mut self.attention,
-                    );
-                }
+                Step::Measure(f) => self.measure_and_attend(world, s, f),
+            }
+        }
+    }
+
+    /// Measure feature `f` on state `s` (charged) and drop the candidates it rules out.
+    fn measure_and_attend(&mut self, world: &GridWorld, s: StateId, f: Feature) {
+        let v = self.space.measure(world, s, f);
+        self.measured.push((f, v));
+        RuleAttending.attend(
+            self.rep.library(),
+            feature_id(f),
+            Some(value_of(v)),
+            &mut self.attention,
+        );
+    }
+
+    /// Whether state `s` matches description `d`, measuring (charged, in
+    /// [`Classify::last_measured`]) its features in order until one differs.
+    ///
+    /// ```
+    /// use mdp::{Cell, Feature, FeatureSpace, GridWorld, Manhattan, Pos};
+    /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let mut rep = csql::Representation::default();
+    /// let wall = rep.push(&[(Feature(0), Cell::Obstacle)]);
+    /// let mut c = csql::Classify::with_representation(&space, rep);
+    /// let below = world.state_at(Pos::new(1, 0)).unwrap();
+    /// assert!(!c.matches(&world, below, wall));
+    /// assert_eq!(c.last_measured().len(), 1);
+    /// ```
+    pub fn matches(&mut self, world: &GridWorld, s: StateId, d: DescriptionId) -> bool {
+        self.measured.clear();
+        for (f, want) in self.rep.get(d).features() {
+            let v = self.space.measure(world, s, f);
+            self.measured.push((f, v));
+            if v != want {
+                return false;
+            }
+        }
+        true
+    }
+
+    /// Which of `candidates` state `s` matches, measuring (charged, in
+    /// [`Classify::last_measured`]) only what tells them apart, by the same I^2/C rule as
+    /// CLASSIFY restricted to them; `None` if `s` matches none of them. The one candidate
+    /// left is returned without measuring the rest of its features: this trusts that `s`
+    /// matches one of them (navigation on the reduced map, see [`crate::Predicting`]).
+    ///
+    /// ```
+    /// use mdp::{Cell, Feature, FeatureSpace, GridWorld, Manhattan, Pos};
+    /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let mut rep = csql::Representation::default();
+    /// let wall = rep.push(&[(Feature(0), Cell::Obstacle), (Feature(1), Cell::Empty)]);
+    /// let open = rep.push(&[(Feature(0), Cell::Empty), (Feature(1), Cell::Empty)]);
+    /// let mut c = csql::Classify::with_representation(&space, rep);
+    /// let below = world.state_at(Pos::new(1, 0)).unwrap();
+    /// // One feature ("up") tells the two apart.
+    /// assert_eq!(c.classify_among(&world, below, &[wall, open]), Some(open));
+    /// assert_eq!(c.last_measured(), [(Feature(0), Cell::Empty)]);
+    /// ```
+    pub fn classify_among(
+        &mut self,
+        world: &GridWorld,
+        s: StateId,
+        candidates: &[DescriptionId],
+    ) -> Option<DescriptionId> {
+        self.measured.clear();
+        RuleAttending.start(self.rep.library(), &mut self.attention);
+        self.attention
+            .retain(|i| candidates.iter().any(|d| d.0 as usize == i));
+        loop {
+            let step = match *self.attention.attended() {
+                [] => return None,
+                [only] => return Some(DescriptionId(only as u32)),
+                _ => self.select_next(),
+            };
+            match step {
+                Step::Found(d) => return Some(d),
+                Step::Create => return None,
+                Step::Measure(f) => self.measure_and_attend(world, s, f),
             }
         }
     }
@@ -257,7 +329,15 @@ impl Classify {
     }
 
     /// The features measured by the last classification, in order, with their values.
-    pub(crate) fn last_measured(&self) -> &[(Feature, Cell)] {
+    ///
+    /// ```
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let mut c = csql::Classify::new(&space);
+    /// c.classify_state(&world, world.states()[0]);
+    /// assert!(c.last_measured().is_empty()); // the first description is the empty one
+    /// ```
+    pub fn last_measured(&self) -> &[(Feature, Cell)] {
         &self.measured
     }
 

@@ -71,6 +71,7 @@ use serde::{Deserialize, Serialize};
 use crate::classify::Classify;
 use crate::error::Error;
 use crate::perception::Perception;
+use crate::representation::DescriptionId;
 
 /// Which knowledge lets the agent skip measurements (the run setting `predict_sensing`).
 ///
@@ -260,10 +261,12 @@ pub struct PredictionStats {
 }
 
 /// What the model knows of one (description, action).
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Debug, Default)]
 struct Entry {
     /// The last next description measured.
     next: Option<RowId>,
+    /// Every next description measured, in the order first seen.
+    successors: Vec<RowId>,
     /// Measurements in a row that gave `next`.
     agree: u32,
     /// Whether two measurements disagreed since the entry was last invalidated.
@@ -359,6 +362,9 @@ impl TransitionModel {
         let e = self.entry_mut(from, a);
         e.unmeasured = 0;
         e.wrong = 0;
+        if !e.successors.contains(&to) {
+            e.successors.push(to);
+        }
         match e.next {
             Some(n) if n == to => {
                 e.agree = e.agree.saturating_add(1);
@@ -376,6 +382,38 @@ impl TransitionModel {
                 true
             }
         }
+    }
+
+    /// Never trust a transition again until it is invalidated (a prediction of it was
+    /// found wrong).
+    ///
+    /// ```
+    /// let mut m = csql::TransitionModel::new(4, 1);
+    /// let (d, a) = (qlearn::RowId(0), mdp::ActionId(0));
+    /// m.observe(d, a, qlearn::RowId(1));
+    /// m.distrust(d, a);
+    /// assert_eq!(m.trusted(d, a), None);
+    /// ```
+    pub fn distrust(&mut self, from: RowId, a: ActionId) {
+        let e = self.entry_mut(from, a);
+        e.conflicted = true;
+        e.unmeasured = 0;
+        e.wrong = 0;
+    }
+
+    /// Every next description measured for a transition since it was last invalidated,
+    /// in the order first seen: the edges of the reduced map.
+    ///
+    /// ```
+    /// let mut m = csql::TransitionModel::new(4, 1);
+    /// let (d, a) = (qlearn::RowId(0), mdp::ActionId(0));
+    /// m.observe(d, a, qlearn::RowId(4));
+    /// m.observe(d, a, qlearn::RowId(2));
+    /// m.observe(d, a, qlearn::RowId(4));
+    /// assert_eq!(m.successors(d, a), [qlearn::RowId(4), qlearn::RowId(2)]);
+    /// ```
+    pub fn successors(&self, from: RowId, a: ActionId) -> &[RowId] {
+        self.entry(from, a).map_or(&[], |e| &e.successors)
     }
 
     /// Forget what a refinement of `row` may have made wrong: the transitions that leave
@@ -511,7 +549,23 @@ pub struct Predicting {
     memory: Option<Memory>,
     recheck: f64,
     max_skips: u32,
+    /// Whether an untrusted transition with several known successors is resolved by
+    /// measuring only what tells them apart (navigation) rather than by CLASSIFY.
+    narrow: bool,
+    /// The state before the current one, if its description was predicted unmeasured
+    /// (a refinement of that description checks it first), and the current one.
+    previous: Option<Unmeasured>,
+    current: Option<Unmeasured>,
     stats: PredictionStats,
+}
+
+/// A state given a description without measuring it, and the transition that predicted it.
+#[derive(Clone, Copy, Debug)]
+struct Unmeasured {
+    s: StateId,
+    row: RowId,
+    from: RowId,
+    a: ActionId,
 }
 
 impl Predicting {
@@ -529,6 +583,9 @@ impl Predicting {
             memory: None,
             recheck: settings.recheck,
             max_skips: settings.max_skips,
+            narrow: false,
+            previous: None,
+            current: None,
             stats: PredictionStats::default(),
         }
     }
@@ -607,22 +664,34 @@ impl Predicting {
         self.inner
     }
 
-    /// Change the re-check probability (navigation verifies at its own rate).
+    /// Switch to navigation on the reduced map: trusted transitions are verified with
+    /// probability `verify` (and after `max_skips` unmeasured uses), and a transition
+    /// that is not deterministic but whose successors are known is resolved by
+    /// [`Classify::classify_among`] them, measuring only what tells them apart (itself
+    /// a prediction, under the same verification rule: a verification classifies in
+    /// full).
     ///
     /// ```
     /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
     /// let mut p = csql::Predicting::learned(csql::Classify::new(&space), &Default::default());
-    /// p.set_recheck(1.0); // measure every move
+    /// p.navigate_with(0.05);
     /// ```
-    pub fn set_recheck(&mut self, probability: f64) {
-        self.recheck = probability;
+    pub fn navigate_with(&mut self, verify: f64) {
+        self.recheck = verify;
+        self.narrow = true;
     }
 
     /// Classify `s` (charged), less what the memory already holds at the motion level.
     fn measure(&mut self, world: &GridWorld, s: StateId, table: &mut QTable) -> (RowId, f64) {
         let (row, full) = self.inner.classify(world, s, table);
+        (row, self.charge(full))
+    }
+
+    /// The charge of the features CLASSIFY just measured (`full` without a memory),
+    /// which the memory then holds.
+    fn charge(&mut self, full: f64) -> f64 {
         let Some(memory) = &mut self.memory else {
-            return (row, full);
+            return full;
         };
         let space: &FeatureSpace = self.inner.space();
         let mut cost = 0.0;
@@ -637,7 +706,21 @@ impl Predicting {
             // What the robot knows here, measured or carried, is carried to the next state.
             memory.record(o, cell);
         }
-        (row, cost)
+        cost
+    }
+
+    /// Count an unmeasured use of a transition, and whether the oracle finds it wrong.
+    fn unmeasured(&mut self, world: &GridWorld, from: RowId, a: ActionId, s: StateId, row: RowId) {
+        self.current = Some(Unmeasured { s, row, from, a });
+        let wrong = Perception::lookup(&mut self.inner, world, s) != Some(row);
+        let entry = self.model.entry_mut(from, a);
+        entry.unmeasured += 1;
+        if wrong {
+            entry.wrong += 1;
+            let run = entry.wrong;
+            self.stats.wrong += 1;
+            self.stats.longest_wrong_run = self.stats.longest_wrong_run.max(run);
+        }
     }
 }
 
@@ -648,6 +731,7 @@ impl Perception for Predicting {
         if let Some(memory) = &mut self.memory {
             memory.clear();
         }
+        (self.previous, self.current) = (None, None);
         self.measure(world, s, table)
     }
 
@@ -663,15 +747,45 @@ impl Perception for Predicting {
         if let (Some(memory), Some(action)) = (&mut self.memory, Action::from_id(a)) {
             memory.moved(action.offset());
         }
-        let Some(predicted) = self.model.trusted(from, a) else {
+        self.previous = self.current.take();
+        let predicted = self.model.trusted(from, a);
+        let several = self.narrow && self.model.successors(from, a).len() >= 2;
+        if predicted.is_none() && !several {
             let (row, cost) = self.measure(world, s, table);
             self.model.observe(from, a, row);
             return (row, cost);
-        };
-        // One draw per use of a trusted transition, re-check or not.
+        }
+        // One draw per use of a trusted (or, navigating, narrowed) transition.
         let draw: f64 = rng.random();
         let due = self.model.entry_mut(from, a).unmeasured >= self.max_skips;
-        if due || draw < self.recheck {
+        let verify = due || draw < self.recheck;
+        let Some(predicted) = predicted else {
+            let mut partial = 0.0;
+            if !verify {
+                let candidates: Vec<DescriptionId> = self
+                    .model
+                    .successors(from, a)
+                    .iter()
+                    .map(|&r| DescriptionId(r.0))
+                    .collect();
+                let found = self.inner.classify_among(world, s, &candidates);
+                let full: f64 = self
+                    .inner
+                    .last_measured()
+                    .iter()
+                    .map(|&(f, _)| self.inner.space().cost(f))
+                    .sum();
+                partial = self.charge(full);
+                if let Some(d) = found {
+                    self.unmeasured(world, from, a, s, d.row());
+                    return (d.row(), partial);
+                }
+            }
+            let (row, cost) = self.measure(world, s, table);
+            self.model.observe(from, a, row);
+            return (row, partial + cost);
+        };
+        if verify {
             self.stats.rechecks += 1;
             let (row, cost) = self.measure(world, s, table);
             if !self.model.observe(from, a, row) {
@@ -680,15 +794,7 @@ impl Perception for Predicting {
             return (row, cost);
         }
         self.stats.skipped += 1;
-        let wrong = Perception::lookup(&mut self.inner, world, s) != Some(predicted);
-        let entry = self.model.entry_mut(from, a);
-        entry.unmeasured += 1;
-        if wrong {
-            entry.wrong += 1;
-            let run = entry.wrong;
-            self.stats.wrong += 1;
-            self.stats.longest_wrong_run = self.stats.longest_wrong_run.max(run);
-        }
+        self.unmeasured(world, from, a, s, predicted);
         (predicted, 0.0)
     }
 
@@ -703,16 +809,40 @@ impl Perception for Predicting {
         table: &mut QTable,
     ) -> (RowId, f64) {
         if current == refined {
+            self.current = None;
             self.measure(world, s, table)
         } else {
             (current, 0.0)
         }
     }
 
+    /// Refine `row` at `s`; if `s` was given `row` by an unmeasured prediction, first
+    /// check that `s` matches it (charged). A state that does not match is a wrong
+    /// prediction caught: the transition is distrusted, nothing is refined, and the check
+    /// is the cost returned.
     fn refine(&mut self, world: &GridWorld, row: RowId, s: StateId) -> Option<f64> {
+        let mut check = 0.0;
+        if let Some(u) = self.previous.take().filter(|u| u.s == s && u.row == row) {
+            let matches = self.inner.matches(world, s, DescriptionId(row.0));
+            let full: f64 = self
+                .inner
+                .last_measured()
+                .iter()
+                .map(|&(f, _)| self.inner.space().cost(f))
+                .sum();
+            // Measured around the state left behind: the memory, placed around the
+            // current one, neither discounts nor keeps it.
+            check = full;
+            self.stats.rechecks += 1;
+            if !matches {
+                self.stats.caught += 1;
+                self.model.distrust(u.from, u.a);
+                return Some(check);
+            }
+        }
         let cost = self.inner.refine(world, row, s)?;
         self.model.invalidate(row);
-        Some(cost)
+        Some(check + cost)
     }
 
     fn rows(&self) -> usize {

@@ -266,7 +266,7 @@ fn run_classify(
         learned,
     );
     out.prediction = Some(agent.perception.stats());
-    agent.perception.set_recheck(settings.prediction.verify);
+    agent.perception.navigate_with(settings.prediction.verify);
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed ^ NAVIGATION_STREAM);
     let nav = navigate(
         &setup.world,

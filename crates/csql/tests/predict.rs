@@ -1,0 +1,164 @@
+//! `predict_sensing`: off changes nothing; the learned and motion levels converge as
+//! before, keep the bound on wrong predictions, and navigate by optimal paths.
+
+use csql::{PredictSensing, Prediction, RunReport, RunSettings, Setup, StrategyKind};
+
+fn run(
+    map: &str,
+    strategy: StrategyKind,
+    seed: u64,
+    level: PredictSensing,
+    p: Prediction,
+) -> RunReport {
+    let mut s = RunSettings::tan1991(map, strategy, seed);
+    s.predict_sensing = level;
+    s.prediction = p;
+    let setup = Setup::new(&s).unwrap();
+    csql::run_on(&setup, &s)
+}
+
+#[test]
+fn off_adds_nothing_to_the_json() {
+    let s = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
+    let report = csql::run(&s).unwrap();
+    let json = serde_json::to_string(&report).unwrap();
+    for key in [
+        "predict_sensing",
+        "\"prediction\"",
+        "navigation_cost_per_move",
+        "navigation_success",
+    ] {
+        assert!(!json.contains(key), "{key} in a default run's JSON");
+    }
+    assert_eq!(report.navigation_success, None);
+}
+
+#[test]
+fn the_levels_are_read_from_toml_and_appear_in_the_json() {
+    let mut s = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
+    s.apply_toml(
+        "predict_sensing = \"learned\"\n[prediction]\nrecheck = 0.1\nmax_skips = 4",
+        "t.toml",
+    )
+    .unwrap();
+    assert_eq!(s.predict_sensing, PredictSensing::Learned);
+    assert_eq!((s.prediction.recheck, s.prediction.max_skips), (0.1, 4));
+    assert_eq!(
+        s.prediction.confirmations,
+        Prediction::default().confirmations
+    );
+    for bad in [
+        "predict_sensing = \"always\"",
+        "[prediction]\nrechek = 0.1",
+        "[prediction]\nrecheck = 2.0",
+    ] {
+        assert!(s.clone().apply_toml(bad, "t.toml").is_err(), "{bad}");
+    }
+    let report = csql::run(&s).unwrap();
+    let json: serde_json::Value = serde_json::to_value(&report).unwrap();
+    assert_eq!(json["settings"]["predict_sensing"], "learned");
+    assert_eq!(json["navigation_success"], 1.0);
+    assert!(json["navigation_cost_per_move"].as_f64().unwrap() > 0.0);
+    assert!(json["prediction"]["skipped"].as_u64().unwrap() > 0);
+}
+
+/// The guarantee: no transition is used more than `max_skips` times in a row without a
+/// measurement, so no run of wrong predictions of one transition is longer. With a
+/// small `max_skips` wrong predictions do happen on `tan8x8`, and the bound holds.
+#[test]
+fn wrong_predictions_are_caught_within_max_skips_uses() {
+    for max_skips in [1, 3] {
+        let p = Prediction {
+            max_skips,
+            recheck: 0.0,
+            confirmations: 1,
+            ..Prediction::default()
+        };
+        let mut wrong = 0;
+        for seed in 1..=2 {
+            let r = run(
+                "tan8x8",
+                StrategyKind::Lazy,
+                seed,
+                PredictSensing::Learned,
+                p,
+            );
+            let stats = r.prediction.unwrap();
+            assert!(r.converged, "seed {seed}");
+            assert!(
+                stats.longest_wrong_run <= max_skips,
+                "{} wrong in a row with max_skips {max_skips}",
+                stats.longest_wrong_run
+            );
+            assert!(stats.caught > 0 && stats.skipped > 0);
+            wrong += stats.wrong;
+        }
+        assert!(wrong > 0, "the bound was never exercised");
+    }
+}
+
+#[test]
+fn the_learned_level_converges_to_the_same_kind_of_representation_for_less() {
+    for strategy in [StrategyKind::Random, StrategyKind::Eager] {
+        let off = run(
+            "tan8x8",
+            strategy,
+            1,
+            PredictSensing::Off,
+            Prediction::default(),
+        );
+        let on = run(
+            "tan8x8",
+            strategy,
+            1,
+            PredictSensing::Learned,
+            Prediction::default(),
+        );
+        assert!(on.converged && off.converged);
+        assert_eq!(on.table1.descriptions, off.table1.descriptions);
+        let (c_on, c_off) = (
+            on.table1.cost_to_converge.unwrap(),
+            off.table1.cost_to_converge.unwrap(),
+        );
+        assert!(c_on < 0.8 * c_off, "{strategy:?}: {c_on} against {c_off}");
+        assert_eq!(on.navigation_success, Some(1.0));
+    }
+}
+
+/// The motion prior changes what is charged and nothing else: the same draws, the same
+/// representation, the same trials; the dead reckoning is checked against the world at
+/// every remembered cell (a debug assertion in the perception).
+#[test]
+fn motion_charges_less_for_the_same_run() {
+    for memory_moves in [1, 100] {
+        let p = Prediction {
+            memory_moves,
+            ..Prediction::default()
+        };
+        let learned = run(
+            "tan8x8",
+            StrategyKind::Random,
+            2,
+            PredictSensing::Learned,
+            p,
+        );
+        let motion = run("tan8x8", StrategyKind::Random, 2, PredictSensing::Motion, p);
+        assert_eq!(
+            (
+                learned.trials,
+                learned.moves,
+                &learned.descriptions,
+                learned.prediction
+            ),
+            (
+                motion.trials,
+                motion.moves,
+                &motion.descriptions,
+                motion.prediction
+            )
+        );
+        assert!(motion.total_cost < learned.total_cost);
+        assert_eq!(motion.navigation_success, Some(1.0));
+        assert!(motion.navigation_cost_per_move <= learned.navigation_cost_per_move);
+    }
+}
