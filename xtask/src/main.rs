@@ -11,6 +11,7 @@ mod figures;
 mod files;
 mod paper;
 mod reproduce;
+mod sense;
 mod stats;
 mod sweep;
 

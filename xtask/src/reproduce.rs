@@ -174,9 +174,9 @@ pub fn compute(args: &ReproduceArgs) -> Result<Results> {
 }
 
 /// The measures of Table 1 as (row label, decimals, extractor).
-type Row = (&'static str, usize, fn(&RunReport) -> Option<f64>);
+pub(crate) type Row = (&'static str, usize, fn(&RunReport) -> Option<f64>);
 
-const ROWS: [Row; 9] = [
+pub(crate) const ROWS: [Row; 9] = [
     ("1 sensing cost to learn a representation", 0, |r| {
         r.table1.cost_to_sufficient
     }),
@@ -698,6 +698,7 @@ pub fn run(args: &ReproduceArgs) -> Result<()> {
     }
     written.push(write("runs.jsonl", &jsonl)?);
     written.extend(write_figures(&res, &args.out)?);
+    written.extend(crate::sense::write(&res, &args.out)?);
     if args.is_default() {
         // The committed copies that the README shows and `--check` compares with.
         crate::files::write_atomic(Path::new(COMMITTED), &md)?;

@@ -26,9 +26,15 @@ pub struct RunArgs {
     seed: Option<u64>,
     /// A TOML file of settings that override the paper's (beta, gamma, temperature,
     /// max_moves, random_moves, tolerance, decrease_threshold, max_trials, map,
-    /// strategy, seed); flags given here override the file.
+    /// strategy, seed, predict_sensing and the table `[prediction]`); flags given here
+    /// override the file.
     #[arg(long)]
     config: Option<PathBuf>,
+    /// off, learned or motion: predict the next description instead of sensing it
+    /// (default: the config's `predict_sensing`, else off; the `[prediction]` table of
+    /// the config tunes it).
+    #[arg(long)]
+    predict_sensing: Option<csql::PredictSensing>,
     /// Stop an unconverged run after this many trials.
     #[arg(long)]
     max_trials: Option<u32>,
@@ -65,6 +71,9 @@ impl RunArgs {
         }
         if let Some(n) = self.max_trials {
             s.max_trials = n;
+        }
+        if let Some(level) = self.predict_sensing {
+            s.predict_sensing = level;
         }
         s.validate()?;
         Ok(s)
@@ -206,7 +215,16 @@ fn print_report(r: &RunReport, out: &mut dyn Write) -> std::io::Result<()> {
             fmt_opt(t.description_cost_per_state.map(|x| format!("{x:.2}"))),
         ),
     ];
-    table(out, ("Table 1 row", "value"), &rows)
+    table(out, ("Table 1 row", "value"), &rows)?;
+    if let (Some(cost), Some(success)) = (r.navigation_cost_per_move, r.navigation_success) {
+        writeln!(
+            out,
+            "Navigation after learning ({}): sensing cost {cost:.2} per move, {:.1}% of trials by an optimal path",
+            r.settings.predict_sensing,
+            100.0 * success
+        )?;
+    }
+    Ok(())
 }
 
 /// A two-column table whose columns are as wide as their widest cell.
