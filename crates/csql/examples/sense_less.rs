@@ -62,6 +62,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let results = results.into_inner()?;
         let mut best_off = f64::INFINITY;
         println!("## {map} ({seeds} seeds)");
+        let states = setup.world.states();
+        let distance: f64 = states
+            .iter()
+            .filter_map(|&s| setup.oracle.distance(s))
+            .map(f64::from)
+            .sum::<f64>()
+            / states.len() as f64;
+        println!("mean optimal path: {distance:.2} moves");
         println!(
             "| level | strategy | converged | cost to converge | ratio to best off | skipped | wrong | longest wrong run | nav cost/move | nav success |"
         );
@@ -111,6 +119,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 );
             }
             println!("best {level}: {best:.0}, ratio {:.3}", best / best_off);
+            let tree: Vec<f64> = results[k - seeds as usize * 4..k]
+                .iter()
+                .flatten()
+                .filter_map(|r| r.table1.tree_cost_per_state)
+                .collect();
+            let tree = tree.iter().sum::<f64>() / tree.len().max(1) as f64;
+            println!(
+                "localisation alone: {tree:.2} per trial, {:.2} per move",
+                tree / distance
+            );
         }
         println!();
     }

@@ -153,7 +153,7 @@ impl std::str::FromStr for PredictSensing {
 ///
 /// ```
 /// let p = csql::Prediction::default();
-/// assert_eq!((p.confirmations, p.max_skips, p.navigation_trials, p.memory_moves), (2, 16, 10, 1));
+/// assert_eq!((p.confirmations, p.max_skips, p.navigation_trials, p.memory_moves), (3, 16, 10, 1));
 /// assert_eq!((p.recheck, p.verify), (0.05, 0.05));
 /// assert!(p.validate().is_ok());
 /// ```
@@ -161,7 +161,7 @@ impl std::str::FromStr for PredictSensing {
 #[serde(deny_unknown_fields, default)]
 pub struct Prediction {
     /// Equal measurements in a row, and none different, before a transition is trusted
-    /// (default 2).
+    /// (default 3).
     pub confirmations: u32,
     /// Probability of re-checking a trusted transition while learning (default 0.05).
     pub recheck: f64,
@@ -180,7 +180,7 @@ pub struct Prediction {
 impl Default for Prediction {
     fn default() -> Prediction {
         Prediction {
-            confirmations: 2,
+            confirmations: 3,
             recheck: 0.05,
             max_skips: 16,
             verify: 0.05,
