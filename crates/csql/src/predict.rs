@@ -63,7 +63,8 @@
 //! measuring only where the model does not trust the transition, or to verify it with
 //! probability [`Prediction::verify`] (and after `max_skips` unmeasured uses).
 
-use mdp::{Action, ActionId, Cell, FeatureSpace, GridWorld, Offset, StateId};
+use cslearn::{FeatureId, Sensor, Value};
+use mdp::{Action, ActionId, Cell, Feature, FeatureSpace, GridWorld, Offset, StateId};
 use qlearn::{QTable, RowId};
 use rand::{Rng, RngExt};
 use serde::{Deserialize, Serialize};
@@ -72,6 +73,7 @@ use crate::classify::Classify;
 use crate::error::Error;
 use crate::perception::Perception;
 use crate::representation::DescriptionId;
+use crate::tree::StateTree;
 
 /// Which knowledge lets the agent skip measurements (the run setting `predict_sensing`).
 ///
@@ -556,7 +558,55 @@ pub struct Predicting {
     /// (a refinement of that description checks it first), and the current one.
     previous: Option<Unmeasured>,
     current: Option<Unmeasured>,
+    /// Navigating: the decision tree over the final descriptions, which identifies a
+    /// state's description without measuring every feature of it.
+    tree: Option<StateTree>,
+    scratch: Vec<(Feature, Cell)>,
     stats: PredictionStats,
+}
+
+/// The charge of `measured` (`full` without a memory): what the memory holds is free,
+/// and everything measured or carried is kept for the next state.
+fn charge(
+    memory: Option<&mut Memory>,
+    space: &FeatureSpace,
+    measured: &[(Feature, Cell)],
+    full: f64,
+) -> f64 {
+    let Some(memory) = memory else {
+        return full;
+    };
+    let mut cost = 0.0;
+    for &(f, cell) in measured {
+        let o = space.offset(f);
+        match memory.known(o) {
+            Some(remembered) => {
+                debug_assert_eq!(remembered, cell, "dead reckoning placed a cell wrongly");
+            }
+            None => cost += space.cost(f),
+        }
+        memory.record(o, cell);
+    }
+    cost
+}
+
+/// A state sensed through the decision tree, keeping what was measured.
+struct Recording<'a> {
+    world: &'a GridWorld,
+    space: &'a FeatureSpace,
+    state: StateId,
+    measured: &'a mut Vec<(Feature, Cell)>,
+}
+
+impl Sensor for Recording<'_> {
+    fn measure(&mut self, feature: FeatureId) -> Option<Value> {
+        let f = Feature(feature.0);
+        (f.index() < self.space.len()).then(|| {
+            let cell = self.space.measure(self.world, self.state, f);
+            self.measured.push((f, cell));
+            Value(cell.code())
+        })
+    }
 }
 
 /// A state given a description without measuring it, and the transition that predicted it.
@@ -586,6 +636,8 @@ impl Predicting {
             narrow: false,
             previous: None,
             current: None,
+            tree: None,
+            scratch: Vec::new(),
             stats: PredictionStats::default(),
         }
     }
@@ -664,7 +716,11 @@ impl Predicting {
         self.inner
     }
 
-    /// Switch to navigation on the reduced map: trusted transitions are verified with
+    /// Switch to navigation on the reduced map. States are classified through the
+    /// decision tree over the current descriptions ([`StateTree`], the paper's Figure 5d):
+    /// after learning the descriptions are trusted to cover the world, so the tree
+    /// identifies a state's description without measuring every feature of it (CLASSIFY
+    /// measures them all). Trusted transitions are verified with
     /// probability `verify` (and after `max_skips` unmeasured uses), and a transition
     /// that is not deterministic but whose successors are known is resolved by
     /// [`Classify::classify_among`] them, measuring only what tells them apart (itself
@@ -679,10 +735,32 @@ impl Predicting {
     pub fn navigate_with(&mut self, verify: f64) {
         self.recheck = verify;
         self.narrow = true;
+        self.tree = Some(StateTree::build(
+            self.inner.representation(),
+            self.inner.space(),
+        ));
     }
 
     /// Classify `s` (charged), less what the memory already holds at the motion level.
     fn measure(&mut self, world: &GridWorld, s: StateId, table: &mut QTable) -> (RowId, f64) {
+        if let Some(tree) = &self.tree {
+            self.scratch.clear();
+            let out = tree.tree().classify(Recording {
+                world,
+                space: self.inner.space(),
+                state: s,
+                measured: &mut self.scratch,
+            });
+            if let Some(class) = out.class {
+                let cost = charge(
+                    self.memory.as_mut(),
+                    self.inner.space(),
+                    &self.scratch,
+                    out.cost.get(),
+                );
+                return (RowId(class.0), cost);
+            }
+        }
         let (row, full) = self.inner.classify(world, s, table);
         (row, self.charge(full))
     }
@@ -690,23 +768,12 @@ impl Predicting {
     /// The charge of the features CLASSIFY just measured (`full` without a memory),
     /// which the memory then holds.
     fn charge(&mut self, full: f64) -> f64 {
-        let Some(memory) = &mut self.memory else {
-            return full;
-        };
-        let space: &FeatureSpace = self.inner.space();
-        let mut cost = 0.0;
-        for &(f, cell) in self.inner.last_measured() {
-            let o = space.offset(f);
-            match memory.known(o) {
-                Some(remembered) => {
-                    debug_assert_eq!(remembered, cell, "dead reckoning placed a cell wrongly");
-                }
-                None => cost += space.cost(f),
-            }
-            // What the robot knows here, measured or carried, is carried to the next state.
-            memory.record(o, cell);
-        }
-        cost
+        charge(
+            self.memory.as_mut(),
+            self.inner.space(),
+            self.inner.last_measured(),
+            full,
+        )
     }
 
     /// Count an unmeasured use of a transition, and whether the oracle finds it wrong.
