@@ -698,7 +698,7 @@ pub fn run(args: &ReproduceArgs) -> Result<()> {
     }
     written.push(write("runs.jsonl", &jsonl)?);
     written.extend(write_figures(&res, &args.out)?);
-    written.extend(crate::sense::write(&res, &args.out)?);
+    written.extend(crate::sense::write(&res, &args.out, args.is_default())?);
     if args.is_default() {
         // The committed copies that the README shows and `--check` compares with.
         crate::files::write_atomic(Path::new(COMMITTED), &md)?;

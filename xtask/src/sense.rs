@@ -7,7 +7,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use csql::{PredictSensing, RunReport, StrategyKind};
 use rayon::prelude::*;
 
@@ -19,8 +19,9 @@ use crate::stats::Summary;
 const LEVELS: [PredictSensing; 2] = [PredictSensing::Learned, PredictSensing::Motion];
 
 /// Run every strategy of `res` at both levels (same seeds) and write the rows and the
-/// curves to `out`.
-pub fn write(res: &Results, out: &Path) -> Result<Vec<PathBuf>> {
+/// curves to `out`, and for the default reproduction also to `docs/` (committed copies;
+/// `--check` compares only `table1.md`).
+pub fn write(res: &Results, out: &Path, to_docs: bool) -> Result<Vec<PathBuf>> {
     let args = &res.args;
     let jobs: Vec<(PredictSensing, StrategyKind, u64)> = LEVELS
         .iter()
@@ -140,5 +141,15 @@ pub fn write(res: &Results, out: &Path) -> Result<Vec<PathBuf>> {
         ),
         &curves,
     )?;
-    Ok(vec![md_path, svg])
+    let mut written = vec![md_path, svg.clone()];
+    if to_docs {
+        let md_doc = PathBuf::from("docs/prediction.md");
+        crate::files::write_atomic(&md_doc, &md)?;
+        let svg_doc = PathBuf::from("docs/figures/learning_curves_prediction.svg");
+        let bytes =
+            std::fs::read(&svg).with_context(|| format!("cannot read {}", svg.display()))?;
+        crate::files::write_atomic(&svg_doc, bytes)?;
+        written.extend([md_doc, svg_doc]);
+    }
+    Ok(written)
 }
