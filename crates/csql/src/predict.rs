@@ -439,8 +439,8 @@ impl TransitionModel {
         }
     }
 
-    /// Whether every transition measured since its last invalidation gave one answer, for
-    /// the transitions of `rows` rows (the reduced map is deterministic where this holds).
+    /// How many transitions gave two different answers since they were last invalidated
+    /// (the reduced map is deterministic everywhere else).
     ///
     /// ```
     /// let mut m = csql::TransitionModel::new(4, 1);
