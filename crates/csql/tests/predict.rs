@@ -162,3 +162,44 @@ fn motion_charges_less_for_the_same_run() {
         assert!(motion.navigation_cost_per_move <= learned.navigation_cost_per_move);
     }
 }
+
+/// Navigation's narrowed classification: among candidates that hold a state's true
+/// description, the features that tell them apart find it.
+#[test]
+fn classify_among_finds_the_true_description_among_candidates() {
+    let settings = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 1);
+    let setup = Setup::new(&settings).unwrap();
+    let (report, rep) = csql::run_with_representation(&setup, &settings);
+    assert!(report.converged);
+    let mut c = csql::Classify::with_representation(&setup.space, rep.clone());
+    let ids: Vec<csql::DescriptionId> = rep.iter().map(|(id, _)| id).collect();
+    let cost = |c: &csql::Classify| -> f64 {
+        c.last_measured()
+            .iter()
+            .map(|&(f, _)| setup.space.cost(f))
+            .sum()
+    };
+    let (mut narrowed, mut full, mut calls) = (0.0, 0.0, 0.0);
+    for s in setup.world.states() {
+        let truth = c.lookup(&setup.world, s).unwrap();
+        c.classify_state(&setup.world, s);
+        let whole = cost(&c);
+        for window in ids.chunks(3) {
+            let mut candidates = window.to_vec();
+            if !candidates.contains(&truth) {
+                candidates.push(truth);
+            }
+            assert_eq!(c.classify_among(&setup.world, s, &candidates), Some(truth));
+            narrowed += cost(&c);
+            full += whole;
+            calls += 1.0;
+        }
+    }
+    // Telling three or four descriptions apart costs far less than CLASSIFY's full check.
+    assert!(
+        narrowed < 0.5 * full,
+        "{} against {} per call",
+        narrowed / calls,
+        full / calls
+    );
+}
