@@ -18,6 +18,11 @@
 //!   clockwise from straight up.
 //! * [`Oracle`]: distances to the goal, `V*` and the optimal actions, for measuring and
 //!   testing; a learner never sees it.
+//! * Beyond the paper's assumptions ([`SlipperyGrid`], [`SensorNoise`],
+//!   [`FeatureSpace::within`]): moves that slip sideways with probability [`Slip`], sensors
+//!   that misread with probability [`SensorNoise`], and a sensing range; a
+//!   [`StochasticMdp`] lists outcomes for [`Oracle::solve_stochastic`] and
+//!   [`evaluate_policy`] and samples them with an RNG passed in.
 //! * [`render_text`] and [`render_svg`]: pictures of a map with an [`Overlay`].
 //!
 //! # Example
@@ -62,6 +67,7 @@ mod random;
 mod render;
 mod sensing;
 mod spec;
+mod stochastic;
 mod tabular;
 
 pub use builtin::{builtin, builtin_names};
@@ -76,4 +82,5 @@ pub use random::RandomMap;
 pub use render::{Overlay, render_svg, render_text};
 pub use sensing::{BadCost, CostModel, Feature, FeatureSpace, Manhattan};
 pub use spec::{MAX_GOAL_MOVES, resolve};
+pub use stochastic::{SensorNoise, Slip, SlipperyGrid, StochasticMdp, evaluate_policy};
 pub use tabular::{NegativeRewards, TabularMdp};
