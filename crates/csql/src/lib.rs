@@ -104,7 +104,9 @@
     reason = "internal invariants: feature spaces hold valid costs; a node with counts has a candidate feature"
 )]
 mod classify;
+mod detector;
 mod error;
+mod extensions;
 mod figure;
 #[allow(
     clippy::expect_used,
@@ -114,6 +116,7 @@ mod judge;
 mod main_loop;
 mod observe;
 mod perception;
+mod quality;
 #[allow(
     clippy::expect_used,
     reason = "grid worlds have four actions, which a table accepts"
@@ -139,19 +142,24 @@ mod strategy;
 mod tree;
 
 pub use classify::{Classification, Classify};
+pub use detector::{AnyDrop, Detector, DetectorKind, RateParams, RateTest, RunDetector};
 pub use error::Error;
+pub use extensions::{Extensions, Matching, WorldExtras};
 pub use figure::{descriptions_svg, policy_svg};
 pub use judge::{Judge, Verdict};
 pub use main_loop::{Agent, LoopParams, TrialRecord};
 pub use observe::{Flow, KeepTrace, Observer};
 pub use perception::{Identified, Perception};
+pub use quality::{
+    MC_MAX_MOVES, MC_MAX_ROUNDS, MC_MIN_ROUNDS, QualityEstimate, QualityMethod, Sees,
+};
 pub use reference::{
     Reference, cheapest_interior_cost, fixed_representation_reference, full_sensing_reference,
     whole_world_cost,
 };
 pub use report::{
-    DescriptionReport, FeatureReport, PaperValue, RunReport, StateReport, Table1, Table1Row,
-    TracePoint,
+    DescriptionReport, FeatureReport, PaperValue, QualityReport, RunReport, StateReport, Table1,
+    Table1Row, TracePoint,
 };
 pub use representation::{Description, DescriptionId, Representation};
 pub use run::{Setup, run, run_observed, run_on, run_on_with, run_with_representation};

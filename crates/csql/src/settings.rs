@@ -7,6 +7,7 @@ use qlearn::{Discount, LearningRate, MoveCap, Temperature};
 use serde::{Deserialize, Serialize};
 
 use crate::error::Error;
+use crate::extensions::{Extensions, WorldExtras};
 use crate::strategy::StrategyKind;
 
 /// Everything a CS-QL run depends on. A run is a pure function of these settings.
@@ -46,6 +47,12 @@ pub struct RunSettings {
     pub max_trials: u32,
     /// The seed of the run's one random generator.
     pub seed: u64,
+    /// The world's departures from the paper (TOML table `[world]`; omitted when off).
+    #[serde(default, skip_serializing_if = "WorldExtras::is_default")]
+    pub world: WorldExtras,
+    /// CS-QL's remedies beyond the paper (TOML table `[extensions]`; omitted when off).
+    #[serde(default, skip_serializing_if = "Extensions::is_default")]
+    pub extensions: Extensions,
 }
 
 /// The most bytes a settings file may have (64 KiB; the longest useful one is under 1 KiB).
@@ -70,6 +77,8 @@ struct SettingsFile {
     decrease_threshold: Option<f64>,
     max_trials: Option<u32>,
     seed: Option<u64>,
+    world: Option<WorldExtras>,
+    extensions: Option<Extensions>,
 }
 
 impl RunSettings {
@@ -94,6 +103,8 @@ impl RunSettings {
             decrease_threshold: 0.0,
             max_trials: 20_000,
             seed,
+            world: WorldExtras::default(),
+            extensions: Extensions::default(),
         }
     }
 
@@ -127,7 +138,9 @@ impl RunSettings {
             tolerance,
             decrease_threshold,
             max_trials,
-            seed
+            seed,
+            world,
+            extensions
         );
         self.validate()
     }
@@ -170,6 +183,20 @@ impl RunSettings {
         self.apply_toml(&text, &source)
     }
 
+    /// Whether the run leaves the paper's setting: a world with slip, noise or a sensing
+    /// range, or an extension on. Such a run measures the policy quality (SPEC 6) and ends
+    /// by it; the paper's runs keep the paper's convergence.
+    ///
+    /// ```
+    /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
+    /// assert!(!s.beyond_paper());
+    /// s.world.slip = mdp::Slip::new(0.1).unwrap();
+    /// assert!(s.beyond_paper());
+    /// ```
+    pub fn beyond_paper(&self) -> bool {
+        !(self.world.is_default() && self.extensions.is_default())
+    }
+
     /// Check the fields that have no type of their own.
     ///
     /// ```
@@ -202,6 +229,9 @@ impl RunSettings {
         if self.max_trials == 0 {
             return bad("max_trials", "0".to_string(), "at least 1");
         }
-        Ok(())
+        if self.world.sensing_radius == Some(0) {
+            return bad("world.sensing_radius", "0".to_string(), "at least 1");
+        }
+        self.extensions.validate()
     }
 }
