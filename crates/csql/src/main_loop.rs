@@ -254,36 +254,36 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
             //    during random moves never refine anything.
             let dropped = change.after < change.before - params.decrease_threshold;
             rec.decreases += u32::from(dropped);
-            if detector.inconsistent(row_x, change, dropped) {
-                if !random_move
-                    && let Reaction::Refine {
-                        reset,
-                        random_moves,
-                    } = strategy.on_decrease()
-                {
-                    // Add the next cheapest feature x lacks, valued at the state x was
-                    // used for (charged).
-                    if let Some(cost) = perception.refine(world, row_x, x) {
-                        rec.cost += cost;
-                        rec.refinements += 1;
-                        journal.refined.push(row_x);
-                        detector.refined(row_x);
-                    }
-                    if reset {
-                        table.reset();
-                        detector.reset();
-                        rec.resets += 1;
-                        journal.reset = true;
-                    }
-                    random_left = random_moves;
-                    if !step.terminated {
-                        // The refined description may no longer match the next state.
-                        let (again, cost) = perception.classify(world, step.next, table);
-                        rec.cost += cost;
-                        row_y = Some(again);
-                    }
+            if detector.inconsistent(row_x, change, dropped)
+                && !random_move
+                && let Reaction::Refine {
+                    reset,
+                    random_moves,
+                } = strategy.on_decrease()
+            {
+                // Add the next cheapest feature x lacks, valued at the state x was
+                // used for (charged).
+                if let Some(cost) = perception.refine(world, row_x, x) {
+                    rec.cost += cost;
+                    rec.refinements += 1;
+                    journal.refined.push(row_x);
+                    detector.refined(row_x);
+                }
+                if reset {
+                    table.reset();
+                    detector.reset();
+                    rec.resets += 1;
+                    journal.reset = true;
+                }
+                random_left = random_moves;
+                if !step.terminated {
+                    // The refined description may no longer match the next state.
+                    let (again, cost) = perception.classify(world, step.next, table);
+                    rec.cost += cost;
+                    row_y = Some(again);
                 }
             }
+
             // 8./9. x <- y, and go on until the goal.
             match row_y {
                 None => {
