@@ -116,7 +116,7 @@ fn usage() -> (Duration, f64) {
 
 fn one(a: &OneArgs) -> Result<()> {
     let mut settings = RunSettings::tan1991(&a.map, a.strategy, 1);
-    settings.max_trials = a.max_trials;
+    settings.max_trials = csql::TrialCap::new(a.max_trials)?;
     let (before, _) = usage();
     let report = csql::run(&settings)?;
     let (after, peak) = usage();

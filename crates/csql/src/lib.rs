@@ -139,7 +139,7 @@ mod strategy;
 mod tree;
 
 pub use classify::{Classification, Classify};
-pub use error::Error;
+pub use error::{Error, SettingsProblem};
 pub use figure::{descriptions_svg, policy_svg};
 pub use judge::{Judge, Verdict};
 pub use main_loop::{Agent, LoopParams, TrialRecord};
@@ -155,7 +155,7 @@ pub use report::{
 };
 pub use representation::{Description, DescriptionId, Representation};
 pub use run::{Setup, run, run_observed, run_on, run_on_with, run_with_representation};
-pub use settings::{MAX_SETTINGS_BYTES, RunSettings};
+pub use settings::{MAX_SETTINGS_BYTES, MapSource, NonNegative, RunSettings, TrialCap};
 pub use strategy::{
     Eager, Lazy, Never, RandomMoves, Reaction, Resetting, Strategy, StrategyKind, UnknownStrategy,
 };

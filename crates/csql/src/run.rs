@@ -44,8 +44,7 @@ impl Setup {
     /// assert_eq!(setup.space.len(), 80);
     /// ```
     pub fn new(settings: &RunSettings) -> Result<Setup, Error> {
-        settings.validate()?;
-        let map = mdp::resolve(&settings.map)?;
+        let map = settings.map.resolve()?;
         Setup::for_map(map, settings)
     }
 
@@ -76,7 +75,7 @@ impl From<&RunSettings> for LoopParams {
             gamma: settings.gamma,
             temperature: settings.temperature,
             max_moves: settings.max_moves.get(),
-            decrease_threshold: settings.decrease_threshold,
+            decrease_threshold: settings.decrease_threshold.get(),
         }
     }
 }
@@ -114,12 +113,12 @@ pub(crate) fn learn<P: Perception, S: Strategy>(
         moves: 0,
         cost: 0.0,
     };
-    for trial in 1..=settings.max_trials {
+    for trial in 1..=settings.max_trials.get() {
         let start = starts[rng.random_range(0..starts.len())];
         let rec = agent.run_trial(&setup.world, start, trial, &mut rng);
         out.moves += rec.moves as u64;
         out.cost += rec.cost;
-        let verdict = judge.judge(&setup.world, &setup.oracle, agent, settings.tolerance);
+        let verdict = judge.judge(&setup.world, &setup.oracle, agent, settings.tolerance.get());
         if verdict.sufficient && out.first_sufficient.is_none() {
             out.first_sufficient = Some((trial, out.cost));
         }

@@ -151,7 +151,7 @@ fn the_strategies_refine_as_documented() {
 #[test]
 fn an_unconverged_run_reports_no_figure_it_did_not_reach() {
     let mut settings = RunSettings::tan1991("tan8x8", StrategyKind::Resetting, 1);
-    settings.max_trials = 3;
+    settings.max_trials = csql::TrialCap::new(3).unwrap();
     let r = csql::run(&settings).unwrap();
     assert!(!r.converged);
     assert_eq!(r.trials, 3);
