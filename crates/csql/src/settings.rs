@@ -309,7 +309,7 @@ impl RunSettings {
     ///
     /// ```
     /// let s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Resetting, 1);
-    /// assert_eq!(s.max_trials, 20_000);
+    /// assert_eq!(s.max_trials.get(), 20_000);
     /// ```
     pub fn tan1991(map: impl Into<MapSource>, strategy: StrategyKind, seed: u64) -> RunSettings {
         let q = qlearn::Params::tan1991();
