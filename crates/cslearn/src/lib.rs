@@ -139,6 +139,7 @@ mod dataset;
 mod discriminate;
 mod error;
 mod example;
+mod indexed;
 mod learner;
 mod predict;
 mod select;
@@ -155,13 +156,14 @@ pub use dataset::{Binning, Dataset, DatasetOptions};
 pub use discriminate::{CheapestFirst, Discriminate, RandomOrder};
 pub use error::Error;
 pub use example::{Example, Library};
+pub use indexed::{IndexedCsId3, IndexedId3, IndexedLearner, cs_id3_indexed, id3_indexed};
 pub use learner::{
     Classified, CsIbl, CsId3, Id3, Learner, Outcome, StreamReport, cs_ibl, cs_id3, id3,
 };
 pub use predict::{Decision, Nearest, Predict, Unanimous};
-pub use select::{InfoCost, MissingRule, Select};
+pub use select::{InfoCost, MissingRule, Select, SplitCounts};
 pub use sensing::{Ledger, Probe, Sensor};
-pub use stream::{LearnerKind, stream_dataset};
+pub use stream::{LearnerKind, Procedure, stream_dataset, stream_dataset_with};
 pub use tree::{Branch, DecisionTree, Labels, Node, NodeId, PlainLabels, TreeOptions};
 pub use types::{ClassId, Cost, CostBlind, Costs, FeatureCosts, FeatureId, Value};
 pub use update::{AppendAll, AppendErrors, Update};
