@@ -266,7 +266,7 @@ impl<D: Discriminate> IndexedLearner<D> {
     /// assert!(learner.index_nodes() > 1);
     /// ```
     pub fn index_nodes(&self) -> usize {
-        self.tree.nodes.len() - self.tree.free.len()
+        self.tree.len()
     }
 
     /// The cycle for one object, step for step the plain learner's (`learner.rs`) with
@@ -301,7 +301,7 @@ impl<D: Discriminate> IndexedLearner<D> {
         }
         // Step 4, as `AppendAll` does it: every example is kept.
         let index = library.push(probe.ledger().to_example(label));
-        pass.tree.insert(index, &library[index]);
+        pass.tree.added();
         if *recheck {
             for _ in 0..=costs.len() {
                 let paid = probe.ledger().measured().len();
@@ -313,11 +313,10 @@ impl<D: Discriminate> IndexedLearner<D> {
                 }
                 let refined = probe.ledger().to_example(label);
                 if refined != library[index] {
-                    pass.tree.remove(index, &library[index]);
+                    pass.tree.refining(index, &library[index]);
                     if let Some(example) = library.get_mut(index) {
                         *example = refined;
                     }
-                    pass.tree.insert(index, &library[index]);
                 }
                 if again == Some(label) || probe.ledger().measured().len() == paid {
                     break;
@@ -367,7 +366,7 @@ impl Pass<'_> {
             // Nothing attended and no earlier set: `Unanimous` abstains.
             return (None, None);
         }
-        let mut node = ROOT;
+        let mut node = self.tree.root(library);
         loop {
             let step = self.tree.step(node, self.select, probe, self.cost_blind);
             let feature = match step {
@@ -401,36 +400,46 @@ enum Step {
     Measure(FeatureId),
 }
 
-/// One sequence of measurements from the root: the examples it attends, their counts,
-/// and the children built so far for the feature it selects.
+/// One sequence of measurements from the root: the examples it attends (as far as it has
+/// caught up with the library), their counts, and its children.
 #[derive(Clone, Debug, Default)]
 struct Node {
     /// Library indices of the attended examples, ascending.
     members: Vec<usize>,
     counts: SplitCounts,
-    /// The feature the children measure.
-    split: Option<FeatureId>,
-    /// (measured value, child), ascending; `None` is a missing value, which drops nothing.
-    children: Vec<(Option<Value>, NodeId)>,
+    /// The examples below this library index have been looked at.
+    synced: usize,
+    /// ((measured feature, measured value), child), ascending; a `None` value is a
+    /// missing one, which drops nothing. Children of every feature ever selected here are
+    /// kept: a selection that changes back finds its subtree still there.
+    children: Vec<((FeatureId, Option<Value>), NodeId)>,
     step: Option<Step>,
 }
 
 /// The lazily built tree over the library, with the root (every example) at [`ROOT`].
+///
+/// Nodes catch up with the library when a pass visits them, not when an example is
+/// added: the root looks at the examples added since its last visit, a child at the ones
+/// its parent gained since. A subtree no longer on any object's path (its parent selects
+/// another feature now) so costs nothing until a selection leads back to it.
 #[derive(Clone, Debug)]
 struct Tree {
     nodes: Vec<Node>,
-    /// Dropped nodes, to reuse with their buffers.
-    free: Vec<NodeId>,
-    stack: Vec<NodeId>,
+    /// The nodes visited since the last example was added: the only ones that can have
+    /// counted it, and so the ones to correct when the learner refines it.
+    touched: Vec<NodeId>,
 }
 
 impl Tree {
     fn new() -> Tree {
         Tree {
             nodes: vec![Node::default()],
-            free: Vec::new(),
-            stack: Vec::new(),
+            touched: Vec::new(),
         }
+    }
+
+    fn len(&self) -> usize {
+        self.nodes.len()
     }
 
     fn members(&self, node: Option<NodeId>) -> &[usize] {
@@ -439,6 +448,41 @@ impl Tree {
 
     fn forget_decisions(&mut self) {
         self.nodes.iter_mut().for_each(|n| n.step = None);
+    }
+
+    /// A new example is in the library: no node has counted it yet.
+    fn added(&mut self) {
+        self.touched.clear();
+    }
+
+    /// Example `index`, the last one, is about to change from `example`: the nodes that
+    /// counted it forget it, and count it again, changed, when next visited.
+    fn refining(&mut self, index: usize, example: &Example) {
+        for &n in &self.touched {
+            let node = &mut self.nodes[n];
+            if node.members.last() == Some(&index) {
+                node.members.pop();
+                node.counts.remove(example);
+                node.step = None;
+            }
+            node.synced = node.synced.min(index);
+        }
+        self.touched.clear();
+    }
+
+    /// The root, caught up with the library.
+    fn root(&mut self, library: &Library) -> NodeId {
+        let root = &mut self.nodes[ROOT];
+        if root.synced < library.len() {
+            for i in root.synced..library.len() {
+                root.members.push(i);
+                root.counts.add(&library[i]);
+            }
+            root.synced = library.len();
+            root.step = None;
+        }
+        self.touched.push(ROOT);
+        ROOT
     }
 
     /// The decision at `node`, whose examples are not empty. Its candidates are the
@@ -471,8 +515,8 @@ impl Tree {
         step
     }
 
-    /// The child of `node` after measuring `feature` as `value`, built from the node's
-    /// examples if it does not exist yet.
+    /// The child of `node` (caught up with the library) after measuring `feature` as
+    /// `value`, created if new, and caught up with its parent.
     fn child(
         &mut self,
         node: NodeId,
@@ -480,106 +524,35 @@ impl Tree {
         value: Option<Value>,
         library: &Library,
     ) -> NodeId {
-        if self.nodes[node].split != Some(feature) {
-            // The selection changed since the children were built: they measure another
-            // feature and can never be reached again.
-            let old = std::mem::take(&mut self.nodes[node].children);
-            for &(_, child) in &old {
-                self.drop_subtree(child);
+        let key = (feature, value);
+        let id = match self.nodes[node]
+            .children
+            .binary_search_by_key(&key, |c| c.0)
+        {
+            Ok(k) => self.nodes[node].children[k].1,
+            Err(k) => {
+                self.nodes.push(Node::default());
+                let id = self.nodes.len() - 1;
+                self.nodes[node].children.insert(k, (key, id));
+                id
             }
-            self.nodes[node].children = old;
-            self.nodes[node].children.clear();
-            self.nodes[node].split = Some(feature);
-        }
-        let children = &self.nodes[node].children;
-        let at = match children.binary_search_by_key(&value, |c| c.0) {
-            Ok(k) => return children[k].1,
-            Err(k) => k,
         };
-        let id = self.free.pop().unwrap_or_else(|| {
-            self.nodes.push(Node::default());
-            self.nodes.len() - 1
-        });
-        let mut fresh = std::mem::take(&mut self.nodes[id]);
-        fresh.members.clear();
-        fresh.counts.clear();
-        fresh.children.clear();
-        fresh.split = None;
-        fresh.step = None;
+        let mut child = std::mem::take(&mut self.nodes[id]);
         let parent = &self.nodes[node];
-        fresh.members.extend(
-            parent
-                .members
-                .iter()
-                .copied()
-                .filter(|&i| value.is_none() || library[i].get(feature) == value),
-        );
-        for &i in &fresh.members {
-            fresh.counts.add(&library[i]);
+        let new = &parent.members[parent.members.partition_point(|&i| i < child.synced)..];
+        let before = child.members.len();
+        for &i in new {
+            if value.is_none() || library[i].get(feature) == value {
+                child.members.push(i);
+                child.counts.add(&library[i]);
+            }
         }
-        self.nodes[id] = fresh;
-        self.nodes[node].children.insert(at, (value, id));
+        if child.members.len() > before {
+            child.step = None;
+        }
+        child.synced = library.len();
+        self.nodes[id] = child;
+        self.touched.push(id);
         id
-    }
-
-    fn drop_subtree(&mut self, root: NodeId) {
-        let mut stack = vec![root];
-        while let Some(n) = stack.pop() {
-            stack.extend(self.nodes[n].children.iter().map(|&(_, c)| c));
-            let node = &mut self.nodes[n];
-            node.members.clear();
-            node.counts.clear();
-            node.children.clear();
-            node.split = None;
-            node.step = None;
-            self.free.push(n);
-        }
-    }
-
-    /// The nodes at which `example` is attended: the root, and below a node measuring
-    /// `f`, the child for the example's value of `f` and the child for a missing value.
-    fn visit(&mut self, example: &Example, mut at: impl FnMut(&mut Node)) {
-        let mut stack = std::mem::take(&mut self.stack);
-        stack.clear();
-        stack.push(ROOT);
-        while let Some(n) = stack.pop() {
-            let node = &mut self.nodes[n];
-            at(node);
-            node.step = None;
-            if let Some(f) = node.split {
-                let value = example.get(f);
-                stack.extend(
-                    node.children
-                        .iter()
-                        .filter(|&&(key, _)| key.is_none() || (value.is_some() && key == value))
-                        .map(|&(_, c)| c),
-                );
-            }
-        }
-        self.stack = stack;
-    }
-
-    /// Count the new example `index` in wherever it is attended.
-    fn insert(&mut self, index: usize, example: &Example) {
-        self.visit(example, |node| {
-            match node.members.last() {
-                Some(&last) if last > index => {
-                    let at = node.members.partition_point(|&i| i < index);
-                    node.members.insert(at, index);
-                }
-                _ => node.members.push(index),
-            }
-            node.counts.add(example);
-        });
-    }
-
-    /// Count example `index`, as `example` was when inserted, out again.
-    fn remove(&mut self, index: usize, example: &Example) {
-        self.visit(example, |node| {
-            if let Ok(at) = node.members.binary_search(&index) {
-                node.members.remove(at);
-                node.counts.remove(example);
-            }
-        });
     }
 }
