@@ -9,11 +9,14 @@
 //! a function of those measurements alone, and so is the next selection (the candidates
 //! are the features not yet measured). The index is therefore a tree, built lazily along
 //! the paths objects take: a node is such a sequence of measurements, and it keeps its
-//! attended examples and their [`SplitCounts`]. A new example is counted into every node
-//! it is attended at (one path down the tree, plus the branches of objects whose value was
-//! missing), so counts follow the library instead of being recounted. Each node remembers
-//! its decision until its counts change. When a node's selected feature changes, its
-//! children (built for the old feature) are dropped and rebuilt lazily.
+//! attended examples and their [`SplitCounts`], and remembers its decision until they
+//! change. Nodes catch up with the library when a pass visits them (the root with the
+//! examples added since its last visit, a child with those its parent gained since), so a
+//! new example costs a few binary searches per node it reaches instead of a recount. When
+//! a node's selection changes, the children built for the old feature stay, untouched and
+//! costing nothing, until a selection leads back to them. The one example that changes
+//! after it was added (the learner refines the new example during its recheck) is taken
+//! back out of the nodes visited since it was added.
 //!
 //! Selection is scored from the counts by [`InfoCost::select_from_counts`], which shares
 //! its one scoring function with [`InfoCost::select_from`]; prediction, discrimination
