@@ -250,7 +250,9 @@ impl<D: Discriminate> IndexedLearner<D> {
     /// ```
     /// use cslearn::{ClassId, FeatureCosts, Value};
     /// let mut learner = cslearn::cs_id3_indexed(FeatureCosts::from_f64(&[2.0]).unwrap());
-    /// learner.learn(&[Some(Value(0))][..], ClassId(0));
+    /// learner.learn(&[Some(Value(0))][..], ClassId(0)); // nothing to measure against yet
+    /// assert_eq!(learner.ledger().cost().get(), 0.0);
+    /// learner.learn(&[Some(Value(1))][..], ClassId(1));
     /// assert_eq!(learner.ledger().cost().get(), 2.0);
     /// ```
     pub fn ledger(&self) -> &Ledger {
