@@ -93,6 +93,16 @@ impl Attention {
         self.mismatches.resize(len, 0);
     }
 
+    /// Attend exactly `indices` (ascending), with no mismatches and no history: what
+    /// [`copy_from`](Attention::copy_from) leaves for observation attending, without a
+    /// whole attention to copy from.
+    pub(crate) fn attend_only(&mut self, indices: impl IntoIterator<Item = usize>) {
+        self.attended.clear();
+        self.attended.extend(indices);
+        self.previous.clear();
+        self.mismatches.clear();
+    }
+
     /// The attended examples, by ascending index.
     ///
     /// ```

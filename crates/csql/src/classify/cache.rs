@@ -23,7 +23,7 @@
 //! its own (as descriptions are), so the cached tree measures exactly the features the
 //! plain procedure measures (`tests/classify.rs` checks it, feature for feature).
 
-use cslearn::{Cost, Library};
+use cslearn::{Cost, FeatureId, Library};
 use mdp::{Cell, Feature};
 
 use crate::representation::DescriptionId;
@@ -304,7 +304,7 @@ impl Cache {
         }
         let node = &self.nodes[at as usize];
         let xl = &self.xlogx;
-        let mut best: Option<(f64, Cost, u32)> = None;
+        let mut best = cslearn::BestScore::new();
         for &(feature, counts) in &node.counts {
             // Each class (candidate) occurs once, so every within-class term is zero:
             // the gain on the candidates having the feature, times their share, is
@@ -317,30 +317,12 @@ impl Cache {
             }
             let having = counts.iter().sum::<u32>();
             let gain = ((xl[having as usize] - branches) / n as f64).max(0.0);
-            let cost = costs[feature as usize];
-            let score = if cost.get() > 0.0 {
-                gain * gain / cost.get()
-            } else if gain > 0.0 {
-                f64::INFINITY
-            } else {
-                0.0
-            };
-            let better = match best {
-                None => true,
-                Some((s, c, f)) => {
-                    if cslearn::same_score(score, s) {
-                        (cost, feature) < (c, f)
-                    } else {
-                        score > s
-                    }
-                }
-            };
-            if better {
-                best = Some((score, cost, feature));
-            }
+            best.offer(FeatureId(feature), gain, costs[feature as usize]);
         }
-        let (_, _, f) = best.expect("a node with counts has a candidate feature");
-        Step::Measure(Feature(f))
+        let f = best
+            .best()
+            .expect("a node with counts has a candidate feature");
+        Step::Measure(Feature(f.0))
     }
 
     /// The child of `parent` (which measures `feature`) for `code`, built from the
@@ -357,7 +339,7 @@ impl Cache {
         };
         c.cands.extend(p.cands.iter().copied().filter(|&d| {
             examples[d as usize]
-                .get(cslearn::FeatureId(feature))
+                .get(FeatureId(feature))
                 .is_none_or(|v| v.0 == code)
         }));
         self.nodes[parent as usize].children[code as usize] = child;
