@@ -56,7 +56,7 @@ pub struct LoopParams {
     pub decrease_threshold: f64,
 }
 
-/// What happened in one trial (see [`run_trial`]).
+/// What happened in one trial (see [`Agent::run_trial`]).
 ///
 /// ```
 /// let t = csql::TrialRecord::default();
