@@ -218,7 +218,12 @@ fn scale(a: &ScaleArgs) -> Result<()> {
     ))?;
     let show = |x: Option<f64>| x.map_or_else(|| "-".to_string(), |x| format!("{x:.2}"));
     for (k, t, m, c) in fits {
-        crate::emit(&format!("| {k} | {} | {} | {} |\n", show(t), show(m), show(c)))?;
+        crate::emit(&format!(
+            "| {k} | {} | {} | {} |\n",
+            show(t),
+            show(m),
+            show(c)
+        ))?;
     }
     Ok(())
 }

@@ -88,6 +88,8 @@ pub struct Classify {
     select: InfoCost,
     attention: Attention,
     measured: Vec<(Feature, Cell)>,
+    /// What the free view reads (never charged, never part of a classification).
+    probe: Vec<(Feature, Cell)>,
     cache: Cache,
     use_cache: bool,
 }
@@ -124,6 +126,7 @@ impl Classify {
             select: InfoCost::new(MissingRule::C45),
             attention: Attention::new(),
             measured: Vec::new(),
+            probe: Vec::new(),
             cache: Cache::default(),
             use_cache: true,
         }
@@ -312,13 +315,11 @@ impl Classify {
     /// The cached path: walk the decision tree of the procedure, growing it where no
     /// classification has been before.
     fn walk_cached(&mut self, world: &GridWorld, s: StateId) -> Option<DescriptionId> {
-        self.measured.clear();
-        let (space, measured) = (&self.space, &mut self.measured);
-        self.cache.walk(self.rep.library(), &self.costs, |f| {
-            let v = space.measure(world, s, f);
-            measured.push((f, v));
-            v
-        })
+        let space = &self.space;
+        self.cache
+            .walk(self.rep.library(), &self.costs, &mut self.measured, |f| {
+                space.measure(world, s, f)
+            })
     }
 
     /// The description state `s` belongs to, found without charging and without adding a
@@ -340,9 +341,10 @@ impl Classify {
     pub fn lookup(&mut self, world: &GridWorld, s: StateId) -> Option<DescriptionId> {
         let space = &self.space;
         if self.use_cache {
-            self.cache.walk(self.rep.library(), &self.costs, |f| {
-                space.measure(world, s, f)
-            })
+            self.cache
+                .walk(self.rep.library(), &self.costs, &mut self.probe, |f| {
+                    space.measure(world, s, f)
+                })
         } else {
             self.rep.matching(world, space, s)
         }

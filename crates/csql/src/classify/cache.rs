@@ -124,12 +124,14 @@ pub(super) struct Cache {
 
 impl Cache {
     /// Walk the tree for one object: `measure` reads a feature of it (and is the only
-    /// place where sensing happens). Returns the description found, or `None` when
-    /// CLASSIFY would create a new one.
+    /// place where sensing happens), and `path` receives the features measured with their
+    /// values, in order. Returns the description found, or `None` when CLASSIFY would
+    /// create a new one.
     pub(super) fn walk(
         &mut self,
         library: &Library,
         costs: &[Cost],
+        path: &mut Vec<(Feature, Cell)>,
         mut measure: impl FnMut(Feature) -> Cell,
     ) -> Option<DescriptionId> {
         if self.nodes.is_empty() {
@@ -138,7 +140,7 @@ impl Cache {
             self.nodes[0].cands.extend(0..library.len() as u32);
             self.fill_counts(0, library, &[]);
         }
-        self.path.clear();
+        path.clear();
         let mut at = 0u32;
         loop {
             if self.links[at as usize].stale {
@@ -148,11 +150,12 @@ impl Cache {
                 Step::Found(d) => return Some(d),
                 Step::Create => return None,
                 Step::Measure(f) => {
-                    let code = measure(f).code();
-                    self.path.push((f.0, code));
+                    let v = measure(f);
+                    path.push((f, v));
+                    let code = v.code();
                     let child = self.links[at as usize].children[code as usize];
                     at = if child == NONE {
-                        self.grow(at, f.0, code, library)
+                        self.grow(at, f.0, code, library, path)
                     } else {
                         child
                     };
@@ -334,8 +337,15 @@ impl Cache {
     }
 
     /// The child of `parent` (which measures `feature`) for `code`, built from the
-    /// parent's candidates; `self.path` is the child's path.
-    fn grow(&mut self, parent: u32, feature: u32, code: u32, library: &Library) -> u32 {
+    /// parent's candidates; `path` is the child's path.
+    fn grow(
+        &mut self,
+        parent: u32,
+        feature: u32,
+        code: u32,
+        library: &Library,
+        path: &[(Feature, Cell)],
+    ) -> u32 {
         let child = self.alloc();
         let examples = library.examples();
         let (p, c) = if parent < child {
@@ -351,17 +361,15 @@ impl Cache {
                 .is_none_or(|v| v.0 == code)
         }));
         self.links[parent as usize].children[code as usize] = child;
-        let path = std::mem::take(&mut self.path);
-        self.fill_counts(child, library, &path);
-        self.path = path;
+        self.fill_counts(child, library, path);
         child
     }
 
     /// Count, for a node whose candidates are set, the values of every unmeasured feature.
-    fn fill_counts(&mut self, at: u32, library: &Library, path: &[(u32, u32)]) {
+    fn fill_counts(&mut self, at: u32, library: &Library, path: &[(Feature, Cell)]) {
         let examples = library.examples();
         for &(f, _) in path {
-            self.mark(f, true);
+            self.mark(f.0, true);
         }
         let node = &self.nodes[at as usize];
         for &d in &node.cands {
@@ -388,7 +396,7 @@ impl Cache {
         }
         self.touched.clear();
         for &(f, _) in path {
-            self.mark(f, false);
+            self.mark(f.0, false);
         }
     }
 
