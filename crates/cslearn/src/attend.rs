@@ -7,7 +7,7 @@ use crate::types::{FeatureId, Value};
 /// What a feature that an example lacks means.
 ///
 /// The difference matters in attending and in building trees. Library examples are
-/// observations (SPEC 2); csql's state descriptions are rules (SPEC 4).
+/// observations (specification §2); csql's state descriptions are rules (specification §4).
 ///
 /// ```
 /// use cslearn::{ClassId, Example, FeatureId, Semantics, Value};
@@ -213,7 +213,7 @@ pub trait Attend {
     );
 }
 
-/// CS-ID3's attending (SPEC 2): an example stays only if it has the measured feature with
+/// CS-ID3's attending (specification §2): an example stays only if it has the measured feature with
 /// the same value. See [`Semantics::Observation`].
 ///
 /// ```
@@ -229,7 +229,7 @@ pub trait Attend {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ObservationAttending;
 
-/// Rule attending (SPEC 4, CS-QL's CLASSIFY): an example that lacks the measured feature
+/// Rule attending (specification §4, CS-QL's CLASSIFY): an example that lacks the measured feature
 /// means "any value" and stays. See [`Semantics::Rule`].
 ///
 /// ```

@@ -140,10 +140,11 @@
 //!
 //! # Where this differs from the paper
 //!
-//! * The paper gives CS-ID3's rules in prose. The working rules here (SPEC 2) fix what it
-//!   leaves open: which examples attend (those having the measured value), what to
-//!   predict when none or mixed remain, and which examples count as conflicting (the
-//!   attended ones of another class at the moment of prediction).
+//! * The paper gives CS-ID3's rules in prose. The working rules here (the project's
+//!   specification, `docs/specification.md` §2, which the "§" references in this crate
+//!   cite) fix what it leaves open: which examples attend (those having the measured
+//!   value), what to predict when none or mixed remain, and which examples count as
+//!   conflicting (the attended ones of another class at the moment of prediction).
 //! * CS-IBL follows the description of Tan and Schlimmer (1990) in outline only: instances
 //!   are ranked by mismatches on the measured features, a feature lacking counting as a
 //!   mismatch; the attended instances are those within a tolerance of wrong values; the

@@ -17,10 +17,10 @@ use crate::types::{ClassId, Cost, CostBlind, Costs, FeatureCosts, FeatureId, Val
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum MissingRule {
-    /// The examples lacking the feature form a branch of their own (SPEC 2, CS-ID3).
+    /// The examples lacking the feature form a branch of their own (specification §2, CS-ID3).
     OwnBranch,
     /// The gain is computed on the examples that have the feature only, then scaled by
-    /// their share of all examples (Quinlan's C4.5 rule; SPEC 4, CS-QL's CLASSIFY).
+    /// their share of all examples (Quinlan's C4.5 rule; specification §4, CS-QL's CLASSIFY).
     C45,
 }
 

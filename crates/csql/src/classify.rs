@@ -1,7 +1,7 @@
 //! CLASSIFY (the paper's Figure 3), made from cslearn's parts, with a cache that never
 //! changes what is charged.
 //!
-//! # The procedure (SPEC 4)
+//! # The procedure (`docs/specification.md`, section 4.2)
 //!
 //! 1. The candidates are all descriptions; the new description is empty.
 //! 2. If one candidate remains and every feature it has is measured, return it. If none

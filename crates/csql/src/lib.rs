@@ -42,7 +42,8 @@
 //!
 //! # Choices where the paper is silent
 //!
-//! SPEC section 4 fixes CLASSIFY, the strategies and the measures; beyond it:
+//! The project's specification (`docs/specification.md`, section 4) fixes CLASSIFY, the
+//! strategies and the measures; beyond it:
 //!
 //! * A decrease is `V_after < V_before - decrease_threshold`, threshold 0 by default (a
 //!   setting, after the paper's remark on noisy utilities).
@@ -65,7 +66,7 @@
 //! decreases; a description that is consistent in the paper's sense can still see a
 //! transient decrease (its states lead to different descriptions that have not yet
 //! learned their values). The workspace's `tests/theorems.rs` checks all three. The oracle
-//! here judges consistency as SPEC 4 says (shared `V*` and at least one shared optimal
+//! here judges consistency as the specification's section 4 says (shared `V*` and at least one shared optimal
 //! action); the literal reading (equal sets of optimal actions) is reported as
 //! [`RunReport::consistent_literal`].
 //!

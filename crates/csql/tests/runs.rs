@@ -88,7 +88,7 @@ fn tan3x3_learns_figure_5s_optimal_policy() {
     for k in StrategyKind::ALL {
         let (setup, r) = run("tan3x3", k, 1);
         assert_optimal(&setup, &r);
-        // SPEC 1: under the fixed feature order the mirror-image states split: 8, not 7.
+        // specification §1: under the fixed feature order the mirror-image states split: 8, not 7.
         assert_eq!(r.table1.descriptions, Some(8), "{k}");
     }
 }
