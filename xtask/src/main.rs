@@ -1,10 +1,12 @@
 //! `cargo xtask`: repository automation for csrl.
 //!
 //! * `cargo xtask reproduce`: the paper's Table 1 and figures beside ours.
+//! * `cargo xtask fit-map`: a layout fitted to a target Table 1 (the paper's by default).
 //! * `cargo xtask sweep` and `cargo xtask merge`: grids of settings, sharded across
 //!   machines (see `docs/sweeps.md`).
 
 mod figures;
+mod fit;
 mod paper;
 mod reproduce;
 mod stats;
@@ -25,6 +27,8 @@ struct Cli {
 enum Command {
     /// Reproduce the paper's Table 1 and Figures 4b and 5, beside the paper's numbers.
     Reproduce(reproduce::ReproduceArgs),
+    /// Search grid layouts for the best fit to a target Table 1 (the paper's by default).
+    FitMap(fit::FitArgs),
     /// Run a grid of maps and strategies, optionally one shard of it.
     Sweep(sweep::SweepArgs),
     /// Merge the outputs of sweep shards into one table.
@@ -46,6 +50,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Reproduce(args) => reproduce::run(args),
+        Command::FitMap(args) => fit::run(args),
         Command::Sweep(args) => sweep::sweep(args),
         Command::Merge(args) => sweep::merge(args),
     };
