@@ -93,7 +93,7 @@ pub struct FitArgs {
     #[arg(long, default_value_t = 4)]
     pub restarts: usize,
     /// Rounds of local moves per restart.
-    #[arg(long, default_value_t = 12)]
+    #[arg(long, default_value_t = 15)]
     pub rounds: usize,
     /// Moves proposed per restart and round.
     #[arg(long, default_value_t = 6)]
@@ -102,7 +102,7 @@ pub struct FitArgs {
     #[arg(long, default_value_t = 8)]
     pub candidates: usize,
     /// Search seeds per strategy (seeds 100, 101, ...).
-    #[arg(long, default_value_t = 4)]
+    #[arg(long, default_value_t = 8)]
     pub search_seeds: u64,
     /// Selection seeds per strategy (seeds 200, 201, ...).
     #[arg(long, default_value_t = 10)]

@@ -2,12 +2,14 @@
 //!
 //! * `cargo xtask reproduce`: the paper's Table 1 and figures beside ours.
 //! * `cargo xtask fit-map`: a layout fitted to a target Table 1 (the paper's by default).
+//! * `cargo xtask png`: figures rendered to PNG (resvg), to look at them as a reader would.
 //! * `cargo xtask sweep` and `cargo xtask merge`: grids of settings, sharded across
 //!   machines (see `docs/sweeps.md`).
 
 mod figures;
 mod fit;
 mod paper;
+mod render;
 mod reproduce;
 mod stats;
 mod sweep;
@@ -29,6 +31,15 @@ enum Command {
     Reproduce(reproduce::ReproduceArgs),
     /// Search grid layouts for the best fit to a target Table 1 (the paper's by default).
     FitMap(fit::FitArgs),
+    /// Render SVG figures to PNG (FILE.svg -> FILE.png), checking each is well formed.
+    Png {
+        /// The SVG files.
+        #[arg(required = true)]
+        files: Vec<std::path::PathBuf>,
+        /// Scale factor.
+        #[arg(long, default_value_t = 1.0)]
+        scale: f32,
+    },
     /// Run a grid of maps and strategies, optionally one shard of it.
     Sweep(sweep::SweepArgs),
     /// Merge the outputs of sweep shards into one table.
@@ -51,6 +62,7 @@ fn main() -> ExitCode {
     let result = match &cli.command {
         Command::Reproduce(args) => reproduce::run(args),
         Command::FitMap(args) => fit::run(args),
+        Command::Png { files, scale } => render::run(files, *scale),
         Command::Sweep(args) => sweep::sweep(args),
         Command::Merge(args) => sweep::merge(args),
     };

@@ -73,10 +73,11 @@ const PAPERS_MAP: &str = "tan8x8";
 const COMMITTED: &str = "docs/table1.md";
 
 /// The committed copies of figures, refreshed by `--bless`.
-const BLESSED_FIGURES: [&str; 6] = [
+const BLESSED_FIGURES: [&str; 7] = [
     "learning_curves.svg",
     "policy_tan8x8_lazy.svg",
     "descriptions_tan8x8_lazy.svg",
+    "descriptions_tan8x8_lazy.md",
     "tree_tan8x8_resetting.svg",
     "tree_tan8x8_resetting.dot",
     "figure5_tan3x3.svg",
@@ -288,7 +289,11 @@ impl Results {
     pub fn markdown(&self) -> String {
         let a = &self.args;
         let mut s = String::new();
-        let _ = writeln!(s, "# Table 1: the paper's figures and ours\n");
+        if a.on_papers_map() {
+            let _ = writeln!(s, "# Table 1: the paper's figures and ours\n");
+        } else {
+            let _ = writeln!(s, "# Table 1 on `{}`\n", a.map);
+        }
         let _ = writeln!(
             s,
             "Map `{}` ({} states), {} runs per strategy with seeds {}..={}, the paper's parameters \
@@ -300,7 +305,21 @@ impl Results {
             a.runs,
             a.seed,
             a.seed + a.runs - 1,
-            if a.is_default() { "" } else { " ..." }
+            if a.is_default() {
+                String::new()
+            } else {
+                format!(
+                    " --map {} --runs {} --seed {} --strategies {}",
+                    a.map,
+                    a.runs,
+                    a.seed,
+                    a.strategies
+                        .iter()
+                        .map(|k| k.name())
+                        .collect::<Vec<_>>()
+                        .join(",")
+                )
+            }
         );
         let converged: Vec<String> = self
             .runs
@@ -408,7 +427,8 @@ impl Results {
         let cheapest = csql::cheapest_interior_cost(&self.setup.world, &self.setup.space);
         let _ = writeln!(
             s,
-            "\nSensing every interior cell once from the cheapest state costs {cheapest:.0} (the paper: at least 256 on its 8 by 8 map)."
+            "\nSensing every interior cell once from the cheapest state costs {cheapest:.0}{}.",
+            self.paper("at least 256 on its 8 by 8 map")
         );
     }
 
@@ -675,13 +695,37 @@ fn write_figures(res: &Results, out: &Path) -> Result<Vec<PathBuf>> {
         .map(|(k, runs, _)| {
             let traces: Vec<&[csql::TracePoint]> =
                 runs.iter().map(|r| r.trace.as_slice()).collect();
-            (k.to_string(), figures::spread(&traces))
+            figures::Curve {
+                name: k.to_string(),
+                points: figures::spread(&traces),
+                sufficient: runs
+                    .iter()
+                    .filter_map(|r| {
+                        Some((
+                            f64::from(r.table1.trials_to_sufficient?),
+                            r.table1.cost_to_sufficient?,
+                        ))
+                    })
+                    .collect(),
+                converged: runs
+                    .iter()
+                    .filter_map(|r| {
+                        Some((
+                            f64::from(r.table1.trials_to_converge?),
+                            r.table1.cost_to_converge?,
+                        ))
+                    })
+                    .collect(),
+            }
         })
         .collect();
     let path = out.join("learning_curves.svg");
     figures::learning_curves(
         &path,
-        &format!("CS-QL on {name}: cumulative sensing cost (mean, band = min to max over runs)"),
+        &format!(
+            "CS-QL on {name}: cumulative sensing cost over {} runs per strategy",
+            res.args.runs
+        ),
         &curves,
     )?;
     written.push(path);
@@ -692,6 +736,9 @@ fn write_figures(res: &Results, out: &Path) -> Result<Vec<PathBuf>> {
         written.push(path);
         let path = out.join(format!("descriptions_{name}_{k}.svg"));
         std::fs::write(&path, csql::descriptions_svg(&runs[0]))?;
+        written.push(path);
+        let path = out.join(format!("descriptions_{name}_{k}.md"));
+        std::fs::write(&path, csql::descriptions_table(&runs[0]))?;
         written.push(path);
     }
     // Figure 5d: the tree over the final descriptions of the first run of the first strategy.
@@ -849,6 +896,72 @@ mod tests {
         assert_eq!(seeds, [3, 4]);
         assert!(one.markdown().contains("resetting 2/2, random 2/2"));
         assert_eq!(one.csv().lines().count(), 1 + 9 * 2);
+    }
+
+    #[test]
+    fn every_figure_renders_and_is_of_a_sane_size() {
+        let a = ReproduceArgs {
+            runs: 1,
+            seed: 1,
+            map: PAPERS_MAP.into(),
+            strategies: vec![StrategyKind::Resetting, StrategyKind::Lazy],
+            threads: Some(2),
+            out: PathBuf::from("unused"),
+            check: false,
+            bless: false,
+        };
+        let res = compute(&a).unwrap();
+        let dir = std::env::temp_dir().join(format!("csrl-figures-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let written = write_figures(&res, &dir).unwrap();
+        let svgs: Vec<&PathBuf> = written
+            .iter()
+            .filter(|p| p.extension().is_some_and(|e| e == "svg"))
+            .collect();
+        // Curves, a policy and descriptions per strategy, the tree, Figure 5.
+        assert_eq!(svgs.len(), 1 + 2 * 2 + 1 + 1, "{written:?}");
+        for p in svgs {
+            let text = std::fs::read_to_string(p).unwrap();
+            let (w, h) = crate::render::check(&text, &p.display().to_string()).unwrap();
+            assert!(w >= 200.0 && h >= 150.0, "{}: {w} by {h}", p.display());
+            let png = crate::render::png(&text, 0.25, "figure").unwrap();
+            assert!(png.starts_with(b"\x89PNG"));
+        }
+        // The DOT and the description table sit beside the pictures.
+        assert!(
+            written
+                .iter()
+                .any(|p| p.extension().is_some_and(|e| e == "dot"))
+        );
+        assert!(
+            written
+                .iter()
+                .any(|p| p.extension().is_some_and(|e| e == "md"))
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn the_figure_check_refuses_bad_documents() {
+        assert!(crate::render::check("<svg", "cut").is_err());
+        let huge = r#"<svg xmlns="http://www.w3.org/2000/svg" width="4252" height="600"></svg>"#;
+        let e = crate::render::check(huge, "huge").unwrap_err();
+        assert!(e.to_string().contains("4252 by 600"), "{e}");
+        let fine = r#"<svg xmlns="http://www.w3.org/2000/svg" width="400" height="300"><text x="10" y="20">ok</text></svg>"#;
+        assert_eq!(crate::render::check(fine, "fine").unwrap(), (400.0, 300.0));
+    }
+
+    #[test]
+    fn bless_needs_the_default_arguments_and_the_paper_is_shown_only_on_its_map() {
+        let mut a = args(1);
+        a.bless = true;
+        let e = run(&a).unwrap_err();
+        assert!(e.to_string().contains("--bless"), "{e}");
+        // tan3x3 is not the paper's map: no paper row, no paper figures in the reading.
+        let md = compute(&args(1)).unwrap().markdown();
+        assert!(!md.contains(", paper |"));
+        assert!(!md.contains("(the paper:"));
+        assert!(md.contains("not the paper's map"));
     }
 
     #[test]

@@ -37,7 +37,7 @@
 //! | [`run`], [`RunReport`], [`Table1`] | a whole run and the eight measures of Table 1 |
 //! | [`StateTree`] | the cost-sensitive decision tree over the final descriptions (row 8) |
 //! | [`full_sensing_reference`], [`fixed_representation_reference`] | the paper's two points of comparison |
-//! | [`policy_svg`], [`descriptions_svg`] | the map with the learned policy, and the descriptions as pictures (Figure 4b) |
+//! | [`policy_svg`], [`descriptions_svg`], [`descriptions_table`] | the map with the learned policy, and the descriptions as pictures (Figure 4b) |
 //!
 //! # Choices where the paper is silent
 //!
@@ -112,7 +112,7 @@ mod tree;
 pub use check::Verdict;
 pub use classify::{Classification, Classify};
 pub use error::Error;
-pub use figure::{descriptions_svg, policy_svg};
+pub use figure::{descriptions_svg, descriptions_table, policy_svg};
 pub use learner::{Identified, LoopParams, Never, Perception, TrialRecord, run_trial};
 pub use reference::{
     Reference, cheapest_interior_cost, fixed_representation_reference, full_sensing_reference,

@@ -687,6 +687,7 @@ fn line_col(bytes: &[u8], offset: usize) -> (usize, usize) {
 const BUILTINS: &[(&str, &str)] = &[
     ("tan3x3", include_str!("../maps/tan3x3.toml")),
     ("tan8x8", include_str!("../maps/tan8x8.toml")),
+    ("tan8x8-maze", include_str!("../maps/tan8x8-maze.toml")),
     ("dyna9x6", include_str!("../maps/dyna9x6.toml")),
     ("open8x8", include_str!("../maps/open8x8.toml")),
     ("corridors9x5", include_str!("../maps/corridors9x5.toml")),
@@ -786,7 +787,7 @@ impl Map {
     /// ```
     /// let map = mdp::builtin("tan3x3").unwrap().with_goal(mdp::Pos::new(2, 2), "moved").unwrap();
     /// assert_eq!((map.goal(), map.name()), (mdp::Pos::new(2, 2), "moved"));
-    /// assert!(mdp::builtin("tan8x8").unwrap().with_goal(mdp::Pos::new(0, 5), "x").is_err());
+    /// assert!(mdp::builtin("tan8x8-maze").unwrap().with_goal(mdp::Pos::new(0, 5), "x").is_err());
     /// ```
     pub fn with_goal(&self, to: Pos, name: &str) -> Result<Map, MapError> {
         if to.row >= self.height || to.col >= self.width || !self.cell(to).is_free() {
