@@ -179,7 +179,7 @@ fn escape(s: &str) -> String {
 pub fn tree_svg(tree: &DecisionTree, space: &FeatureSpace, title: &str) -> String {
     const COL: f64 = 118.0;
     const ROW: f64 = 22.0;
-    const TOP: f64 = 76.0;
+    const TOP: f64 = 96.0;
     const LEFT: f64 = 16.0;
     fn drawn(tree: &DecisionTree, id: NodeId) -> bool {
         !matches!(tree.node(id), Node::Leaf { class: None, .. })
@@ -220,7 +220,7 @@ pub fn tree_svg(tree: &DecisionTree, space: &FeatureSpace, title: &str) -> Strin
         (LEFT + 40.0 + p.2 as f64 * COL, TOP + 12.0 + p.1 * ROW)
     };
     let depth = pos.iter().map(|p| p.2).max().unwrap_or(0);
-    let width = (LEFT + 100.0 + depth as f64 * COL).max(560.0);
+    let width = (LEFT + 100.0 + depth as f64 * COL).max(480.0);
     let height = TOP + 24.0 + next.max(1.0) * ROW;
     let mut s = format!(
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{height:.0}" viewBox="0 0 {width:.0} {height:.0}" font-family="sans-serif"><rect width="100%" height="100%" fill="white"/>"#
@@ -232,12 +232,11 @@ pub fn tree_svg(tree: &DecisionTree, space: &FeatureSpace, title: &str) -> Strin
     s.push_str(&format!(
         "<rect x=\"{LEFT}\" y=\"34\" width=\"58\" height=\"16\" fill=\"#eeeeee\" stroke=\"black\"/><text x=\"{:.0}\" y=\"46\" font-size=\"11\" text-anchor=\"middle\">(dx, dy)</text><text x=\"{:.0}\" y=\"46\" font-size=\"12\">sense the cell dx right, dy up from the robot</text>\
          <rect x=\"{LEFT}\" y=\"54\" width=\"30\" height=\"16\" rx=\"8\" fill=\"white\" stroke=\"black\"/><text x=\"{:.0}\" y=\"66\" font-size=\"11\" text-anchor=\"middle\">d7</text><text x=\"{:.0}\" y=\"66\" font-size=\"12\">description 7</text>\
-         <text x=\"{:.0}\" y=\"66\" font-size=\"12\">edges: E empty, O obstacle, G goal, * any other value, ? not measured</text>",
+         <text x=\"{LEFT}\" y=\"86\" font-size=\"12\">edges: E empty, O obstacle, G goal, * any other value, ? not measured</text>",
         LEFT + 29.0,
         LEFT + 66.0,
         LEFT + 15.0,
         LEFT + 38.0,
-        LEFT + 150.0
     ));
     for &(id, _, _) in &pos {
         let (x, y) = at(id);

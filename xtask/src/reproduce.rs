@@ -337,6 +337,12 @@ impl Results {
             "Runs converged to an optimal policy: {}.\n",
             converged.join(", ")
         );
+        if let Some(fit) = self.fit_score() {
+            let _ = writeln!(
+                s,
+                "Fit to the paper's Table 1 (SPEC 6: root mean square of ln(ours / paper's) over rows 1 to 4, 6 and 7 of the four strategies): {fit:.3} on these seeds.\n"
+            );
+        }
         let _ = write!(s, "| row |");
         for (k, _, _) in &self.runs {
             let _ = write!(s, " {k} |");
@@ -432,11 +438,34 @@ impl Results {
         );
     }
 
+    /// SPEC 6's fit score of the means, on the paper's map with all four strategies.
+    fn fit_score(&self) -> Option<f64> {
+        if !self.args.on_papers_map() {
+            return None;
+        }
+        let mut means = [[0.0; 4]; 6];
+        for (i, row) in crate::fit::FIT_ROWS.iter().enumerate() {
+            for (j, k) in StrategyKind::ALL.iter().enumerate() {
+                means[i][j] = self.mean(*k, row - 1)?;
+            }
+        }
+        Some(crate::fit::score(&means, &crate::fit::Target::paper()))
+    }
+
     /// ` (the paper: TEXT)` on the paper's map; nothing elsewhere, where the paper's
     /// figures belong to another world.
     fn paper(&self, text: &str) -> String {
         if self.args.on_papers_map() {
             format!(" (the paper: {text})")
+        } else {
+            String::new()
+        }
+    }
+
+    /// `; the paper: TEXT` on the paper's map, for inside parentheses; nothing elsewhere.
+    fn paper_in(&self, text: &str) -> String {
+        if self.args.on_papers_map() {
+            format!("; the paper: {text}")
         } else {
             String::new()
         }
@@ -473,11 +502,11 @@ impl Results {
             if let (Some(r), Some(l), Some(x)) = (r, l, x) {
                 let _ = writeln!(
                     s,
-                    "* Lazy and random cost far less than resetting before convergence: {} (resetting {r:.0}, {:.1} times lazy's {l:.0} and {:.1} times random's {x:.0}){}.",
+                    "* Lazy and random cost far less than resetting before convergence: {} (resetting {r:.0}, {:.1} times lazy's {l:.0} and {:.1} times random's {x:.0}{}).",
                     verdict(r > 2.0 * l && r > 2.0 * x),
                     r / l,
                     r / x,
-                    self.paper("7.2 and 8.3 times")
+                    self.paper_in("7.2 and 8.3 times")
                 );
             }
         }
@@ -503,9 +532,9 @@ impl Results {
             if have(Resetting) {
                 let _ = writeln!(
                     s,
-                    "* Resetting yields the most compact descriptions: {} (mean features per description: {list}){}.",
+                    "* Resetting yields the most compact descriptions: {} (mean features per description: {list}{}).",
                     verdict(min.0 == Resetting),
-                    self.paper("6.4, 6.9, 7.5, 10.2")
+                    self.paper_in("6.4, 6.9, 7.5, 10.2")
                 );
             }
             if have(Eager) {
