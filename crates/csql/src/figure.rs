@@ -104,7 +104,7 @@ pub fn policy_svg(setup: &Setup, report: &RunReport) -> String {
                     .expect("reports name grid actions");
                 // The arrow lives below the label band: centre of the lower part.
                 let (cx, cy) = (x + CELL / 2.0, y + BAND + (CELL - BAND) / 2.0);
-                s.push_str(&arrow(cx, cy, a, (CELL - BAND) * 0.36));
+                s.push_str(&arrow(cx, cy, a, (CELL - BAND) * 0.36, "arrow"));
             }
         }
     }
@@ -116,7 +116,7 @@ pub fn policy_svg(setup: &Setup, report: &RunReport) -> String {
         r#"<text x="{lx:.1}" y="{ly:.1}" font-size="14" font-weight="bold">Legend</text>"#
     );
     ly += 26.0;
-    s.push_str(&arrow(lx + 14.0, ly - 5.0, Action::Right, 12.0));
+    s.push_str(&arrow(lx + 14.0, ly - 5.0, Action::Right, 12.0, "legend"));
     let _ = write!(
         s,
         r#"<text x="{:.1}" y="{ly:.1}" font-size="13">greedy action</text>"#,
@@ -153,8 +153,9 @@ pub fn policy_svg(setup: &Setup, report: &RunReport) -> String {
     s
 }
 
-/// An arrow centred on `(cx, cy)` pointing along `a`, `half` long each side.
-fn arrow(cx: f64, cy: f64, a: Action, half: f64) -> String {
+/// An arrow centred on `(cx, cy)` pointing along `a`, `half` long each side, in a group
+/// of the given class.
+fn arrow(cx: f64, cy: f64, a: Action, half: f64, class: &str) -> String {
     let (dx, dy) = match a {
         Action::Up => (0.0, -1.0),
         Action::Down => (0.0, 1.0),
@@ -168,7 +169,7 @@ fn arrow(cx: f64, cy: f64, a: Action, half: f64) -> String {
     let (bx, by) = (x2 - dx * head, y2 - dy * head);
     let (px, py) = (-dy * head * 0.6, dx * head * 0.6);
     format!(
-        "<g class=\"arrow\"><line x1=\"{x1:.1}\" y1=\"{y1:.1}\" x2=\"{bx:.1}\" y2=\"{by:.1}\" stroke=\"black\" stroke-width=\"3\"/><polygon points=\"{x2:.1},{y2:.1} {:.1},{:.1} {:.1},{:.1}\" fill=\"black\"/></g>",
+        "<g class=\"{class}\"><line x1=\"{x1:.1}\" y1=\"{y1:.1}\" x2=\"{bx:.1}\" y2=\"{by:.1}\" stroke=\"black\" stroke-width=\"3\"/><polygon points=\"{x2:.1},{y2:.1} {:.1},{:.1} {:.1},{:.1}\" fill=\"black\"/></g>",
         bx + px,
         by + py,
         bx - px,
@@ -203,7 +204,8 @@ fn features_text(report: &RunReport, label: u32) -> String {
 /// use csql::{RunSettings, StrategyKind};
 /// let report = csql::run(&RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1)).unwrap();
 /// let table = csql::descriptions_table(&report);
-/// assert_eq!(table.lines().filter(|l| l.starts_with("| d")).count(), report.descriptions.len());
+/// let rows = table.lines().filter(|l| l.starts_with("| d") && !l.starts_with("| description"));
+/// assert_eq!(rows.count(), report.descriptions.len());
 /// ```
 pub fn descriptions_table(report: &RunReport) -> String {
     use std::fmt::Write as _;

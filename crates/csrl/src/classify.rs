@@ -211,15 +211,15 @@ fn held_out(args: &ClassifyArgs, data: &Dataset) -> Result<Option<(String, HeldO
             );
             (0..k)
                 .map(|j| {
-                    let (test, train): (Vec<(usize, usize)>, Vec<(usize, usize)>) = order
-                        .iter()
-                        .copied()
-                        .enumerate()
-                        .partition(|(p, _)| p % k == j);
-                    (
-                        train.into_iter().map(|x| x.1).collect(),
-                        test.into_iter().map(|x| x.1).collect(),
-                    )
+                    let part = |in_test: bool| -> Vec<usize> {
+                        order
+                            .iter()
+                            .enumerate()
+                            .filter(|(p, _)| (p % k == j) == in_test)
+                            .map(|(_, &i)| i)
+                            .collect()
+                    };
+                    (part(false), part(true))
                 })
                 .collect()
         }
@@ -334,4 +334,90 @@ pub fn run(args: &ClassifyArgs, out: &mut dyn Write) -> Result<()> {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use cslearn::{
+        Branch, ClassId, DecisionTree, FeatureCosts, Node, NodeId, Sensor as _, TreeOptions, Value,
+    };
+    use rand::{RngExt, SeedableRng};
+    use rand_xoshiro::Xoshiro256PlusPlus;
+
+    /// The leaf an object reaches in `tree`, and whether the last edge was "any other
+    /// value" (an edge no library example took).
+    fn walk(tree: &DecisionTree, object: &[Option<Value>]) -> (NodeId, bool) {
+        let mut at = tree.root();
+        let mut via_other = false;
+        let mut sensor = object;
+        loop {
+            match tree.node(at) {
+                Node::Leaf { .. } => return (at, via_other),
+                node @ Node::Split { feature, .. } => {
+                    let v = sensor.measure(*feature);
+                    let next = node.children().find(|(b, _)| match (b, v) {
+                        (Branch::Value(x), Some(y)) => *x == y,
+                        (Branch::Missing, None) => true,
+                        _ => false,
+                    });
+                    (at, via_other) = match next {
+                        Some((_, id)) => (id, false),
+                        None => (
+                            node.children()
+                                .find(|(b, _)| *b == Branch::Other)
+                                .expect("every split has an other branch")
+                                .1,
+                            true,
+                        ),
+                    };
+                }
+            }
+        }
+    }
+
+    /// The toy case of the docs: small data sets streamed twice through CS-ID3, then a
+    /// tree grown from its library. Some training object is misclassified through an
+    /// "any other value" branch that holds no example, because the library keeps only the
+    /// features measured for each example; and CS-ID3's own prediction does not depend
+    /// on that tree.
+    #[test]
+    fn a_tree_from_cs_id3s_library_can_misclassify_a_training_object() {
+        let mut found = 0;
+        for seed in 0..300_u64 {
+            let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+            let rows: Vec<(Vec<Option<Value>>, ClassId)> = (0..11)
+                .map(|_| {
+                    let o: Vec<Option<Value>> = (0..3)
+                        .map(|_| Some(Value(rng.random_range(0..3))))
+                        .collect();
+                    let class =
+                        ClassId(u32::from(o[0] == Some(Value(0)) || o[2] == Some(Value(2))));
+                    (o, class)
+                })
+                .collect();
+            let costs = FeatureCosts::from_f64(&[1.0, 2.0, 3.0]).unwrap();
+            let mut learner = cslearn::cs_id3(costs.clone());
+            for _ in 0..2 {
+                for (o, c) in &rows {
+                    learner.learn(&o[..], *c);
+                }
+            }
+            let tree = DecisionTree::build(learner.library(), &costs, TreeOptions::observations());
+            for (o, c) in &rows {
+                let (leaf, via_other) = walk(&tree, o);
+                let Node::Leaf { class, examples } = tree.node(leaf) else {
+                    unreachable!("walks end at leaves")
+                };
+                assert_eq!(tree.classify(&o[..]).class, *class);
+                if *class != Some(*c) && via_other {
+                    assert_eq!(*examples, 0, "an other branch holds no example");
+                    found += 1;
+                }
+            }
+        }
+        assert!(
+            found > 0,
+            "the toy case should occur in some of these data sets"
+        );
+    }
 }
