@@ -234,9 +234,10 @@ pub fn descriptions_table(report: &RunReport) -> String {
 }
 
 /// Every description of a run drawn as a small picture of what it senses around the
-/// robot (the paper's Figure 4b shows such examples): the robot's cell is marked, each
-/// sensed cell is coloured by the value the description requires (white empty, dark
-/// obstacle, yellow goal) and cells it does not sense are left blank.
+/// robot (the paper's Figure 4b shows such examples): the robot's cell is marked with a
+/// black dot, each sensed cell is shaded by the value the description requires (white
+/// empty, dark grey obstacle, light grey goal) and cells it does not sense are left blank.
+/// Greys only, so it prints in grey.
 ///
 /// ```
 /// use csql::{RunSettings, StrategyKind};
@@ -246,7 +247,7 @@ pub fn descriptions_table(report: &RunReport) -> String {
 /// ```
 pub fn descriptions_svg(report: &RunReport) -> String {
     use std::fmt::Write as _;
-    const CELL: i32 = 9;
+    const CELL: i32 = 11;
     const COLUMNS: usize = 10;
     let reach = report
         .descriptions
@@ -266,7 +267,7 @@ pub fn descriptions_svg(report: &RunReport) -> String {
     );
     let _ = write!(
         s,
-        r#"<text x="8" y="20" font-size="14">{}: the {} descriptions of the {} strategy, seed {}</text><text x="8" y="36" font-size="11">dN: K = description N, with K features; blue: the robot; white, dark, yellow: empty, obstacle, goal; blank: not sensed</text>"#,
+        r#"<text x="8" y="20" font-size="14">{}: the {} descriptions of the {} strategy, seed {}</text><text x="8" y="36" font-size="11">dN: K = description N, with K features; black dot: the robot; white: empty; dark grey: obstacle; light grey: goal; blank: not sensed</text>"#,
         report.map,
         report.descriptions.len(),
         report.strategy,
@@ -279,7 +280,7 @@ pub fn descriptions_svg(report: &RunReport) -> String {
         );
         let _ = write!(
             s,
-            r#"<g transform="translate({x0},{y0})"><text x="{}" y="10" font-size="10" text-anchor="middle">d{}: {}</text>"#,
+            r#"<g transform="translate({x0},{y0})"><text x="{}" y="10" font-size="11" text-anchor="middle">d{}: {}</text>"#,
             side / 2,
             d.label,
             d.features.len()
@@ -293,7 +294,7 @@ pub fn descriptions_svg(report: &RunReport) -> String {
             let (x, y) = cell_at(f.dx, f.dy);
             let fill = match f.value {
                 "obstacle" => "#555555",
-                "goal" => "#ffcc33",
+                "goal" => "#bbbbbb",
                 _ => "#ffffff",
             };
             let _ = write!(
@@ -305,7 +306,10 @@ pub fn descriptions_svg(report: &RunReport) -> String {
         let (x, y) = cell_at(0, 0);
         let _ = write!(
             s,
-            "<rect x=\"{x}\" y=\"{y}\" width=\"{CELL}\" height=\"{CELL}\" fill=\"#1f5fbf\"/></g>"
+            "<rect x=\"{x}\" y=\"{y}\" width=\"{CELL}\" height=\"{CELL}\" fill=\"white\" stroke=\"#888\" stroke-width=\"0.6\"/><circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"{:.1}\" fill=\"black\"/></g>",
+            f64::from(x) + f64::from(CELL) / 2.0,
+            f64::from(y) + f64::from(CELL) / 2.0,
+            f64::from(CELL) * 0.32
         );
     }
     s.push_str("</svg>\n");
