@@ -38,7 +38,7 @@
 //! | [`run`], [`RunReport`], [`Table1`] | a whole run and the eight measures of Table 1 |
 //! | [`StateTree`] | the cost-sensitive decision tree over the final descriptions (row 8) |
 //! | [`full_sensing_reference`], [`fixed_representation_reference`] | the paper's two points of comparison |
-//! | [`policy_svg`], [`descriptions_svg`] | the map with the learned policy, and the descriptions as pictures (Figure 4b) |
+//! | [`policy_svg`], [`descriptions_svg`], [`descriptions_table`] | the map with the learned policy, and the descriptions as pictures (Figure 4b) |
 //!
 //! # Choices where the paper is silent
 //!
@@ -73,28 +73,33 @@
 //! # Measured
 //!
 //! `cargo xtask reproduce` (means over seeds 1 to 5, every run converged to an optimal
-//! policy; `tan8x8` is our reconstruction of the paper's map; `docs/table1.md` has the
-//! spread and the paper's figures beside ours):
+//! policy; `tan8x8` is our reconstruction of the paper's map, the layout fitted to the
+//! paper's Table 1 by `cargo xtask fit-map`; `docs/table1.md` has the spread and the
+//! paper's figures beside ours):
 //!
 //! | strategy | 1 cost to sufficient | 2 trials | 3 cost to converge | 4 trials | 5 descriptions | 6 mean features | 7 max features | 8 tree cost/state | 8' description cost/state |
 //! |---|---|---|---|---|---|---|---|---|---|
-//! | resetting | 781185 | 1409.6 | 868445 | 1540.0 | 50 | 7.68 | 20.0 | 8.34 | 11.95 |
-//! | lazy | 103272 | 167.8 | 123597 | 193.2 | 50 | 8.36 | 20.0 | 8.23 | 13.30 |
-//! | random | 68540 | 92.0 | 99743 | 126.0 | 50 | 8.97 | 20.0 | 8.20 | 14.54 |
-//! | eager | 68362 | 61.6 | 124741 | 108.4 | 50 | 11.19 | 20.4 | 7.98 | 19.69 |
+//! | resetting | 411210 | 851.4 | 470212 | 961.6 | 50 | 6.93 | 10.0 | 8.28 | 9.87 |
+//! | lazy | 61888 | 111.8 | 92995 | 154.4 | 49.6 | 7.59 | 11.6 | 8.14 | 11.16 |
+//! | random | 48908 | 73.4 | 69931 | 100.2 | 50 | 8.08 | 13.6 | 8.11 | 12.20 |
+//! | eager | 36447 | 45.0 | 70627 | 80.2 | 50 | 9.76 | 16.2 | 8.03 | 15.89 |
 //!
-//! The paper's shape holds: resetting spends seven to nine times the sensing of lazy and
+//! The paper's shape holds: resetting spends five to seven times the sensing of lazy and
 //! random before convergence and yields the fewest features per description; eager
-//! yields the most. Our maximum of about 20 features is twice the paper's: on this
-//! layout a few pairs of states look alike up to distance 4. On `tan3x3` every strategy
+//! yields the most. Two lazy runs end with 49 descriptions: two states with the same
+//! utility and a shared best action keep one description. On the hand-made maze
+//! `tan8x8-maze` the maximum is about 20 features in every run, twice the paper's: there a
+//! few pairs of states look alike up to distance 4, which shows how much row 7 depends on
+//! the layout. On `tan3x3` every strategy
 //! learns Figure 5's optimal policy with 8 descriptions, not the paper's 7: under the
 //! fixed feature order the two mirror-image states at distance 3 differ on a cost-1
-//! feature that every refinement reaches first.
+//! feature that every refinement reaches first (the example `tan3x3_orders` tries every
+//! goal placement, which covers every tie order of the features).
 //!
 //! # Speed
 //!
-//! `cargo bench -p csql`: on a 2-core machine a whole resetting run on `tan8x8` (about
-//! 96000 moves) takes about 46 ms, and classifying all 50 states with the cache is about
+//! `cargo bench -p csql`, measured when `tan8x8` was the hand-made maze (now
+//! `tan8x8-maze`): on a 2-core machine a whole resetting run (about 96000 moves) takes about 46 ms, and classifying all 50 states with the cache is about
 //! 360 times faster than the plain procedure (6.9 us against 2.5 ms).
 
 #![deny(missing_docs)]
@@ -141,7 +146,7 @@ mod tree;
 
 pub use classify::{Classification, Classify};
 pub use error::{Error, SettingsProblem};
-pub use figure::{descriptions_svg, policy_svg};
+pub use figure::{descriptions_svg, descriptions_table, policy_svg};
 pub use judge::{Judge, Verdict};
 pub use main_loop::{Agent, LoopParams, TrialRecord};
 pub use observe::{Flow, KeepTrace, Observer};

@@ -173,7 +173,7 @@ fn svg_shows_the_policy() {
     assert!(out.status.success());
     let svg = std::fs::read_to_string(&path).unwrap();
     assert!(svg.starts_with("<svg"));
-    assert_eq!(svg.matches("<line").count(), 8);
+    assert_eq!(svg.matches("class=\"arrow\"").count(), 8); // one per state
     assert!(svg.contains("<title>"));
 }
 
