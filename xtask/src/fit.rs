@@ -1,5 +1,5 @@
 //! `cargo xtask fit-map`: search grid layouts for the one whose Table 1 is closest to a
-//! target table (the paper's by default), by the fit score of SPEC section 6.
+//! target table (the paper's by default), by the fit score of section 6.1 of the project's specification (`docs/specification.md`).
 //!
 //! # The score
 //!
@@ -461,7 +461,7 @@ impl Cache {
     }
 }
 
-/// SPEC 6's fit score of a table of means against a target.
+/// The fit score (`docs/specification.md`, section 6.1) of a table of means against a target.
 ///
 /// ```text
 /// score = sqrt(mean over the 24 cells of ln(ours / target)^2)

@@ -339,7 +339,7 @@ impl Results {
         if let Some(fit) = self.fit_score() {
             let _ = writeln!(
                 s,
-                "Fit to the paper's Table 1 (SPEC 6: root mean square of ln(ours / paper's) over rows 1 to 4, 6 and 7 of the four strategies): {fit:.3} on these seeds.\n"
+                "Fit to the paper's Table 1 (the specification's section 6.1: root mean square of ln(ours / paper's) over rows 1 to 4, 6 and 7 of the four strategies): {fit:.3} on these seeds.\n"
             );
         }
         let _ = write!(s, "| row |");
@@ -437,7 +437,7 @@ impl Results {
         );
     }
 
-    /// SPEC 6's fit score of the means, on the paper's map with all four strategies.
+    /// The fit score (`docs/specification.md`, section 6.1) of the means, on the paper's map with all four strategies.
     fn fit_score(&self) -> Option<f64> {
         if !self.args.on_papers_map() {
             return None;

@@ -15,7 +15,7 @@
 //! # A tree from CS-ID3's library can misclassify a training object
 //!
 //! CS-ID3's library holds observations: an example records only the features measured
-//! for it (SPEC 2). A tree grown from such a library follows a feature's value when an
+//! for it (specification §2). A tree grown from such a library follows a feature's value when an
 //! object has it; at a node where no library example has the object's value (they lacked
 //! the feature or had another value), the object falls into the branch for any other
 //! value, which holds no example and predicts the node's majority. A training object that
