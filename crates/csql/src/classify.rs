@@ -1,7 +1,7 @@
 //! CLASSIFY (the paper's Figure 3), made from cslearn's parts, with a cache that never
 //! changes what is charged.
 //!
-//! # The procedure (SPEC 4)
+//! # The procedure (`docs/specification.md`, section 4.2)
 //!
 //! 1. The candidates are all descriptions; the new description is empty.
 //! 2. If one candidate remains and every feature it has is measured, return it. If none
@@ -91,6 +91,8 @@ pub struct Classify {
     select: InfoCost,
     attention: Attention,
     measured: Vec<(Feature, Cell)>,
+    /// What the free view reads (never charged, never part of a classification).
+    probe: Vec<(Feature, Cell)>,
     cache: Cache,
     use_cache: bool,
     /// The sensors' error rate and the generator their errors are drawn from (never
@@ -132,6 +134,7 @@ impl Classify {
             select: InfoCost::new(MissingRule::C45),
             attention: Attention::new(),
             measured: Vec::new(),
+            probe: Vec::new(),
             cache: Cache::default(),
             use_cache: true,
             noise: SensorNoise::default(),
@@ -422,14 +425,12 @@ impl Classify {
     /// The cached path: walk the decision tree of the procedure, growing it where no
     /// classification has been before.
     fn walk_cached(&mut self, world: &GridWorld, s: StateId) -> Option<DescriptionId> {
-        self.measured.clear();
-        let (space, measured) = (&self.space, &mut self.measured);
+        let space = &self.space;
         let (noise, noise_rng) = (self.noise, &mut self.noise_rng);
-        self.cache.walk(self.rep.library(), &self.costs, |f| {
-            let v = noise.corrupt(space.measure(world, s, f), noise_rng);
-            measured.push((f, v));
-            v
-        })
+        self.cache
+            .walk(self.rep.library(), &self.costs, &mut self.measured, |f| {
+                noise.corrupt(space.measure(world, s, f), noise_rng)
+            })
     }
 
     /// The description state `s` belongs to, found without charging and without adding a
@@ -451,9 +452,10 @@ impl Classify {
     pub fn lookup(&mut self, world: &GridWorld, s: StateId) -> Option<DescriptionId> {
         let space = &self.space;
         if self.use_cache {
-            self.cache.walk(self.rep.library(), &self.costs, |f| {
-                space.measure(world, s, f)
-            })
+            self.cache
+                .walk(self.rep.library(), &self.costs, &mut self.probe, |f| {
+                    space.measure(world, s, f)
+                })
         } else {
             self.rep.matching(world, space, s)
         }
@@ -483,16 +485,16 @@ impl Classify {
         rng: &mut R,
     ) -> Option<DescriptionId> {
         let space = &self.space;
-        let mut measured: Vec<(Feature, Cell)> = Vec::new();
-        let found = self.cache.walk(self.rep.library(), &self.costs, |f| {
-            let v = noise.corrupt(space.measure(world, s, f), rng);
-            measured.push((f, v));
-            v
-        });
+        let found = self
+            .cache
+            .walk(self.rep.library(), &self.costs, &mut self.probe, |f| {
+                noise.corrupt(space.measure(world, s, f), rng)
+            });
         if found.is_some() || self.matching == Matching::Exact {
             return found;
         }
         // Nearest matching, read for free.
+        let measured = &self.probe;
         self.rep.iter().find_map(|(id, d)| {
             if d.len() < 3 {
                 return None;
@@ -526,12 +528,11 @@ impl Classify {
     /// ```
     pub fn lookup_cost(&mut self, world: &GridWorld, s: StateId) -> f64 {
         let space = &self.space;
-        let mut cost = 0.0;
-        self.cache.walk(self.rep.library(), &self.costs, |f| {
-            cost += space.cost(f);
-            space.measure(world, s, f)
-        });
-        cost
+        self.cache
+            .walk(self.rep.library(), &self.costs, &mut self.probe, |f| {
+                space.measure(world, s, f)
+            });
+        self.probe.iter().map(|&(f, _)| space.cost(f)).sum()
     }
 
     /// Add the next cheapest feature a description lacks, valued at state `s`; returns the

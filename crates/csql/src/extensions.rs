@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 use crate::detector::{DetectorKind, RateParams};
 use crate::error::Error;
 
-/// How the world departs from the paper's assumptions (SPEC 6): slippery moves, noisy
+/// How the world departs from the paper's assumptions (specification §6): slippery moves, noisy
 /// sensors, a sensing range. All off by default.
 ///
 /// ```
@@ -61,8 +61,8 @@ pub enum Matching {
     Nearest,
 }
 
-/// CS-QL's remedies beyond the paper and the measures of a stochastic run (SPEC 6). All
-/// off, or at the SPEC's values, by default.
+/// CS-QL's remedies beyond the paper and the measures of a stochastic run (specification §6). All
+/// off, or at the specification's values, by default.
 ///
 /// ```
 /// let mut s = csql::RunSettings::tan1991("tan8x8", csql::StrategyKind::Lazy, 1);
@@ -133,8 +133,7 @@ impl Extensions {
     pub(crate) fn validate(&self) -> Result<(), Error> {
         let bad = |name: &'static str, value: String, expected: &'static str| {
             Err(Error::InvalidSetting {
-                name,
-                value,
+                value: format!("{name} = {value}"),
                 expected,
             })
         };

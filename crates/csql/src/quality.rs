@@ -1,4 +1,4 @@
-//! The policy quality of SPEC 6: how good the learned greedy policy is, acting through the
+//! The policy quality of specification §6: how good the learned greedy policy is, acting through the
 //! learned representation in the true world, as a share of the optimum.
 //!
 //! The policy is the greedy action (ties: lowest action id) of the description CLASSIFY

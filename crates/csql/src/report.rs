@@ -169,12 +169,12 @@ pub struct RunReport {
     /// The settings of the run.
     pub settings: RunSettings,
     /// Beyond the paper's setting only (slip, noise, a sensing range or an extension on):
-    /// the policy quality and what it took (SPEC 6). Absent from the paper's runs.
+    /// the policy quality and what it took (specification §6). Absent from the paper's runs.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub quality: Option<QualityReport>,
 }
 
-/// The measures of a run beyond the paper's setting (SPEC 6).
+/// The measures of a run beyond the paper's setting (specification §6).
 ///
 /// ```
 /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
@@ -367,29 +367,46 @@ impl Table1Row {
     }
 }
 
-/// One run's Table 1 as text: a row per measure, `not reached` where the run did not get
-/// there.
+/// One run's Table 1 as text: a header and a row per measure, `not reached` where the
+/// run did not get there, in columns as wide as their widest cell.
 ///
 /// ```
 /// let t = csql::Table1 { descriptions: Some(50), ..Default::default() };
 /// let text = t.to_string();
 /// assert!(text.lines().any(|l| l.starts_with("5 ") && l.ends_with(" 50")));
 /// assert!(text.contains("not reached"));
+/// // Every line has the same width.
+/// let widths: Vec<usize> = text.lines().map(|l| l.chars().count()).collect();
+/// assert!(widths.windows(2).all(|w| w[0] == w[1]));
 /// ```
 impl fmt::Display for Table1 {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let width = Table1Row::ALL
+        let rows: Vec<(String, String)> = Table1Row::ALL
             .iter()
-            .map(|r| r.number().len() + 1 + r.label().len())
-            .max()
-            .unwrap_or(0);
-        for row in Table1Row::ALL {
-            let name = format!("{} {}", row.number(), row.label());
-            let value = row.of(self).map_or_else(
-                || "not reached".to_string(),
-                |x| format!("{x:.*}", row.decimals()),
-            );
-            writeln!(f, "{name:<width$} {value:>12}")?;
+            .map(|row| {
+                let value = row.of(self).map_or_else(
+                    || "not reached".to_string(),
+                    |x| format!("{x:.*}", row.decimals()),
+                );
+                (format!("{} {}", row.number(), row.label()), value)
+            })
+            .collect();
+        let head = ("Table 1 row", "value");
+        let width = |s: &str| s.chars().count();
+        let left = rows
+            .iter()
+            .map(|r| width(&r.0))
+            .chain([width(head.0)])
+            .max();
+        let right = rows
+            .iter()
+            .map(|r| width(&r.1))
+            .chain([width(head.1)])
+            .max();
+        let (left, right) = (left.unwrap_or(0), right.unwrap_or(0));
+        writeln!(f, "{:<left$}  {:>right$}", head.0, head.1)?;
+        for (name, value) in rows {
+            writeln!(f, "{name:<left$}  {value:>right$}")?;
         }
         Ok(())
     }
@@ -473,7 +490,7 @@ pub(crate) fn report(
             &setup.oracle,
             table,
             &rows,
-            settings.tolerance,
+            settings.tolerance.get(),
         )
         .consistent_literal
     });

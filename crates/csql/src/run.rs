@@ -49,8 +49,7 @@ impl Setup {
     /// assert_eq!(setup.space.len(), 80);
     /// ```
     pub fn new(settings: &RunSettings) -> Result<Setup, Error> {
-        settings.validate()?;
-        let map = mdp::resolve(&settings.map)?;
+        let map = settings.map.resolve()?;
         Setup::for_map(map, settings)
     }
 
@@ -62,6 +61,7 @@ impl Setup {
     /// assert_eq!(csql::Setup::for_map(map, &s).unwrap().world.states().len(), 2);
     /// ```
     pub fn for_map(map: Map, settings: &RunSettings) -> Result<Setup, Error> {
+        settings.validate()?;
         let world = GridWorld::new(&map);
         let mut space = FeatureSpace::new(&map, &Manhattan)?;
         if let Some(r) = settings.world.sensing_radius {
@@ -107,7 +107,7 @@ impl From<&RunSettings> for LoopParams {
             gamma: settings.gamma,
             temperature: settings.temperature,
             max_moves: settings.max_moves.get(),
-            decrease_threshold: settings.decrease_threshold,
+            decrease_threshold: settings.decrease_threshold.get(),
         }
     }
 }
@@ -127,7 +127,7 @@ pub(crate) struct Learned {
     pub quality: Option<QualityTrack>,
 }
 
-/// The policy quality over a run beyond the paper (SPEC 6).
+/// The policy quality over a run beyond the paper (specification §6).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct QualityTrack {
     pub last: QualityEstimate,
@@ -138,7 +138,7 @@ pub(crate) struct QualityTrack {
     pub streak: u32,
 }
 
-/// The quality a policy must reach (SPEC 6).
+/// The quality a policy must reach (specification §6).
 pub(crate) const QUALITY_GOAL: f64 = 0.95;
 
 /// Run trials until the oracle says converged or the trial cap; the oracle judges the
@@ -167,7 +167,7 @@ pub(crate) fn learn<P: Perception + Sees, S: Strategy>(
     // The evaluation's own generator: the run's, 2^192 draws ahead.
     let mut eval_rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
     eval_rng.long_jump();
-    for trial in 1..=settings.max_trials {
+    for trial in 1..=settings.max_trials.get() {
         let start = starts[rng.random_range(0..starts.len())];
         let rec = agent.run_trial(&model, start, trial, &mut rng);
         out.moves += rec.moves as u64;
@@ -177,7 +177,7 @@ pub(crate) fn learn<P: Perception + Sees, S: Strategy>(
             // it, the policy quality judges (every `quality_every` trials).
             agent.take_journal();
             let every = settings.extensions.quality_every;
-            if trial % every == 0 || trial == settings.max_trials {
+            if trial % every == 0 || trial == settings.max_trials.get() {
                 let q = policy_quality(
                     &model,
                     setup.truth(),
@@ -204,7 +204,7 @@ pub(crate) fn learn<P: Perception + Sees, S: Strategy>(
             }
             crate::judge::Verdict::default()
         } else {
-            judge.judge(&setup.world, &setup.oracle, agent, settings.tolerance)
+            judge.judge(&setup.world, &setup.oracle, agent, settings.tolerance.get())
         };
         if verdict.sufficient && out.first_sufficient.is_none() {
             out.first_sufficient = Some((trial, out.cost));

@@ -69,7 +69,7 @@ fn slip_with_the_statistical_detector_reaches_quality() {
     let q = r.quality.unwrap();
     assert!(q.trials_to_quality.is_some(), "{q:?}");
     assert!(q.policy_quality >= 0.95);
-    // The run ended by the SPEC 6 rule, well before its cap.
+    // The run ended by the rule of the specification's section 6, well before its cap.
     assert!(r.trials < 2000);
 }
 
