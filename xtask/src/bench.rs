@@ -84,6 +84,8 @@ struct Measured {
     converged: bool,
     trials: u32,
     moves: u64,
+    /// Sensing cost charged in the whole run: the work CLASSIFY does.
+    cost: f64,
     cpu_seconds: f64,
     peak_mib: f64,
 }
@@ -116,7 +118,7 @@ fn usage() -> (Duration, f64) {
 
 fn one(a: &OneArgs) -> Result<()> {
     let mut settings = RunSettings::tan1991(&a.map, a.strategy, 1);
-    settings.max_trials = a.max_trials;
+    settings.max_trials = csql::TrialCap::new(a.max_trials)?;
     let (before, _) = usage();
     let report = csql::run(&settings)?;
     let (after, peak) = usage();
@@ -125,6 +127,7 @@ fn one(a: &OneArgs) -> Result<()> {
         converged: report.converged,
         trials: report.trials,
         moves: report.moves,
+        cost: report.total_cost,
         cpu_seconds: (after - before).as_secs_f64(),
         peak_mib: peak,
     };
@@ -159,13 +162,13 @@ fn scale(a: &ScaleArgs) -> Result<()> {
     let exe = std::env::current_exe().context("cannot find the xtask program")?;
     crate::emit(&format!(
         "CS-QL on random:WxW:0.2:S (run seed 1, trial cap {}), one process per run\n\n\
-         | strategy | W | S | states | converged | trials | moves | CPU s | moves per CPU s | peak MiB |\n\
-         |---|---|---|---|---|---|---|---|---|---|\n",
+         | strategy | W | S | states | converged | trials | moves | sensing cost | CPU s | moves per CPU s | CPU ns per unit of sensing | peak MiB |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|\n",
         a.max_trials
     ))?;
     let mut fits = Vec::new();
     for &k in &a.strategies {
-        let (mut time_pts, mut move_pts) = (Vec::new(), Vec::new());
+        let (mut time_pts, mut move_pts, mut cost_pts) = (Vec::new(), Vec::new(), Vec::new());
         for &w in &a.sizes {
             for &seed in &a.seeds {
                 let map = format!("random:{w}x{w}:0.2:{seed}");
@@ -183,31 +186,44 @@ fn scale(a: &ScaleArgs) -> Result<()> {
                 let m: Measured = serde_json::from_slice(&out.stdout)
                     .with_context(|| format!("unreadable measurement for {map} ({k})"))?;
                 crate::emit(&format!(
-                    "| {k} | {w} | {seed} | {} | {} | {} | {} | {:.3} | {:.0} | {:.1} |\n",
+                    "| {k} | {w} | {seed} | {} | {} | {} | {} | {:.0} | {:.3} | {:.0} | {:.1} | {:.1} |\n",
                     m.states,
                     if m.converged { "yes" } else { "no" },
                     m.trials,
                     m.moves,
+                    m.cost,
                     m.cpu_seconds,
                     m.moves as f64 / m.cpu_seconds.max(1e-9),
+                    m.cpu_seconds * 1e9 / m.cost.max(1.0),
                     m.peak_mib
                 ))?;
                 if w >= a.fit_from {
                     time_pts.push((m.states as f64, m.cpu_seconds));
                     move_pts.push((m.states as f64, m.moves as f64));
+                    cost_pts.push((m.states as f64, m.cost));
                 }
             }
         }
-        fits.push((k, exponent(&time_pts), exponent(&move_pts)));
+        fits.push((
+            k,
+            exponent(&time_pts),
+            exponent(&move_pts),
+            exponent(&cost_pts),
+        ));
     }
     crate::emit(&format!(
         "\nFitted over W >= {} (least squares of ln y against ln states):\n\n\
-         | strategy | CPU time ~ states^x | moves ~ states^x |\n|---|---|---|\n",
+         | strategy | CPU time ~ states^x | moves ~ states^x | sensing cost ~ states^x |\n|---|---|---|---|\n",
         a.fit_from
     ))?;
     let show = |x: Option<f64>| x.map_or_else(|| "-".to_string(), |x| format!("{x:.2}"));
-    for (k, t, m) in fits {
-        crate::emit(&format!("| {k} | {} | {} |\n", show(t), show(m)))?;
+    for (k, t, m, c) in fits {
+        crate::emit(&format!(
+            "| {k} | {} | {} | {} |\n",
+            show(t),
+            show(m),
+            show(c)
+        ))?;
     }
     Ok(())
 }

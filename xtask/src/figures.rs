@@ -22,8 +22,34 @@ fn register_font() {
     });
 }
 
-/// A learning curve: its name and, per trial, the mean, lowest and highest value.
-pub type Curve = (String, Vec<(f64, f64, f64)>);
+/// The learning curve of one strategy: per trial the mean, lowest and highest
+/// cumulative sensing cost over runs, and the (trial, cost) where each run first became
+/// sufficient and where it converged.
+pub struct Curve {
+    pub name: String,
+    pub points: Vec<(f64, f64, f64)>,
+    pub sufficient: Vec<(f64, f64)>,
+    pub converged: Vec<(f64, f64)>,
+}
+
+impl Curve {
+    /// The curve of a group of runs: their spread, and where each became sufficient and
+    /// converged.
+    pub fn of<R: std::borrow::Borrow<csql::RunReport>>(name: String, runs: &[R]) -> Curve {
+        let traces: Vec<&[TracePoint]> = runs.iter().map(|r| r.borrow().trace.as_slice()).collect();
+        let marks = |at: fn(&csql::Table1) -> Option<(u32, f64)>| {
+            runs.iter()
+                .filter_map(|r| at(&r.borrow().table1).map(|(t, c)| (f64::from(t), c)))
+                .collect()
+        };
+        Curve {
+            name,
+            points: spread(&traces),
+            sufficient: marks(|t| Some((t.trials_to_sufficient?, t.cost_to_sufficient?))),
+            converged: marks(|t| Some((t.trials_to_converge?, t.cost_to_converge?))),
+        }
+    }
+}
 
 /// Mean, lowest and highest cumulative sensing cost at each trial over runs; a run that
 /// has ended keeps its final cost.
@@ -43,70 +69,125 @@ pub fn spread(traces: &[&[TracePoint]]) -> Vec<(f64, f64, f64)> {
         .collect()
 }
 
-/// Cumulative sensing cost against trials, one line per strategy (the mean over runs)
-/// with a band from the lowest to the highest run.
+/// Cumulative sensing cost against trials, one panel per strategy with its own scale:
+/// the mean over runs as a black line, the lowest to highest run as a grey band, and for
+/// each run an open circle where it became sufficient and a filled triangle where it
+/// converged. Black and greys only, so it prints in grey.
 pub fn learning_curves(path: &Path, title: &str, curves: &[Curve]) -> Result<()> {
     register_font();
     let plot_err = |e: &dyn std::fmt::Display| anyhow!("drawing {}: {e}", path.display());
+    let cols = if curves.len() > 1 { 2 } else { 1 };
+    let rows = curves.len().div_ceil(cols).max(1);
+    let (pw, ph) = (560_u32, 380_u32);
     // Drawn into memory, then written through a temporary file and a rename.
     let mut svg = String::new();
-    let root = SVGBackend::with_string(&mut svg, (960, 600)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| plot_err(&e))?;
-    let trials = curves.iter().map(|c| c.1.len()).max().unwrap_or(1).max(2) as f64;
-    let top = curves
-        .iter()
-        .flat_map(|c| c.1.iter().map(|p| p.2))
-        .fold(1.0, f64::max);
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 20))
-        .margin(16)
-        .x_label_area_size(44)
-        .y_label_area_size(90)
-        .build_cartesian_2d((1.0..trials).log_scale(), 0.0..top * 1.05)
+    let base = SVGBackend::with_string(&mut svg, (pw * cols as u32, ph * rows as u32 + 50))
+        .into_drawing_area();
+    base.fill(&WHITE).map_err(|e| plot_err(&e))?;
+    let root = base
+        .titled(title, ("sans-serif", 22))
         .map_err(|e| plot_err(&e))?;
-    chart
-        .configure_mesh()
-        .x_desc("trial (log scale)")
-        .y_desc("cumulative sensing cost")
-        .y_label_formatter(&|y| format!("{y:.0}"))
-        .x_label_formatter(&|x| format!("{x:.0}"))
-        .draw()
-        .map_err(|e| plot_err(&e))?;
-    for (i, (name, points)) in curves.iter().enumerate() {
-        let colour = Palette99::pick(i).to_rgba();
+    let panels = root.split_evenly((rows, cols));
+    let grey = RGBColor(170, 170, 170);
+    for (panel, curve) in panels.iter().zip(curves) {
+        let trials = curve.points.len().max(2) as f64;
+        let top = curve.points.iter().map(|p| p.2).fold(1.0, f64::max);
+        let mut chart = ChartBuilder::on(panel)
+            .caption(&curve.name, ("sans-serif", 20))
+            .margin(12)
+            .x_label_area_size(46)
+            .y_label_area_size(78)
+            .build_cartesian_2d(0.0..trials * 1.02, 0.0..top * 1.05)
+            .map_err(|e| plot_err(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc("trial")
+            .y_desc("cumulative sensing cost")
+            .axis_desc_style(("sans-serif", 16))
+            .label_style(("sans-serif", 14))
+            .y_labels(6)
+            .x_labels(6)
+            .light_line_style(WHITE)
+            .bold_line_style(RGBColor(230, 230, 230))
+            .y_label_formatter(&|y| short(*y))
+            .x_label_formatter(&|x| format!("{x:.0}"))
+            .draw()
+            .map_err(|e| plot_err(&e))?;
         let x = |t: usize| (t + 1) as f64;
-        let band: Vec<(f64, f64)> = points
+        let band: Vec<(f64, f64)> = curve
+            .points
             .iter()
             .enumerate()
             .map(|(t, p)| (x(t), p.2))
-            .chain(points.iter().enumerate().rev().map(|(t, p)| (x(t), p.1)))
+            .chain(
+                curve
+                    .points
+                    .iter()
+                    .enumerate()
+                    .rev()
+                    .map(|(t, p)| (x(t), p.1)),
+            )
             .collect();
         chart
-            .draw_series(std::iter::once(Polygon::new(band, colour.mix(0.15))))
-            .map_err(|e| plot_err(&e))?;
+            .draw_series(std::iter::once(Polygon::new(band, grey.mix(0.45))))
+            .map_err(|e| plot_err(&e))?
+            .label("lowest to highest run")
+            .legend(move |(x, y)| {
+                Rectangle::new([(x, y - 6), (x + 24, y + 6)], grey.mix(0.45).filled())
+            });
         chart
             .draw_series(LineSeries::new(
-                points.iter().enumerate().map(|(t, p)| (x(t), p.0)),
-                colour.stroke_width(2),
+                curve.points.iter().enumerate().map(|(t, p)| (x(t), p.0)),
+                BLACK.stroke_width(2),
             ))
             .map_err(|e| plot_err(&e))?
-            .label(name.as_str())
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 24, y)], colour.stroke_width(2))
-            });
+            .label("mean over runs")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], BLACK.stroke_width(2)));
+        chart
+            .draw_series(
+                curve
+                    .sufficient
+                    .iter()
+                    .map(|&(t, c)| Circle::new((t, c), 6, BLACK.stroke_width(2))),
+            )
+            .map_err(|e| plot_err(&e))?
+            .label("a run becomes sufficient")
+            .legend(|(x, y)| Circle::new((x + 12, y), 6, BLACK.stroke_width(2)));
+        chart
+            .draw_series(
+                curve
+                    .converged
+                    .iter()
+                    .map(|&(t, c)| TriangleMarker::new((t, c), 7, BLACK.filled())),
+            )
+            .map_err(|e| plot_err(&e))?
+            .label("a run converges")
+            .legend(|(x, y)| TriangleMarker::new((x + 12, y), 7, BLACK.filled()));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerRight)
+            .background_style(WHITE.mix(0.9))
+            .border_style(RGBColor(150, 150, 150))
+            .label_font(("sans-serif", 14))
+            .draw()
+            .map_err(|e| plot_err(&e))?;
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .label_font(("sans-serif", 15))
-        .draw()
-        .map_err(|e| plot_err(&e))?;
     root.present().map_err(|e| plot_err(&e))?;
-    drop(chart);
+    drop(panels);
     drop(root);
+    drop(base);
     crate::files::write_atomic(path, svg)
+}
+
+/// A cost on an axis: `250k`, `1.2M`.
+fn short(y: f64) -> String {
+    if y >= 1e6 {
+        format!("{:.1}M", y / 1e6)
+    } else if y >= 1e3 {
+        format!("{:.0}k", y / 1e3)
+    } else {
+        format!("{y:.0}")
+    }
 }
 
 fn escape(s: &str) -> String {
@@ -115,16 +196,20 @@ fn escape(s: &str) -> String {
         .replace('>', "&gt;")
 }
 
-/// A decision tree over grid descriptions as SVG: split nodes name the sensed offset
-/// `(dx, dy)` and its cost, edges the cell value, leaves the description. "Other" branches
-/// that lead to no description are left out.
+/// A decision tree over grid descriptions as SVG, drawn left to right so that it fits a
+/// page's width: split nodes (boxes) name the sensed offset `(dx, dy)` from the robot,
+/// edges the cell's value (E empty, O obstacle, G goal), leaves (rounded) the
+/// description; a legend under the title says so. "Other" branches that lead to no
+/// description are left out.
 pub fn tree_svg(tree: &DecisionTree, space: &FeatureSpace, title: &str) -> String {
-    const W: f64 = 78.0;
-    const H: f64 = 64.0;
-    // Leaf order gives x; depth gives y.
+    const COL: f64 = 118.0;
+    const ROW: f64 = 22.0;
+    const TOP: f64 = 96.0;
+    const LEFT: f64 = 16.0;
     fn drawn(tree: &DecisionTree, id: NodeId) -> bool {
         !matches!(tree.node(id), Node::Leaf { class: None, .. })
     }
+    // Leaf order gives y; depth gives x.
     fn layout(
         tree: &DecisionTree,
         id: NodeId,
@@ -138,18 +223,18 @@ pub fn tree_svg(tree: &DecisionTree, space: &FeatureSpace, title: &str) -> Strin
             .map(|c| c.1)
             .filter(|&c| drawn(tree, c))
             .collect();
-        let x = if kids.is_empty() {
+        let y = if kids.is_empty() {
             *next += 1.0;
             *next - 1.0
         } else {
-            let xs: Vec<f64> = kids
+            let ys: Vec<f64> = kids
                 .iter()
                 .map(|&k| layout(tree, k, depth + 1, next, pos))
                 .collect();
-            (xs[0] + xs[xs.len() - 1]) / 2.0
+            (ys[0] + ys[ys.len() - 1]) / 2.0
         };
-        pos.push((id, x, depth));
-        x
+        pos.push((id, y, depth));
+        y
     }
     let mut pos = Vec::new();
     let mut next = 0.0;
@@ -157,19 +242,26 @@ pub fn tree_svg(tree: &DecisionTree, space: &FeatureSpace, title: &str) -> Strin
     pos.sort_by_key(|p| p.0);
     let at = |id: NodeId| {
         let p = pos.iter().find(|p| p.0 == id).expect("laid out");
-        (20.0 + W / 2.0 + p.1 * W, 50.0 + p.2 as f64 * H)
+        (LEFT + 40.0 + p.2 as f64 * COL, TOP + 12.0 + p.1 * ROW)
     };
     let depth = pos.iter().map(|p| p.2).max().unwrap_or(0);
-    let width = 40.0 + next.max(1.0) * W;
-    let height = 90.0 + depth as f64 * H;
+    let width = (LEFT + 100.0 + depth as f64 * COL).max(480.0);
+    let height = TOP + 24.0 + next.max(1.0) * ROW;
     let mut s = format!(
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{height:.0}" viewBox="0 0 {width:.0} {height:.0}" font-family="sans-serif">"#
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{height:.0}" viewBox="0 0 {width:.0} {height:.0}" font-family="sans-serif"><rect width="100%" height="100%" fill="white"/>"#
     );
-    s.push_str(r#"<rect width="100%" height="100%" fill="white"/>"#);
     s.push_str(&format!(
-        r#"<text x="{:.0}" y="22" font-size="15" text-anchor="middle">{}</text>"#,
-        width / 2.0,
+        r#"<text x="{LEFT}" y="22" font-size="16">{}</text>"#,
         escape(title)
+    ));
+    s.push_str(&format!(
+        "<rect x=\"{LEFT}\" y=\"34\" width=\"58\" height=\"16\" fill=\"#eeeeee\" stroke=\"black\"/><text x=\"{:.0}\" y=\"46\" font-size=\"11\" text-anchor=\"middle\">(dx, dy)</text><text x=\"{:.0}\" y=\"46\" font-size=\"12\">sense the cell dx right, dy up from the robot</text>\
+         <rect x=\"{LEFT}\" y=\"54\" width=\"30\" height=\"16\" rx=\"8\" fill=\"white\" stroke=\"black\"/><text x=\"{:.0}\" y=\"66\" font-size=\"11\" text-anchor=\"middle\">d7</text><text x=\"{:.0}\" y=\"66\" font-size=\"12\">description 7</text>\
+         <text x=\"{LEFT}\" y=\"86\" font-size=\"12\">edges: E empty, O obstacle, G goal, * any other value, ? not measured</text>",
+        LEFT + 29.0,
+        LEFT + 66.0,
+        LEFT + 15.0,
+        LEFT + 38.0,
     ));
     for &(id, _, _) in &pos {
         let (x, y) = at(id);
@@ -179,43 +271,50 @@ pub fn tree_svg(tree: &DecisionTree, space: &FeatureSpace, title: &str) -> Strin
             }
             let (cx, cy) = at(child);
             let label = match branch {
-                Branch::Value(v) => Cell::from_code(v.0).map_or("?", |c| c.name()).to_string(),
-                Branch::Missing => "missing".to_string(),
-                Branch::Other => "other".to_string(),
+                Branch::Value(v) => match Cell::from_code(v.0) {
+                    Some(Cell::Empty) => "E",
+                    Some(Cell::Obstacle) => "O",
+                    Some(Cell::Goal) => "G",
+                    None => "?",
+                },
+                Branch::Missing => "?",
+                Branch::Other => "*",
             };
+            // An elbow: right from the parent, down or up, right into the child.
+            let mid = x + 44.0;
             s.push_str(&format!(
-                "<line x1=\"{x:.1}\" y1=\"{:.1}\" x2=\"{cx:.1}\" y2=\"{:.1}\" stroke=\"#888\"/>",
-                y + 12.0,
-                cy - 12.0
+                "<path d=\"M{:.1},{y:.1} H{mid:.1} V{cy:.1} H{:.1}\" fill=\"none\" stroke=\"#777\"/>",
+                x + 30.0,
+                cx - 26.0
             ));
             s.push_str(&format!(
-                "<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"10\" fill=\"#555\" text-anchor=\"middle\">{label}</text>",
-                x + (cx - x) * 0.62,
-                y + (cy - y) * 0.62 + 3.0
+                "<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"11\" fill=\"#222\">{label}</text>",
+                mid + 4.0,
+                cy - 3.0
             ));
         }
     }
     for &(id, _, _) in &pos {
         let (x, y) = at(id);
         match tree.node(id) {
-            Node::Split { feature, cost, .. } => {
+            Node::Split { feature, .. } => {
                 let o = space.offset(Feature(feature.0));
                 s.push_str(&format!(
-                    "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"68\" height=\"24\" rx=\"4\" fill=\"#e8f0fb\" stroke=\"#1f5fbf\"/><text x=\"{x:.1}\" y=\"{:.1}\" font-size=\"11\" text-anchor=\"middle\">({}, {}) c={}</text>",
-                    x - 34.0,
-                    y - 12.0,
+                    "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"60\" height=\"18\" fill=\"#eeeeee\" stroke=\"black\"/><text x=\"{x:.1}\" y=\"{:.1}\" font-size=\"11\" text-anchor=\"middle\">({}, {})</text>",
+                    x - 30.0,
+                    y - 9.0,
                     y + 4.0,
                     o.dx,
                     o.dy,
-                    cost.get()
                 ));
             }
             Node::Leaf { class, .. } => {
                 let label = class.map_or("none".to_string(), |c| format!("d{}", c.0));
                 s.push_str(&format!(
-                    "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"40\" height=\"22\" rx=\"11\" fill=\"#fff4d6\" stroke=\"#b58900\"/><text x=\"{x:.1}\" y=\"{:.1}\" font-size=\"11\" text-anchor=\"middle\">{label}</text>",
-                    x - 20.0,
-                    y - 11.0,
+                    "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"40\" height=\"18\" rx=\"9\" fill=\"white\" stroke=\"black\"/><text x=\"{:.1}\" y=\"{:.1}\" font-size=\"11\" text-anchor=\"middle\">{label}</text>",
+                    x - 26.0,
+                    y - 9.0,
+                    x - 6.0,
                     y + 4.0
                 ));
             }

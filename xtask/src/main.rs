@@ -1,6 +1,8 @@
 //! `cargo xtask`: repository automation for csrl.
 //!
 //! * `cargo xtask reproduce`: the paper's Table 1 and figures beside ours.
+//! * `cargo xtask fit-map`: a layout fitted to a target Table 1 (the paper's by default).
+//! * `cargo xtask png`: figures rendered to PNG (resvg), to look at them as a reader would.
 //! * `cargo xtask sweep` and `cargo xtask merge`: grids of settings, sharded across
 //!   machines (see `docs/sweeps.md`).
 //! * `cargo xtask bench scale` and `cargo xtask bench throughput`: how CS-QL's cost grows
@@ -9,7 +11,9 @@
 mod bench;
 mod figures;
 mod files;
+mod fit;
 mod paper;
+mod render;
 mod reproduce;
 mod sense;
 mod stats;
@@ -30,6 +34,17 @@ struct Cli {
 enum Command {
     /// Reproduce the paper's Table 1 and Figures 4b and 5, beside the paper's numbers.
     Reproduce(reproduce::ReproduceArgs),
+    /// Search grid layouts for the best fit to a target Table 1 (the paper's by default).
+    FitMap(fit::FitArgs),
+    /// Render SVG figures to PNG (FILE.svg -> FILE.png), checking each is well formed.
+    Png {
+        /// The SVG files.
+        #[arg(required = true)]
+        files: Vec<std::path::PathBuf>,
+        /// Scale factor.
+        #[arg(long, default_value_t = 1.0)]
+        scale: f32,
+    },
     /// Run a grid of maps and strategies, optionally one shard of it.
     Sweep(sweep::SweepArgs),
     /// Merge the outputs of sweep shards into one table.
@@ -53,6 +68,8 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Reproduce(args) => reproduce::run(args),
+        Command::FitMap(args) => fit::run(args),
+        Command::Png { files, scale } => render::run(files, *scale),
         Command::Sweep(args) => sweep::sweep(args),
         Command::Merge(args) => sweep::merge(args),
         Command::Bench(args) => bench::run(args),

@@ -72,8 +72,7 @@ pub fn write(res: &Results, out: &Path, to_docs: bool) -> Result<Vec<PathBuf>> {
     );
     let mut curves = Vec::new();
     for (k, runs, _) in &res.runs {
-        let traces: Vec<&[csql::TracePoint]> = runs.iter().map(|r| r.trace.as_slice()).collect();
-        curves.push((format!("{k}, off"), figures::spread(&traces)));
+        curves.push(figures::Curve::of(format!("{k}, off"), runs));
     }
     for level in LEVELS {
         let _ = writeln!(md, "## predict_sensing = \"{level}\"\n");
@@ -126,8 +125,7 @@ pub fn write(res: &Results, out: &Path, to_docs: bool) -> Result<Vec<PathBuf>> {
         });
         let _ = writeln!(md);
         for (&k, b) in args.strategies.iter().zip(&blocks) {
-            let traces: Vec<&[csql::TracePoint]> = b.iter().map(|r| r.trace.as_slice()).collect();
-            curves.push((format!("{k}, {level}"), figures::spread(&traces)));
+            curves.push(figures::Curve::of(format!("{k}, {level}"), b));
         }
     }
     let md_path = out.join("prediction.md");

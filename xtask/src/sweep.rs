@@ -302,11 +302,12 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
         .with_context(|| format!("cannot open {}", results_path.display()))?;
     let file = Mutex::new(file);
     let bar = ProgressBar::new(todo.len() as u64);
+    let cap = csql::TrialCap::new(args.max_trials)?;
     crate::reproduce::pool(args.threads)?.install(|| {
         todo.par_iter().try_for_each(|&id| -> Result<()> {
             let (m, strategy, run) = jobs[id as usize];
             let mut settings = RunSettings::tan1991(&args.maps[m], strategy, args.seed + run);
-            settings.max_trials = args.max_trials;
+            settings.max_trials = cap;
             let report = csql::run_on(&setups[m], &settings);
             let result = JobResult {
                 id,

@@ -7,7 +7,7 @@ use crate::types::{FeatureId, Value};
 /// What a feature that an example lacks means.
 ///
 /// The difference matters in attending and in building trees. Library examples are
-/// observations (SPEC 2); csql's state descriptions are rules (SPEC 4).
+/// observations (specification §2); csql's state descriptions are rules (specification §4).
 ///
 /// ```
 /// use cslearn::{ClassId, Example, FeatureId, Semantics, Value};
@@ -91,6 +91,16 @@ impl Attention {
         self.previous.clear();
         self.mismatches.clear();
         self.mismatches.resize(len, 0);
+    }
+
+    /// Attend exactly `indices` (ascending), with no mismatches and no history: what
+    /// [`copy_from`](Attention::copy_from) leaves for observation attending, without a
+    /// whole attention to copy from.
+    pub(crate) fn attend_only(&mut self, indices: impl IntoIterator<Item = usize>) {
+        self.attended.clear();
+        self.attended.extend(indices);
+        self.previous.clear();
+        self.mismatches.clear();
     }
 
     /// The attended examples, by ascending index.
@@ -203,7 +213,7 @@ pub trait Attend {
     );
 }
 
-/// CS-ID3's attending (SPEC 2): an example stays only if it has the measured feature with
+/// CS-ID3's attending (specification §2): an example stays only if it has the measured feature with
 /// the same value. See [`Semantics::Observation`].
 ///
 /// ```
@@ -219,7 +229,7 @@ pub trait Attend {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ObservationAttending;
 
-/// Rule attending (SPEC 4, CS-QL's CLASSIFY): an example that lacks the measured feature
+/// Rule attending (specification §4, CS-QL's CLASSIFY): an example that lacks the measured feature
 /// means "any value" and stays. See [`Semantics::Rule`].
 ///
 /// ```

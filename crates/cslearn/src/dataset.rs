@@ -50,7 +50,7 @@ pub enum Binning {
 }
 
 impl Binning {
-    /// Four bins at the quartiles: the default (SPEC 2).
+    /// Four bins at the quartiles: the default (specification §2).
     ///
     /// ```
     /// assert!(matches!(cslearn::Binning::quartiles(), cslearn::Binning::Quantiles(_)));

@@ -70,7 +70,7 @@ fn measure_until_apart<A: Attend + ?Sized, S: Sensor>(
     }
 }
 
-/// CS-ID3's discrimination (the paper's "next cheapest feature"; SPEC 2): the unmeasured
+/// CS-ID3's discrimination (the paper's "next cheapest feature"; specification §2): the unmeasured
 /// features in ascending cost, then ascending id.
 ///
 /// ```
@@ -99,7 +99,7 @@ impl Discriminate for CheapestFirst {
     }
 }
 
-/// Cost-blind discrimination for the ID3 baseline (SPEC 2): the unmeasured features in a
+/// Cost-blind discrimination for the ID3 baseline (specification §2): the unmeasured features in a
 /// random order drawn afresh for each object from the owned, seeded generator, so that no
 /// cost information enters (the column order of a data set may follow its costs).
 ///

@@ -124,7 +124,7 @@ pub struct Learner<A, S, P, D, U> {
     recheck: bool,
 }
 
-/// CS-ID3 (SPEC 2): observation attending, I^2/C selection with the own-branch rule,
+/// CS-ID3 (specification §2): observation attending, I^2/C selection with the own-branch rule,
 /// unanimous prediction, cheapest-first discrimination, every example kept.
 pub type CsId3 = Learner<ObservationAttending, InfoCost, Unanimous, CheapestFirst, AppendAll>;
 
@@ -132,7 +132,7 @@ pub type CsId3 = Learner<ObservationAttending, InfoCost, Unanimous, CheapestFirs
 /// instances, nearest-instance prediction, cheapest-first discrimination.
 pub type CsIbl = Learner<RankedAttending, InfoCost, Nearest, CheapestFirst, AppendAll>;
 
-/// Cost-blind ID3, the baseline (SPEC 2): CS-ID3 with every cost taken as equal in
+/// Cost-blind ID3, the baseline (specification §2): CS-ID3 with every cost taken as equal in
 /// selection and discrimination in a seeded random order. Real costs are still charged.
 pub type Id3<R> = Learner<ObservationAttending, InfoCost, Unanimous, RandomOrder<R>, AppendAll>;
 

@@ -74,7 +74,7 @@ fn unanimous(mut classes: impl Iterator<Item = ClassId>) -> Option<ClassId> {
     classes.all(|c| c == first).then_some(first)
 }
 
-/// CS-ID3's prediction (SPEC 2): the class of the attended examples once they agree;
+/// CS-ID3's prediction (specification §2): the class of the attended examples once they agree;
 /// their majority when no feature is left; the majority of the last non-empty attended
 /// set when a measurement leaves none attended.
 ///

@@ -4,6 +4,7 @@ use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 use crate::dataset::Dataset;
+use crate::indexed::{cs_id3_indexed, id3_indexed};
 use crate::learner::{StreamReport, cs_ibl, cs_id3, id3};
 
 /// Which learner to stream a data set through.
@@ -24,13 +25,32 @@ pub enum LearnerKind {
     Id3,
 }
 
+/// How a learner finds its way through the library: both give the same results, bit for
+/// bit; they differ only in time.
+///
+/// ```
+/// assert_ne!(cslearn::Procedure::Indexed, cslearn::Procedure::Plain);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Procedure {
+    /// CS-ID3 and ID3 over an index of the library ([`cs_id3_indexed`], [`id3_indexed`]);
+    /// CS-IBL, which has no index, as in `Plain`.
+    Indexed,
+    /// The five functions as written ([`cs_id3`], [`cs_ibl`], [`id3`]): every object
+    /// attends and counts the whole library afresh. The reference the indexed learners
+    /// are tested and measured against.
+    Plain,
+}
+
 /// Stream every object of `dataset` once through a fresh learner of `kind`, in a random
 /// order drawn from `seed`: each object is predicted with charged measurements, then
 /// learned with its true class.
 ///
 /// The order is a shuffle by a `Xoshiro256PlusPlus` generator seeded with `seed`; ID3 then
 /// draws its discrimination orders from the same generator. The report is therefore the
-/// same for the same data, learner and seed, on every machine.
+/// same for the same data, learner and seed, on every machine. CS-ID3 and ID3 run over an
+/// index of the library ([`Procedure::Indexed`]); [`stream_dataset_with`] can run the plain
+/// procedure instead, with the same result.
 ///
 /// ```
 /// use cslearn::{Dataset, DatasetOptions, LearnerKind};
@@ -43,7 +63,28 @@ pub enum LearnerKind {
 /// assert_eq!(report, cslearn::stream_dataset(&ds, LearnerKind::CsId3, 7));
 /// ```
 pub fn stream_dataset(dataset: &Dataset, kind: LearnerKind, seed: u64) -> StreamReport {
-    stream_dataset_with_progress(dataset, kind, seed, &mut |_, _| {})
+    stream_dataset_with(dataset, kind, seed, Procedure::Indexed)
+}
+
+/// [`stream_dataset`] by the given procedure.
+///
+/// ```
+/// use cslearn::{Dataset, DatasetOptions, LearnerKind, Procedure};
+/// let data = "a,b,t\n0,0,n\n0,1,n\n1,0,y\n1,1,y\n0,0,n\n1,1,y\n";
+/// let costs = "feature,cost\na,1\nb,5\n";
+/// let ds = Dataset::from_readers(data.as_bytes(), "d.csv", costs.as_bytes(), "c.csv", &DatasetOptions::new("t")).unwrap();
+/// for kind in [LearnerKind::CsId3, LearnerKind::Id3] {
+///     let plain = cslearn::stream_dataset_with(&ds, kind, 3, Procedure::Plain);
+///     assert_eq!(plain, cslearn::stream_dataset_with(&ds, kind, 3, Procedure::Indexed));
+/// }
+/// ```
+pub fn stream_dataset_with(
+    dataset: &Dataset,
+    kind: LearnerKind,
+    seed: u64,
+    procedure: Procedure,
+) -> StreamReport {
+    stream(dataset, kind, seed, procedure, &mut |_, _| {})
 }
 
 /// [`stream_dataset`], calling `progress(done, total)` as each object is taken up, so a
@@ -64,6 +105,16 @@ pub fn stream_dataset_with_progress(
     seed: u64,
     progress: &mut dyn FnMut(usize, usize),
 ) -> StreamReport {
+    stream(dataset, kind, seed, Procedure::Indexed, progress)
+}
+
+fn stream(
+    dataset: &Dataset,
+    kind: LearnerKind,
+    seed: u64,
+    procedure: Procedure,
+    progress: &mut dyn FnMut(usize, usize),
+) -> StreamReport {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
     let order = dataset.shuffled(&mut rng);
     let total = order.len();
@@ -72,9 +123,11 @@ pub fn stream_dataset_with_progress(
         (dataset.object(i), dataset.labels()[i])
     });
     let costs = dataset.costs().clone();
-    match kind {
-        LearnerKind::CsId3 => cs_id3(costs).stream(objects),
-        LearnerKind::CsIbl { tolerance } => cs_ibl(costs, tolerance).stream(objects),
-        LearnerKind::Id3 => id3(costs, rng).stream(objects),
+    match (kind, procedure) {
+        (LearnerKind::CsId3, Procedure::Indexed) => cs_id3_indexed(costs).stream(objects),
+        (LearnerKind::CsId3, Procedure::Plain) => cs_id3(costs).stream(objects),
+        (LearnerKind::CsIbl { tolerance }, _) => cs_ibl(costs, tolerance).stream(objects),
+        (LearnerKind::Id3, Procedure::Indexed) => id3_indexed(costs, rng).stream(objects),
+        (LearnerKind::Id3, Procedure::Plain) => id3(costs, rng).stream(objects),
     }
 }

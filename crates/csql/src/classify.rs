@@ -1,7 +1,7 @@
 //! CLASSIFY (the paper's Figure 3), made from cslearn's parts, with a cache that never
 //! changes what is charged.
 //!
-//! # The procedure (SPEC 4)
+//! # The procedure (`docs/specification.md`, section 4.2)
 //!
 //! 1. The candidates are all descriptions; the new description is empty.
 //! 2. If one candidate remains and every feature it has is measured, return it. If none
@@ -36,10 +36,13 @@
 mod cache;
 
 use cslearn::{Attend, Attention, Cost, FeatureId, InfoCost, MissingRule, RuleAttending};
-use mdp::{Cell, Feature, FeatureSpace, GridWorld, StateId};
+use mdp::{Cell, Feature, FeatureSpace, GridWorld, SensorNoise, StateId};
 use qlearn::{QTable, RowId};
+use rand::SeedableRng;
+use rand_xoshiro::Xoshiro256PlusPlus;
 
 use self::cache::{Cache, Step};
+use crate::extensions::Matching;
 use crate::perception::Perception;
 use crate::representation::{DescriptionId, Representation, feature_id, value_of};
 
@@ -88,8 +91,15 @@ pub struct Classify {
     select: InfoCost,
     attention: Attention,
     measured: Vec<(Feature, Cell)>,
+    /// What the free view reads (never charged, never part of a classification).
+    probe: Vec<(Feature, Cell)>,
     cache: Cache,
     use_cache: bool,
+    /// The sensors' error rate and the generator their errors are drawn from (never
+    /// drawn from when the rate is 0).
+    noise: SensorNoise,
+    noise_rng: Xoshiro256PlusPlus,
+    matching: Matching,
 }
 
 impl Classify {
@@ -124,9 +134,108 @@ impl Classify {
             select: InfoCost::new(MissingRule::C45),
             attention: Attention::new(),
             measured: Vec::new(),
+            probe: Vec::new(),
             cache: Cache::default(),
             use_cache: true,
+            noise: SensorNoise::default(),
+            noise_rng: Xoshiro256PlusPlus::seed_from_u64(0),
+            matching: Matching::Exact,
         }
+    }
+
+    /// Sensors that misread with probability `noise` (a wrong reading is charged like a
+    /// right one), their errors drawn from `rng`. The free view ([`Classify::lookup`])
+    /// stays exact: it is the oracle's.
+    ///
+    /// ```
+    /// use mdp::{FeatureSpace, GridWorld, Manhattan, SensorNoise};
+    /// use rand::SeedableRng;
+    /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
+    /// let mut c = csql::Classify::new(&space).with_noise(SensorNoise::new(1.0).unwrap(), rng);
+    /// let s = world.states()[0];
+    /// let d = c.classify_state(&world, s).description;
+    /// c.add_feature(&world, d, s);
+    /// // Every reading is wrong, so the state does not match its own description.
+    /// assert_eq!(c.lookup(&world, s), None);
+    /// ```
+    pub fn with_noise(mut self, noise: SensorNoise, rng: Xoshiro256PlusPlus) -> Classify {
+        self.noise = noise;
+        self.noise_rng = rng;
+        self
+    }
+
+    /// How descriptions are matched. With [`Matching::Nearest`], when no description
+    /// matches a state, CLASSIFY takes, before creating one, the first description (in
+    /// id order) of at least three features that differs from the state on exactly one
+    /// of them, measuring (and charging) the features it lacks to find out: the
+    /// nearest-neighbour match of CS-IBL (the paper's suggestion for bounded noise) with
+    /// a distance of one, so that one misread value does not make a new description.
+    ///
+    /// ```
+    /// use mdp::{Cell, Feature, FeatureSpace, GridWorld, Manhattan, Pos};
+    /// let world = GridWorld::new(&mdp::builtin("tan8x8").unwrap());
+    /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let s = world.state_at(Pos::new(7, 0)).unwrap();
+    /// let mut rep = csql::Representation::default();
+    /// let truth: Vec<_> = (0..4).map(|f| (Feature(f), space.measure(&world, s, Feature(f)))).collect();
+    /// let mut wrong = truth.clone();
+    /// wrong[3].1 = if wrong[3].1 == Cell::Empty { Cell::Obstacle } else { Cell::Empty };
+    /// rep.push(&wrong);
+    /// let mut exact = csql::Classify::with_representation(&space, rep.clone());
+    /// assert!(exact.classify_state(&world, s).created);
+    /// let mut near = csql::Classify::with_representation(&space, rep).with_matching(csql::Matching::Nearest);
+    /// assert!(!near.classify_state(&world, s).created);
+    /// ```
+    pub fn with_matching(mut self, matching: Matching) -> Classify {
+        self.matching = matching;
+        self
+    }
+
+    /// What the sensors report for feature `f` of state `s`.
+    fn read(&mut self, world: &GridWorld, s: StateId, f: Feature) -> Cell {
+        let truth = self.space.measure(world, s, f);
+        self.noise.corrupt(truth, &mut self.noise_rng)
+    }
+
+    /// Nearest matching (see [`Classify::with_matching`]): after the walk found no
+    /// description, the first one at distance one from the state, if any.
+    fn nearest(&mut self, world: &GridWorld, s: StateId) -> Option<DescriptionId> {
+        let ids: Vec<DescriptionId> = self
+            .rep
+            .iter()
+            .filter(|(_, d)| d.len() >= 3 && self.mismatches(*d) == 1)
+            .map(|(id, _)| id)
+            .collect();
+        for id in ids {
+            let missing: Vec<Feature> = self
+                .rep
+                .get(id)
+                .features()
+                .map(|(f, _)| f)
+                .filter(|f| !self.measured.iter().any(|(m, _)| m == f))
+                .collect();
+            for f in missing {
+                let v = self.read(world, s, f);
+                self.measured.push((f, v));
+                if self.mismatches(self.rep.get(id)) > 1 {
+                    break;
+                }
+            }
+            if self.mismatches(self.rep.get(id)) == 1 {
+                return Some(id);
+            }
+        }
+        None
+    }
+
+    /// How many of a description's features were measured in this call with another
+    /// value.
+    fn mismatches(&self, d: crate::Description<'_>) -> usize {
+        d.features()
+            .filter(|&(f, v)| self.measured.iter().any(|&(m, x)| m == f && x != v))
+            .count()
     }
 
     /// Turn the cache off (every call runs the plain procedure) or on.
@@ -195,6 +304,10 @@ impl Classify {
         } else {
             self.walk_plain(world, s)
         };
+        let found = match found {
+            None if self.matching == Matching::Nearest => self.nearest(world, s),
+            found => found,
+        };
         self.settle(found)
     }
 
@@ -236,7 +349,7 @@ impl Classify {
 
     /// Measure feature `f` on state `s` (charged) and drop the candidates it rules out.
     fn measure_and_attend(&mut self, world: &GridWorld, s: StateId, f: Feature) {
-        let v = self.space.measure(world, s, f);
+        let v = self.read(world, s, f);
         self.measured.push((f, v));
         RuleAttending.attend(
             self.rep.library(),
@@ -262,8 +375,9 @@ impl Classify {
     /// ```
     pub fn matches(&mut self, world: &GridWorld, s: StateId, d: DescriptionId) -> bool {
         self.measured.clear();
-        for (f, want) in self.rep.get(d).features() {
-            let v = self.space.measure(world, s, f);
+        let wanted: Vec<(Feature, Cell)> = self.rep.get(d).features().collect();
+        for (f, want) in wanted {
+            let v = self.read(world, s, f);
             self.measured.push((f, v));
             if v != want {
                 return false;
@@ -397,13 +511,12 @@ impl Classify {
     /// The cached path: walk the decision tree of the procedure, growing it where no
     /// classification has been before.
     fn walk_cached(&mut self, world: &GridWorld, s: StateId) -> Option<DescriptionId> {
-        self.measured.clear();
-        let (space, measured) = (&self.space, &mut self.measured);
-        self.cache.walk(self.rep.library(), &self.costs, |f| {
-            let v = space.measure(world, s, f);
-            measured.push((f, v));
-            v
-        })
+        let space = &self.space;
+        let (noise, noise_rng) = (self.noise, &mut self.noise_rng);
+        self.cache
+            .walk(self.rep.library(), &self.costs, &mut self.measured, |f| {
+                noise.corrupt(space.measure(world, s, f), noise_rng)
+            })
     }
 
     /// The description state `s` belongs to, found without charging and without adding a
@@ -425,12 +538,87 @@ impl Classify {
     pub fn lookup(&mut self, world: &GridWorld, s: StateId) -> Option<DescriptionId> {
         let space = &self.space;
         if self.use_cache {
-            self.cache.walk(self.rep.library(), &self.costs, |f| {
-                space.measure(world, s, f)
-            })
+            self.cache
+                .walk(self.rep.library(), &self.costs, &mut self.probe, |f| {
+                    space.measure(world, s, f)
+                })
         } else {
             self.rep.matching(world, space, s)
         }
+    }
+
+    /// The description state `s` belongs to as the agent's noisy sensors see it, without
+    /// charging and without adding a description (`None` if CLASSIFY would create one);
+    /// errors are drawn from `rng`, not from the learner's sensors. Used to evaluate the
+    /// learned policy under sensor noise.
+    ///
+    /// ```
+    /// use mdp::{FeatureSpace, GridWorld, Manhattan, SensorNoise};
+    /// use rand::SeedableRng;
+    /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let mut c = csql::Classify::new(&space);
+    /// let s = world.states()[0];
+    /// let d = c.classify_state(&world, s).description;
+    /// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(2);
+    /// assert_eq!(c.lookup_noisy(&world, s, SensorNoise::new(0.5).unwrap(), &mut rng), Some(d));
+    /// ```
+    pub fn lookup_noisy<R: rand::Rng + ?Sized>(
+        &mut self,
+        world: &GridWorld,
+        s: StateId,
+        noise: SensorNoise,
+        rng: &mut R,
+    ) -> Option<DescriptionId> {
+        let space = &self.space;
+        let found = self
+            .cache
+            .walk(self.rep.library(), &self.costs, &mut self.probe, |f| {
+                noise.corrupt(space.measure(world, s, f), rng)
+            });
+        if found.is_some() || self.matching == Matching::Exact {
+            return found;
+        }
+        // Nearest matching, read for free.
+        let measured = &self.probe;
+        self.rep.iter().find_map(|(id, d)| {
+            if d.len() < 3 {
+                return None;
+            }
+            let wrong = d
+                .features()
+                .filter(|&(f, v)| {
+                    let x = measured
+                        .iter()
+                        .find(|(m, _)| *m == f)
+                        .map_or_else(|| noise.corrupt(space.measure(world, s, f), rng), |p| p.1);
+                    x != v
+                })
+                .count();
+            (wrong == 1).then_some(id)
+        })
+    }
+
+    /// What classifying state `s` would charge now with exact sensors (the features the
+    /// procedure measures on its way), without charging or creating anything.
+    ///
+    /// ```
+    /// use mdp::{FeatureSpace, GridWorld, Manhattan};
+    /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let mut c = csql::Classify::new(&space);
+    /// let s = world.states()[0];
+    /// let d = c.classify_state(&world, s).description;
+    /// c.add_feature(&world, d, s);
+    /// assert_eq!(c.lookup_cost(&world, s), 1.0);
+    /// ```
+    pub fn lookup_cost(&mut self, world: &GridWorld, s: StateId) -> f64 {
+        let space = &self.space;
+        self.cache
+            .walk(self.rep.library(), &self.costs, &mut self.probe, |f| {
+                space.measure(world, s, f)
+            });
+        self.probe.iter().map(|&(f, _)| space.cost(f)).sum()
     }
 
     /// Add the next cheapest feature a description lacks, valued at state `s`; returns the
@@ -448,7 +636,7 @@ impl Classify {
     /// ```
     pub fn add_feature(&mut self, world: &GridWorld, d: DescriptionId, s: StateId) -> Option<f64> {
         let f = self.rep.get(d).next_missing(self.space.len())?;
-        let v = self.space.measure(world, s, f);
+        let v = self.read(world, s, f);
         self.rep.refine(d, f, v);
         self.cache.on_refine(self.rep.library(), d, f, v);
         Some(self.space.cost(f))

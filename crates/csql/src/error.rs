@@ -4,25 +4,25 @@
 ///
 /// ```
 /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
-/// s.max_trials = 0;
-/// assert!(matches!(s.validate(), Err(csql::Error::InvalidSetting { name: "max_trials", .. })));
+/// let err = s.apply_toml("max_trials = 0", "my.toml").unwrap_err();
+/// assert!(matches!(err, csql::Error::Settings { .. }));
+/// assert!(err.to_string().starts_with("my.toml: "));
 /// ```
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
     /// A settings file could not be read or parsed, or has unknown keys or bad values.
-    #[error("{source_name}: {message}")]
+    #[error("{source_name}: {problem}")]
     Settings {
-        /// The file.
+        /// The file (or the name given to the text).
         source_name: String,
-        /// What is wrong (the parser names the key and the line).
-        message: String,
+        /// What is wrong with it.
+        #[source]
+        problem: SettingsProblem,
     },
     /// A setting out of range.
-    #[error("setting `{name}` = {value} is invalid: expected {expected}")]
+    #[error("invalid setting {value}: expected {expected}")]
     InvalidSetting {
-        /// The setting.
-        name: &'static str,
         /// The value given.
         value: String,
         /// What is accepted.
@@ -37,4 +37,34 @@ pub enum Error {
     /// The cost model gave a bad cost.
     #[error(transparent)]
     Cost(#[from] mdp::BadCost),
+}
+
+/// What is wrong with a settings file.
+///
+/// ```
+/// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
+/// let err = s.apply_file(std::path::Path::new("/")).unwrap_err();
+/// assert!(matches!(err, csql::Error::Settings { problem: csql::SettingsProblem::NotAFile, .. }));
+/// ```
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum SettingsProblem {
+    /// It could not be read.
+    #[error("cannot read it")]
+    Read(#[source] std::io::Error),
+    /// It is a directory, a device or a pipe.
+    #[error("not a regular file")]
+    NotAFile,
+    /// It is longer than a settings file may be.
+    #[error("longer than the {limit} bytes a settings file may have")]
+    TooLarge {
+        /// The limit in bytes.
+        limit: u64,
+    },
+    /// It is not UTF-8 text.
+    #[error("not UTF-8 text")]
+    NotUtf8(#[source] std::string::FromUtf8Error),
+    /// It is not valid settings TOML (the parser names the key, line and column).
+    #[error("{}", .0.to_string().trim())]
+    Parse(#[source] toml::de::Error),
 }

@@ -1,13 +1,15 @@
 //! The learned policy and descriptions drawn on the map (the paper's Figure 4b).
 
-use mdp::{Cell, Overlay, Pos};
+use mdp::{Action, Cell, Pos};
 
 use crate::report::RunReport;
 use crate::run::Setup;
 
-/// The map as SVG with, for every state, its greedy action as an arrow, its description's
-/// label in the corner and, on hover, the description's features; a legend lists every
-/// description's features as `(dx,dy)` followed by `E` (empty), `O` (obstacle) or `G` (goal).
+/// The map as SVG with, for every state, its greedy action as an arrow and its
+/// description's label in a band at the top of the cell, where no arrow reaches; a legend
+/// beside the map. Hovering a cell shows its description's features; the list of every
+/// description is a separate table ([`descriptions_table`]). Drawn in black, white and
+/// greys, so it prints in grey.
 ///
 /// ```
 /// use csql::{RunSettings, Setup, StrategyKind};
@@ -15,81 +17,224 @@ use crate::run::Setup;
 /// let setup = Setup::new(&settings).unwrap();
 /// let report = csql::run_on(&setup, &settings);
 /// let svg = csql::policy_svg(&setup, &report);
-/// assert_eq!(svg.matches("<line").count(), 8); // one arrow per state
+/// assert_eq!(svg.matches("class=\"arrow\"").count(), 8); // one arrow per state
 /// ```
 pub fn policy_svg(setup: &Setup, report: &RunReport) -> String {
-    let features = |label: u32, short: bool| -> String {
-        let d = &report.descriptions[label as usize];
-        if d.features.is_empty() {
-            return "(no features: matches every state)".to_string();
+    use std::fmt::Write as _;
+    const CELL: f64 = 56.0;
+    const BAND: f64 = 16.0;
+    const TOP: f64 = 52.0;
+    const LEFT: f64 = 12.0;
+    let map = &setup.map;
+    let (w, h) = (map.width() as f64 + 2.0, map.height() as f64 + 2.0);
+    let legend_x = LEFT + w * CELL + 24.0;
+    let width = legend_x + 210.0;
+    let height = (TOP + h * CELL + 16.0).max(TOP + 230.0);
+    let mut s = format!(
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{height:.0}" viewBox="0 0 {width:.0} {height:.0}" font-family="sans-serif"><rect width="100%" height="100%" fill="white"/>"#
+    );
+    let _ = write!(
+        s,
+        r#"<text x="{LEFT}" y="22" font-size="17">{}: greedy policy and descriptions</text><text x="{LEFT}" y="41" font-size="13">{} strategy, seed {}, {} descriptions{}</text>"#,
+        escape(&report.map),
+        report.strategy,
+        report.seed,
+        report.descriptions.len(),
+        if report.converged {
+            ""
+        } else {
+            ", not converged"
         }
-        d.features
+    );
+    let by_pos = |row: usize, col: usize| {
+        report
+            .states
             .iter()
-            .map(|f| {
-                if short {
-                    let code = match f.value {
-                        Cell::Empty => 'E',
-                        Cell::Obstacle => 'O',
-                        Cell::Goal => 'G',
-                    };
-                    format!("({},{}){code}", f.dx, f.dy)
-                } else {
-                    format!("({}, {})={}", f.dx, f.dy, f.value.name())
-                }
-            })
-            .collect::<Vec<_>>()
-            .join(" ")
+            .find(|st| st.row == row && st.col == col)
     };
-    let mut o = Overlay {
-        title: Some(format!(
-            "{}: {} strategy, seed {}, {} descriptions{}",
-            report.map,
-            report.strategy,
-            report.seed,
-            report.descriptions.len(),
-            if report.converged {
-                ""
+    // Cells, with the border of obstacles around the interior.
+    for r in 0..h as usize {
+        for c in 0..w as usize {
+            let (x, y) = (LEFT + c as f64 * CELL, TOP + r as f64 * CELL);
+            let inside = r >= 1 && c >= 1 && r <= map.height() && c <= map.width();
+            let cell = if inside {
+                map.cell(Pos::new(r - 1, c - 1))
             } else {
-                " (not converged)"
-            }
-        )),
-        ..Overlay::default()
-    };
-    for s in &report.states {
-        let p = Pos::new(s.row, s.col);
-        if let Some(a) = s.greedy_action {
-            o.arrow(p, a);
-        }
-        if let Some(label) = s.description {
-            o.label(p, format!("d{label}"));
-            o.tooltip(
-                p,
-                format!(
-                    "row {}, col {}: d{label}, V = {:.4} (V* = {:.4})\n{}",
-                    s.row,
-                    s.col,
-                    s.value.unwrap_or(0.0),
-                    s.v_star,
-                    features(label, false)
-                ),
+                mdp::Cell::Obstacle
+            };
+            let fill = match cell {
+                mdp::Cell::Obstacle => "#4d4d4d",
+                mdp::Cell::Goal => "#d9d9d9",
+                mdp::Cell::Empty => "#ffffff",
+            };
+            let _ = write!(
+                s,
+                "<rect x=\"{x:.1}\" y=\"{y:.1}\" width=\"{CELL}\" height=\"{CELL}\" fill=\"{fill}\" stroke=\"#999\" stroke-width=\"1\"/>"
             );
+            if !inside {
+                continue;
+            }
+            if cell == mdp::Cell::Goal {
+                let _ = write!(
+                    s,
+                    r#"<text x="{:.1}" y="{:.1}" font-size="26" font-weight="bold" text-anchor="middle">G</text>"#,
+                    x + CELL / 2.0,
+                    y + CELL / 2.0 + 9.0
+                );
+            }
+            let Some(st) = by_pos(r - 1, c - 1) else {
+                continue;
+            };
+            if let Some(label) = st.description {
+                let _ = write!(
+                    s,
+                    "<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"12\" fill=\"#222\">d{label}<title>row {}, col {}: d{label}, V = {:.4} (V* = {:.4}): {}</title></text>",
+                    x + 3.0,
+                    y + BAND - 3.0,
+                    st.row,
+                    st.col,
+                    st.value.unwrap_or(0.0),
+                    st.v_star,
+                    features_text(report, label)
+                );
+            }
+            if let Some(a) = st.greedy_action {
+                // The arrow lives below the label band: centre of the lower part.
+                let (cx, cy) = (x + CELL / 2.0, y + BAND + (CELL - BAND) / 2.0);
+                s.push_str(&arrow(cx, cy, a, (CELL - BAND) * 0.36, "arrow"));
+            }
         }
     }
-    o.legend =
-        vec!["Descriptions: (dx, dy) offset right and up, E empty, O obstacle, G goal".to_string()];
-    o.legend.extend(
-        report
-            .descriptions
-            .iter()
-            .map(|d| format!("d{}: {}", d.label, features(d.label, true))),
+    // Legend.
+    let lx = legend_x;
+    let mut ly = TOP + 6.0;
+    let _ = write!(
+        s,
+        r#"<text x="{lx:.1}" y="{ly:.1}" font-size="14" font-weight="bold">Legend</text>"#
     );
-    mdp::render_svg(&setup.map, &o)
+    ly += 26.0;
+    s.push_str(&arrow(lx + 14.0, ly - 5.0, Action::Right, 12.0, "legend"));
+    let _ = write!(
+        s,
+        r#"<text x="{:.1}" y="{ly:.1}" font-size="13">greedy action</text>"#,
+        lx + 36.0
+    );
+    ly += 26.0;
+    let _ = write!(
+        s,
+        r#"<text x="{lx:.1}" y="{ly:.1}" font-size="12">d7</text><text x="{:.1}" y="{ly:.1}" font-size="13">description of the state</text>"#,
+        lx + 36.0
+    );
+    for (fill, text, mark) in [
+        ("#4d4d4d", "obstacle or boundary", ""),
+        ("#d9d9d9", "goal", "G"),
+        ("#ffffff", "state (free cell)", ""),
+    ] {
+        ly += 26.0;
+        let _ = write!(
+            s,
+            "<rect x=\"{lx:.1}\" y=\"{:.1}\" width=\"24\" height=\"18\" fill=\"{fill}\" stroke=\"#999\"/><text x=\"{:.1}\" y=\"{:.1}\" font-size=\"12\" font-weight=\"bold\" text-anchor=\"middle\">{mark}</text><text x=\"{:.1}\" y=\"{ly:.1}\" font-size=\"13\">{text}</text>",
+            ly - 14.0,
+            lx + 12.0,
+            ly,
+            lx + 36.0
+        );
+    }
+    ly += 30.0;
+    let _ = write!(
+        s,
+        r##"<text x="{lx:.1}" y="{ly:.1}" font-size="12" fill="#333">Features of each description:</text><text x="{lx:.1}" y="{:.1}" font-size="12" fill="#333">see the table beside this figure.</text>"##,
+        ly + 16.0
+    );
+    s.push_str("</svg>\n");
+    s
+}
+
+/// An arrow centred on `(cx, cy)` pointing along `a`, `half` long each side, in a group
+/// of the given class.
+fn arrow(cx: f64, cy: f64, a: Action, half: f64, class: &str) -> String {
+    let (dx, dy) = match a {
+        Action::Up => (0.0, -1.0),
+        Action::Down => (0.0, 1.0),
+        Action::Left => (-1.0, 0.0),
+        Action::Right => (1.0, 0.0),
+    };
+    let (x1, y1) = (cx - dx * half, cy - dy * half);
+    let (x2, y2) = (cx + dx * half, cy + dy * half);
+    let head = half * 0.7;
+    // Head: tip at (x2, y2), base across the direction.
+    let (bx, by) = (x2 - dx * head, y2 - dy * head);
+    let (px, py) = (-dy * head * 0.6, dx * head * 0.6);
+    format!(
+        "<g class=\"{class}\"><line x1=\"{x1:.1}\" y1=\"{y1:.1}\" x2=\"{bx:.1}\" y2=\"{by:.1}\" stroke=\"black\" stroke-width=\"3\"/><polygon points=\"{x2:.1},{y2:.1} {:.1},{:.1} {:.1},{:.1}\" fill=\"black\"/></g>",
+        bx + px,
+        by + py,
+        bx - px,
+        by - py
+    )
+}
+
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+/// A description's features as `(dx, dy) value`, comma-separated.
+fn features_text(report: &RunReport, label: u32) -> String {
+    let d = &report.descriptions[label as usize];
+    if d.features.is_empty() {
+        return "no features: matches every state".to_string();
+    }
+    d.features
+        .iter()
+        .map(|f| format!("({}, {}) {}", f.dx, f.dy, f.value.name()))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Every description of a run as a Markdown table: its label, the states (row, column)
+/// it describes, its number of features, their summed cost and the features themselves
+/// as `(dx, dy) value`, `dx` to the right and `dy` up from the robot.
+///
+/// ```
+/// use csql::{RunSettings, StrategyKind};
+/// let report = csql::run(&RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1)).unwrap();
+/// let table = csql::descriptions_table(&report);
+/// let rows = table.lines().filter(|l| l.starts_with("| d") && !l.starts_with("| description"));
+/// assert_eq!(rows.count(), report.descriptions.len());
+/// ```
+pub fn descriptions_table(report: &RunReport) -> String {
+    use std::fmt::Write as _;
+    let mut s = format!(
+        "# Descriptions: {}, {} strategy, seed {}\n\nOffsets `(dx, dy)` are measured from the robot, `dx` to the right and `dy` up; a description matches a state when every listed cell has the listed value.\n\n| description | states (row, col) | features | cost | features |\n|---|---|---|---|---|\n",
+        report.map, report.strategy, report.seed
+    );
+    for d in &report.descriptions {
+        let states: Vec<String> = report
+            .states
+            .iter()
+            .filter(|st| st.description == Some(d.label))
+            .map(|st| format!("({}, {})", st.row, st.col))
+            .collect();
+        let cost: f64 = d.features.iter().map(|f| f.cost).sum();
+        let _ = writeln!(
+            s,
+            "| d{} | {} | {} | {cost:.0} | {} |",
+            d.label,
+            states.join(" "),
+            d.features.len(),
+            features_text(report, d.label)
+        );
+    }
+    s
 }
 
 /// Every description of a run drawn as a small picture of what it senses around the
-/// robot (the paper's Figure 4b shows such examples): the robot's cell is marked, each
-/// sensed cell is coloured by the value the description requires (white empty, dark
-/// obstacle, yellow goal) and cells it does not sense are left blank.
+/// robot (the paper's Figure 4b shows such examples): the robot's cell is marked with a
+/// black dot, each sensed cell is shaded by the value the description requires (white
+/// empty, dark grey obstacle, light grey goal) and cells it does not sense are left blank.
+/// Greys only, so it prints in grey.
 ///
 /// ```
 /// use csql::{RunSettings, StrategyKind};
@@ -99,7 +244,7 @@ pub fn policy_svg(setup: &Setup, report: &RunReport) -> String {
 /// ```
 pub fn descriptions_svg(report: &RunReport) -> String {
     use std::fmt::Write as _;
-    const CELL: i32 = 9;
+    const CELL: i32 = 11;
     const COLUMNS: usize = 10;
     let reach = report
         .descriptions
@@ -119,7 +264,7 @@ pub fn descriptions_svg(report: &RunReport) -> String {
     );
     let _ = write!(
         s,
-        r#"<text x="8" y="20" font-size="14">{}: the {} descriptions of the {} strategy, seed {}</text><text x="8" y="36" font-size="11">dN: K = description N, with K features; blue: the robot; white, dark, yellow: empty, obstacle, goal; blank: not sensed</text>"#,
+        r#"<text x="8" y="20" font-size="14">{}: the {} descriptions of the {} strategy, seed {}</text><text x="8" y="36" font-size="11">dN: K = description N, with K features; black dot: the robot; white: empty; dark grey: obstacle; light grey: goal; blank: not sensed</text>"#,
         report.map,
         report.descriptions.len(),
         report.strategy,
@@ -132,7 +277,7 @@ pub fn descriptions_svg(report: &RunReport) -> String {
         );
         let _ = write!(
             s,
-            r#"<g transform="translate({x0},{y0})"><text x="{}" y="10" font-size="10" text-anchor="middle">d{}: {}</text>"#,
+            r#"<g transform="translate({x0},{y0})"><text x="{}" y="10" font-size="11" text-anchor="middle">d{}: {}</text>"#,
             side / 2,
             d.label,
             d.features.len()
@@ -146,7 +291,7 @@ pub fn descriptions_svg(report: &RunReport) -> String {
             let (x, y) = cell_at(f.dx, f.dy);
             let fill = match f.value {
                 Cell::Obstacle => "#555555",
-                Cell::Goal => "#ffcc33",
+                Cell::Goal => "#bbbbbb",
                 Cell::Empty => "#ffffff",
             };
             let _ = write!(
@@ -161,7 +306,10 @@ pub fn descriptions_svg(report: &RunReport) -> String {
         let (x, y) = cell_at(0, 0);
         let _ = write!(
             s,
-            "<rect x=\"{x}\" y=\"{y}\" width=\"{CELL}\" height=\"{CELL}\" fill=\"#1f5fbf\"/></g>"
+            "<rect x=\"{x}\" y=\"{y}\" width=\"{CELL}\" height=\"{CELL}\" fill=\"white\" stroke=\"#888\" stroke-width=\"0.6\"/><circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"{:.1}\" fill=\"black\"/></g>",
+            f64::from(x) + f64::from(CELL) / 2.0,
+            f64::from(y) + f64::from(CELL) / 2.0,
+            f64::from(CELL) * 0.32
         );
     }
     s.push_str("</svg>\n");

@@ -27,11 +27,12 @@
 //! Per trial: one `random_range(0..n)` for the start state. Per move: one uniform `f64`
 //! for Boltzmann selection, or one `random_range(0..4)` for a random move.
 
-use mdp::{GridWorld, Mdp, StateId};
+use mdp::{GridWorld, Mdp, StateId, StochasticMdp};
 use qlearn::{QTable, RowId, Target};
 use rand::{Rng, RngExt};
 use serde::Serialize;
 
+use crate::detector::{Detector, RunDetector};
 use crate::perception::Perception;
 use crate::strategy::{Reaction, Strategy};
 
@@ -112,6 +113,9 @@ pub struct Agent<P, S> {
     pub params: LoopParams,
     /// What changed since the oracle last looked (never read by the agent itself).
     journal: Journal,
+    /// What the loop asks after every update: is the description inconsistent? (The
+    /// paper's rule, any decrease, unless [`Agent::with_detector`] says otherwise.)
+    detector: RunDetector,
 }
 
 /// What an agent changed since the oracle's judge last looked, so that the judge
@@ -142,7 +146,22 @@ impl<P, S> Agent<P, S> {
             table,
             params,
             journal: Journal::default(),
+            detector: RunDetector::default(),
         }
+    }
+
+    /// The same agent with another detector of inconsistency.
+    ///
+    /// ```
+    /// use csql::{Agent, DetectorKind, Identified, LoopParams, Never, RateParams, RunDetector, RunSettings, StrategyKind};
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let params = LoopParams::from(&RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1));
+    /// let agent = Agent::new(Identified::new(&world, vec![0.0; 9]), Never, qlearn::QTable::new(4).unwrap(), params)
+    ///     .with_detector(RunDetector::new(DetectorKind::Statistical, RateParams::default()));
+    /// ```
+    pub fn with_detector(mut self, detector: RunDetector) -> Agent<P, S> {
+        self.detector = detector;
+        self
     }
 
     /// Hand over the journal and start a new one.
@@ -175,9 +194,12 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
     /// // Every classification costs 1 here: the start and each move but the last.
     /// assert_eq!(rec.cost, rec.moves as f64 - if rec.reached_goal { 1.0 } else { 0.0 } + 1.0);
     /// ```
-    pub fn run_trial<R: Rng + ?Sized>(
+    ///
+    /// The world is any [`StochasticMdp`] over a grid world: the grid world itself, or a
+    /// [`mdp::SlipperyGrid`] whose moves draw from `rng` (a grid world draws nothing).
+    pub fn run_trial<W: StochasticMdp<Base = GridWorld> + ?Sized, R: Rng + ?Sized>(
         &mut self,
-        world: &GridWorld,
+        dynamics: &W,
         start: StateId,
         trial: u32,
         rng: &mut R,
@@ -188,7 +210,9 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
             table,
             params,
             journal,
+            detector,
         } = self;
+        let world = dynamics.base();
         let mut rec = TrialRecord {
             trial,
             ..TrialRecord::default()
@@ -211,7 +235,7 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
             };
             // 2. y <- next-state(x, a), r <- reward.
             // 3. descrip(y) <- CLASSIFY(y); the goal ends the trial unclassified.
-            let step = world.step(x, a);
+            let step = dynamics.sample(x, a, rng);
             rec.moves += 1;
             let next = if step.terminated {
                 None
@@ -226,38 +250,42 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
             let change = table.update(row_x, a, step.reward, target, params.beta, params.gamma);
             journal.updated.push(row_x);
             let mut row_y = next;
-            // 6. If V(descrip(x)) decreased, descrip(x) is inconsistent (Theorem 2): the
-            //    strategy decides. Decreases during random moves never refine anything.
-            if change.after < change.before - params.decrease_threshold {
-                rec.decreases += 1;
-                if !random_move
-                    && let Reaction::Refine {
-                        reset,
-                        random_moves,
-                    } = strategy.on_decrease()
-                {
-                    // Add the next cheapest feature x lacks, valued at the state x was
-                    // used for (charged).
-                    if let Some(cost) = perception.refine(world, row_x, x) {
-                        rec.cost += cost;
-                        rec.refinements += 1;
-                        journal.refined.push(row_x);
-                    }
-                    if reset {
-                        table.reset();
-                        rec.resets += 1;
-                        journal.reset = true;
-                    }
-                    random_left = random_moves;
-                    if let Some(current) = row_y {
-                        // The refined description may no longer match the next state.
-                        let (again, cost) =
-                            perception.classify_again(world, row_x, current, step.next, table);
-                        rec.cost += cost;
-                        row_y = Some(again);
-                    }
+            // 6. If V(descrip(x)) decreased, descrip(x) is inconsistent (Theorem 2; the
+            //    detector may ask for more evidence): the strategy decides. Decreases
+            //    during random moves never refine anything.
+            let dropped = change.after < change.before - params.decrease_threshold;
+            rec.decreases += u32::from(dropped);
+            if detector.inconsistent(row_x, change, dropped)
+                && !random_move
+                && let Reaction::Refine {
+                    reset,
+                    random_moves,
+                } = strategy.on_decrease()
+            {
+                // Add the next cheapest feature x lacks, valued at the state x was
+                // used for (charged).
+                if let Some(cost) = perception.refine(world, row_x, x) {
+                    rec.cost += cost;
+                    rec.refinements += 1;
+                    journal.refined.push(row_x);
+                    detector.refined(row_x);
+                }
+                if reset {
+                    table.reset();
+                    detector.reset();
+                    rec.resets += 1;
+                    journal.reset = true;
+                }
+                random_left = random_moves;
+                if let Some(current) = row_y {
+                    // The refined description may no longer match the next state.
+                    let (again, cost) =
+                        perception.classify_again(world, row_x, current, step.next, table);
+                    rec.cost += cost;
+                    row_y = Some(again);
                 }
             }
+
             // 8./9. x <- y, and go on until the goal.
             match row_y {
                 None => {

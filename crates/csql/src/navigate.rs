@@ -1,4 +1,4 @@
-//! Navigation after learning: follow the learned policy on the reduced map (SPEC 6,
+//! Navigation after learning: follow the learned policy on the reduced map (specification §6,
 //! "Navigation after learning").
 //!
 //! From every non-goal free state, a fixed number of evaluation trials with learning off:

@@ -142,8 +142,7 @@ impl std::str::FromStr for PredictSensing {
             .into_iter()
             .find(|l| l.name() == s)
             .ok_or_else(|| Error::InvalidSetting {
-                name: "predict_sensing",
-                value: s.to_string(),
+                value: format!("predict_sensing = {s}"),
                 expected: "one of off, learned, motion",
             })
     }
@@ -207,13 +206,14 @@ impl Prediction {
     ///
     /// ```
     /// let p = csql::Prediction { recheck: 1.5, ..Default::default() };
-    /// assert!(matches!(p.validate(), Err(csql::Error::InvalidSetting { name: "prediction.recheck", .. })));
+    /// let err = p.validate().unwrap_err();
+    /// assert!(matches!(err, csql::Error::InvalidSetting { .. }));
+    /// assert!(err.to_string().contains("prediction.recheck"));
     /// ```
     pub fn validate(&self) -> Result<(), Error> {
         let bad = |name: &'static str, value: String, expected: &'static str| {
             Err(Error::InvalidSetting {
-                name,
-                value,
+                value: format!("{name} = {value}"),
                 expected,
             })
         };
@@ -1005,8 +1005,8 @@ mod tests {
             assert!(bad.validate().is_err());
         }
         assert_eq!(
-            "motion".parse::<PredictSensing>(),
-            Ok(PredictSensing::Motion)
+            "motion".parse::<PredictSensing>().unwrap(),
+            PredictSensing::Motion
         );
         assert!("on".parse::<PredictSensing>().is_err());
     }

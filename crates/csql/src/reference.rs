@@ -86,7 +86,7 @@ pub fn cheapest_interior_cost(world: &GridWorld, space: &FeatureSpace) -> f64 {
 }
 
 /// Learn on a fixed perception with the run's settings until convergence.
-fn reference<P: Perception>(
+fn reference<P: Perception + crate::quality::Sees>(
     setup: &Setup,
     settings: &RunSettings,
     perception: P,

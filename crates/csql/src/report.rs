@@ -10,6 +10,7 @@ use serde::Serialize;
 
 use crate::classify::Classify;
 use crate::judge::Verdict;
+use crate::quality::QualityMethod;
 use crate::representation::DescriptionId;
 use crate::run::{Learned, Setup};
 use crate::settings::RunSettings;
@@ -179,6 +180,41 @@ pub struct RunReport {
     /// `off`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub prediction: Option<crate::predict::PredictionStats>,
+    /// Beyond the paper's setting only (slip, noise, a sensing range or an extension on):
+    /// the policy quality and what it took (specification §6). Absent from the paper's runs.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub quality: Option<QualityReport>,
+}
+
+/// The measures of a run beyond the paper's setting (specification §6).
+///
+/// ```
+/// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
+/// s.world.slip = mdp::Slip::new(0.1).unwrap();
+/// let q = csql::run(&s).unwrap().quality.unwrap();
+/// assert_eq!(q.method, csql::QualityMethod::Exact);
+/// assert!(q.policy_quality > 0.0 && q.policy_quality <= 1.0 + 1e-9);
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct QualityReport {
+    /// The policy quality at the last evaluation (1.0 is optimal).
+    pub policy_quality: f64,
+    /// Exact policy evaluation, or a seeded Monte Carlo estimate under sensor noise.
+    pub method: QualityMethod,
+    /// The Monte Carlo standard error (0 when exact).
+    pub standard_error: f64,
+    /// Evaluations made (every `quality_every` trials).
+    pub evaluations: u32,
+    /// Trials until the quality first reached 0.95 and stayed there (`None`: not reached).
+    pub trials_to_quality: Option<u32>,
+    /// Sensing cost charged until then.
+    pub cost_to_quality: Option<f64>,
+    /// Mean over states of what classifying the state costs at the end (noise-free).
+    pub sensing_cost_per_state: f64,
+    /// Descriptions at the end.
+    pub descriptions: usize,
+    /// Mean features per description at the end.
+    pub mean_features: f64,
 }
 
 /// A figure of the paper's Table 1 as the paper prints it.
@@ -343,29 +379,46 @@ impl Table1Row {
     }
 }
 
-/// One run's Table 1 as text: a row per measure, `not reached` where the run did not get
-/// there.
+/// One run's Table 1 as text: a header and a row per measure, `not reached` where the
+/// run did not get there, in columns as wide as their widest cell.
 ///
 /// ```
 /// let t = csql::Table1 { descriptions: Some(50), ..Default::default() };
 /// let text = t.to_string();
 /// assert!(text.lines().any(|l| l.starts_with("5 ") && l.ends_with(" 50")));
 /// assert!(text.contains("not reached"));
+/// // Every line has the same width.
+/// let widths: Vec<usize> = text.lines().map(|l| l.chars().count()).collect();
+/// assert!(widths.windows(2).all(|w| w[0] == w[1]));
 /// ```
 impl fmt::Display for Table1 {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let width = Table1Row::ALL
+        let rows: Vec<(String, String)> = Table1Row::ALL
             .iter()
-            .map(|r| r.number().len() + 1 + r.label().len())
-            .max()
-            .unwrap_or(0);
-        for row in Table1Row::ALL {
-            let name = format!("{} {}", row.number(), row.label());
-            let value = row.of(self).map_or_else(
-                || "not reached".to_string(),
-                |x| format!("{x:.*}", row.decimals()),
-            );
-            writeln!(f, "{name:<width$} {value:>12}")?;
+            .map(|row| {
+                let value = row.of(self).map_or_else(
+                    || "not reached".to_string(),
+                    |x| format!("{x:.*}", row.decimals()),
+                );
+                (format!("{} {}", row.number(), row.label()), value)
+            })
+            .collect();
+        let head = ("Table 1 row", "value");
+        let width = |s: &str| s.chars().count();
+        let left = rows
+            .iter()
+            .map(|r| width(&r.0))
+            .chain([width(head.0)])
+            .max();
+        let right = rows
+            .iter()
+            .map(|r| width(&r.1))
+            .chain([width(head.1)])
+            .max();
+        let (left, right) = (left.unwrap_or(0), right.unwrap_or(0));
+        writeln!(f, "{:<left$}  {:>right$}", head.0, head.1)?;
+        for (name, value) in rows {
+            writeln!(f, "{name:<left$}  {value:>right$}")?;
         }
         Ok(())
     }
@@ -385,6 +438,7 @@ pub(crate) fn report(
         .collect();
     let rep = classify.representation();
     let converged = learned.first_converged.is_some();
+    let reached = learned.quality.and_then(|q| q.reached);
     let mut table1 = Table1 {
         cost_to_sufficient: learned.first_sufficient.map(|x| x.1),
         trials_to_sufficient: learned.first_sufficient.map(|x| x.0),
@@ -392,8 +446,8 @@ pub(crate) fn report(
         trials_to_converge: learned.first_converged.map(|x| x.0),
         ..Table1::default()
     };
-    if converged {
-        let n = rep.len();
+    if converged || reached.is_some() {
+        let n = rep.len().max(1);
         let counts: Vec<usize> = rep.iter().map(|(_, d)| d.len()).collect();
         table1.descriptions = Some(n);
         table1.mean_features = Some(counts.iter().sum::<usize>() as f64 / n as f64);
@@ -406,13 +460,36 @@ pub(crate) fn report(
         table1.tree_cost_per_state = Some(costs.iter().sum::<f64>() / states.len() as f64);
         let plain: f64 = labels
             .iter()
-            .map(|l| {
-                rep.get(l.expect("converged: every state matches"))
-                    .cost(&setup.space)
-            })
+            .flatten()
+            .map(|&l| rep.get(l).cost(&setup.space))
             .sum();
         table1.description_cost_per_state = Some(plain / states.len() as f64);
     }
+    let sensing_cost_per_state = if learned.quality.is_some() {
+        states
+            .iter()
+            .map(|&s| classify.lookup_cost(&setup.world, s))
+            .sum::<f64>()
+            / states.len() as f64
+    } else {
+        0.0
+    };
+    let rep = classify.representation();
+    let quality = learned.quality.map(|q| {
+        let n = rep.len().max(1);
+        QualityReport {
+            policy_quality: q.last.quality,
+            method: q.last.method,
+            standard_error: q.last.standard_error,
+            evaluations: q.evaluations,
+            trials_to_quality: q.reached.map(|r| r.0),
+            cost_to_quality: q.reached.map(|r| r.1),
+            sensing_cost_per_state,
+            descriptions: rep.len(),
+            mean_features: rep.iter().map(|(_, d)| d.len()).sum::<usize>() as f64 / n as f64,
+        }
+    });
+    let rep = classify.representation();
     let last = learned.last;
     let sufficient_now = last.is_some_and(|t| t.sufficient);
     let consistent_literal = sufficient_now.then(|| {
@@ -425,7 +502,7 @@ pub(crate) fn report(
             &setup.oracle,
             table,
             &rows,
-            settings.tolerance,
+            settings.tolerance.get(),
         )
         .consistent_literal
     });
@@ -480,5 +557,6 @@ pub(crate) fn report(
         navigation_cost_per_move: None,
         navigation_success: None,
         prediction: None,
+        quality,
     }
 }

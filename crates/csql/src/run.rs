@@ -1,11 +1,12 @@
 //! One CS-QL run from settings to the measures of the paper's Table 1.
 
-use mdp::{FeatureSpace, GridWorld, Manhattan, Map, Mdp, Oracle};
+use mdp::{FeatureSpace, GridWorld, Manhattan, Map, Mdp, Oracle, SlipperyGrid};
 use qlearn::QTable;
 use rand::{RngExt, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 use crate::classify::Classify;
+use crate::detector::RunDetector;
 use crate::error::Error;
 use crate::judge::Judge;
 use crate::main_loop::{Agent, LoopParams};
@@ -13,6 +14,7 @@ use crate::navigate::navigate;
 use crate::observe::{Flow, KeepTrace, Observer};
 use crate::perception::Perception;
 use crate::predict::{PredictSensing, Predicting};
+use crate::quality::{QualityEstimate, Sees, policy_quality};
 use crate::report::{RunReport, TracePoint, report};
 use crate::representation::Representation;
 use crate::settings::RunSettings;
@@ -35,6 +37,9 @@ pub struct Setup {
     pub space: FeatureSpace,
     /// The oracle for the run's gamma.
     pub oracle: Oracle,
+    /// The oracle of the true model when the world slips (value iteration), else `None`
+    /// ([`Setup::oracle`] is then the truth).
+    pub stochastic_oracle: Option<Oracle>,
 }
 
 impl Setup {
@@ -46,8 +51,7 @@ impl Setup {
     /// assert_eq!(setup.space.len(), 80);
     /// ```
     pub fn new(settings: &RunSettings) -> Result<Setup, Error> {
-        settings.validate()?;
-        let map = mdp::resolve(&settings.map)?;
+        let map = settings.map.resolve()?;
         Setup::for_map(map, settings)
     }
 
@@ -59,15 +63,42 @@ impl Setup {
     /// assert_eq!(csql::Setup::for_map(map, &s).unwrap().world.states().len(), 2);
     /// ```
     pub fn for_map(map: Map, settings: &RunSettings) -> Result<Setup, Error> {
+        settings.validate()?;
         let world = GridWorld::new(&map);
-        let space = FeatureSpace::new(&map, &Manhattan)?;
+        let mut space = FeatureSpace::new(&map, &Manhattan)?;
+        if let Some(r) = settings.world.sensing_radius {
+            space = space.within(f64::from(r));
+        }
         let oracle = Oracle::for_grid(&world, settings.gamma.get())?;
+        let slip = settings.world.slip;
+        let stochastic_oracle = if slip.is_zero() {
+            None
+        } else {
+            Some(Oracle::solve_stochastic(
+                &SlipperyGrid::new(&world, slip),
+                settings.gamma.get(),
+            )?)
+        };
         Ok(Setup {
             map,
             world,
             space,
             oracle,
+            stochastic_oracle,
         })
+    }
+
+    /// The oracle of the true model: V* under the world's slip.
+    ///
+    /// ```
+    /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
+    /// s.world.slip = mdp::Slip::new(0.2).unwrap();
+    /// let setup = csql::Setup::new(&s).unwrap();
+    /// let here = setup.world.states()[0];
+    /// assert!(setup.truth().v_star(here) < setup.oracle.v_star(here));
+    /// ```
+    pub fn truth(&self) -> &Oracle {
+        self.stochastic_oracle.as_ref().unwrap_or(&self.oracle)
     }
 }
 
@@ -78,7 +109,7 @@ impl From<&RunSettings> for LoopParams {
             gamma: settings.gamma,
             temperature: settings.temperature,
             max_moves: settings.max_moves.get(),
-            decrease_threshold: settings.decrease_threshold,
+            decrease_threshold: settings.decrease_threshold.get(),
         }
     }
 }
@@ -94,11 +125,27 @@ pub(crate) struct Learned {
     pub first_converged: Option<(u32, f64)>,
     pub moves: u64,
     pub cost: f64,
+    /// Beyond the paper only: the policy quality's evaluations.
+    pub quality: Option<QualityTrack>,
 }
+
+/// The policy quality over a run beyond the paper (specification §6).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct QualityTrack {
+    pub last: QualityEstimate,
+    pub evaluations: u32,
+    /// Trial and cost after which the quality was at least 0.95 at every evaluation since.
+    pub reached: Option<(u32, f64)>,
+    /// Consecutive evaluations at or above 0.95.
+    pub streak: u32,
+}
+
+/// The quality a policy must reach (specification §6).
+pub(crate) const QUALITY_GOAL: f64 = 0.95;
 
 /// Run trials until the oracle says converged or the trial cap; the oracle judges the
 /// agent at the end of every trial, through the perception's free view.
-pub(crate) fn learn<P: Perception, S: Strategy>(
+pub(crate) fn learn<P: Perception + Sees, S: Strategy>(
     setup: &Setup,
     settings: &RunSettings,
     agent: &mut Agent<P, S>,
@@ -115,13 +162,52 @@ pub(crate) fn learn<P: Perception, S: Strategy>(
         first_converged: None,
         moves: 0,
         cost: 0.0,
+        quality: None,
     };
-    for trial in 1..=settings.max_trials {
+    let beyond = settings.beyond_paper();
+    let model = SlipperyGrid::new(&setup.world, settings.world.slip);
+    // The evaluation's own generator: the run's, 2^192 draws ahead.
+    let mut eval_rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
+    eval_rng.long_jump();
+    for trial in 1..=settings.max_trials.get() {
         let start = starts[rng.random_range(0..starts.len())];
-        let rec = agent.run_trial(&setup.world, start, trial, &mut rng);
+        let rec = agent.run_trial(&model, start, trial, &mut rng);
         out.moves += rec.moves as u64;
         out.cost += rec.cost;
-        let verdict = judge.judge(&setup.world, &setup.oracle, agent, settings.tolerance);
+        let verdict = if beyond {
+            // The paper's verdicts assume a deterministic, fully sensable world; beyond
+            // it, the policy quality judges (every `quality_every` trials).
+            agent.take_journal();
+            let every = settings.extensions.quality_every;
+            if trial % every == 0 || trial == settings.max_trials.get() {
+                let q = policy_quality(
+                    &model,
+                    setup.truth(),
+                    &mut agent.perception,
+                    &agent.table,
+                    settings.world.sensor_noise,
+                    &mut eval_rng,
+                );
+                let track = out.quality.get_or_insert(QualityTrack {
+                    last: q,
+                    evaluations: 0,
+                    reached: None,
+                    streak: 0,
+                });
+                track.last = q;
+                track.evaluations += 1;
+                if q.quality >= QUALITY_GOAL {
+                    track.streak += 1;
+                    track.reached.get_or_insert((trial, out.cost));
+                } else {
+                    track.streak = 0;
+                    track.reached = None;
+                }
+            }
+            crate::judge::Verdict::default()
+        } else {
+            judge.judge(&setup.world, &setup.oracle, agent, settings.tolerance.get())
+        };
         if verdict.sufficient && out.first_sufficient.is_none() {
             out.first_sufficient = Some((trial, out.cost));
         }
@@ -144,7 +230,10 @@ pub(crate) fn learn<P: Perception, S: Strategy>(
             out.trace.push(point);
         }
         let flow = observer.trial(&point);
-        if verdict.converged || flow == Flow::Stop {
+        let settled = out
+            .quality
+            .is_some_and(|q| q.streak >= settings.extensions.quality_patience);
+        if verdict.converged || settled || flow == Flow::Stop {
             break;
         }
     }
@@ -240,6 +329,13 @@ fn run_classify(
     classify: Classify,
     observer: &mut dyn Observer,
 ) -> (RunReport, Representation) {
+    // The sensors' own generator: the run's, 2^128 draws ahead (drawn from only under
+    // sensor noise).
+    let mut sensor_rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
+    sensor_rng.jump();
+    let classify = classify
+        .with_noise(settings.world.sensor_noise, sensor_rng)
+        .with_matching(settings.extensions.matching);
     let predicting = match settings.predict_sensing {
         PredictSensing::Off => {
             let mut agent = new_agent(setup, settings, classify);
@@ -297,4 +393,8 @@ fn new_agent<P>(
         QTable::new(setup.world.num_actions()).expect("grid worlds have four actions"),
         LoopParams::from(settings),
     )
+    .with_detector(RunDetector::new(
+        settings.extensions.detector,
+        settings.extensions.rate,
+    ))
 }

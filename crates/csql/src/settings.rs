@@ -1,31 +1,263 @@
-//! Run settings: one validated struct, the paper's preset, and a TOML file form.
+//! Run settings: one struct of validated values, the paper's preset, and a TOML file form.
+//!
+//! Every field holds only valid values: numbers are newtypes whose constructors and
+//! deserialisation share one check (as qlearn's parameters are), so a settings file with
+//! `max_trials = 0` is refused when it is read, and a [`RunSettings`] value can always be
+//! run. The map is either named (a built-in, a file or a map spec, resolved when the run
+//! is set up) or given as a [`mdp::Map`] value.
 
+use std::fmt;
 use std::io::Read;
 use std::path::Path;
 
 use qlearn::{Discount, LearningRate, MoveCap, Temperature};
 use serde::{Deserialize, Serialize};
 
-use crate::error::Error;
+use crate::error::{Error, SettingsProblem};
+use crate::extensions::{Extensions, WorldExtras};
 use crate::predict::{PredictSensing, Prediction};
 use crate::strategy::StrategyKind;
+
+/// The map of a run: a name (a built-in, a map file or a map spec such as
+/// `random:8x8:0.2:7`, resolved by [`mdp::resolve`]) or a map value. Reports show its
+/// name either way.
+///
+/// ```
+/// use csql::MapSource;
+/// let named = MapSource::from("tan3x3");
+/// assert_eq!(named.name(), "tan3x3");
+/// let mine = mdp::Map::from_layout("strip", ".G.").unwrap();
+/// assert_eq!(MapSource::from(mine.clone()).resolve().unwrap(), mine);
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum MapSource {
+    /// A built-in name, a file path or a map spec.
+    Named(String),
+    /// A map given as a value.
+    Given(mdp::Map),
+}
+
+impl MapSource {
+    /// The name reports show: the name given, or the map's own.
+    ///
+    /// ```
+    /// let m = mdp::Map::from_layout("strip", ".G.").unwrap();
+    /// assert_eq!(csql::MapSource::Given(m).name(), "strip");
+    /// ```
+    pub fn name(&self) -> &str {
+        match self {
+            MapSource::Named(name) => name,
+            MapSource::Given(map) => map.name(),
+        }
+    }
+
+    /// The map itself: loaded or generated for a name, cloned for a value.
+    ///
+    /// ```
+    /// assert_eq!(csql::MapSource::from("tan3x3").resolve().unwrap().states().len(), 8);
+    /// assert!(csql::MapSource::from("no-such-map").resolve().is_err());
+    /// ```
+    pub fn resolve(&self) -> Result<mdp::Map, mdp::MapError> {
+        match self {
+            MapSource::Named(name) => mdp::resolve(name),
+            MapSource::Given(map) => Ok(map.clone()),
+        }
+    }
+}
+
+impl From<&str> for MapSource {
+    fn from(name: &str) -> MapSource {
+        MapSource::Named(name.to_string())
+    }
+}
+
+impl From<&String> for MapSource {
+    fn from(name: &String) -> MapSource {
+        MapSource::Named(name.clone())
+    }
+}
+
+impl From<String> for MapSource {
+    fn from(name: String) -> MapSource {
+        MapSource::Named(name)
+    }
+}
+
+impl From<mdp::Map> for MapSource {
+    fn from(map: mdp::Map) -> MapSource {
+        MapSource::Given(map)
+    }
+}
+
+impl fmt::Display for MapSource {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl Serialize for MapSource {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
+    }
+}
+
+impl<'de> Deserialize<'de> for MapSource {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        String::deserialize(deserializer).map(MapSource::Named)
+    }
+}
+
+/// A finite number at least 0: the convergence tolerance and the decrease threshold.
+///
+/// ```
+/// use csql::NonNegative;
+/// assert_eq!(NonNegative::new(1e-6).unwrap().get(), 1e-6);
+/// assert!(NonNegative::new(-1.0).is_err());
+/// assert!(NonNegative::new(f64::NAN).is_err());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, PartialOrd, Serialize, Deserialize)]
+#[serde(try_from = "f64", into = "f64")]
+pub struct NonNegative(f64);
+
+impl NonNegative {
+    /// Zero.
+    ///
+    /// ```
+    /// assert_eq!(csql::NonNegative::ZERO.get(), 0.0);
+    /// ```
+    pub const ZERO: NonNegative = NonNegative(0.0);
+
+    /// The value, if it is finite and at least 0.
+    ///
+    /// ```
+    /// assert!(csql::NonNegative::new(f64::INFINITY).is_err());
+    /// ```
+    pub fn new(value: f64) -> Result<NonNegative, Error> {
+        if value.is_finite() && value >= 0.0 {
+            Ok(NonNegative(value))
+        } else {
+            Err(Error::InvalidSetting {
+                value: value.to_string(),
+                expected: "a finite number >= 0",
+            })
+        }
+    }
+
+    /// The number.
+    ///
+    /// ```
+    /// assert_eq!(csql::NonNegative::new(0.5).unwrap().get(), 0.5);
+    /// ```
+    #[inline]
+    pub fn get(self) -> f64 {
+        self.0
+    }
+}
+
+impl TryFrom<f64> for NonNegative {
+    type Error = Error;
+    fn try_from(value: f64) -> Result<Self, Error> {
+        NonNegative::new(value)
+    }
+}
+
+impl From<NonNegative> for f64 {
+    fn from(x: NonNegative) -> f64 {
+        x.0
+    }
+}
+
+/// The number of trials after which an unconverged run stops: at least 1.
+///
+/// ```
+/// use csql::TrialCap;
+/// assert_eq!(TrialCap::new(500).unwrap().get(), 500);
+/// assert!(TrialCap::new(0).is_err());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(try_from = "u32", into = "u32")]
+pub struct TrialCap(u32);
+
+impl TrialCap {
+    /// The cap, if it is at least 1.
+    ///
+    /// ```
+    /// assert!(csql::TrialCap::new(1).is_ok());
+    /// ```
+    pub fn new(trials: u32) -> Result<TrialCap, Error> {
+        if trials >= 1 {
+            Ok(TrialCap(trials))
+        } else {
+            Err(Error::InvalidSetting {
+                value: trials.to_string(),
+                expected: "a number of trials of at least 1",
+            })
+        }
+    }
+
+    /// The number of trials.
+    ///
+    /// ```
+    /// assert_eq!(csql::TrialCap::new(3).unwrap().get(), 3);
+    /// ```
+    #[inline]
+    pub fn get(self) -> u32 {
+        self.0
+    }
+}
+
+impl TryFrom<u32> for TrialCap {
+    type Error = Error;
+    fn try_from(value: u32) -> Result<Self, Error> {
+        TrialCap::new(value)
+    }
+}
+
+/// Read from the command line: a whole number of at least 1.
+///
+/// ```
+/// assert_eq!("40".parse::<csql::TrialCap>().unwrap().get(), 40);
+/// assert!("0".parse::<csql::TrialCap>().is_err());
+/// assert!("many".parse::<csql::TrialCap>().is_err());
+/// ```
+impl std::str::FromStr for TrialCap {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<TrialCap, Error> {
+        let n = s.trim().parse::<u32>().map_err(|_| Error::InvalidSetting {
+            value: s.to_string(),
+            expected: "a whole number of trials from 1 to 4294967295",
+        })?;
+        TrialCap::new(n)
+    }
+}
+
+impl From<TrialCap> for u32 {
+    fn from(x: TrialCap) -> u32 {
+        x.0
+    }
+}
 
 /// Everything a CS-QL run depends on. A run is a pure function of these settings.
 ///
 /// Build one with [`RunSettings::tan1991`] (the paper's values) and change fields, or
-/// read overrides from a TOML file with [`RunSettings::apply_toml`].
+/// read overrides from a TOML file with [`RunSettings::apply_toml`]. Every field holds a
+/// valid value, so any `RunSettings` can be run.
 ///
 /// ```
 /// use csql::{RunSettings, StrategyKind};
 /// let s = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 7);
 /// assert_eq!((s.beta.get(), s.gamma.get(), s.temperature.get()), (1.0, 0.9, 0.4));
 /// assert_eq!((s.max_moves.get(), s.random_moves), (100, 20));
+/// // A map of one's own is a value like any other.
+/// let mine = mdp::Map::from_layout("mine", "..G\n.#.\n...").unwrap();
+/// let report = csql::run(&RunSettings::tan1991(mine, StrategyKind::Lazy, 1)).unwrap();
+/// assert!(report.converged && report.map == "mine");
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RunSettings {
-    /// A built-in map name or a map file path.
-    pub map: String,
+    /// The map: a name (built-in, file or spec) or a map value.
+    pub map: MapSource,
     /// How decreases are handled.
     pub strategy: StrategyKind,
     /// Learning rate beta of equation 2.
@@ -39,12 +271,12 @@ pub struct RunSettings {
     /// Random moves after each refinement, for the random strategy (the paper: 20).
     pub random_moves: u32,
     /// Largest `|V(desc(s)) - V*(s)|` that counts as converged.
-    pub tolerance: f64,
+    pub tolerance: NonNegative,
     /// A decrease is a drop of V by more than this (0: any drop). The paper's remark on
     /// noisy utilities suggests a threshold; with the paper's settings none is needed.
-    pub decrease_threshold: f64,
+    pub decrease_threshold: NonNegative,
     /// Trials after which an unconverged run stops and says so.
-    pub max_trials: u32,
+    pub max_trials: TrialCap,
     /// The seed of the run's one random generator.
     pub seed: u64,
     /// Whether, and with what knowledge, the agent predicts instead of sensing (`off`,
@@ -56,6 +288,12 @@ pub struct RunSettings {
     /// TOML table `[prediction]`). Absent from the JSON when every value is the default.
     #[serde(default, skip_serializing_if = "Prediction::is_default")]
     pub prediction: Prediction,
+    /// The world's departures from the paper (TOML table `[world]`; omitted when off).
+    #[serde(default, skip_serializing_if = "WorldExtras::is_default")]
+    pub world: WorldExtras,
+    /// CS-QL's remedies beyond the paper (TOML table `[extensions]`; omitted when off).
+    #[serde(default, skip_serializing_if = "Extensions::is_default")]
+    pub extensions: Extensions,
 }
 
 /// The most bytes a settings file may have (64 KiB; the longest useful one is under 1 KiB).
@@ -69,19 +307,21 @@ pub const MAX_SETTINGS_BYTES: u64 = 64 << 10;
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct SettingsFile {
-    map: Option<String>,
+    map: Option<MapSource>,
     strategy: Option<StrategyKind>,
     beta: Option<LearningRate>,
     gamma: Option<Discount>,
     temperature: Option<Temperature>,
     max_moves: Option<MoveCap>,
     random_moves: Option<u32>,
-    tolerance: Option<f64>,
-    decrease_threshold: Option<f64>,
-    max_trials: Option<u32>,
+    tolerance: Option<NonNegative>,
+    decrease_threshold: Option<NonNegative>,
+    max_trials: Option<TrialCap>,
     seed: Option<u64>,
     predict_sensing: Option<PredictSensing>,
     prediction: Option<Prediction>,
+    world: Option<WorldExtras>,
+    extensions: Option<Extensions>,
 }
 
 impl RunSettings {
@@ -90,24 +330,26 @@ impl RunSettings {
     ///
     /// ```
     /// let s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Resetting, 1);
-    /// assert_eq!(s.max_trials, 20_000);
+    /// assert_eq!(s.max_trials.get(), 20_000);
     /// ```
-    pub fn tan1991(map: &str, strategy: StrategyKind, seed: u64) -> RunSettings {
+    pub fn tan1991(map: impl Into<MapSource>, strategy: StrategyKind, seed: u64) -> RunSettings {
         let q = qlearn::Params::tan1991();
         RunSettings {
-            map: map.to_string(),
+            map: map.into(),
             strategy,
             beta: q.learning_rate,
             gamma: q.discount,
             temperature: q.temperature,
             max_moves: q.max_moves,
             random_moves: 20,
-            tolerance: 1e-6,
-            decrease_threshold: 0.0,
-            max_trials: 20_000,
+            tolerance: NonNegative(1e-6),
+            decrease_threshold: NonNegative::ZERO,
+            max_trials: TrialCap(20_000),
             seed,
             predict_sensing: PredictSensing::Off,
             prediction: Prediction::default(),
+            world: WorldExtras::default(),
+            extensions: Extensions::default(),
         }
     }
 
@@ -125,7 +367,7 @@ impl RunSettings {
     pub fn apply_toml(&mut self, text: &str, source: &str) -> Result<(), Error> {
         let f: SettingsFile = toml::from_str(text).map_err(|e| Error::Settings {
             source_name: source.to_string(),
-            message: e.to_string().trim().to_string(),
+            problem: SettingsProblem::Parse(e),
         })?;
         macro_rules! take {
             ($($field:ident),*) => { $( if let Some(v) = f.$field { self.$field = v; } )* };
@@ -143,7 +385,9 @@ impl RunSettings {
             max_trials,
             seed,
             predict_sensing,
-            prediction
+            prediction,
+            world,
+            extensions
         );
         self.validate()
     }
@@ -158,66 +402,69 @@ impl RunSettings {
     /// ```
     pub fn apply_file(&mut self, path: &Path) -> Result<(), Error> {
         let source = path.display().to_string();
-        let fail = |message: String| Error::Settings {
+        let fail = |problem: SettingsProblem| Error::Settings {
             source_name: source.clone(),
-            message,
+            problem,
         };
-        let not_a_file = || fail("not a regular file".to_string());
         if !std::fs::metadata(path)
-            .map_err(|e| fail(e.to_string()))?
+            .map_err(|e| fail(SettingsProblem::Read(e)))?
             .is_file()
         {
-            return Err(not_a_file());
+            return Err(fail(SettingsProblem::NotAFile));
         }
-        let file = std::fs::File::open(path).map_err(|e| fail(e.to_string()))?;
-        if !file.metadata().map_err(|e| fail(e.to_string()))?.is_file() {
-            return Err(not_a_file());
+        let file = std::fs::File::open(path).map_err(|e| fail(SettingsProblem::Read(e)))?;
+        if !file
+            .metadata()
+            .map_err(|e| fail(SettingsProblem::Read(e)))?
+            .is_file()
+        {
+            return Err(fail(SettingsProblem::NotAFile));
         }
         let mut bytes = Vec::new();
         file.take(MAX_SETTINGS_BYTES + 1)
             .read_to_end(&mut bytes)
-            .map_err(|e| fail(e.to_string()))?;
+            .map_err(|e| fail(SettingsProblem::Read(e)))?;
         if bytes.len() as u64 > MAX_SETTINGS_BYTES {
-            return Err(fail(format!(
-                "longer than the {MAX_SETTINGS_BYTES} bytes a settings file may have"
-            )));
+            return Err(fail(SettingsProblem::TooLarge {
+                limit: MAX_SETTINGS_BYTES,
+            }));
         }
-        let text = String::from_utf8(bytes).map_err(|_| fail("not UTF-8 text".to_string()))?;
+        let text = String::from_utf8(bytes).map_err(|e| fail(SettingsProblem::NotUtf8(e)))?;
         self.apply_toml(&text, &source)
     }
 
-    /// Check the fields that have no type of their own.
+    /// Whether the run leaves the paper's setting: a world with slip, noise or a sensing
+    /// range, or an extension on. Such a run measures the policy quality
+    /// (`docs/specification.md`, section 6) and ends by it; the paper's runs keep the
+    /// paper's convergence.
     ///
     /// ```
     /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
-    /// s.tolerance = -1.0;
+    /// assert!(!s.beyond_paper());
+    /// s.world.slip = mdp::Slip::new(0.1).unwrap();
+    /// assert!(s.beyond_paper());
+    /// ```
+    pub fn beyond_paper(&self) -> bool {
+        !(self.world.is_default() && self.extensions.is_default())
+    }
+
+    /// Check the settings beyond the paper that have no type of their own (every other
+    /// field holds only valid values by its type).
+    ///
+    /// ```
+    /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
+    /// assert!(s.validate().is_ok());
+    /// s.world.sensing_radius = Some(0);
     /// assert!(s.validate().is_err());
     /// ```
     pub fn validate(&self) -> Result<(), Error> {
-        let bad = |name: &'static str, value: String, expected: &'static str| {
-            Err(Error::InvalidSetting {
-                name,
-                value,
-                expected,
-            })
-        };
-        if !(self.tolerance.is_finite() && self.tolerance >= 0.0) {
-            return bad(
-                "tolerance",
-                self.tolerance.to_string(),
-                "a finite number >= 0",
-            );
+        if self.world.sensing_radius == Some(0) {
+            return Err(Error::InvalidSetting {
+                value: "world.sensing_radius = 0".to_string(),
+                expected: "a sensing radius of at least 1",
+            });
         }
-        if !(self.decrease_threshold.is_finite() && self.decrease_threshold >= 0.0) {
-            return bad(
-                "decrease_threshold",
-                self.decrease_threshold.to_string(),
-                "a finite number >= 0",
-            );
-        }
-        if self.max_trials == 0 {
-            return bad("max_trials", "0".to_string(), "at least 1");
-        }
-        self.prediction.validate()
+        self.prediction.validate()?;
+        self.extensions.validate()
     }
 }

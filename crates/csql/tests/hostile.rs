@@ -62,8 +62,9 @@ proptest! {
     fn malformed_settings_never_panic(text in settingsish()) {
         let mut s = settings();
         if s.apply_toml(&text, "gen.toml").is_ok() {
-            // Whatever was accepted is valid, and loading its map never panics either.
-            prop_assert!(s.validate().is_ok());
+            // Whatever was accepted holds valid values (the types guarantee it), and
+            // loading its map never panics either.
+            prop_assert!(s.tolerance.get() >= 0.0 && s.max_trials.get() >= 1);
             let _ = csql::Setup::new(&s);
         }
     }

@@ -23,7 +23,12 @@ fn check(map: &str, strategy: StrategyKind, seed: u64, seen: &mut [bool; 3]) {
     for trial in 1..=3000 {
         let start = states[rng.random_range(0..states.len())];
         agent.run_trial(&setup.world, start, trial, &mut rng);
-        let fast = judge.judge(&setup.world, &setup.oracle, &mut agent, settings.tolerance);
+        let fast = judge.judge(
+            &setup.world,
+            &setup.oracle,
+            &mut agent,
+            settings.tolerance.get(),
+        );
         let rows: Vec<_> = states
             .iter()
             .map(|&s| Perception::lookup(&mut agent.perception, &setup.world, s))
@@ -33,7 +38,7 @@ fn check(map: &str, strategy: StrategyKind, seed: u64, seen: &mut [bool; 3]) {
             &setup.oracle,
             &agent.table,
             &rows,
-            settings.tolerance,
+            settings.tolerance.get(),
         );
         assert_eq!(fast, slow, "{map} {strategy} seed {seed}, trial {trial}");
         seen[0] |= fast.unmatched > 0;

@@ -88,7 +88,7 @@ fn tan3x3_learns_figure_5s_optimal_policy() {
     for k in StrategyKind::ALL {
         let (setup, r) = run("tan3x3", k, 1);
         assert_optimal(&setup, &r);
-        // SPEC 1: under the fixed feature order the mirror-image states split: 8, not 7.
+        // specification §1: under the fixed feature order the mirror-image states split: 8, not 7.
         assert_eq!(r.table1.descriptions, Some(8), "{k}");
     }
 }
@@ -151,7 +151,7 @@ fn the_strategies_refine_as_documented() {
 #[test]
 fn an_unconverged_run_reports_no_figure_it_did_not_reach() {
     let mut settings = RunSettings::tan1991("tan8x8", StrategyKind::Resetting, 1);
-    settings.max_trials = 3;
+    settings.max_trials = csql::TrialCap::new(3).unwrap();
     let r = csql::run(&settings).unwrap();
     assert!(!r.converged);
     assert_eq!(r.trials, 3);

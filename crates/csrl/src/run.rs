@@ -37,7 +37,7 @@ pub struct RunArgs {
     predict_sensing: Option<csql::PredictSensing>,
     /// Stop an unconverged run after this many trials.
     #[arg(long)]
-    max_trials: Option<u32>,
+    max_trials: Option<csql::TrialCap>,
     /// Exit with code 3 if the run does not converge (by default a run that reaches its
     /// trial cap is a result like any other and exits 0).
     #[arg(long)]
@@ -61,7 +61,7 @@ impl RunArgs {
             s.apply_file(path)?;
         }
         if let Some(m) = &self.map {
-            s.map.clone_from(m);
+            s.map = m.into();
         }
         if let Some(k) = self.strategy {
             s.strategy = k;
@@ -139,7 +139,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     let settings = args.settings()?;
     let setup = Setup::new(&settings)?;
     let mut watch = Watch {
-        bar: progress_bar(settings.max_trials),
+        bar: progress_bar(settings.max_trials.get()),
         keep_trace: args.trace,
         stop: ctrl_c_flag(),
         stopped: false,
@@ -168,10 +168,6 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     Ok(())
 }
 
-fn fmt_opt<T: std::fmt::Display>(x: Option<T>) -> String {
-    x.map_or_else(|| "not reached".to_string(), |v| v.to_string())
-}
-
 fn print_report(r: &RunReport, out: &mut dyn Write) -> std::io::Result<()> {
     writeln!(
         out,
@@ -188,34 +184,8 @@ fn print_report(r: &RunReport, out: &mut dyn Write) -> std::io::Result<()> {
         r.moves,
         r.total_cost
     )?;
-    let t = &r.table1;
-    let rows = [
-        (
-            "1 sensing cost to a sufficient representation",
-            fmt_opt(t.cost_to_sufficient),
-        ),
-        (
-            "2 trials to a sufficient representation",
-            fmt_opt(t.trials_to_sufficient),
-        ),
-        ("3 sensing cost to convergence", fmt_opt(t.cost_to_converge)),
-        ("4 trials to convergence", fmt_opt(t.trials_to_converge)),
-        ("5 descriptions", fmt_opt(t.descriptions)),
-        (
-            "6 mean features per description",
-            fmt_opt(t.mean_features.map(|x| format!("{x:.2}"))),
-        ),
-        ("7 max features in a description", fmt_opt(t.max_features)),
-        (
-            "8 tree sensing cost per state",
-            fmt_opt(t.tree_cost_per_state.map(|x| format!("{x:.2}"))),
-        ),
-        (
-            "8' description sensing cost per state",
-            fmt_opt(t.description_cost_per_state.map(|x| format!("{x:.2}"))),
-        ),
-    ];
-    table(out, ("Table 1 row", "value"), &rows)?;
+    writeln!(out)?;
+    write!(out, "{}", r.table1)?;
     if let (Some(cost), Some(success)) = (r.navigation_cost_per_move, r.navigation_success) {
         writeln!(
             out,
@@ -225,43 +195,4 @@ fn print_report(r: &RunReport, out: &mut dyn Write) -> std::io::Result<()> {
         )?;
     }
     Ok(())
-}
-
-/// A two-column table whose columns are as wide as their widest cell.
-fn table(out: &mut dyn Write, head: (&str, &str), rows: &[(&str, String)]) -> std::io::Result<()> {
-    let width = |s: &str| s.chars().count();
-    let left = rows
-        .iter()
-        .map(|(n, _)| width(n))
-        .chain([width(head.0)])
-        .max()
-        .unwrap_or(0);
-    let right = rows
-        .iter()
-        .map(|(_, v)| width(v))
-        .chain([width(head.1)])
-        .max()
-        .unwrap_or(0);
-    writeln!(out)?;
-    writeln!(out, "{:<left$}  {:>right$}", head.0, head.1)?;
-    for (name, value) in rows {
-        writeln!(out, "{name:<left$}  {value:>right$}")?;
-    }
-    Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn table_columns_line_up_whatever_the_cells() {
-        let rows = [
-            ("a long label of many words", "1".to_string()),
-            ("short", "not reached".to_string()),
-        ];
-        let mut out = Vec::new();
-        super::table(&mut out, ("row", "value"), &rows).unwrap();
-        let text = String::from_utf8(out).unwrap();
-        let ends: Vec<usize> = text.lines().skip(1).map(|l| l.chars().count()).collect();
-        assert!(ends.windows(2).all(|w| w[0] == w[1]), "{text}");
-    }
 }

@@ -234,3 +234,41 @@ fn an_unknown_learner_is_a_usage_error() {
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr(&out).contains("cs-id3"));
 }
+
+#[test]
+fn held_out_evaluation_is_reported_beside_the_prequential_one() {
+    let run = |extra: &[&str]| -> serde_json::Value {
+        let mut args = vec!["--positive-if", ">0", "--learner", "cs-id3", "--json"];
+        args.extend_from_slice(extra);
+        let out = on_heart(&args);
+        assert!(out.status.success(), "{}", stderr(&out));
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let plain = run(&[]);
+    assert_eq!(plain["evaluation"], "prequential");
+    assert!(plain.get("held_out").is_none());
+    let folds = run(&["--folds", "5"]);
+    // The prequential pass is the same with or without a held-out evaluation.
+    assert_eq!(folds["accuracy"], plain["accuracy"]);
+    let h = &folds["held_out"];
+    assert_eq!(h["scheme"], "5-fold");
+    assert_eq!(h["test_objects"], plain["objects"]);
+    let acc = h["accuracy"].as_f64().unwrap();
+    assert!((0.5..=1.0).contains(&acc), "{acc}");
+    // CS-ID3 classifies for a few units per object; the cost-blind tree for far more.
+    let (cs, tree) = (
+        h["mean_cost"].as_f64().unwrap(),
+        h["cost_blind_tree_mean_cost"].as_f64().unwrap(),
+    );
+    assert!(cs * 10.0 < tree, "{cs} against {tree}");
+    assert_eq!(run(&["--folds", "5"]), folds);
+    let split = run(&["--holdout", "0.25"]);
+    assert_eq!(split["held_out"]["test_objects"], 76);
+    for bad in [["--holdout", "1.5"], ["--folds", "1"]] {
+        let mut args = vec!["--learner", "cs-id3"];
+        args.extend_from_slice(&bad);
+        let out = on_heart(&args);
+        assert_eq!(out.status.code(), Some(1), "{bad:?}");
+        assert!(stderr(&out).contains(bad[0]), "{}", stderr(&out));
+    }
+}

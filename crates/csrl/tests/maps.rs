@@ -37,10 +37,10 @@ fn maps_lists_every_builtin() {
 
 #[test]
 fn show_json_has_the_documented_fields() {
-    let out = csrl(&["map", "show", "tan8x8", "--json"]);
+    let out = csrl(&["map", "show", "tan8x8-maze", "--json"]);
     assert!(out.status.success(), "{}", stderr(&out));
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert_eq!(v["name"], "tan8x8");
+    assert_eq!(v["name"], "tan8x8-maze");
     assert_eq!(
         (v["width"].as_u64(), v["height"].as_u64()),
         (Some(8), Some(8))

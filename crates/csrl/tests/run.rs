@@ -158,8 +158,10 @@ fn bad_arguments_are_clear_errors() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("nowhere"));
     let out = csrl(&["run", "--strategy", "greedy"]);
     assert_eq!(out.status.code(), Some(2));
+    // A trial cap below 1 is refused while the arguments are read, as a usage error.
     let out = csrl(&["run", "--max-trials", "0"]);
-    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("at least 1"));
 }
 
 #[test]
@@ -171,7 +173,7 @@ fn svg_shows_the_policy() {
     assert!(out.status.success());
     let svg = std::fs::read_to_string(&path).unwrap();
     assert!(svg.starts_with("<svg"));
-    assert_eq!(svg.matches("<line").count(), 8);
+    assert_eq!(svg.matches("class=\"arrow\"").count(), 8); // one per state
     assert!(svg.contains("<title>"));
 }
 

@@ -6,6 +6,7 @@ use crate::map::Map;
 const BUILTINS: &[(&str, &str)] = &[
     ("tan3x3", include_str!("../maps/tan3x3.toml")),
     ("tan8x8", include_str!("../maps/tan8x8.toml")),
+    ("tan8x8-maze", include_str!("../maps/tan8x8-maze.toml")),
     ("dyna9x6", include_str!("../maps/dyna9x6.toml")),
     ("open8x8", include_str!("../maps/open8x8.toml")),
     ("corridors9x5", include_str!("../maps/corridors9x5.toml")),

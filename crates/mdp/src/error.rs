@@ -261,4 +261,22 @@ pub enum MdpError {
         /// The value given.
         gamma: f64,
     },
+    /// A probability (of a slip, or of a sensing error) outside `[0, 1]`.
+    #[error("{name} = {value} is not a probability in [0, 1]")]
+    InvalidProbability {
+        /// Which probability.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+    },
+    /// A policy that does not give one valid action per state.
+    #[error("the policy has {found} actions for {states} states, or an action >= {actions}")]
+    BadPolicy {
+        /// Its length.
+        found: usize,
+        /// The number of states.
+        states: usize,
+        /// The number of actions.
+        actions: usize,
+    },
 }

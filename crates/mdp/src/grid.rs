@@ -297,7 +297,7 @@ impl GridWorld {
     /// The state at a position, if the cell is free.
     ///
     /// ```
-    /// let w = mdp::GridWorld::new(&mdp::builtin("tan8x8").unwrap());
+    /// let w = mdp::GridWorld::new(&mdp::builtin("tan8x8-maze").unwrap());
     /// assert!(w.state_at(mdp::Pos::new(0, 5)).is_none()); // an obstacle
     /// ```
     pub fn state_at(&self, p: Pos) -> Option<StateId> {

@@ -8,7 +8,8 @@
 //!   bootstrap) apart. [`TabularMdp`] is an explicit one; rewards must be non-negative for
 //!   the paper's theorems, or shifted on request ([`NegativeRewards`]).
 //! * [`Map`]: a validated grid read from a TOML file ([`Map::load`]), compiled in
-//!   ([`builtin`]: `tan3x3`, `tan8x8`, `dyna9x6`, `open8x8`, `corridors9x5`) or drawn at
+//!   ([`builtin`]: `tan3x3`, `tan8x8`, `tan8x8-maze`, `dyna9x6`, `open8x8`,
+//!   `corridors9x5`) or drawn at
 //!   random ([`RandomMap`]). [`GridWorld`] turns a map into an MDP with four moves
 //!   ([`Action`]): a blocked move stays, entering the goal pays 1 and ends the trial.
 //! * [`FeatureSpace`]: the sensing model. A feature is the condition ([`Cell`]) of the
@@ -18,6 +19,11 @@
 //!   clockwise from straight up.
 //! * [`Oracle`]: distances to the goal, `V*` and the optimal actions, for measuring and
 //!   testing; a learner never sees it.
+//! * Beyond the paper's assumptions ([`SlipperyGrid`], [`SensorNoise`],
+//!   [`FeatureSpace::within`]): moves that slip sideways with probability [`Slip`], sensors
+//!   that misread with probability [`SensorNoise`], and a sensing range; a
+//!   [`StochasticMdp`] lists outcomes for [`Oracle::solve_stochastic`] and
+//!   [`evaluate_policy`] and samples them with an RNG passed in.
 //! * [`render_text`] and [`render_svg`]: pictures of a map with an [`Overlay`].
 //!
 //! # Example
@@ -42,7 +48,10 @@
 //! # Choices where the paper is silent
 //!
 //! * `tan8x8` is a reconstruction: the paper's Figure 4a is not in its text. It keeps the
-//!   figures the paper gives (8 by 8, 13 obstacles, 50 states) and is maze-like.
+//!   figures the paper gives (8 by 8, 13 obstacles, 50 states), and its layout is the one
+//!   whose Table 1 is closest to the paper's, found by `cargo xtask fit-map` (the README
+//!   gives the command and the scores). A layout that fits the numbers is not the paper's
+//!   layout. `tan8x8-maze` is the earlier hand-made maze, kept under its own name.
 //! * `tan3x3` puts the goal in the top-right corner.
 //! * Maps are limited to [`MAX_SIDE`] cells a side and files to [`MAX_FILE_BYTES`].
 //! * A move from a terminal state stays there with reward 0 (trials end before it).
@@ -62,6 +71,7 @@ mod random;
 mod render;
 mod sensing;
 mod spec;
+mod stochastic;
 mod tabular;
 
 pub use builtin::{builtin, builtin_names};
@@ -76,4 +86,5 @@ pub use random::RandomMap;
 pub use render::{Overlay, render_svg, render_text};
 pub use sensing::{BadCost, CostModel, Feature, FeatureSpace, Manhattan};
 pub use spec::{MAX_GOAL_MOVES, resolve};
+pub use stochastic::{SensorNoise, Slip, SlipperyGrid, StochasticMdp, evaluate_policy};
 pub use tabular::{NegativeRewards, TabularMdp};

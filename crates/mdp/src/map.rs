@@ -371,7 +371,7 @@ impl Map {
     /// ```
     /// let map = mdp::builtin("tan3x3").unwrap().with_goal(mdp::Pos::new(2, 2), "moved").unwrap();
     /// assert_eq!((map.goal(), map.name()), (mdp::Pos::new(2, 2), "moved"));
-    /// assert!(mdp::builtin("tan8x8").unwrap().with_goal(mdp::Pos::new(0, 5), "x").is_err());
+    /// assert!(mdp::builtin("tan8x8-maze").unwrap().with_goal(mdp::Pos::new(0, 5), "x").is_err());
     /// ```
     pub fn with_goal(&self, to: Pos, name: &str) -> Result<Map, MapError> {
         if to.row >= self.height || to.col >= self.width || !self.cell(to).is_free() {

@@ -8,6 +8,7 @@ use petgraph::graph::{DiGraph, NodeIndex};
 use crate::error::MdpError;
 use crate::grid::GridWorld;
 use crate::process::{ActionId, Mdp, StateId};
+use crate::stochastic::{StochasticMdp, backup};
 
 /// Relative tolerance under which two action values count as equally optimal.
 const TIE: f64 = 1e-9;
@@ -140,6 +141,66 @@ impl Oracle {
             }
             for a in 0..na {
                 optimal[s * na + a] = q(&v, s, a) >= v[s] - TIE * v[s].abs();
+            }
+        }
+        Ok(Oracle {
+            actions: na,
+            gamma,
+            v_star: v,
+            optimal,
+            distance: None,
+        })
+    }
+
+    /// The oracle of a stochastic MDP (for example a [`crate::SlipperyGrid`]) by value
+    /// iteration on its true model, until no value changes by more than 1e-13. Terminal
+    /// states have utility 0; there are no distances. On a deterministic world it agrees
+    /// with [`Oracle::solve`].
+    ///
+    /// ```
+    /// use mdp::{GridWorld, Oracle, Slip, SlipperyGrid};
+    /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let o = Oracle::solve_stochastic(&SlipperyGrid::new(&world, Slip::new(0.1).unwrap()), 0.9).unwrap();
+    /// let next_to_goal = world.state_at(mdp::Pos::new(0, 1)).unwrap();
+    /// // Right reaches the goal unless it slips (up stays, down moves away).
+    /// assert!(o.v_star(next_to_goal) < 1.0 && o.v_star(next_to_goal) > 0.9);
+    /// assert_eq!(o.distance(next_to_goal), None);
+    /// ```
+    pub fn solve_stochastic<M: StochasticMdp + ?Sized>(
+        mdp: &M,
+        gamma: f64,
+    ) -> Result<Oracle, MdpError> {
+        check_gamma(gamma)?;
+        let (n, na) = (mdp.base().num_states(), mdp.base().num_actions());
+        let mut v = vec![0.0; n];
+        let mut out = Vec::new();
+        let q = |v: &[f64], s: usize, a: usize, out: &mut Vec<_>| {
+            mdp.outcomes(StateId(s as u32), ActionId(a as u32), out);
+            backup(out, v, gamma)
+        };
+        loop {
+            let mut change: f64 = 0.0;
+            for s in 0..n {
+                if mdp.base().is_terminal(StateId(s as u32)) {
+                    continue;
+                }
+                let best = (0..na)
+                    .map(|a| q(&v, s, a, &mut out))
+                    .fold(f64::NEG_INFINITY, f64::max);
+                change = change.max((best - v[s]).abs());
+                v[s] = best;
+            }
+            if change <= 1e-13 {
+                break;
+            }
+        }
+        let mut optimal = vec![false; n * na];
+        for s in 0..n {
+            if mdp.base().is_terminal(StateId(s as u32)) {
+                continue;
+            }
+            for a in 0..na {
+                optimal[s * na + a] = q(&v, s, a, &mut out) >= v[s] - 1e-9 * v[s].abs();
             }
         }
         Ok(Oracle {

@@ -148,6 +148,35 @@ impl FeatureSpace {
         })
     }
 
+    /// The features whose cost is at most `max_cost` (a sensing range: with the
+    /// [`Manhattan`] model, `within(1.0)` keeps only the four neighbours). The order and
+    /// the costs of the kept features are unchanged; a cut feature has no index.
+    ///
+    /// ```
+    /// use mdp::{FeatureSpace, Manhattan, Offset};
+    /// let all = FeatureSpace::new(&mdp::builtin("tan8x8").unwrap(), &Manhattan).unwrap();
+    /// let near = all.within(2.0);
+    /// assert_eq!(near.len(), 12);
+    /// assert_eq!(near.offset(mdp::Feature(5)), all.offset(mdp::Feature(5)));
+    /// assert_eq!(near.feature_of(Offset::new(0, 3)), None);
+    /// ```
+    pub fn within(&self, max_cost: f64) -> FeatureSpace {
+        let keep = self.costs.iter().take_while(|&&c| c <= max_cost).count();
+        let mut index = self.index.clone();
+        for i in &mut index {
+            if *i as usize >= keep {
+                *i = u32::MAX;
+            }
+        }
+        FeatureSpace {
+            offsets: self.offsets[..keep].to_vec(),
+            costs: self.costs[..keep].to_vec(),
+            half_w: self.half_w,
+            half_h: self.half_h,
+            index,
+        }
+    }
+
     /// The number of features.
     ///
     /// ```

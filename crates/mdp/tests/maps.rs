@@ -227,7 +227,7 @@ fn map_specs_resolve_and_bad_ones_say_why() {
     assert_eq!(r, mdp::resolve("random:9x4:0.3:11").unwrap());
     assert_ne!(r, mdp::resolve("random:9x4:0.3:12").unwrap());
     for (spec, says) in [
-        ("tan8x8@0:5", "not a free cell"),
+        ("tan8x8-maze@0:5", "not a free cell"),
         ("tan8x8@9:0", "not a free cell"),
         ("tan8x8@1", "ROW:COL"),
         ("tan8x8@a:1", "row"),

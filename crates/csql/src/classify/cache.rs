@@ -23,7 +23,7 @@
 //! its own (as descriptions are), so the cached tree measures exactly the features the
 //! plain procedure measures (`tests/classify.rs` checks it, feature for feature).
 
-use cslearn::{Cost, Library};
+use cslearn::{Cost, FeatureId, Library};
 use mdp::{Cell, Feature};
 
 use crate::representation::DescriptionId;
@@ -43,14 +43,29 @@ const NONE: u32 = u32::MAX;
 /// Cell codes are 0, 1 and 2: one count per value.
 const VALUES: usize = 3;
 
-/// A node of the cached tree.
-#[derive(Clone, Debug)]
-struct Node {
+/// What a walk down the tree reads at a node, kept apart from what the node's decision
+/// is computed from so that walks touch small, dense records.
+#[derive(Clone, Copy, Debug)]
+struct Link {
     step: Step,
-    /// The decision must be recomputed from `cands` and `counts` before it is used.
+    /// The decision must be recomputed from the node's candidates and counts before it
+    /// is used.
     stale: bool,
     /// For `Measure`: the child for each cell code, or `NONE`.
     children: [u32; VALUES],
+}
+
+impl Link {
+    const FRESH: Link = Link {
+        step: Step::Create,
+        stale: true,
+        children: [NONE; VALUES],
+    };
+}
+
+/// What a node's decision is computed from.
+#[derive(Clone, Debug, Default)]
+struct Node {
     /// Candidate descriptions, ascending.
     cands: Vec<u32>,
     /// (feature, candidates requiring each value) for every feature some candidate has
@@ -59,16 +74,6 @@ struct Node {
 }
 
 impl Node {
-    fn empty() -> Node {
-        Node {
-            step: Step::Create,
-            stale: true,
-            children: [NONE; VALUES],
-            cands: Vec::new(),
-            counts: Vec::new(),
-        }
-    }
-
     fn has_cand(&self, d: u32) -> bool {
         self.cands.binary_search(&d).is_ok()
     }
@@ -103,6 +108,7 @@ fn on_path(path: &[(u32, u32)], feature: u32) -> Option<u32> {
 /// The cached decision tree of CLASSIFY (see the module docs).
 #[derive(Clone, Debug, Default)]
 pub(super) struct Cache {
+    links: Vec<Link>,
     nodes: Vec<Node>,
     free: Vec<u32>,
     /// `x log2 x` for every count seen so far, computed as cslearn computes it.
@@ -118,12 +124,14 @@ pub(super) struct Cache {
 
 impl Cache {
     /// Walk the tree for one object: `measure` reads a feature of it (and is the only
-    /// place where sensing happens). Returns the description found, or `None` when
-    /// CLASSIFY would create a new one.
+    /// place where sensing happens), and `path` receives the features measured with their
+    /// values, in order. Returns the description found, or `None` when CLASSIFY would
+    /// create a new one.
     pub(super) fn walk(
         &mut self,
         library: &Library,
         costs: &[Cost],
+        path: &mut Vec<(Feature, Cell)>,
         mut measure: impl FnMut(Feature) -> Cell,
     ) -> Option<DescriptionId> {
         if self.nodes.is_empty() {
@@ -132,21 +140,22 @@ impl Cache {
             self.nodes[0].cands.extend(0..library.len() as u32);
             self.fill_counts(0, library, &[]);
         }
-        self.path.clear();
+        path.clear();
         let mut at = 0u32;
         loop {
-            if self.nodes[at as usize].stale {
+            if self.links[at as usize].stale {
                 self.refresh(at, costs);
             }
-            match self.nodes[at as usize].step {
+            match self.links[at as usize].step {
                 Step::Found(d) => return Some(d),
                 Step::Create => return None,
                 Step::Measure(f) => {
-                    let code = measure(f).code();
-                    self.path.push((f.0, code));
-                    let child = self.nodes[at as usize].children[code as usize];
+                    let v = measure(f);
+                    path.push((f, v));
+                    let code = v.code();
+                    let child = self.links[at as usize].children[code as usize];
                     at = if child == NONE {
-                        self.grow(at, f.0, code, library)
+                        self.grow(at, f.0, code, library, path)
                     } else {
                         child
                     };
@@ -176,13 +185,14 @@ impl Cache {
                     node.count(f.0, v.0, 1);
                 }
             }
-            node.stale = true;
-            if let Step::Measure(g) = node.step {
+            let link = &mut self.links[at as usize];
+            link.stale = true;
+            if let Step::Measure(g) = link.step {
                 let wanted = pairs
                     .binary_search_by_key(&g.0, |p| p.0.0)
                     .ok()
                     .map(|i| pairs[i].1.0);
-                for (code, &child) in node.children.iter().enumerate() {
+                for (code, &child) in link.children.iter().enumerate() {
                     if child != NONE && wanted.is_none_or(|w| w == code as u32) {
                         self.stack
                             .push((child, self.path.len(), (g.0, code as u32)));
@@ -214,11 +224,11 @@ impl Cache {
                 // Measured above with another value: `d` no longer belongs here.
                 Some(_) => self.remove_below(at, library, d),
                 None => {
-                    let node = &mut self.nodes[at as usize];
-                    node.count(feature, value, 1);
-                    node.stale = true;
-                    if let Step::Measure(g) = node.step {
-                        for (code, &child) in node.children.iter().enumerate() {
+                    self.nodes[at as usize].count(feature, value, 1);
+                    let link = &mut self.links[at as usize];
+                    link.stale = true;
+                    if let Step::Measure(g) = link.step {
+                        for (code, &child) in link.children.iter().enumerate() {
                             if child != NONE {
                                 self.stack
                                     .push((child, self.path.len(), (g.0, code as u32)));
@@ -250,9 +260,10 @@ impl Cache {
                     node.count(f.0, v.0, -1);
                 }
             }
-            node.stale = true;
-            if let Step::Measure(g) = node.step {
-                for (code, &child) in node.children.iter().enumerate() {
+            let link = &mut self.links[at as usize];
+            link.stale = true;
+            if let Step::Measure(g) = link.step {
+                for (code, &child) in link.children.iter().enumerate() {
                     if child != NONE {
                         stack.push((child, self.path.len(), (g.0, code as u32)));
                     }
@@ -265,11 +276,11 @@ impl Cache {
     /// Recompute a stale decision; drop the subtree if it changed.
     fn refresh(&mut self, at: u32, costs: &[Cost]) {
         let step = self.decide(at, costs);
-        let node = &mut self.nodes[at as usize];
-        node.stale = false;
-        if node.step != step {
-            node.step = step;
-            let children = std::mem::replace(&mut node.children, [NONE; VALUES]);
+        let link = &mut self.links[at as usize];
+        link.stale = false;
+        if link.step != step {
+            link.step = step;
+            let children = std::mem::replace(&mut link.children, [NONE; VALUES]);
             for child in children {
                 if child != NONE {
                     self.release(child);
@@ -304,7 +315,7 @@ impl Cache {
         }
         let node = &self.nodes[at as usize];
         let xl = &self.xlogx;
-        let mut best: Option<(f64, Cost, u32)> = None;
+        let mut best = cslearn::BestScore::new();
         for &(feature, counts) in &node.counts {
             // Each class (candidate) occurs once, so every within-class term is zero:
             // the gain on the candidates having the feature, times their share, is
@@ -317,35 +328,24 @@ impl Cache {
             }
             let having = counts.iter().sum::<u32>();
             let gain = ((xl[having as usize] - branches) / n as f64).max(0.0);
-            let cost = costs[feature as usize];
-            let score = if cost.get() > 0.0 {
-                gain * gain / cost.get()
-            } else if gain > 0.0 {
-                f64::INFINITY
-            } else {
-                0.0
-            };
-            let better = match best {
-                None => true,
-                Some((s, c, f)) => {
-                    if cslearn::same_score(score, s) {
-                        (cost, feature) < (c, f)
-                    } else {
-                        score > s
-                    }
-                }
-            };
-            if better {
-                best = Some((score, cost, feature));
-            }
+            best.offer(FeatureId(feature), gain, costs[feature as usize]);
         }
-        let (_, _, f) = best.expect("a node with counts has a candidate feature");
-        Step::Measure(Feature(f))
+        let f = best
+            .best()
+            .expect("a node with counts has a candidate feature");
+        Step::Measure(Feature(f.0))
     }
 
     /// The child of `parent` (which measures `feature`) for `code`, built from the
-    /// parent's candidates; `self.path` is the child's path.
-    fn grow(&mut self, parent: u32, feature: u32, code: u32, library: &Library) -> u32 {
+    /// parent's candidates; `path` is the child's path.
+    fn grow(
+        &mut self,
+        parent: u32,
+        feature: u32,
+        code: u32,
+        library: &Library,
+        path: &[(Feature, Cell)],
+    ) -> u32 {
         let child = self.alloc();
         let examples = library.examples();
         let (p, c) = if parent < child {
@@ -357,21 +357,19 @@ impl Cache {
         };
         c.cands.extend(p.cands.iter().copied().filter(|&d| {
             examples[d as usize]
-                .get(cslearn::FeatureId(feature))
+                .get(FeatureId(feature))
                 .is_none_or(|v| v.0 == code)
         }));
-        self.nodes[parent as usize].children[code as usize] = child;
-        let path = std::mem::take(&mut self.path);
-        self.fill_counts(child, library, &path);
-        self.path = path;
+        self.links[parent as usize].children[code as usize] = child;
+        self.fill_counts(child, library, path);
         child
     }
 
     /// Count, for a node whose candidates are set, the values of every unmeasured feature.
-    fn fill_counts(&mut self, at: u32, library: &Library, path: &[(u32, u32)]) {
+    fn fill_counts(&mut self, at: u32, library: &Library, path: &[(Feature, Cell)]) {
         let examples = library.examples();
         for &(f, _) in path {
-            self.mark(f, true);
+            self.mark(f.0, true);
         }
         let node = &self.nodes[at as usize];
         for &d in &node.cands {
@@ -398,7 +396,7 @@ impl Cache {
         }
         self.touched.clear();
         for &(f, _) in path {
-            self.mark(f, false);
+            self.mark(f.0, false);
         }
     }
 
@@ -414,7 +412,8 @@ impl Cache {
         match self.free.pop() {
             Some(i) => i,
             None => {
-                self.nodes.push(Node::empty());
+                self.nodes.push(Node::default());
+                self.links.push(Link::FRESH);
                 (self.nodes.len() - 1) as u32
             }
         }
@@ -424,11 +423,9 @@ impl Cache {
     fn release(&mut self, top: u32) {
         let mut stack = vec![top];
         while let Some(at) = stack.pop() {
+            let link = std::mem::replace(&mut self.links[at as usize], Link::FRESH);
+            stack.extend(link.children.iter().copied().filter(|&c| c != NONE));
             let node = &mut self.nodes[at as usize];
-            stack.extend(node.children.iter().copied().filter(|&c| c != NONE));
-            node.step = Step::Create;
-            node.stale = true;
-            node.children = [NONE; VALUES];
             node.cands.clear();
             node.counts.clear();
             self.free.push(at);

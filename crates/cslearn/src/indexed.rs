@@ -1,0 +1,563 @@
+//! CS-ID3 and ID3 over an index of the library: the same learner as [`cs_id3`] and
+//! [`id3`], whose cost per object grows with the depth of what it learned instead of the
+//! size of its library.
+//!
+//! The plain [`Learner`](crate::Learner) starts every object by attending the whole
+//! library and counts the attended examples afresh at every selection, so each object
+//! costs time in proportion to the library. But with observation attending, the examples
+//! attended after measuring `f1 = v1, ..., fk = vk` (a missing value dropping nothing) are
+//! a function of those measurements alone, and so is the next selection (the candidates
+//! are the features not yet measured). The index is therefore a tree, built lazily along
+//! the paths objects take: a node is such a sequence of measurements, and it keeps its
+//! attended examples and their [`SplitCounts`], and remembers its decision until they
+//! change. Nodes catch up with the library when a pass visits them (the root with the
+//! examples added since its last visit, a child with those its parent gained since), so a
+//! new example costs a few binary searches per node it reaches instead of a recount. When
+//! a node's selection changes, the children built for the old feature stay, untouched and
+//! costing nothing, until a selection leads back to them. The one example that changes
+//! after it was added (the learner refines the new example during its recheck) is taken
+//! back out of the nodes visited since it was added.
+//!
+//! Selection is scored from the counts by [`InfoCost::select_from_counts`], which shares
+//! its one scoring function with [`InfoCost::select_from`]; prediction, discrimination
+//! (the same [`Discriminate`] parts, over the same conflicting examples) and updating are
+//! the plain procedure's. The learner therefore measures the same features in the same
+//! order, predicts the same classes, charges the same costs and builds the same library as
+//! [`cs_id3`] and [`id3`], bit for bit (`tests/indexed.rs` checks this object by object).
+
+use rand::Rng;
+
+use crate::attend::{Attention, ObservationAttending};
+use crate::discriminate::{CheapestFirst, Discriminate, RandomOrder};
+use crate::example::{Example, Library};
+use crate::learner::{Classified, Outcome, StreamReport};
+use crate::select::{InfoCost, MissingRule, SplitCounts};
+use crate::sensing::{Ledger, Probe, Sensor};
+use crate::types::{ClassId, Cost, CostBlind, FeatureCosts, FeatureId, Value};
+
+#[cfg(doc)]
+use crate::learner::{cs_id3, id3};
+
+/// CS-ID3 or ID3 (by its discrimination part `D` and whether selection is cost-blind)
+/// over an index of the library: the same outcomes, charges and library as the plain
+/// [`Learner`](crate::Learner) with [`ObservationAttending`], [`InfoCost`] (own-branch
+/// rule), [`Unanimous`](crate::Unanimous), `D` and [`AppendAll`](crate::AppendAll), in
+/// time per object that grows far slower than the library (see the module docs of
+/// [`cslearn`](crate) for measured figures).
+///
+/// Build one with [`cs_id3_indexed`] or [`id3_indexed`].
+///
+/// ```
+/// use cslearn::{ClassId, FeatureCosts, Value};
+/// let costs = FeatureCosts::from_f64(&[1.0, 50.0]).unwrap();
+/// let objects = [[Some(Value(0)), Some(Value(5))], [Some(Value(1)), Some(Value(6))]];
+/// let mut fast = cslearn::cs_id3_indexed(costs.clone());
+/// let mut plain = cslearn::cs_id3(costs);
+/// for _ in 0..3 {
+///     for (i, object) in objects.iter().enumerate() {
+///         let class = ClassId(i as u32);
+///         assert_eq!(fast.learn(&object[..], class), plain.learn(&object[..], class));
+///         assert_eq!(fast.ledger(), plain.ledger());
+///     }
+/// }
+/// assert_eq!(fast.library(), plain.library());
+/// ```
+#[derive(Clone, Debug)]
+pub struct IndexedLearner<D> {
+    costs: FeatureCosts,
+    cost_blind: bool,
+    library: Library,
+    tree: Tree,
+    select: InfoCost,
+    discriminate: D,
+    conflicting: Attention,
+    ledger: Ledger,
+    recheck: bool,
+}
+
+/// CS-ID3 over an index of the library ([`cs_id3_indexed`]).
+pub type IndexedCsId3 = IndexedLearner<CheapestFirst>;
+
+/// Cost-blind ID3 over an index of the library ([`id3_indexed`]).
+pub type IndexedId3<R> = IndexedLearner<RandomOrder<R>>;
+
+/// CS-ID3 over the features priced by `costs`, indexed: the same results as
+/// [`cs_id3`], faster on large libraries.
+///
+/// ```
+/// let learner = cslearn::cs_id3_indexed(cslearn::FeatureCosts::from_f64(&[1.0]).unwrap());
+/// assert!(learner.library().is_empty());
+/// ```
+pub fn cs_id3_indexed(costs: FeatureCosts) -> IndexedCsId3 {
+    IndexedLearner::new(costs, false, CheapestFirst)
+}
+
+/// Cost-blind ID3 over the features priced by `costs`, drawing its discrimination orders
+/// from `rng`, indexed: the same results as [`id3`] with the same generator.
+///
+/// ```
+/// use rand::SeedableRng;
+/// let rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
+/// let learner = cslearn::id3_indexed(cslearn::FeatureCosts::from_f64(&[1.0]).unwrap(), rng);
+/// assert!(learner.library().is_empty());
+/// ```
+pub fn id3_indexed<R: Rng>(costs: FeatureCosts, rng: R) -> IndexedId3<R> {
+    IndexedLearner::new(costs, true, RandomOrder::new(rng))
+}
+
+impl<D: Discriminate> IndexedLearner<D> {
+    fn new(costs: FeatureCosts, cost_blind: bool, discriminate: D) -> Self {
+        IndexedLearner {
+            costs,
+            cost_blind,
+            library: Library::new(),
+            tree: Tree::new(),
+            select: InfoCost::new(MissingRule::OwnBranch),
+            discriminate,
+            conflicting: Attention::new(),
+            ledger: Ledger::default(),
+            recheck: true,
+        }
+    }
+
+    /// Predict the class of the object behind `sensor`, as
+    /// [`Learner::classify`](crate::Learner::classify) does.
+    ///
+    /// ```
+    /// use cslearn::{ClassId, FeatureCosts, Value};
+    /// let mut learner = cslearn::cs_id3_indexed(FeatureCosts::from_f64(&[1.0]).unwrap());
+    /// assert_eq!(learner.classify(&[Some(Value(0))][..]).class, None);
+    /// learner.learn(&[Some(Value(0))][..], ClassId(4));
+    /// assert_eq!(learner.classify(&[Some(Value(0))][..]).class, Some(ClassId(4)));
+    /// ```
+    pub fn classify<T: Sensor>(&mut self, sensor: T) -> Classified {
+        let class = self.run(sensor, None);
+        Classified {
+            class,
+            cost: self.ledger.cost(),
+        }
+    }
+
+    /// Learn from one object whose true class is `class`, as
+    /// [`Learner::learn`](crate::Learner::learn) does.
+    ///
+    /// ```
+    /// use cslearn::{ClassId, FeatureCosts, FeatureId, Value};
+    /// let mut learner = cslearn::cs_id3_indexed(FeatureCosts::from_f64(&[1.0, 2.0]).unwrap());
+    /// learner.learn(&[Some(Value(0)), Some(Value(0))][..], ClassId(0));
+    /// let second = learner.learn(&[Some(Value(1)), Some(Value(0))][..], ClassId(1));
+    /// assert_eq!(second.predicted, Some(ClassId(0)));
+    /// assert_eq!(learner.library()[1].pairs(), &[(FeatureId(0), Value(1))]);
+    /// ```
+    pub fn learn<T: Sensor>(&mut self, sensor: T, class: ClassId) -> Outcome {
+        let predicted = self.run(sensor, Some(class));
+        Outcome {
+            predicted,
+            class,
+            cost: self.ledger.cost(),
+            measured: self.ledger.measured().len(),
+        }
+    }
+
+    /// Learn from each (object, true class) in turn, as
+    /// [`Learner::stream`](crate::Learner::stream) does.
+    ///
+    /// ```
+    /// use cslearn::{ClassId, FeatureCosts, Value};
+    /// let mut learner = cslearn::cs_id3_indexed(FeatureCosts::from_f64(&[1.0]).unwrap());
+    /// let rows = [[Some(Value(0))], [Some(Value(0))]];
+    /// let report = learner.stream(rows.iter().map(|r| (&r[..], ClassId(0))));
+    /// assert_eq!((report.objects, report.errors), (2, 1));
+    /// ```
+    pub fn stream<T: Sensor>(
+        &mut self,
+        objects: impl IntoIterator<Item = (T, ClassId)>,
+    ) -> StreamReport {
+        let mut report = StreamReport {
+            full_cost: self.costs.total().get(),
+            ..StreamReport::default()
+        };
+        let mut total = Cost::ZERO;
+        for (object, class) in objects {
+            let outcome = self.learn(object, class);
+            report.objects += 1;
+            report.errors += usize::from(!outcome.correct());
+            total += outcome.cost;
+        }
+        report.total_cost = total.get();
+        if report.objects > 0 {
+            let n = report.objects as f64;
+            report.accuracy = (report.objects - report.errors) as f64 / n;
+            report.mean_cost = report.total_cost / n;
+        }
+        report
+    }
+
+    /// Turn the recheck after learning on or off (on by default), as
+    /// [`Learner::recheck`](crate::Learner::recheck) does.
+    ///
+    /// ```
+    /// let learner = cslearn::cs_id3_indexed(cslearn::FeatureCosts::new(Vec::new())).recheck(false);
+    /// assert!(!learner.rechecks());
+    /// ```
+    pub fn recheck(mut self, on: bool) -> Self {
+        self.recheck = on;
+        self
+    }
+
+    /// Whether the learner checks, after learning an object, that it is now recognised.
+    ///
+    /// ```
+    /// assert!(cslearn::cs_id3_indexed(cslearn::FeatureCosts::new(Vec::new())).rechecks());
+    /// ```
+    pub fn rechecks(&self) -> bool {
+        self.recheck
+    }
+
+    /// The example library (read only: the index follows every change the learner makes).
+    ///
+    /// ```
+    /// assert!(cslearn::cs_id3_indexed(cslearn::FeatureCosts::new(Vec::new())).library().is_empty());
+    /// ```
+    pub fn library(&self) -> &Library {
+        &self.library
+    }
+
+    /// The price list charged.
+    ///
+    /// ```
+    /// let learner = cslearn::cs_id3_indexed(cslearn::FeatureCosts::from_f64(&[3.0]).unwrap());
+    /// assert_eq!(learner.costs().total().get(), 3.0);
+    /// ```
+    pub fn costs(&self) -> &FeatureCosts {
+        &self.costs
+    }
+
+    /// Add a new feature (no closed world): from now on it can be measured and charged.
+    ///
+    /// ```
+    /// let mut learner = cslearn::cs_id3_indexed(cslearn::FeatureCosts::new(Vec::new()));
+    /// assert_eq!(learner.add_feature(cslearn::Cost::ONE), cslearn::FeatureId(0));
+    /// ```
+    pub fn add_feature(&mut self, cost: Cost) -> FeatureId {
+        // Every remembered decision was taken under the old price list.
+        self.tree.forget_decisions();
+        self.costs.push(cost)
+    }
+
+    /// What was measured on the last object, and what it cost.
+    ///
+    /// ```
+    /// use cslearn::{ClassId, FeatureCosts, Value};
+    /// let mut learner = cslearn::cs_id3_indexed(FeatureCosts::from_f64(&[2.0]).unwrap());
+    /// learner.learn(&[Some(Value(0))][..], ClassId(0)); // nothing to measure against yet
+    /// assert_eq!(learner.ledger().cost().get(), 0.0);
+    /// learner.learn(&[Some(Value(1))][..], ClassId(1));
+    /// assert_eq!(learner.ledger().cost().get(), 2.0);
+    /// ```
+    pub fn ledger(&self) -> &Ledger {
+        &self.ledger
+    }
+
+    /// The number of nodes the index holds now (a measure of its memory).
+    ///
+    /// ```
+    /// use cslearn::{ClassId, FeatureCosts, Value};
+    /// let mut learner = cslearn::cs_id3_indexed(FeatureCosts::from_f64(&[1.0]).unwrap());
+    /// assert_eq!(learner.index_nodes(), 1); // the root
+    /// learner.learn(&[Some(Value(0))][..], ClassId(0));
+    /// learner.learn(&[Some(Value(1))][..], ClassId(1));
+    /// learner.learn(&[Some(Value(1))][..], ClassId(1));
+    /// assert!(learner.index_nodes() > 1);
+    /// ```
+    pub fn index_nodes(&self) -> usize {
+        self.tree.len()
+    }
+
+    /// The cycle for one object, step for step the plain learner's (`learner.rs`) with
+    /// attending, selection and prediction answered by the tree.
+    fn run<T: Sensor>(&mut self, sensor: T, label: Option<ClassId>) -> Option<ClassId> {
+        let IndexedLearner {
+            costs,
+            cost_blind,
+            library,
+            tree,
+            select,
+            discriminate,
+            conflicting,
+            ledger,
+            recheck,
+        } = self;
+        ledger.clear();
+        let mut probe = Probe::new(sensor, &*costs, ledger);
+        let mut pass = Pass {
+            tree,
+            select,
+            cost_blind: *cost_blind,
+        };
+        let (predicted, attended) = pass.predict(library, &mut probe);
+        let Some(label) = label else {
+            return predicted;
+        };
+        let correct = predicted == Some(label);
+        if !correct {
+            let at = pass.tree.members(attended);
+            discriminate_apart(library, at, label, conflicting, discriminate, &mut probe);
+        }
+        // Step 4, as `AppendAll` does it: every example is kept.
+        let index = library.push(probe.ledger().to_example(label));
+        pass.tree.added();
+        if *recheck {
+            for _ in 0..=costs.len() {
+                let paid = probe.ledger().measured().len();
+                probe.ledger_mut().start_pass();
+                let (again, attended) = pass.predict(library, &mut probe);
+                if again != Some(label) {
+                    let at = pass.tree.members(attended);
+                    discriminate_apart(library, at, label, conflicting, discriminate, &mut probe);
+                }
+                let refined = probe.ledger().to_example(label);
+                if refined != library[index] {
+                    pass.tree.refining(index, &library[index]);
+                    if let Some(example) = library.get_mut(index) {
+                        *example = refined;
+                    }
+                }
+                if again == Some(label) || probe.ledger().measured().len() == paid {
+                    break;
+                }
+            }
+        }
+        predicted
+    }
+}
+
+/// Figure 2, step 3, over the examples attended at the moment of prediction: the
+/// conflicting ones are those of another class than `label`.
+fn discriminate_apart<D: Discriminate, T: Sensor>(
+    library: &Library,
+    attended: &[usize],
+    label: ClassId,
+    conflicting: &mut Attention,
+    discriminate: &mut D,
+    probe: &mut Probe<'_, T>,
+) {
+    conflicting.attend_only(
+        attended
+            .iter()
+            .copied()
+            .filter(|&i| library[i].class() != label),
+    );
+    discriminate.discriminate(library, &ObservationAttending, conflicting, probe);
+}
+
+/// What the tree needs for one pass over an object.
+struct Pass<'a> {
+    tree: &'a mut Tree,
+    select: &'a mut InfoCost,
+    cost_blind: bool,
+}
+
+impl Pass<'_> {
+    /// Figure 2, step 1, down the tree: the class predicted (`None` for an empty
+    /// library) and the node whose examples were attended at the moment of prediction
+    /// (`None` when a measurement left none attended).
+    fn predict<T: Sensor>(
+        &mut self,
+        library: &Library,
+        probe: &mut Probe<'_, T>,
+    ) -> (Option<ClassId>, Option<NodeId>) {
+        if library.is_empty() {
+            // Nothing attended and no earlier set: `Unanimous` abstains.
+            return (None, None);
+        }
+        let mut node = self.tree.root(library);
+        loop {
+            let step = self.tree.step(node, self.select, probe, self.cost_blind);
+            let feature = match step {
+                Step::Predict(class) => return (class, Some(node)),
+                Step::Measure(feature) => feature,
+            };
+            let value = probe.measure(feature);
+            if let Some(v) = value
+                && self.tree.nodes[node].counts.having(feature, v) == 0
+            {
+                // Nothing is attended any more: the majority of the last non-empty
+                // attended set, this node's.
+                return (self.tree.nodes[node].counts.majority(), None);
+            }
+            node = self.tree.child(node, feature, value, library);
+        }
+    }
+}
+
+type NodeId = usize;
+
+const ROOT: NodeId = 0;
+
+/// A node's decision, remembered until its examples change.
+#[derive(Clone, Copy, Debug)]
+enum Step {
+    /// Stop and predict this class (unanimous, or the majority when nothing is left to
+    /// measure; `None` only for no examples, which a visited node never has).
+    Predict(Option<ClassId>),
+    /// Measure this feature next.
+    Measure(FeatureId),
+}
+
+/// One sequence of measurements from the root: the examples it attends (as far as it has
+/// caught up with the library), their counts, and its children.
+#[derive(Clone, Debug, Default)]
+struct Node {
+    /// Library indices of the attended examples, ascending.
+    members: Vec<usize>,
+    counts: SplitCounts,
+    /// The examples below this library index have been looked at.
+    synced: usize,
+    /// ((measured feature, measured value), child), ascending; a `None` value is a
+    /// missing one, which drops nothing. Children of every feature ever selected here are
+    /// kept: a selection that changes back finds its subtree still there.
+    children: Vec<((FeatureId, Option<Value>), NodeId)>,
+    step: Option<Step>,
+}
+
+/// The lazily built tree over the library, with the root (every example) at [`ROOT`].
+///
+/// Nodes catch up with the library when a pass visits them, not when an example is
+/// added: the root looks at the examples added since its last visit, a child at the ones
+/// its parent gained since. A subtree no longer on any object's path (its parent selects
+/// another feature now) so costs nothing until a selection leads back to it.
+#[derive(Clone, Debug)]
+struct Tree {
+    nodes: Vec<Node>,
+    /// The nodes visited since the last example was added: the only ones that can have
+    /// counted it, and so the ones to correct when the learner refines it.
+    touched: Vec<NodeId>,
+}
+
+impl Tree {
+    fn new() -> Tree {
+        Tree {
+            nodes: vec![Node::default()],
+            touched: Vec::new(),
+        }
+    }
+
+    fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    fn members(&self, node: Option<NodeId>) -> &[usize] {
+        node.map_or(&[], |n| self.nodes[n].members.as_slice())
+    }
+
+    fn forget_decisions(&mut self) {
+        self.nodes.iter_mut().for_each(|n| n.step = None);
+    }
+
+    /// A new example is in the library: no node has counted it yet.
+    fn added(&mut self) {
+        self.touched.clear();
+    }
+
+    /// Example `index`, the last one, is about to change from `example`: the nodes that
+    /// counted it forget it, and count it again, changed, when next visited.
+    fn refining(&mut self, index: usize, example: &Example) {
+        for &n in &self.touched {
+            let node = &mut self.nodes[n];
+            if node.members.last() == Some(&index) {
+                node.members.pop();
+                node.counts.remove(example);
+                node.step = None;
+            }
+            node.synced = node.synced.min(index);
+        }
+        self.touched.clear();
+    }
+
+    /// The root, caught up with the library.
+    fn root(&mut self, library: &Library) -> NodeId {
+        let root = &mut self.nodes[ROOT];
+        if root.synced < library.len() {
+            for i in root.synced..library.len() {
+                root.members.push(i);
+                root.counts.add(&library[i]);
+            }
+            root.synced = library.len();
+            root.step = None;
+        }
+        self.touched.push(ROOT);
+        ROOT
+    }
+
+    /// The decision at `node`, whose examples are not empty. Its candidates are the
+    /// features not consulted in this pass, which are exactly those not on its path.
+    fn step<T: Sensor>(
+        &mut self,
+        node: NodeId,
+        select: &mut InfoCost,
+        probe: &Probe<'_, T>,
+        cost_blind: bool,
+    ) -> Step {
+        let node = &mut self.nodes[node];
+        if let Some(step) = node.step {
+            return step;
+        }
+        let counts = &node.counts;
+        let step = if let [(class, _)] = counts.totals() {
+            Step::Predict(Some(*class))
+        } else {
+            let ledger = probe.ledger();
+            let measured = |f| ledger.consulted(f);
+            let chosen = if cost_blind {
+                select.select_from_counts(counts, measured, &CostBlind(probe.costs()))
+            } else {
+                select.select_from_counts(counts, measured, probe.costs())
+            };
+            chosen.map_or(Step::Predict(counts.majority()), Step::Measure)
+        };
+        node.step = Some(step);
+        step
+    }
+
+    /// The child of `node` (caught up with the library) after measuring `feature` as
+    /// `value`, created if new, and caught up with its parent.
+    fn child(
+        &mut self,
+        node: NodeId,
+        feature: FeatureId,
+        value: Option<Value>,
+        library: &Library,
+    ) -> NodeId {
+        let key = (feature, value);
+        let id = match self.nodes[node]
+            .children
+            .binary_search_by_key(&key, |c| c.0)
+        {
+            Ok(k) => self.nodes[node].children[k].1,
+            Err(k) => {
+                self.nodes.push(Node::default());
+                let id = self.nodes.len() - 1;
+                self.nodes[node].children.insert(k, (key, id));
+                id
+            }
+        };
+        let mut child = std::mem::take(&mut self.nodes[id]);
+        let parent = &self.nodes[node];
+        let new = &parent.members[parent.members.partition_point(|&i| i < child.synced)..];
+        let before = child.members.len();
+        for &i in new {
+            if value.is_none() || library[i].get(feature) == value {
+                child.members.push(i);
+                child.counts.add(&library[i]);
+            }
+        }
+        if child.members.len() > before {
+            child.step = None;
+        }
+        child.synced = library.len();
+        self.nodes[id] = child;
+        self.touched.push(id);
+        id
+    }
+}

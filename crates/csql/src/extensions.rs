@@ -1,0 +1,169 @@
+//! Settings beyond the paper, in two small groups that are off by default: the world's
+//! departures from the paper's assumptions ([`WorldExtras`]) and CS-QL's remedies
+//! ([`Extensions`]). At their defaults neither is written into a run's JSON, so every
+//! default run is byte-identical to the paper's procedure.
+
+use mdp::{SensorNoise, Slip};
+use serde::{Deserialize, Serialize};
+
+use crate::detector::{DetectorKind, RateParams};
+use crate::error::Error;
+
+/// How the world departs from the paper's assumptions (specification §6): slippery moves, noisy
+/// sensors, a sensing range. All off by default.
+///
+/// ```
+/// let mut s = csql::RunSettings::tan1991("tan8x8", csql::StrategyKind::Lazy, 1);
+/// s.apply_toml("[world]\nslip = 0.1\nsensing_radius = 2", "x.toml").unwrap();
+/// assert_eq!(s.world.slip.get(), 0.1);
+/// assert!(!s.world.is_default());
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct WorldExtras {
+    /// The probability that a move slips to a perpendicular direction (half each).
+    #[serde(skip_serializing_if = "Slip::is_zero")]
+    pub slip: Slip,
+    /// The probability that a measurement reads one of the other conditions.
+    #[serde(skip_serializing_if = "SensorNoise::is_zero")]
+    pub sensor_noise: SensorNoise,
+    /// The most a sensable feature may cost (with the paper's costs, the Manhattan
+    /// distance; 1 means only the four neighbours). Unbounded when absent.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sensing_radius: Option<u32>,
+}
+
+impl WorldExtras {
+    /// Whether the world is the paper's: no slip, no noise, unbounded sensing.
+    ///
+    /// ```
+    /// assert!(csql::WorldExtras::default().is_default());
+    /// ```
+    pub fn is_default(&self) -> bool {
+        *self == WorldExtras::default()
+    }
+}
+
+/// How a description is matched to a state.
+///
+/// ```
+/// let m: csql::Matching = serde_json::from_str("\"nearest\"").unwrap();
+/// assert_eq!(m, csql::Matching::Nearest);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Matching {
+    /// CLASSIFY as the paper defines it: every feature of a description must match.
+    #[default]
+    Exact,
+    /// When no description matches, take the one that differs from the state on exactly
+    /// one feature (see [`crate::Classify::with_matching`]) instead of creating one.
+    Nearest,
+}
+
+/// CS-QL's remedies beyond the paper and the measures of a stochastic run (specification §6). All
+/// off, or at the specification's values, by default.
+///
+/// ```
+/// let mut s = csql::RunSettings::tan1991("tan8x8", csql::StrategyKind::Lazy, 1);
+/// s.apply_toml("[extensions]\ndetector = \"statistical\"\nmatching = \"nearest\"", "x.toml").unwrap();
+/// assert_eq!(s.extensions.detector, csql::DetectorKind::Statistical);
+/// assert!(s.apply_toml("[extensions]\nquality_every = 0", "x.toml").is_err());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Extensions {
+    /// How an inconsistent description is recognised.
+    #[serde(skip_serializing_if = "is_default_detector")]
+    pub detector: DetectorKind,
+    /// The statistical detector's parameters.
+    #[serde(skip_serializing_if = "is_default_rate")]
+    pub rate: RateParams,
+    /// How CLASSIFY matches descriptions.
+    #[serde(skip_serializing_if = "is_exact")]
+    pub matching: Matching,
+    /// In a world beyond the paper's: trials between two evaluations of the policy
+    /// quality.
+    #[serde(skip_serializing_if = "is_ten")]
+    pub quality_every: u32,
+    /// In a world beyond the paper's: the run ends once the quality has stayed at or above
+    /// 0.95 for this many consecutive evaluations.
+    #[serde(skip_serializing_if = "is_twenty")]
+    pub quality_patience: u32,
+}
+
+fn is_default_detector(d: &DetectorKind) -> bool {
+    *d == DetectorKind::default()
+}
+fn is_default_rate(r: &RateParams) -> bool {
+    *r == RateParams::default()
+}
+fn is_exact(m: &Matching) -> bool {
+    *m == Matching::Exact
+}
+fn is_ten(x: &u32) -> bool {
+    *x == 10
+}
+fn is_twenty(x: &u32) -> bool {
+    *x == 20
+}
+
+impl Default for Extensions {
+    fn default() -> Extensions {
+        Extensions {
+            detector: DetectorKind::Decrease,
+            rate: RateParams::default(),
+            matching: Matching::Exact,
+            quality_every: 10,
+            quality_patience: 20,
+        }
+    }
+}
+
+impl Extensions {
+    /// Whether every extension is off.
+    ///
+    /// ```
+    /// assert!(csql::Extensions::default().is_default());
+    /// ```
+    pub fn is_default(&self) -> bool {
+        *self == Extensions::default()
+    }
+
+    pub(crate) fn validate(&self) -> Result<(), Error> {
+        let bad = |name: &'static str, value: String, expected: &'static str| {
+            Err(Error::InvalidSetting {
+                value: format!("{name} = {value}"),
+                expected,
+            })
+        };
+        if self.quality_every == 0 {
+            return bad("extensions.quality_every", "0".into(), "at least 1");
+        }
+        if self.quality_patience == 0 {
+            return bad("extensions.quality_patience", "0".into(), "at least 1");
+        }
+        if !(1..=64).contains(&self.rate.window) {
+            return bad(
+                "extensions.rate.window",
+                self.rate.window.to_string(),
+                "1 to 64",
+            );
+        }
+        if !(0.0..1.0).contains(&self.rate.rate) {
+            return bad(
+                "extensions.rate.rate",
+                self.rate.rate.to_string(),
+                "a number in [0, 1)",
+            );
+        }
+        if !(0.0..1.0).contains(&self.rate.relative_drop) {
+            return bad(
+                "extensions.rate.relative_drop",
+                self.rate.relative_drop.to_string(),
+                "a number in [0, 1)",
+            );
+        }
+        Ok(())
+    }
+}

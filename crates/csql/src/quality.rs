@@ -1,0 +1,213 @@
+//! The policy quality of specification §6: how good the learned greedy policy is, acting through the
+//! learned representation in the true world, as a share of the optimum.
+//!
+//! The policy is the greedy action (ties: lowest action id) of the description CLASSIFY
+//! gives a state (action 0 where it would create a new description, whose Q values are
+//! all 0). Its value from each non-goal free state on the true model (slip included) is
+//! divided by that state's V* on the same model, and the ratios are averaged. Without
+//! sensor noise classification is a function of the state and the value is computed
+//! exactly by policy evaluation ([`mdp::evaluate_policy`]). With sensor noise the policy
+//! is random; its value is then a seeded Monte Carlo estimate: rounds of one episode from
+//! every state (the noise and the slips drawn from the evaluation's own generator, at most
+//! [`MC_MAX_MOVES`] moves an episode), until the standard error of the mean over rounds is
+//! below 0.005 (after at least [`MC_MIN_ROUNDS`] rounds, at most [`MC_MAX_ROUNDS`]). The
+//! measure is never charged and the learner never sees it.
+
+use mdp::{ActionId, GridWorld, Oracle, SensorNoise, SlipperyGrid, StateId, StochasticMdp};
+use qlearn::{QTable, RowId};
+use rand::Rng;
+use serde::Serialize;
+
+use crate::classify::Classify;
+use crate::perception::Identified;
+
+/// Moves an episode of the Monte Carlo estimate may make (gamma^200 is below 1e-9 at the
+/// paper's gamma).
+///
+/// ```
+/// assert_eq!(csql::MC_MAX_MOVES, 200);
+/// ```
+pub const MC_MAX_MOVES: u32 = 200;
+/// Fewest rounds of the Monte Carlo estimate.
+///
+/// ```
+/// assert_eq!(csql::MC_MIN_ROUNDS, 30);
+/// ```
+pub const MC_MIN_ROUNDS: u32 = 30;
+/// Most rounds of the Monte Carlo estimate.
+///
+/// ```
+/// assert_eq!(csql::MC_MAX_ROUNDS, 4000);
+/// ```
+pub const MC_MAX_ROUNDS: u32 = 4000;
+
+/// How a state becomes a row when the learned policy acts: the perception's view for the
+/// quality measure, free of charge, through the agent's (possibly noisy) sensors.
+///
+/// ```
+/// use csql::{Identified, Sees};
+/// use rand::SeedableRng;
+/// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+/// let mut p = Identified::new(&world, vec![0.0; 9]);
+/// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
+/// assert_eq!(p.sees(&world, mdp::StateId(0), mdp::SensorNoise::default(), &mut rng), None);
+/// ```
+pub trait Sees {
+    /// The row the agent would use in state `s`, or `None` if it would make a new one.
+    fn sees<R: Rng + ?Sized>(
+        &mut self,
+        world: &GridWorld,
+        s: StateId,
+        noise: SensorNoise,
+        rng: &mut R,
+    ) -> Option<RowId>;
+}
+
+impl Sees for Classify {
+    fn sees<R: Rng + ?Sized>(
+        &mut self,
+        world: &GridWorld,
+        s: StateId,
+        noise: SensorNoise,
+        rng: &mut R,
+    ) -> Option<RowId> {
+        self.lookup_noisy(world, s, noise, rng).map(|d| d.row())
+    }
+}
+
+impl Sees for crate::Predicting {
+    fn sees<R: Rng + ?Sized>(
+        &mut self,
+        world: &GridWorld,
+        s: StateId,
+        noise: SensorNoise,
+        rng: &mut R,
+    ) -> Option<RowId> {
+        self.classify_mut().sees(world, s, noise, rng)
+    }
+}
+
+impl Sees for Identified {
+    fn sees<R: Rng + ?Sized>(
+        &mut self,
+        world: &GridWorld,
+        s: StateId,
+        _noise: SensorNoise,
+        _rng: &mut R,
+    ) -> Option<RowId> {
+        crate::Perception::lookup(self, world, s)
+    }
+}
+
+/// How a quality figure was obtained.
+///
+/// ```
+/// assert_eq!(serde_json::to_string(&csql::QualityMethod::Exact).unwrap(), "\"exact\"");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum QualityMethod {
+    /// Exact policy evaluation on the true model.
+    Exact,
+    /// A seeded Monte Carlo estimate (under sensor noise).
+    MonteCarlo,
+}
+
+/// One evaluation of the policy quality.
+///
+/// ```
+/// let q = csql::QualityEstimate { quality: 1.0, method: csql::QualityMethod::Exact, standard_error: 0.0, episodes: 0 };
+/// assert!(q.quality >= 0.95);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct QualityEstimate {
+    /// Mean over non-goal states of the policy's value divided by V*.
+    pub quality: f64,
+    /// Exact or Monte Carlo.
+    pub method: QualityMethod,
+    /// The estimate's standard error (0 when exact).
+    pub standard_error: f64,
+    /// Episodes simulated (0 when exact).
+    pub episodes: u64,
+}
+
+/// The policy quality of an agent (see the module docs). `truth` is the oracle of the
+/// true model; `rng` is the evaluation's own generator, drawn from only under noise.
+pub(crate) fn policy_quality<P: Sees, R: Rng + ?Sized>(
+    model: &SlipperyGrid<'_>,
+    truth: &Oracle,
+    perception: &mut P,
+    table: &QTable,
+    noise: SensorNoise,
+    rng: &mut R,
+) -> QualityEstimate {
+    let world = model.world();
+    let states = world.states();
+    let gamma = truth.gamma();
+    let act = |row: Option<RowId>| row.map_or(ActionId(0), |r| table.greedy(r));
+    if noise.is_zero() {
+        let mut policy = vec![ActionId(0); mdp::Mdp::num_states(world)];
+        for &s in &states {
+            policy[s.index()] = act(perception.sees(world, s, noise, rng));
+        }
+        let quality = match mdp::evaluate_policy(model, gamma, &policy) {
+            Ok(v) => ratio_mean(&states, truth, |s| v[s.index()]),
+            Err(_) => 0.0,
+        };
+        return QualityEstimate {
+            quality,
+            method: QualityMethod::Exact,
+            standard_error: 0.0,
+            episodes: 0,
+        };
+    }
+    let mut rounds: Vec<f64> = Vec::new();
+    let mut returns = vec![0.0; mdp::Mdp::num_states(world)];
+    let mut se = f64::INFINITY;
+    while rounds.len() < MC_MAX_ROUNDS as usize {
+        for &s in &states {
+            let mut x = s;
+            let mut g = 0.0;
+            let mut discount = 1.0;
+            for _ in 0..MC_MAX_MOVES {
+                let a = act(perception.sees(world, x, noise, rng));
+                let step = model.sample(x, a, rng);
+                g += discount * step.reward;
+                discount *= gamma;
+                if step.terminated {
+                    break;
+                }
+                x = step.next;
+            }
+            returns[s.index()] = g;
+        }
+        rounds.push(ratio_mean(&states, truth, |s| returns[s.index()]));
+        let n = rounds.len() as f64;
+        if rounds.len() >= MC_MIN_ROUNDS as usize {
+            let mean = rounds.iter().sum::<f64>() / n;
+            let var = rounds.iter().map(|q| (q - mean).powi(2)).sum::<f64>() / (n - 1.0);
+            se = (var / n).sqrt();
+            if se < 0.005 {
+                break;
+            }
+        }
+    }
+    let n = rounds.len() as f64;
+    QualityEstimate {
+        quality: rounds.iter().sum::<f64>() / n,
+        method: QualityMethod::MonteCarlo,
+        standard_error: se,
+        episodes: rounds.len() as u64 * states.len() as u64,
+    }
+}
+
+/// Mean over states with a positive V* of value / V*.
+fn ratio_mean(states: &[StateId], truth: &Oracle, value: impl Fn(StateId) -> f64) -> f64 {
+    let (sum, n) = states
+        .iter()
+        .filter(|&&s| truth.v_star(s) > 0.0)
+        .fold((0.0, 0usize), |(sum, n), &s| {
+            (sum + value(s) / truth.v_star(s), n + 1)
+        });
+    if n == 0 { 1.0 } else { sum / n as f64 }
+}

@@ -1,0 +1,470 @@
+//! Beyond determinism: slippery moves and noisy sensors, each a validated probability,
+//! and the stochastic MDP view the oracle solves and policies are evaluated on.
+//!
+//! The deterministic [`Mdp`] trait stays as it is for code that relies on determinism
+//! (the paper's theorems, the incremental judge). A stochastic world is a
+//! [`StochasticMdp`]: it lists the outcomes of an action with their probabilities (for
+//! the oracle's value iteration and exact policy evaluation) and samples one with an
+//! RNG passed in (for learning). A [`GridWorld`] is a `StochasticMdp` with one outcome
+//! per action; a [`SlipperyGrid`] borrows a grid world and reuses its deterministic moves
+//! for the slips, so no grid is written twice.
+
+use rand::{Rng, RngExt};
+use serde::{Deserialize, Serialize};
+
+use crate::error::MdpError;
+use crate::geometry::Cell;
+use crate::grid::{Action, GridWorld};
+use crate::process::{ActionId, Mdp, StateId, Step};
+
+fn probability(name: &'static str, value: f64) -> Result<f64, MdpError> {
+    if (0.0..=1.0).contains(&value) {
+        Ok(value)
+    } else {
+        Err(MdpError::InvalidProbability { name, value })
+    }
+}
+
+/// The probability that a move slips to one of its two perpendicular directions (half
+/// each), as in slippery frozen-lake grids. 0 is the paper's deterministic world.
+///
+/// ```
+/// let s = mdp::Slip::new(0.1).unwrap();
+/// assert_eq!(s.get(), 0.1);
+/// assert!(mdp::Slip::new(1.5).unwrap_err().to_string().contains("slip = 1.5"));
+/// assert!(mdp::Slip::default().is_zero());
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, PartialOrd, Serialize, Deserialize)]
+#[serde(try_from = "f64", into = "f64")]
+pub struct Slip(f64);
+
+impl Slip {
+    /// A slip probability in `[0, 1]`.
+    ///
+    /// ```
+    /// assert!(mdp::Slip::new(-0.1).is_err());
+    /// ```
+    pub fn new(p: f64) -> Result<Slip, MdpError> {
+        probability("slip", p).map(Slip)
+    }
+    /// The probability.
+    ///
+    /// ```
+    /// assert_eq!(mdp::Slip::new(0.2).unwrap().get(), 0.2);
+    /// ```
+    pub fn get(self) -> f64 {
+        self.0
+    }
+    /// Whether moves never slip.
+    ///
+    /// ```
+    /// assert!(!mdp::Slip::new(0.05).unwrap().is_zero());
+    /// ```
+    pub fn is_zero(&self) -> bool {
+        self.0 == 0.0
+    }
+}
+
+impl TryFrom<f64> for Slip {
+    type Error = MdpError;
+    fn try_from(p: f64) -> Result<Slip, MdpError> {
+        Slip::new(p)
+    }
+}
+
+impl From<Slip> for f64 {
+    fn from(s: Slip) -> f64 {
+        s.0
+    }
+}
+
+/// The probability that a measurement returns one of the other cell conditions
+/// (uniformly) instead of the true one. A wrong measurement is charged like a right one.
+///
+/// ```
+/// use mdp::{Cell, SensorNoise};
+/// use rand::SeedableRng;
+/// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
+/// let always = SensorNoise::new(1.0).unwrap();
+/// assert_ne!(always.corrupt(Cell::Empty, &mut rng), Cell::Empty);
+/// // Noise 0 never draws from the generator.
+/// assert_eq!(SensorNoise::default().corrupt(Cell::Goal, &mut rng), Cell::Goal);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, PartialOrd, Serialize, Deserialize)]
+#[serde(try_from = "f64", into = "f64")]
+pub struct SensorNoise(f64);
+
+impl SensorNoise {
+    /// A noise probability in `[0, 1]`.
+    ///
+    /// ```
+    /// assert!(mdp::SensorNoise::new(f64::NAN).is_err());
+    /// ```
+    pub fn new(p: f64) -> Result<SensorNoise, MdpError> {
+        probability("sensor_noise", p).map(SensorNoise)
+    }
+    /// The probability.
+    ///
+    /// ```
+    /// assert_eq!(mdp::SensorNoise::new(0.05).unwrap().get(), 0.05);
+    /// ```
+    pub fn get(self) -> f64 {
+        self.0
+    }
+    /// Whether sensing is exact.
+    ///
+    /// ```
+    /// assert!(mdp::SensorNoise::default().is_zero());
+    /// ```
+    pub fn is_zero(&self) -> bool {
+        self.0 == 0.0
+    }
+
+    /// What a sensor reports when the cell's true condition is `truth`. With noise 0
+    /// nothing is drawn; otherwise one uniform `f64`, and a `random_range(0..2)` to pick
+    /// among the two other conditions when the measurement is wrong.
+    ///
+    /// ```
+    /// use mdp::{Cell, SensorNoise};
+    /// use rand::SeedableRng;
+    /// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(7);
+    /// let noise = SensorNoise::new(0.5).unwrap();
+    /// let wrong = (0..1000).filter(|_| noise.corrupt(Cell::Empty, &mut rng) != Cell::Empty).count();
+    /// assert!((400..600).contains(&wrong));
+    /// ```
+    pub fn corrupt<R: Rng + ?Sized>(self, truth: Cell, rng: &mut R) -> Cell {
+        if self.is_zero() || rng.random::<f64>() >= self.0 {
+            return truth;
+        }
+        let mut others = Cell::ALL.iter().copied().filter(|&c| c != truth);
+        let pick = rng.random_range(0..2usize);
+        others.nth(pick).unwrap_or(truth)
+    }
+}
+
+impl TryFrom<f64> for SensorNoise {
+    type Error = MdpError;
+    fn try_from(p: f64) -> Result<SensorNoise, MdpError> {
+        SensorNoise::new(p)
+    }
+}
+
+impl From<SensorNoise> for f64 {
+    fn from(s: SensorNoise) -> f64 {
+        s.0
+    }
+}
+
+/// A finite MDP whose actions may have several outcomes.
+///
+/// [`StochasticMdp::outcomes`] is the true model (the oracle and exact policy evaluation
+/// read it); [`StochasticMdp::sample`] draws one outcome with the caller's generator
+/// (learning uses it). Outcomes' probabilities sum to 1.
+///
+/// ```
+/// use mdp::{GridWorld, Slip, SlipperyGrid, StochasticMdp};
+/// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+/// let slippery = SlipperyGrid::new(&world, Slip::new(0.2).unwrap());
+/// let mut out = Vec::new();
+/// slippery.outcomes(world.states()[0], mdp::Action::Right.id(), &mut out);
+/// let total: f64 = out.iter().map(|o| o.0).sum();
+/// assert!((total - 1.0).abs() < 1e-12);
+/// ```
+pub trait StochasticMdp {
+    /// The deterministic MDP whose states, actions and terminal states this one shares
+    /// (for a grid world, the world itself).
+    type Base: Mdp + ?Sized;
+    /// The shared states, actions and terminal states.
+    fn base(&self) -> &Self::Base;
+    /// The outcomes of `a` in `s` with their probabilities, written into `out` (cleared
+    /// first); outcomes may repeat a next state.
+    fn outcomes(&self, s: StateId, a: ActionId, out: &mut Vec<(f64, Step)>);
+    /// Draw one outcome of `a` in `s`.
+    fn sample<R: Rng + ?Sized>(&self, s: StateId, a: ActionId, rng: &mut R) -> Step;
+}
+
+impl StochasticMdp for GridWorld {
+    type Base = GridWorld;
+    fn base(&self) -> &GridWorld {
+        self
+    }
+    fn outcomes(&self, s: StateId, a: ActionId, out: &mut Vec<(f64, Step)>) {
+        out.clear();
+        out.push((1.0, self.step(s, a)));
+    }
+    /// Deterministic: draws nothing.
+    fn sample<R: Rng + ?Sized>(&self, s: StateId, a: ActionId, _rng: &mut R) -> Step {
+        self.step(s, a)
+    }
+}
+
+/// The two directions perpendicular to a move, in id order.
+fn perpendicular(a: Action) -> [Action; 2] {
+    match a {
+        Action::Up | Action::Down => [Action::Left, Action::Right],
+        Action::Left | Action::Right => [Action::Up, Action::Down],
+    }
+}
+
+/// A grid world whose moves slip: with probability `slip` a move goes to one of its two
+/// perpendicular directions instead, half each (the slipped move is the grid's own
+/// deterministic move in that direction: blocked slips stay, a slip into the goal pays).
+///
+/// Sampling with slip 0 draws nothing, so a run on a `SlipperyGrid` with slip 0 is the
+/// run on its grid world, draw for draw. With slip above 0, each move draws one uniform
+/// `f64`: below `slip / 2` the first perpendicular direction (up or left), below `slip`
+/// the second (down or right), otherwise the intended move.
+///
+/// ```
+/// use mdp::{Action, GridWorld, Pos, Slip, SlipperyGrid, StochasticMdp};
+/// use rand::SeedableRng;
+/// let world = GridWorld::new(&mdp::builtin("tan8x8").unwrap());
+/// let slippery = SlipperyGrid::new(&world, Slip::new(1.0).unwrap());
+/// let s = world.state_at(Pos::new(7, 0)).unwrap();
+/// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
+/// // With slip 1 an "up" never goes up.
+/// let up = mdp::Mdp::step(&world, s, Action::Up.id()).next;
+/// assert!((0..20).all(|_| slippery.sample(s, Action::Up.id(), &mut rng).next != up || up == s));
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct SlipperyGrid<'w> {
+    world: &'w GridWorld,
+    slip: Slip,
+}
+
+impl<'w> SlipperyGrid<'w> {
+    /// A grid world with slippery moves.
+    ///
+    /// ```
+    /// let w = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let g = mdp::SlipperyGrid::new(&w, mdp::Slip::new(0.1).unwrap());
+    /// assert_eq!(g.slip().get(), 0.1);
+    /// ```
+    pub fn new(world: &'w GridWorld, slip: Slip) -> SlipperyGrid<'w> {
+        SlipperyGrid { world, slip }
+    }
+    /// The grid world underneath.
+    ///
+    /// ```
+    /// let w = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let g = mdp::SlipperyGrid::new(&w, mdp::Slip::default());
+    /// assert_eq!(g.world().map().name(), "tan3x3");
+    /// ```
+    pub fn world(&self) -> &'w GridWorld {
+        self.world
+    }
+    /// The slip probability.
+    ///
+    /// ```
+    /// let w = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// assert!(mdp::SlipperyGrid::new(&w, mdp::Slip::default()).slip().is_zero());
+    /// ```
+    pub fn slip(&self) -> Slip {
+        self.slip
+    }
+}
+
+impl StochasticMdp for SlipperyGrid<'_> {
+    type Base = GridWorld;
+    fn base(&self) -> &GridWorld {
+        self.world
+    }
+    fn outcomes(&self, s: StateId, a: ActionId, out: &mut Vec<(f64, Step)>) {
+        out.clear();
+        let p = self.slip.get();
+        let Some(act) = Action::from_id(a) else {
+            out.push((1.0, self.world.step(s, a)));
+            return;
+        };
+        out.push((1.0 - p, self.world.step(s, a)));
+        if p > 0.0 {
+            for side in perpendicular(act) {
+                out.push((p / 2.0, self.world.step(s, side.id())));
+            }
+        }
+    }
+    fn sample<R: Rng + ?Sized>(&self, s: StateId, a: ActionId, rng: &mut R) -> Step {
+        let p = self.slip.get();
+        if p == 0.0 {
+            return self.world.step(s, a);
+        }
+        let u = rng.random::<f64>();
+        let taken = match Action::from_id(a) {
+            Some(act) if u < p / 2.0 => perpendicular(act)[0].id(),
+            Some(act) if u < p => perpendicular(act)[1].id(),
+            _ => a,
+        };
+        self.world.step(s, taken)
+    }
+}
+
+/// The value of a fixed policy (one action per state) from every state, on the true
+/// model, by iterating its Bellman equation until nothing changes by more than 1e-13
+/// (exact up to rounding; terminal states have value 0).
+///
+/// ```
+/// use mdp::{GridWorld, Oracle, Slip, SlipperyGrid};
+/// let world = GridWorld::new(&mdp::builtin("tan8x8").unwrap());
+/// let model = SlipperyGrid::new(&world, Slip::new(0.1).unwrap());
+/// let oracle = Oracle::solve_stochastic(&model, 0.9).unwrap();
+/// let best: Vec<_> = (0..51).map(|s| oracle.optimal_actions(mdp::StateId(s))
+///     .first().copied().unwrap_or(mdp::ActionId(0))).collect();
+/// let v = mdp::evaluate_policy(&model, 0.9, &best).unwrap();
+/// for s in world.states() { assert!((v[s.index()] - oracle.v_star(s)).abs() < 1e-9); }
+/// ```
+pub fn evaluate_policy<M: StochasticMdp + ?Sized>(
+    mdp: &M,
+    gamma: f64,
+    policy: &[ActionId],
+) -> Result<Vec<f64>, MdpError> {
+    if !(0.0..1.0).contains(&gamma) {
+        return Err(MdpError::InvalidDiscount { gamma });
+    }
+    let (n, na) = (mdp.base().num_states(), mdp.base().num_actions());
+    if policy.len() != n || policy.iter().any(|a| a.index() >= na) {
+        return Err(MdpError::BadPolicy {
+            found: policy.len(),
+            states: n,
+            actions: na,
+        });
+    }
+    let mut v = vec![0.0; n];
+    let mut out = Vec::new();
+    loop {
+        let mut change: f64 = 0.0;
+        for s in 0..n {
+            let sid = StateId(s as u32);
+            if mdp.base().is_terminal(sid) {
+                continue;
+            }
+            mdp.outcomes(sid, policy[s], &mut out);
+            let value = backup(&out, &v, gamma);
+            change = change.max((value - v[s]).abs());
+            v[s] = value;
+        }
+        if change <= 1e-13 {
+            return Ok(v);
+        }
+    }
+}
+
+/// The expected reward plus discounted value of a list of outcomes.
+pub(crate) fn backup(outcomes: &[(f64, Step)], v: &[f64], gamma: f64) -> f64 {
+    outcomes
+        .iter()
+        .map(|(p, step)| {
+            p * (step.reward
+                + if step.terminated {
+                    0.0
+                } else {
+                    gamma * v[step.next.index()]
+                })
+        })
+        .sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Oracle, builtin};
+    use rand::SeedableRng;
+    use rand_xoshiro::Xoshiro256PlusPlus;
+
+    #[test]
+    fn slip_zero_is_the_grid_and_draws_nothing() {
+        let world = GridWorld::new(&builtin("tan8x8").unwrap());
+        let model = SlipperyGrid::new(&world, Slip::default());
+        let mut a = Xoshiro256PlusPlus::seed_from_u64(3);
+        let b = a.clone();
+        for s in world.states() {
+            for act in Action::ALL {
+                assert_eq!(model.sample(s, act.id(), &mut a), world.step(s, act.id()));
+            }
+        }
+        assert_eq!(a, b);
+    }
+
+    #[test]
+    fn slips_go_sideways_half_each() {
+        let world = GridWorld::new(&builtin("open8x8").unwrap());
+        let model = SlipperyGrid::new(&world, Slip::new(0.2).unwrap());
+        let s = world.state_at(crate::Pos::new(4, 4)).unwrap();
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(11);
+        let mut counts = [0u32; 4];
+        for _ in 0..20000 {
+            let next = model.sample(s, Action::Up.id(), &mut rng).next;
+            let which = Action::ALL
+                .iter()
+                .position(|a| world.step(s, a.id()).next == next)
+                .unwrap();
+            counts[which] += 1;
+        }
+        assert_eq!(counts[1], 0, "never backwards");
+        assert!((15600..16400).contains(&counts[0]), "{counts:?}");
+        assert!((1800..2200).contains(&counts[2]) && (1800..2200).contains(&counts[3]));
+    }
+
+    #[test]
+    fn first_draws_are_pinned() {
+        let world = GridWorld::new(&builtin("open8x8").unwrap());
+        let model = SlipperyGrid::new(&world, Slip::new(0.5).unwrap());
+        let s = world.state_at(crate::Pos::new(4, 4)).unwrap();
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(42);
+        let got: Vec<u32> = (0..8)
+            .map(|_| model.sample(s, Action::Up.id(), &mut rng).next.0)
+            .collect();
+        let noise = SensorNoise::new(0.5).unwrap();
+        let cells: Vec<Cell> = (0..8)
+            .map(|_| noise.corrupt(Cell::Empty, &mut rng))
+            .collect();
+        assert_eq!(got, PINNED_SLIPS);
+        assert_eq!(cells, PINNED_CELLS);
+    }
+
+    /// Value stability: a change of generator or of the drawing scheme fails here.
+    const PINNED_SLIPS: [u32; 8] = [28, 37, 28, 28, 28, 28, 35, 28];
+    const PINNED_CELLS: [Cell; 8] = [
+        Cell::Goal,
+        Cell::Empty,
+        Cell::Empty,
+        Cell::Empty,
+        Cell::Obstacle,
+        Cell::Empty,
+        Cell::Obstacle,
+        Cell::Empty,
+    ];
+
+    #[test]
+    fn value_iteration_on_slip_zero_is_the_deterministic_oracle() {
+        let world = GridWorld::new(&builtin("tan8x8").unwrap());
+        let a = Oracle::solve_stochastic(&world, 0.9).unwrap();
+        let b = Oracle::for_grid(&world, 0.9).unwrap();
+        for s in world.states() {
+            assert!((a.v_star(s) - b.v_star(s)).abs() < 1e-9);
+            assert_eq!(a.optimal_actions(s), b.optimal_actions(s));
+        }
+    }
+
+    #[test]
+    fn slip_lowers_values_and_no_policy_beats_the_oracle() {
+        let world = GridWorld::new(&builtin("tan8x8").unwrap());
+        let model = SlipperyGrid::new(&world, Slip::new(0.2).unwrap());
+        let o = Oracle::solve_stochastic(&model, 0.9).unwrap();
+        let d = Oracle::for_grid(&world, 0.9).unwrap();
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(5);
+        for s in world.states() {
+            assert!(o.v_star(s) < d.v_star(s));
+        }
+        for _ in 0..20 {
+            let policy: Vec<ActionId> = (0..51)
+                .map(|_| ActionId(rng.random_range(0..4u32)))
+                .collect();
+            let v = evaluate_policy(&model, 0.9, &policy).unwrap();
+            for s in world.states() {
+                assert!(v[s.index()] <= o.v_star(s) + 1e-9);
+            }
+        }
+        assert!(evaluate_policy(&model, 0.9, &[ActionId(0)]).is_err());
+        assert!(evaluate_policy(&model, 1.0, &vec![ActionId(0); 51]).is_err());
+    }
+}

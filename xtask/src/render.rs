@@ -1,0 +1,74 @@
+//! SVG to PNG in pure Rust (resvg), with the embedded DejaVu font, so that every figure
+//! can be looked at as a reader sees it and checked by a test.
+
+use std::path::Path;
+
+use anyhow::{Context, Result, bail, ensure};
+use resvg::{tiny_skia, usvg};
+
+/// The largest side, in pixels, a figure may have before it is called unreadable at a
+/// page's width (a page at 300 dpi is about 2500 px wide; our figures are drawn at
+/// 96 dpi, so 2000 px is already twice a page).
+pub const MAX_SIDE: f32 = 2000.0;
+
+fn options() -> usvg::Options<'static> {
+    let mut opt = usvg::Options {
+        font_family: "DejaVu Sans".to_string(),
+        ..usvg::Options::default()
+    };
+    let db = opt.fontdb_mut();
+    db.load_font_data(dejavu::sans::regular().to_vec());
+    db.load_font_data(dejavu::sans::bold().to_vec());
+    db.set_sans_serif_family("DejaVu Sans");
+    opt
+}
+
+/// Parse an SVG document and check that it is well formed and of a sane size: both sides
+/// positive and at most [`MAX_SIDE`]. Returns its size in pixels.
+pub fn check(svg: &str, what: &str) -> Result<(f32, f32)> {
+    let tree = usvg::Tree::from_str(svg, &options())
+        .with_context(|| format!("{what} is not a well-formed SVG document"))?;
+    let size = tree.size();
+    let (w, h) = (size.width(), size.height());
+    ensure!(
+        w > 0.0 && h > 0.0 && w <= MAX_SIDE && h <= MAX_SIDE,
+        "{what} is {w:.0} by {h:.0} px: each side must be in 1..={MAX_SIDE}"
+    );
+    Ok((w, h))
+}
+
+/// Render an SVG document to PNG bytes at `scale` times its size.
+pub fn png(svg: &str, scale: f32, what: &str) -> Result<Vec<u8>> {
+    let tree = usvg::Tree::from_str(svg, &options())
+        .with_context(|| format!("{what} is not a well-formed SVG document"))?;
+    let size = tree.size().to_int_size().scale_by(scale);
+    let Some(size) = size else {
+        bail!("{what}: cannot scale by {scale}");
+    };
+    let mut pixmap = tiny_skia::Pixmap::new(size.width(), size.height())
+        .with_context(|| format!("{what}: empty or too large to render"))?;
+    pixmap.fill(tiny_skia::Color::WHITE);
+    resvg::render(
+        &tree,
+        tiny_skia::Transform::from_scale(scale, scale),
+        &mut pixmap.as_mut(),
+    );
+    pixmap
+        .encode_png()
+        .with_context(|| format!("{what}: cannot encode PNG"))
+}
+
+/// `cargo xtask png FILE.svg...`: write `FILE.png` beside each.
+pub fn run(files: &[std::path::PathBuf], scale: f32) -> Result<()> {
+    for f in files {
+        let svg =
+            std::fs::read_to_string(f).with_context(|| format!("cannot read {}", f.display()))?;
+        let what = f.display().to_string();
+        check(&svg, &what)?;
+        let out = f.with_extension("png");
+        crate::files::write_atomic(&out, png(&svg, scale, &what)?)
+            .with_context(|| format!("cannot write {}", out.display()))?;
+        crate::emit(&format!("{}\n", Path::new(&out).display()))?;
+    }
+    Ok(())
+}
