@@ -128,7 +128,8 @@
 //!   sensing cost stays between about 12 and 47 ns at every size.
 //! * `cargo xtask bench throughput`, moves per CPU second on `tan8x8` against the
 //!   hand-written Q-learning loop of qlearn's throughput example (which senses nothing):
-//!   resetting 0.35x, lazy 0.21x, random 0.17x, eager 0.14x (before: 0.008x to 0.13x).
+//!   resetting 0.33x to 0.41x, lazy 0.22x to 0.27x, random 0.20x to 0.24x, eager 0.14x to
+//!   0.18x over five runs (before: 0.008x to 0.13x).
 //! * `cargo bench -p csql`: whole runs and CLASSIFY with and without its cache.
 
 #![deny(missing_docs)]
