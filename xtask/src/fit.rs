@@ -52,7 +52,6 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::paper;
 use crate::stats::Summary;
 
 /// The Table 1 rows the score compares (1-based, as in the paper).
@@ -131,8 +130,10 @@ impl Target {
     pub fn paper() -> Target {
         let mut t = [[0.0; 4]; 6];
         for (i, row) in FIT_ROWS.iter().enumerate() {
-            for (j, v) in paper::TABLE1[row - 1].values.iter().enumerate() {
-                t[i][j] = v.parse().expect("the paper's rows 1 to 7 are numbers");
+            for (j, k) in StrategyKind::ALL.iter().enumerate() {
+                t[i][j] = csql::Table1Row::ALL[row - 1]
+                    .paper(*k)
+                    .map_or(f64::NAN, |p| p.value());
             }
         }
         Target(t)

@@ -12,7 +12,7 @@ mod bench;
 mod figures;
 mod files;
 mod fit;
-mod paper;
+
 mod render;
 mod reproduce;
 mod sense;

@@ -9,12 +9,12 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use csql::{Reference, RunReport, RunSettings, Setup, StateTree, StrategyKind};
+use csql::{Reference, RunReport, RunSettings, Setup, StateTree, StrategyKind, Table1Row};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 
 use crate::figures;
-use crate::paper;
+
 use crate::stats::Summary;
 
 /// Arguments of `cargo xtask reproduce`.
@@ -196,43 +196,31 @@ pub fn compute(args: &ReproduceArgs) -> Result<Results> {
     })
 }
 
-/// The measures of Table 1 as (row label, decimals, extractor).
-pub(crate) type Row = (&'static str, usize, fn(&RunReport) -> Option<f64>);
+/// Table 1's rows as the reproduction prints them: csql's one definition of the rows
+/// (number, label, the paper's value, where ours comes from), with the decimals of a
+/// mean over runs (a mean of counts gets one).
+pub(crate) fn rows() -> impl Iterator<Item = (String, usize, Table1Row)> {
+    Table1Row::ALL.into_iter().map(|row| {
+        let decimals = match row {
+            Table1Row::TrialsToSufficient
+            | Table1Row::Trials
+            | Table1Row::Descriptions
+            | Table1Row::MaxFeatures => 1,
+            _ => row.decimals(),
+        };
+        (format!("{} {}", row.number(), row.label()), decimals, row)
+    })
+}
 
-pub(crate) const ROWS: [Row; 9] = [
-    ("1 sensing cost to learn a representation", 0, |r| {
-        r.table1.cost_to_sufficient
-    }),
-    ("2 trials to learn a representation", 1, |r| {
-        r.table1.trials_to_sufficient.map(f64::from)
-    }),
-    ("3 sensing cost to convergence", 0, |r| {
-        r.table1.cost_to_converge
-    }),
-    ("4 trials to convergence", 1, |r| {
-        r.table1.trials_to_converge.map(f64::from)
-    }),
-    ("5 descriptions", 1, |r| {
-        r.table1.descriptions.map(|x| x as f64)
-    }),
-    ("6 mean features per description", 2, |r| {
-        r.table1.mean_features
-    }),
-    ("7 max features in a description", 1, |r| {
-        r.table1.max_features.map(|x| x as f64)
-    }),
-    ("8 mean sensing cost per state (decision tree)", 2, |r| {
-        r.table1.tree_cost_per_state
-    }),
-    (
-        "8' mean sensing cost per state (description features)",
-        2,
-        |r| r.table1.description_cost_per_state,
-    ),
-];
-
-fn summary(runs: &[RunReport], f: fn(&RunReport) -> Option<f64>) -> Option<Summary> {
-    let values: Vec<f64> = runs.iter().filter_map(f).collect();
+/// Mean, spread and range of one row over runs (the runs that reached it).
+pub(crate) fn summary<R: std::borrow::Borrow<RunReport>>(
+    runs: &[R],
+    row: Table1Row,
+) -> Option<Summary> {
+    let values: Vec<f64> = runs
+        .iter()
+        .filter_map(|r| row.of(&r.borrow().table1))
+        .collect();
     Summary::of(&values)
 }
 
@@ -243,27 +231,21 @@ impl Results {
 
     fn mean(&self, k: StrategyKind, row: usize) -> Option<f64> {
         self.strategy(k)
-            .and_then(|r| summary(&r.1, ROWS[row].2))
+            .and_then(|r| summary(&r.1, Table1Row::ALL[row]))
             .map(|s| s.mean)
     }
 
     /// `table1.csv`: one line per (row, strategy).
     pub fn csv(&self) -> String {
         let mut s = String::from("row,strategy,paper,n,mean,sd,min,max\n");
-        for (i, (name, _, f)) in ROWS.iter().enumerate() {
+        for (name, _, row) in rows() {
             for (k, runs, _) in &self.runs {
-                let paper = paper::TABLE1
-                    .get(i)
-                    .filter(|_| i < 8 && self.args.on_papers_map())
-                    .and_then(|p| {
-                        paper::STRATEGIES
-                            .iter()
-                            .position(|n| *n == k.name())
-                            .map(|j| p.values[j])
-                    })
-                    .unwrap_or("");
+                let paper = row
+                    .paper(*k)
+                    .filter(|_| self.args.on_papers_map())
+                    .map_or(String::new(), |p| p.to_string());
                 let cell = |x: f64| format!("{x:.6}");
-                match summary(runs, *f) {
+                match summary(runs, row) {
                     Some(m) => {
                         let _ = writeln!(
                             s,
@@ -351,22 +333,19 @@ impl Results {
             let _ = write!(s, "---|");
         }
         s.push('\n');
-        for (i, (name, decimals, f)) in ROWS.iter().enumerate() {
-            if let Some(p) = paper::TABLE1.get(i).filter(|_| i < 8 && a.on_papers_map()) {
+        for (name, decimals, row) in rows() {
+            if a.on_papers_map() && row.paper(StrategyKind::Resetting).is_some() {
                 let _ = write!(s, "| {name}, paper |");
                 for (k, _, _) in &self.runs {
-                    let j = paper::STRATEGIES
-                        .iter()
-                        .position(|n| *n == k.name())
-                        .expect("four");
-                    let _ = write!(s, " {} |", p.values[j]);
+                    let p = row.paper(*k).map_or(String::new(), |p| p.to_string());
+                    let _ = write!(s, " {p} |");
                 }
                 s.push('\n');
             }
             let _ = write!(s, "| {name}, ours |");
             for (_, runs, _) in &self.runs {
                 let cell =
-                    summary(runs, *f).map_or("not reached".to_string(), |m| m.show(*decimals));
+                    summary(runs, row).map_or("not reached".to_string(), |m| m.show(decimals));
                 let _ = write!(s, " {cell} |");
             }
             s.push('\n');
@@ -666,10 +645,7 @@ impl Results {
             let Some(ours) = self.mean(*k, 6) else {
                 continue;
             };
-            let paper = paper::STRATEGIES
-                .iter()
-                .position(|n| *n == k.name())
-                .and_then(|j| paper::TABLE1[6].values[j].parse::<f64>().ok());
+            let paper = Table1Row::MaxFeatures.paper(*k).map(|p| p.value());
             let differs = paper.is_some_and(|p| (ours / p).ln().abs() > 0.2);
             if self.args.on_papers_map() && !differs {
                 continue;

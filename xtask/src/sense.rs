@@ -12,7 +12,7 @@ use csql::{PredictSensing, RunReport, StrategyKind};
 use rayon::prelude::*;
 
 use crate::figures;
-use crate::reproduce::{ROWS, Results};
+use crate::reproduce::{Results, rows, summary};
 use crate::stats::Summary;
 
 /// The levels beyond the paper, in order.
@@ -97,10 +97,9 @@ pub fn write(res: &Results, out: &Path, to_docs: bool) -> Result<Vec<PathBuf>> {
         line("converged", &|b| {
             format!("{}/{}", b.iter().filter(|r| r.converged).count(), b.len())
         });
-        for (name, decimals, f) in ROWS {
-            line(name, &|b| {
-                let v: Vec<f64> = b.iter().filter_map(|r| f(r)).collect();
-                Summary::of(&v).map_or("–".into(), |s| s.show(decimals))
+        for (name, decimals, row) in rows() {
+            line(&name, &|b| {
+                summary(b, row).map_or("–".into(), |s| s.show(decimals))
             });
         }
         line("3 / best of the paper's four at level off", &|b| {

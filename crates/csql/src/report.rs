@@ -232,6 +232,19 @@ pub enum PaperValue {
     AtMost(f64),
 }
 
+impl PaperValue {
+    /// The number (the bound, for an upper bound).
+    ///
+    /// ```
+    /// assert_eq!(csql::PaperValue::AtMost(9.0).value(), 9.0);
+    /// ```
+    pub fn value(self) -> f64 {
+        match self {
+            PaperValue::Exact(x) | PaperValue::AtMost(x) => x,
+        }
+    }
+}
+
 impl fmt::Display for PaperValue {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
