@@ -173,24 +173,11 @@ impl<D: Discriminate> IndexedLearner<D> {
         &mut self,
         objects: impl IntoIterator<Item = (T, ClassId)>,
     ) -> StreamReport {
-        let mut report = StreamReport {
-            full_cost: self.costs.total().get(),
-            ..StreamReport::default()
-        };
-        let mut total = Cost::ZERO;
-        for (object, class) in objects {
-            let outcome = self.learn(object, class);
-            report.objects += 1;
-            report.errors += usize::from(!outcome.correct());
-            total += outcome.cost;
-        }
-        report.total_cost = total.get();
-        if report.objects > 0 {
-            let n = report.objects as f64;
-            report.accuracy = (report.objects - report.errors) as f64 / n;
-            report.mean_cost = report.total_cost / n;
-        }
-        report
+        let full_cost = self.costs.total().get();
+        crate::learner::stream_report(
+            full_cost,
+            objects.into_iter().map(|(o, c)| self.learn(o, c)),
+        )
     }
 
     /// Turn the recheck after learning on or off (on by default), as

@@ -292,24 +292,11 @@ where
         &mut self,
         objects: impl IntoIterator<Item = (T, ClassId)>,
     ) -> StreamReport {
-        let mut report = StreamReport {
-            full_cost: self.costs.total().get(),
-            ..StreamReport::default()
-        };
-        let mut total = Cost::ZERO;
-        for (object, class) in objects {
-            let outcome = self.learn(object, class);
-            report.objects += 1;
-            report.errors += usize::from(!outcome.correct());
-            total += outcome.cost;
-        }
-        report.total_cost = total.get();
-        if report.objects > 0 {
-            let n = report.objects as f64;
-            report.accuracy = (report.objects - report.errors) as f64 / n;
-            report.mean_cost = report.total_cost / n;
-        }
-        report
+        let full_cost = self.costs.total().get();
+        stream_report(
+            full_cost,
+            objects.into_iter().map(|(o, c)| self.learn(o, c)),
+        )
     }
 
     /// The cycle for one object; `label` is `Some` when learning.
@@ -506,4 +493,29 @@ impl<A: Attend, S: Select, P: Predict, D: Discriminate> Parts<'_, A, S, P, D> {
         self.discriminate
             .discriminate(library, self.attend, self.conflicting, probe);
     }
+}
+
+/// The report of a stream from the outcome of each object, in order: what
+/// [`Learner::stream`] and the indexed learners' `stream` both return.
+pub(crate) fn stream_report(
+    full_cost: f64,
+    outcomes: impl Iterator<Item = Outcome>,
+) -> StreamReport {
+    let mut report = StreamReport {
+        full_cost,
+        ..StreamReport::default()
+    };
+    let mut total = Cost::ZERO;
+    for outcome in outcomes {
+        report.objects += 1;
+        report.errors += usize::from(!outcome.correct());
+        total += outcome.cost;
+    }
+    report.total_cost = total.get();
+    if report.objects > 0 {
+        let n = report.objects as f64;
+        report.accuracy = (report.objects - report.errors) as f64 / n;
+        report.mean_cost = report.total_cost / n;
+    }
+    report
 }
