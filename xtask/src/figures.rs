@@ -76,9 +76,13 @@ pub fn spread(traces: &[&[TracePoint]]) -> Vec<(f64, f64, f64)> {
 pub fn learning_curves(path: &Path, title: &str, curves: &[Curve]) -> Result<()> {
     register_font();
     let plot_err = |e: &dyn std::fmt::Display| anyhow!("drawing {}: {e}", path.display());
-    let cols = if curves.len() > 1 { 2 } else { 1 };
+    // Two panels a row for up to four curves; four a row (one per strategy) beyond.
+    let (cols, (pw, ph)) = match curves.len() {
+        0 | 1 => (1, (560_u32, 380_u32)),
+        2..=4 => (2, (560, 380)),
+        _ => (4, (420, 320)),
+    };
     let rows = curves.len().div_ceil(cols).max(1);
-    let (pw, ph) = (560_u32, 380_u32);
     // Drawn into memory, then written through a temporary file and a rename.
     let mut svg = String::new();
     let base = SVGBackend::with_string(&mut svg, (pw * cols as u32, ph * rows as u32 + 50))
@@ -89,7 +93,7 @@ pub fn learning_curves(path: &Path, title: &str, curves: &[Curve]) -> Result<()>
         .map_err(|e| plot_err(&e))?;
     let panels = root.split_evenly((rows, cols));
     let grey = RGBColor(170, 170, 170);
-    for (panel, curve) in panels.iter().zip(curves) {
+    for (i, (panel, curve)) in panels.iter().zip(curves).enumerate() {
         let trials = curve.points.len().max(2) as f64;
         let top = curve.points.iter().map(|p| p.2).fold(1.0, f64::max);
         let mut chart = ChartBuilder::on(panel)
@@ -163,14 +167,17 @@ pub fn learning_curves(path: &Path, title: &str, curves: &[Curve]) -> Result<()>
             .map_err(|e| plot_err(&e))?
             .label("a run converges")
             .legend(|(x, y)| TriangleMarker::new((x + 12, y), 7, BLACK.filled()));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
-            .background_style(WHITE.mix(0.9))
-            .border_style(RGBColor(150, 150, 150))
-            .label_font(("sans-serif", 14))
-            .draw()
-            .map_err(|e| plot_err(&e))?;
+        // One legend, in the first panel's empty lower right, serves every panel.
+        if i == 0 {
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::LowerRight)
+                .background_style(WHITE.mix(0.9))
+                .border_style(RGBColor(150, 150, 150))
+                .label_font(("sans-serif", 14))
+                .draw()
+                .map_err(|e| plot_err(&e))?;
+        }
     }
     root.present().map_err(|e| plot_err(&e))?;
     drop(panels);
