@@ -122,10 +122,11 @@
 //! the tables):
 //!
 //! * `cargo xtask bench scale`: `random:32x32:0.2:1` lazy converges in 0.3 to 0.6 CPU
-//!   seconds and `random:64x64:0.2:1` in 6.6 to 9.9 (before: about 60 s and out of
-//!   reach). Time grows as states^1.9 over 12x12 to 64x64, as the sensing cost the
-//!   algorithm charges does (states^1.85 lazy, states^2.09 random); CPU time per unit of
-//!   sensing cost stays between about 12 and 47 ns at every size.
+//!   seconds and `random:64x64:0.2:1` in 4.7 to 9.9 (before: about 60 s and out of
+//!   reach). Over 12x12 to 64x64, time grows as states^1.67 to 1.92 (lazy) and 1.88 to
+//!   2.13 (random) over four measurements, as the sensing cost the algorithm charges does
+//!   (states^1.85 lazy, states^2.09 random); CPU time per unit of sensing cost stays
+//!   between about 12 and 47 ns at every size.
 //! * `cargo xtask bench throughput`, moves per CPU second on `tan8x8` against the
 //!   hand-written Q-learning loop of qlearn's throughput example (which senses nothing):
 //!   resetting 0.33x to 0.41x, lazy 0.22x to 0.27x, random 0.20x to 0.24x, eager 0.14x to
