@@ -41,6 +41,7 @@
 //! | [`policy_svg`], [`descriptions_svg`], [`descriptions_table`] | the map with the learned policy, and the descriptions as pictures (Figure 4b) |
 //! | [`PredictSensing`], [`Prediction`], [`Predicting`], [`TransitionModel`] | sensing less (off by default): a learned model of the next description, and dead reckoning |
 //! | [`navigate`], [`Navigation`] | following the learned policy on the reduced map after learning |
+//! | [`WorldExtras`], [`Extensions`], [`Detector`], [`QualityReport`] | beyond the paper's assumptions (off by default): slip, sensor noise, a sensing range, a statistical detector, nearest matching, the policy quality |
 //!
 //! # Choices where the paper is silent
 //!
@@ -68,9 +69,9 @@
 //! decreases; a description that is consistent in the paper's sense can still see a
 //! transient decrease (its states lead to different descriptions that have not yet
 //! learned their values). The workspace's `tests/theorems.rs` checks all three. The oracle
-//! here judges consistency as the specification's section 4 says (shared `V*` and at least one shared optimal
-//! action); the literal reading (equal sets of optimal actions) is reported as
-//! [`RunReport::consistent_literal`].
+//! here judges consistency as the specification's section 4 says (shared `V*` and at
+//! least one shared optimal action); the literal reading (equal sets of optimal actions)
+//! is reported as [`RunReport::consistent_literal`].
 //!
 //! # Measured
 //!
