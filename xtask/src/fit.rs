@@ -236,42 +236,11 @@ impl Layout {
         Ok(Map::from_layout(name, &self.text())?)
     }
 
-    fn height(&self) -> usize {
-        self.cells.len() / self.width
-    }
-
-    /// Every free cell reachable from the goal (4-neighbourhood).
+    /// Every free cell reachable from the goal (4-neighbourhood): `mdp`'s map validation
+    /// refuses a layout with a free cell cut off from the goal, so a layout is connected
+    /// exactly when it makes a map.
     fn connected(&self) -> bool {
-        let (w, h) = (self.width, self.height());
-        let Some(goal) = self.cells.iter().position(|&c| c == b'G') else {
-            return false;
-        };
-        let mut seen = vec![false; self.cells.len()];
-        seen[goal] = true;
-        let mut stack = vec![goal];
-        while let Some(i) = stack.pop() {
-            let (r, c) = (i / w, i % w);
-            let mut nbrs = Vec::with_capacity(4);
-            if r > 0 {
-                nbrs.push(i - w);
-            }
-            if r + 1 < h {
-                nbrs.push(i + w);
-            }
-            if c > 0 {
-                nbrs.push(i - 1);
-            }
-            if c + 1 < w {
-                nbrs.push(i + 1);
-            }
-            for j in nbrs {
-                if !seen[j] && self.cells[j] != b'#' {
-                    seen[j] = true;
-                    stack.push(j);
-                }
-            }
-        }
-        self.cells.iter().zip(&seen).all(|(&c, &s)| c == b'#' || s)
+        self.map("connected").is_ok()
     }
 
     /// A uniformly random valid layout (rejection sampling on connectivity).
