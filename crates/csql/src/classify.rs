@@ -455,8 +455,17 @@ impl Classify {
         &self.measured
     }
 
-    /// The sensing cost of the last classification.
-    fn measured_cost(&self) -> f64 {
+    /// The summed cost of [`Classify::last_measured`]: what the last classification
+    /// charged.
+    ///
+    /// ```
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let mut c = csql::Classify::new(&space);
+    /// let out = c.classify_state(&world, world.states()[0]);
+    /// assert_eq!(c.last_cost(), out.cost);
+    /// ```
+    pub fn last_cost(&self) -> f64 {
         self.measured.iter().map(|&(f, _)| self.space.cost(f)).sum()
     }
 
@@ -503,7 +512,7 @@ impl Classify {
         Classification {
             description: d,
             created,
-            cost: self.measured_cost(),
+            cost: self.last_cost(),
             measured: self.measured.clone(),
         }
     }
@@ -650,7 +659,7 @@ impl Perception for Classify {
             let row = table.add_row();
             debug_assert_eq!(row, d.row());
         }
-        (d.row(), self.measured_cost())
+        (d.row(), self.last_cost())
     }
 
     fn refine(&mut self, world: &GridWorld, row: RowId, s: StateId) -> Option<f64> {

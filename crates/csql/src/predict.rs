@@ -836,12 +836,7 @@ impl Perception for Predicting {
                     .map(|&r| DescriptionId(r.0))
                     .collect();
                 let found = self.inner.classify_among(world, s, &candidates);
-                let full: f64 = self
-                    .inner
-                    .last_measured()
-                    .iter()
-                    .map(|&(f, _)| self.inner.space().cost(f))
-                    .sum();
+                let full = self.inner.last_cost();
                 partial = self.charge(full);
                 if let Some(d) = found {
                     self.unmeasured(world, from, a, s, d.row());
@@ -891,12 +886,7 @@ impl Perception for Predicting {
         let mut check = 0.0;
         if let Some(u) = self.previous.take().filter(|u| u.s == s && u.row == row) {
             let matches = self.inner.matches(world, s, DescriptionId(row.0));
-            let full: f64 = self
-                .inner
-                .last_measured()
-                .iter()
-                .map(|&(f, _)| self.inner.space().cost(f))
-                .sum();
+            let full = self.inner.last_cost();
             // Measured around the state left behind: the memory, placed around the
             // current one, neither discounts nor keeps it.
             check = full;
