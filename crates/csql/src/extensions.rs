@@ -82,6 +82,10 @@ pub struct Extensions {
     /// How CLASSIFY matches descriptions.
     #[serde(skip_serializing_if = "is_exact")]
     pub matching: Matching,
+    /// Steps of history a description may use once its sensable features are exhausted
+    /// (0: none, the paper's CLASSIFY; see [`crate::Remembering`]). At most 8.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub memory: u32,
     /// In a world beyond the paper's: trials between two evaluations of the policy
     /// quality.
     #[serde(skip_serializing_if = "is_ten")]
@@ -101,6 +105,9 @@ fn is_default_rate(r: &RateParams) -> bool {
 fn is_exact(m: &Matching) -> bool {
     *m == Matching::Exact
 }
+fn is_zero(x: &u32) -> bool {
+    *x == 0
+}
 fn is_ten(x: &u32) -> bool {
     *x == 10
 }
@@ -114,6 +121,7 @@ impl Default for Extensions {
             detector: DetectorKind::Decrease,
             rate: RateParams::default(),
             matching: Matching::Exact,
+            memory: 0,
             quality_every: 10,
             quality_patience: 20,
         }
@@ -137,6 +145,9 @@ impl Extensions {
                 expected,
             })
         };
+        if self.memory > 8 {
+            return bad("extensions.memory", self.memory.to_string(), "0 to 8");
+        }
         if self.quality_every == 0 {
             return bad("extensions.quality_every", "0".into(), "at least 1");
         }

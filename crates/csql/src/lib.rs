@@ -151,7 +151,9 @@ mod figure;
     reason = "internal invariants: every state of a sufficient representation has a row"
 )]
 mod judge;
+mod learner;
 mod main_loop;
+mod memory;
 mod navigate;
 mod observe;
 mod perception;
@@ -180,6 +182,7 @@ mod run;
 mod settings;
 mod strategy;
 mod tree;
+mod utree;
 
 pub use classify::{Classification, Classify};
 pub use detector::{AnyDrop, Detector, DetectorKind, RateParams, RateTest, RunDetector};
@@ -187,10 +190,12 @@ pub use error::{Error, SettingsProblem};
 pub use extensions::{Extensions, Matching, WorldExtras};
 pub use figure::{descriptions_svg, descriptions_table, policy_svg};
 pub use judge::{Judge, Verdict};
+pub use learner::{LearnerKind, UTreeParams};
 pub use main_loop::{Agent, LoopParams, TrialRecord};
+pub use memory::Remembering;
 pub use navigate::{Navigation, navigate};
 pub use observe::{Flow, KeepTrace, Observer};
-pub use perception::{Identified, Perception};
+pub use perception::{FullView, Identified, Perception};
 pub use predict::{PredictSensing, Predicting, Prediction, PredictionStats, TransitionModel};
 pub use quality::{
     MC_MAX_MOVES, MC_MAX_ROUNDS, MC_MIN_ROUNDS, QualityEstimate, QualityMethod, Sees,
@@ -200,8 +205,8 @@ pub use reference::{
     whole_world_cost,
 };
 pub use report::{
-    DescriptionReport, FeatureReport, PaperValue, QualityReport, RunReport, StateReport, Table1,
-    Table1Row, TracePoint,
+    Describes, DescriptionReport, FeatureReport, PaperValue, QualityReport, RunReport, StateReport,
+    Table1, Table1Row, TracePoint,
 };
 pub use representation::{Description, DescriptionId, Representation};
 pub use run::{Setup, run, run_observed, run_on, run_on_with, run_with_representation};
@@ -210,3 +215,4 @@ pub use strategy::{
     Eager, Lazy, Never, RandomMoves, Reaction, Resetting, Strategy, StrategyKind, UnknownStrategy,
 };
 pub use tree::{StateSensor, StateTree};
+pub use utree::{UTree, ks_p_value};

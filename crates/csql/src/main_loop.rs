@@ -249,6 +249,7 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
             let target = next.map_or(Target::Terminal, Target::Bootstrap);
             let change = table.update(row_x, a, step.reward, target, params.beta, params.gamma);
             journal.updated.push(row_x);
+            perception.updated(row_x, a, step.reward, next, table);
             let mut row_y = next;
             // 6. If V(descrip(x)) decreased, descrip(x) is inconsistent (Theorem 2; the
             //    detector may ask for more evidence): the strategy decides. Decreases

@@ -76,6 +76,19 @@ pub trait Perception {
         let _ = (refined, current);
         self.classify(world, s, table)
     }
+    /// The main loop updated `Q(row, a)` with reward `reward` and next row `next`
+    /// (`None`: the goal). A perception that learns from returns ([`crate::UTree`])
+    /// records it; by default nothing happens.
+    fn updated(
+        &mut self,
+        row: RowId,
+        a: ActionId,
+        reward: f64,
+        next: Option<RowId>,
+        table: &mut QTable,
+    ) {
+        let _ = (row, a, reward, next, table);
+    }
     /// Make `row` more specific, using state `s` (which it describes) for the new value;
     /// returns the cost charged, or `None` if the row cannot be refined further.
     fn refine(&mut self, world: &GridWorld, row: RowId, s: StateId) -> Option<f64>;
@@ -123,5 +136,127 @@ impl Perception for Identified {
     }
     fn lookup(&mut self, _world: &GridWorld, s: StateId) -> Option<RowId> {
         self.rows[s.index()]
+    }
+}
+
+/// Full sensing: every feature of the feature space whose cell lies in the bordered
+/// world is measured at every classification and charged
+/// ([`crate::whole_world_cost`]); states that look the same from where they stand share a
+/// row. With an unbounded space every state has a row of its own (plain Q-learning on
+/// the states, the paper's full-sensing reference); with a sensing radius, states whose
+/// whole view within the radius is the same are aliased, as they are for any learner.
+/// The run setting `learner = "full-sensing"`.
+///
+/// Under sensor noise the view is taken as read without error: with every feature
+/// measured, a state's view is redundant enough to be recognised, so this baseline is
+/// charged for noise but not confused by it (an optimistic baseline; see
+/// `docs/specification.md` §6).
+///
+/// ```
+/// use csql::{FullView, Perception};
+/// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+/// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+/// let mut p = FullView::new(&world, &space);
+/// let mut table = qlearn::QTable::new(4).unwrap();
+/// let s = world.states()[0];
+/// let (row, cost) = p.classify(&world, s, &mut table);
+/// assert_eq!((row.0, cost), (0, csql::whole_world_cost(&world, &space, s)));
+/// // Within the four neighbours, the open middle of open8x8 looks the same everywhere.
+/// let open = mdp::GridWorld::new(&mdp::builtin("open8x8").unwrap());
+/// let space = mdp::FeatureSpace::new(open.map(), &mdp::Manhattan).unwrap();
+/// let near = FullView::new(&open, &space.within(1.0));
+/// assert!(near.views() < open.states().len());
+/// ```
+#[derive(Clone, Debug)]
+pub struct FullView {
+    /// The view class of every state (`None` for the goal).
+    class: Vec<Option<usize>>,
+    /// The row of each view class, once it was seen.
+    rows: Vec<Option<RowId>>,
+    /// The whole view of each class: every feature in the bordered world and its value.
+    views: Vec<Vec<(mdp::Feature, mdp::Cell)>>,
+    /// What a classification of each state costs.
+    cost: Vec<f64>,
+}
+
+impl FullView {
+    /// Full sensing of a world through a feature space.
+    ///
+    /// ```
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// assert_eq!(csql::FullView::new(&world, &space).views(), 8);
+    /// ```
+    pub fn new(world: &GridWorld, space: &mdp::FeatureSpace) -> FullView {
+        let mut class = vec![None; world.num_states()];
+        let mut views: Vec<Vec<(mdp::Feature, mdp::Cell)>> = Vec::new();
+        let mut index = std::collections::HashMap::new();
+        let mut cost = vec![0.0; world.num_states()];
+        for s in world.states() {
+            let view = crate::reference::bordered_features(world, space, s, 1)
+                .map(|f| (f, space.measure(world, s, f)))
+                .collect::<Vec<_>>();
+            cost[s.index()] = crate::reference::whole_world_cost(world, space, s);
+            let next = views.len();
+            let c = *index.entry(view.clone()).or_insert(next);
+            if c == next {
+                views.push(view);
+            }
+            class[s.index()] = Some(c);
+        }
+        FullView {
+            class,
+            rows: vec![None; views.len()],
+            views,
+            cost,
+        }
+    }
+
+    /// How many different views the world's states show.
+    ///
+    /// ```
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan8x8").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// assert_eq!(csql::FullView::new(&world, &space).views(), 50);
+    /// ```
+    pub fn views(&self) -> usize {
+        self.views.len()
+    }
+
+    fn class_of(&self, s: StateId) -> usize {
+        self.class[s.index()].expect("the goal is never classified")
+    }
+}
+
+impl Perception for FullView {
+    fn classify(&mut self, _world: &GridWorld, s: StateId, table: &mut QTable) -> (RowId, f64) {
+        let c = self.class_of(s);
+        let row = *self.rows[c].get_or_insert_with(|| table.add_row());
+        (row, self.cost[s.index()])
+    }
+    fn refine(&mut self, _world: &GridWorld, _row: RowId, _s: StateId) -> Option<f64> {
+        None
+    }
+    fn rows(&self) -> usize {
+        self.rows.iter().flatten().count()
+    }
+    fn lookup(&mut self, _world: &GridWorld, s: StateId) -> Option<RowId> {
+        self.class[s.index()].and_then(|c| self.rows[c])
+    }
+}
+
+impl crate::report::Describes for FullView {
+    fn described(&self) -> Vec<(RowId, Vec<(mdp::Feature, mdp::Cell)>)> {
+        let mut out: Vec<_> = self
+            .rows
+            .iter()
+            .zip(&self.views)
+            .filter_map(|(r, v)| r.map(|r| (r, v.clone())))
+            .collect();
+        out.sort_by_key(|(r, _)| *r);
+        out
+    }
+    fn cost_after_learning(&mut self, _world: &GridWorld, s: StateId) -> f64 {
+        self.cost[s.index()]
     }
 }

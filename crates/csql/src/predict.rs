@@ -1001,3 +1001,17 @@ mod tests {
         assert!("on".parse::<PredictSensing>().is_err());
     }
 }
+
+/// A report reads CLASSIFY underneath: prediction changes what is charged while
+/// learning, not the descriptions or what they cost after it.
+impl crate::report::Describes for Predicting {
+    fn described(&self) -> Vec<(RowId, Vec<(mdp::Feature, mdp::Cell)>)> {
+        self.inner.described()
+    }
+    fn cost_after_learning(&mut self, world: &GridWorld, s: StateId) -> f64 {
+        self.inner.cost_after_learning(world, s)
+    }
+    fn table1_costs(&mut self, setup: &crate::Setup) -> (f64, f64) {
+        self.inner.table1_costs(setup)
+    }
+}

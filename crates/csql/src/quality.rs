@@ -5,9 +5,11 @@
 //! gives a state (action 0 where it would create a new description, whose Q values are
 //! all 0). Its value from each non-goal free state on the true model (slip included) is
 //! divided by that state's V* on the same model, and the ratios are averaged. Without
-//! sensor noise classification is a function of the state and the value is computed
-//! exactly by policy evaluation ([`mdp::evaluate_policy`]). With sensor noise the policy
-//! is random; its value is then a seeded Monte Carlo estimate: rounds of one episode from
+//! sensor noise, and for a perception without a memory of its moves, classification is a
+//! function of the state and the value is computed exactly by policy evaluation
+//! ([`mdp::evaluate_policy`]). With sensor noise the policy is random, and with a memory
+//! ([`Sees::memoryless`] false: [`crate::Remembering`], [`crate::UTree`]) it depends on
+//! the path; its value is then a seeded Monte Carlo estimate: rounds of one episode from
 //! every state (the noise and the slips drawn from the evaluation's own generator, at most
 //! [`MC_MAX_MOVES`] moves an episode), until the standard error of the mean over rounds is
 //! below 0.005 (after at least [`MC_MIN_ROUNDS`] rounds, at most [`MC_MAX_ROUNDS`]). The
@@ -61,6 +63,30 @@ pub trait Sees {
         noise: SensorNoise,
         rng: &mut R,
     ) -> Option<RowId>;
+    /// Whether the row depends on the state alone. A perception with a memory of its own
+    /// moves says `false`; its quality is then estimated by Monte Carlo, through
+    /// [`Sees::begin`] and [`Sees::moved`].
+    fn memoryless(&self) -> bool {
+        true
+    }
+    /// An episode of the evaluation starts: forget the moves of the last one.
+    fn begin(&mut self) {}
+    /// The evaluated policy took action `a` from the state last seen.
+    fn moved(&mut self, a: ActionId) {
+        let _ = a;
+    }
+}
+
+impl Sees for crate::FullView {
+    fn sees<R: Rng + ?Sized>(
+        &mut self,
+        world: &GridWorld,
+        s: StateId,
+        _noise: SensorNoise,
+        _rng: &mut R,
+    ) -> Option<RowId> {
+        crate::Perception::lookup(self, world, s)
+    }
 }
 
 impl Sees for Classify {
@@ -109,7 +135,8 @@ impl Sees for Identified {
 pub enum QualityMethod {
     /// Exact policy evaluation on the true model.
     Exact,
-    /// A seeded Monte Carlo estimate (under sensor noise).
+    /// A seeded Monte Carlo estimate (under sensor noise, or for a perception with a
+    /// memory).
     MonteCarlo,
 }
 
@@ -145,7 +172,7 @@ pub(crate) fn policy_quality<P: Sees, R: Rng + ?Sized>(
     let states = world.states();
     let gamma = truth.gamma();
     let act = |row: Option<RowId>| row.map_or(ActionId(0), |r| table.greedy(r));
-    if noise.is_zero() {
+    if noise.is_zero() && perception.memoryless() {
         let mut policy = vec![ActionId(0); mdp::Mdp::num_states(world)];
         for &s in &states {
             policy[s.index()] = act(perception.sees(world, s, noise, rng));
@@ -169,8 +196,10 @@ pub(crate) fn policy_quality<P: Sees, R: Rng + ?Sized>(
             let mut x = s;
             let mut g = 0.0;
             let mut discount = 1.0;
+            perception.begin();
             for _ in 0..MC_MAX_MOVES {
                 let a = act(perception.sees(world, x, noise, rng));
+                perception.moved(a);
                 let step = model.sample(x, a, rng);
                 g += discount * step.reward;
                 discount *= gamma;

@@ -37,18 +37,27 @@ pub struct Reference {
     pub cost_per_classification: Option<f64>,
 }
 
-/// The summed cost of sensing, from state `s`, every cell within `margin` cells of the
+/// The features whose cell, seen from state `s`, lies within `margin` cells of the
 /// interior (0: the interior only; 1: the interior and its boundary).
-fn sensing_cost(world: &GridWorld, space: &FeatureSpace, s: StateId, margin: i64) -> f64 {
+pub(crate) fn bordered_features<'a>(
+    world: &'a GridWorld,
+    space: &'a FeatureSpace,
+    s: StateId,
+    margin: i64,
+) -> impl Iterator<Item = mdp::Feature> + 'a {
     let p = world.pos(s);
     let (h, w) = (world.map().height() as i64, world.map().width() as i64);
-    space
-        .features()
-        .filter(|&f| {
-            let o = space.offset(f);
-            let (r, c) = (p.row as i64 - o.dy as i64, p.col as i64 + o.dx as i64);
-            (-margin..h + margin).contains(&r) && (-margin..w + margin).contains(&c)
-        })
+    space.features().filter(move |&f| {
+        let o = space.offset(f);
+        let (r, c) = (p.row as i64 - o.dy as i64, p.col as i64 + o.dx as i64);
+        (-margin..h + margin).contains(&r) && (-margin..w + margin).contains(&c)
+    })
+}
+
+/// The summed cost of sensing, from state `s`, every cell within `margin` cells of the
+/// interior.
+fn sensing_cost(world: &GridWorld, space: &FeatureSpace, s: StateId, margin: i64) -> f64 {
+    bordered_features(world, space, s, margin)
         .map(|f| space.cost(f))
         .sum()
 }

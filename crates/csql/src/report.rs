@@ -10,6 +10,7 @@ use serde::Serialize;
 
 use crate::classify::Classify;
 use crate::judge::Verdict;
+use crate::perception::Perception;
 use crate::quality::QualityMethod;
 use crate::representation::DescriptionId;
 use crate::run::{Learned, Setup};
@@ -437,19 +438,88 @@ impl fmt::Display for Table1 {
     }
 }
 
-pub(crate) fn report(
+/// What a run's report reads from a learned perception, free of charge and without
+/// changing it: its descriptions and what classifying a state costs after learning.
+/// [`crate::Classify`] and the baselines' perceptions implement it.
+///
+/// ```
+/// use csql::{Classify, Describes};
+/// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+/// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+/// let mut c = Classify::new(&space);
+/// let s = world.states()[0];
+/// let d = c.classify_state(&world, s).description;
+/// c.add_feature(&world, d, s);
+/// assert_eq!(c.described().len(), 1);
+/// assert_eq!(c.cost_after_learning(&world, s), 1.0);
+/// ```
+pub trait Describes {
+    /// The descriptions, one per row that has one, in row order: the row and its
+    /// features with their values.
+    fn described(&self) -> Vec<(qlearn::RowId, Vec<(mdp::Feature, Cell)>)>;
+    /// What classifying state `s` costs after learning.
+    fn cost_after_learning(&mut self, world: &mdp::GridWorld, s: mdp::StateId) -> f64;
+    /// Table 1's rows 8 and 5 after learning: the mean cost per state of the cheapest
+    /// classifier of the final descriptions, and of measuring a state's whole
+    /// description. By default both are the mean of
+    /// [`Describes::cost_after_learning`].
+    fn table1_costs(&mut self, setup: &Setup) -> (f64, f64) {
+        let states = setup.world.states();
+        let mean = states
+            .iter()
+            .map(|&s| self.cost_after_learning(&setup.world, s))
+            .sum::<f64>()
+            / states.len() as f64;
+        (mean, mean)
+    }
+}
+
+impl Describes for Classify {
+    fn described(&self) -> Vec<(qlearn::RowId, Vec<(mdp::Feature, Cell)>)> {
+        self.representation()
+            .iter()
+            .map(|(id, d)| (id.row(), d.features().collect()))
+            .collect()
+    }
+    fn cost_after_learning(&mut self, world: &mdp::GridWorld, s: mdp::StateId) -> f64 {
+        self.lookup_cost(world, s)
+    }
+    fn table1_costs(&mut self, setup: &Setup) -> (f64, f64) {
+        let states = setup.world.states();
+        let rep = self.representation();
+        let tree = StateTree::build(rep, &setup.space);
+        let costs: Vec<f64> = states
+            .iter()
+            .map(|&s| tree.classify(&setup.world, &setup.space, s).1)
+            .collect();
+        let tree_cost = costs.iter().sum::<f64>() / states.len() as f64;
+        let labels: Vec<Option<DescriptionId>> = states
+            .iter()
+            .map(|&s| self.lookup(&setup.world, s))
+            .collect();
+        let rep = self.representation();
+        let plain: f64 = labels
+            .iter()
+            .flatten()
+            .map(|&l| rep.get(l).cost(&setup.space))
+            .sum();
+        (tree_cost, plain / states.len() as f64)
+    }
+}
+
+pub(crate) fn report<P: Perception + Describes>(
     setup: &Setup,
     settings: &RunSettings,
-    classify: &mut Classify,
+    perception: &mut P,
     table: &QTable,
     learned: Learned,
 ) -> RunReport {
     let states = setup.world.states();
-    let labels: Vec<Option<DescriptionId>> = states
+    let rows: Vec<Option<qlearn::RowId>> = states
         .iter()
-        .map(|&s| classify.lookup(&setup.world, s))
+        .map(|&s| perception.lookup(&setup.world, s))
         .collect();
-    let rep = classify.representation();
+    let described = perception.described();
     let converged = learned.first_converged.is_some();
     let reached = learned.quality.and_then(|q| q.reached);
     let mut table1 = Table1 {
@@ -459,57 +529,40 @@ pub(crate) fn report(
         trials_to_converge: learned.first_converged.map(|x| x.0),
         ..Table1::default()
     };
+    let n = described.len().max(1);
+    let counts: Vec<usize> = described.iter().map(|(_, d)| d.len()).collect();
+    let mean_features = counts.iter().sum::<usize>() as f64 / n as f64;
     if converged || reached.is_some() {
-        let n = rep.len().max(1);
-        let counts: Vec<usize> = rep.iter().map(|(_, d)| d.len()).collect();
         table1.descriptions = Some(n);
-        table1.mean_features = Some(counts.iter().sum::<usize>() as f64 / n as f64);
+        table1.mean_features = Some(mean_features);
         table1.max_features = counts.iter().max().copied();
-        let tree = StateTree::build(rep, &setup.space);
-        let costs: Vec<f64> = states
-            .iter()
-            .map(|&s| tree.classify(&setup.world, &setup.space, s).1)
-            .collect();
-        table1.tree_cost_per_state = Some(costs.iter().sum::<f64>() / states.len() as f64);
-        let plain: f64 = labels
-            .iter()
-            .flatten()
-            .map(|&l| rep.get(l).cost(&setup.space))
-            .sum();
-        table1.description_cost_per_state = Some(plain / states.len() as f64);
+        let (tree_cost, description_cost) = perception.table1_costs(setup);
+        table1.tree_cost_per_state = Some(tree_cost);
+        table1.description_cost_per_state = Some(description_cost);
     }
     let sensing_cost_per_state = if learned.quality.is_some() {
         states
             .iter()
-            .map(|&s| classify.lookup_cost(&setup.world, s))
+            .map(|&s| perception.cost_after_learning(&setup.world, s))
             .sum::<f64>()
             / states.len() as f64
     } else {
         0.0
     };
-    let rep = classify.representation();
-    let quality = learned.quality.map(|q| {
-        let n = rep.len().max(1);
-        QualityReport {
-            policy_quality: q.last.quality,
-            method: q.last.method,
-            standard_error: q.last.standard_error,
-            evaluations: q.evaluations,
-            trials_to_quality: q.reached.map(|r| r.0),
-            cost_to_quality: q.reached.map(|r| r.1),
-            sensing_cost_per_state,
-            descriptions: rep.len(),
-            mean_features: rep.iter().map(|(_, d)| d.len()).sum::<usize>() as f64 / n as f64,
-        }
+    let quality = learned.quality.map(|q| QualityReport {
+        policy_quality: q.last.quality,
+        method: q.last.method,
+        standard_error: q.last.standard_error,
+        evaluations: q.evaluations,
+        trials_to_quality: q.reached.map(|r| r.0),
+        cost_to_quality: q.reached.map(|r| r.1),
+        sensing_cost_per_state,
+        descriptions: described.len(),
+        mean_features,
     });
-    let rep = classify.representation();
     let last = learned.last;
     let sufficient_now = last.is_some_and(|t| t.sufficient);
     let consistent_literal = sufficient_now.then(|| {
-        let rows: Vec<_> = labels
-            .iter()
-            .map(|l| l.map(|d| qlearn::RowId(d.0)))
-            .collect();
         Verdict::judge(
             &setup.world,
             &setup.oracle,
@@ -531,14 +584,13 @@ pub(crate) fn report(
         consistent_literal,
         states: states
             .iter()
-            .zip(&labels)
-            .map(|(&s, l)| {
+            .zip(&rows)
+            .map(|(&s, &row)| {
                 let p = setup.world.pos(s);
-                let row = l.map(|d| qlearn::RowId(d.0));
                 StateReport {
                     row: p.row,
                     col: p.col,
-                    description: l.map(|d| d.0),
+                    description: row.map(|r| r.0),
                     greedy_action: row.map(|r| {
                         Action::from_id(table.greedy(r)).expect("grid worlds have four actions")
                     }),
@@ -547,13 +599,13 @@ pub(crate) fn report(
                 }
             })
             .collect(),
-        descriptions: rep
+        descriptions: described
             .iter()
-            .map(|(id, d)| DescriptionReport {
-                label: id.0,
+            .map(|(row, d)| DescriptionReport {
+                label: row.0,
                 features: d
-                    .features()
-                    .map(|(f, v)| {
+                    .iter()
+                    .map(|&(f, v)| {
                         let o = setup.space.offset(f);
                         FeatureReport {
                             dx: o.dx,

@@ -9,16 +9,21 @@ use crate::classify::Classify;
 use crate::detector::RunDetector;
 use crate::error::Error;
 use crate::judge::Judge;
+use crate::learner::LearnerKind;
 use crate::main_loop::{Agent, LoopParams};
+use crate::memory::Remembering;
 use crate::navigate::navigate;
 use crate::observe::{Flow, KeepTrace, Observer};
+use crate::perception::FullView;
 use crate::perception::Perception;
 use crate::predict::{PredictSensing, Predicting};
 use crate::quality::{QualityEstimate, Sees, policy_quality};
+use crate::report::Describes;
 use crate::report::{RunReport, TracePoint, report};
 use crate::representation::Representation;
 use crate::settings::RunSettings;
-use crate::strategy::Strategy;
+use crate::strategy::{Never, Strategy};
+use crate::utree::UTree;
 
 /// A prepared world: map, grid world, feature space and oracle.
 ///
@@ -336,28 +341,48 @@ fn run_classify(
     let classify = classify
         .with_noise(settings.world.sensor_noise, sensor_rng)
         .with_matching(settings.extensions.matching);
-    let predicting = match settings.predict_sensing {
-        PredictSensing::Off => {
-            let mut agent = new_agent(setup, settings, classify);
-            let learned = learn(setup, settings, &mut agent, observer);
-            let report = report(
-                setup,
-                settings,
-                &mut agent.perception,
-                &agent.table,
-                learned,
-            );
-            return (report, agent.perception.into_representation());
+    let learner = settings.learner;
+    let predicting = match (learner, settings.predict_sensing) {
+        (LearnerKind::FullSensing, _) => {
+            let perception = FullView::new(&setup.world, &setup.space);
+            let (report, _) = learn_and_report(setup, settings, perception, Never, observer);
+            return (report, classify.into_representation());
         }
-        PredictSensing::Learned => Predicting::learned(classify, &settings.prediction),
-        PredictSensing::Motion => Predicting::motion(classify, &settings.prediction, &setup.world),
+        (LearnerKind::UTree, _) => {
+            let mut utree_rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
+            utree_rng.jump();
+            let perception = UTree::new(&setup.space, settings.u_tree, settings.gamma.get())
+                .with_noise(settings.world.sensor_noise, utree_rng);
+            let (report, _) = learn_and_report(setup, settings, perception, Never, observer);
+            return (report, classify.into_representation());
+        }
+        (LearnerKind::CsQl, PredictSensing::Off) if settings.extensions.memory > 0 => {
+            let perception = Remembering::new(classify, settings.extensions.memory);
+            let strategy = settings.strategy.build(settings.random_moves);
+            let (report, perception) =
+                learn_and_report(setup, settings, perception, strategy, observer);
+            return (report, perception.into_classify().into_representation());
+        }
+        (LearnerKind::CsQl, PredictSensing::Off) => {
+            let strategy = settings.strategy.build(settings.random_moves);
+            let (report, perception) =
+                learn_and_report(setup, settings, classify, strategy, observer);
+            return (report, perception.into_representation());
+        }
+        (LearnerKind::CsQl, PredictSensing::Learned) => {
+            Predicting::learned(classify, &settings.prediction)
+        }
+        (LearnerKind::CsQl, PredictSensing::Motion) => {
+            Predicting::motion(classify, &settings.prediction, &setup.world)
+        }
     };
-    let mut agent = new_agent(setup, settings, predicting);
+    let strategy = settings.strategy.build(settings.random_moves);
+    let mut agent = new_agent(setup, settings, predicting, strategy);
     let learned = learn(setup, settings, &mut agent, observer);
     let mut out = report(
         setup,
         settings,
-        agent.perception.classify_mut(),
+        &mut agent.perception,
         &agent.table,
         learned,
     );
@@ -382,14 +407,35 @@ fn run_classify(
 /// that its draws are not those of learning (the digits of pi's fraction, as a name).
 const NAVIGATION_STREAM: u64 = 0x243F_6A88_85A3_08D3;
 
-fn new_agent<P>(
+/// Learn with a perception and a strategy, and report.
+fn learn_and_report<P: Perception + Sees + Describes, S: Strategy>(
     setup: &Setup,
     settings: &RunSettings,
     perception: P,
-) -> Agent<P, Box<dyn Strategy + Send>> {
+    strategy: S,
+    observer: &mut dyn Observer,
+) -> (RunReport, P) {
+    let mut agent = new_agent(setup, settings, perception, strategy);
+    let learned = learn(setup, settings, &mut agent, observer);
+    let report = report(
+        setup,
+        settings,
+        &mut agent.perception,
+        &agent.table,
+        learned,
+    );
+    (report, agent.perception)
+}
+
+fn new_agent<P, S>(
+    setup: &Setup,
+    settings: &RunSettings,
+    perception: P,
+    strategy: S,
+) -> Agent<P, S> {
     Agent::new(
         perception,
-        settings.strategy.build(settings.random_moves),
+        strategy,
         QTable::new(setup.world.num_actions()).expect("grid worlds have four actions"),
         LoopParams::from(settings),
     )

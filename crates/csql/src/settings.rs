@@ -15,6 +15,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, SettingsProblem};
 use crate::extensions::{Extensions, WorldExtras};
+use crate::learner::{LearnerKind, UTreeParams};
 use crate::predict::{PredictSensing, Prediction};
 use crate::strategy::StrategyKind;
 
@@ -294,6 +295,13 @@ pub struct RunSettings {
     /// CS-QL's remedies beyond the paper (TOML table `[extensions]`; omitted when off).
     #[serde(default, skip_serializing_if = "Extensions::is_default")]
     pub extensions: Extensions,
+    /// The learner: CS-QL (the default, omitted from the JSON) or a baseline
+    /// ([`LearnerKind`]).
+    #[serde(default, skip_serializing_if = "LearnerKind::is_cs_ql")]
+    pub learner: LearnerKind,
+    /// The U-Tree learner's parameters (TOML table `[u_tree]`; omitted when default).
+    #[serde(default, skip_serializing_if = "UTreeParams::is_default")]
+    pub u_tree: UTreeParams,
 }
 
 /// The most bytes a settings file may have (64 KiB; the longest useful one is under 1 KiB).
@@ -322,6 +330,8 @@ struct SettingsFile {
     prediction: Option<Prediction>,
     world: Option<WorldExtras>,
     extensions: Option<Extensions>,
+    learner: Option<LearnerKind>,
+    u_tree: Option<UTreeParams>,
 }
 
 impl RunSettings {
@@ -350,6 +360,8 @@ impl RunSettings {
             prediction: Prediction::default(),
             world: WorldExtras::default(),
             extensions: Extensions::default(),
+            learner: LearnerKind::CsQl,
+            u_tree: UTreeParams::default(),
         }
     }
 
@@ -387,7 +399,9 @@ impl RunSettings {
             predict_sensing,
             prediction,
             world,
-            extensions
+            extensions,
+            learner,
+            u_tree
         );
         self.validate()
     }
@@ -445,7 +459,7 @@ impl RunSettings {
     /// assert!(s.beyond_paper());
     /// ```
     pub fn beyond_paper(&self) -> bool {
-        !(self.world.is_default() && self.extensions.is_default())
+        !(self.world.is_default() && self.extensions.is_default() && self.learner.is_cs_ql())
     }
 
     /// Check the settings beyond the paper that have no type of their own (every other
@@ -465,6 +479,29 @@ impl RunSettings {
             });
         }
         self.prediction.validate()?;
-        self.extensions.validate()
+        self.extensions.validate()?;
+        self.u_tree.validate()?;
+        let refuse =
+            |value: String, expected: &'static str| Err(Error::InvalidSetting { value, expected });
+        if !self.learner.is_cs_ql() && !self.predict_sensing.is_off() {
+            return refuse(
+                format!(
+                    "predict_sensing = {} with learner = {}",
+                    self.predict_sensing, self.learner
+                ),
+                "predict_sensing = off with a learner other than cs-ql",
+            );
+        }
+        if self.extensions.memory > 0 && !(self.learner.is_cs_ql() && self.predict_sensing.is_off())
+        {
+            return refuse(
+                format!(
+                    "extensions.memory = {} with learner = {} and predict_sensing = {}",
+                    self.extensions.memory, self.learner, self.predict_sensing
+                ),
+                "memory with learner = cs-ql and predict_sensing = off only",
+            );
+        }
+        Ok(())
     }
 }

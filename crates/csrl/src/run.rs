@@ -26,7 +26,8 @@ pub struct RunArgs {
     seed: Option<u64>,
     /// A TOML file of settings that override the paper's (beta, gamma, temperature,
     /// max_moves, random_moves, tolerance, decrease_threshold, max_trials, map,
-    /// strategy, seed, predict_sensing and the table `[prediction]`); flags given here
+    /// strategy, seed, predict_sensing, learner and the tables `[prediction]`,
+    /// `[world]`, `[extensions]` and `[u_tree]`); flags given here
     /// override the file.
     #[arg(long)]
     config: Option<PathBuf>,
@@ -35,6 +36,10 @@ pub struct RunArgs {
     /// the config tunes it).
     #[arg(long)]
     predict_sensing: Option<csql::PredictSensing>,
+    /// cs-ql (the default), u-tree or full-sensing: the learner (default: the config's
+    /// `learner`, else cs-ql). The baselines are judged by the policy quality.
+    #[arg(long)]
+    learner: Option<csql::LearnerKind>,
     /// Stop an unconverged run after this many trials.
     #[arg(long)]
     max_trials: Option<csql::TrialCap>,
@@ -74,6 +79,9 @@ impl RunArgs {
         }
         if let Some(level) = self.predict_sensing {
             s.predict_sensing = level;
+        }
+        if let Some(learner) = self.learner {
+            s.learner = learner;
         }
         s.validate()?;
         Ok(s)

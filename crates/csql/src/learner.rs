@@ -1,0 +1,173 @@
+//! Which learner a run uses (the run setting `learner`): CS-QL, the paper's method and the
+//! default, or one of two baselines that share its sensing model and its charges.
+//!
+//! | `learner` | perception | type |
+//! |---|---|---|
+//! | `cs-ql` | CLASSIFY over descriptions refined on a decrease of V | [`crate::Classify`] |
+//! | `u-tree` | a tree split by a Kolmogorov-Smirnov test on future discounted returns | [`crate::UTree`] |
+//! | `full-sensing` | every sensable feature measured at every step | [`crate::FullView`] |
+//!
+//! A run with a learner other than CS-QL is judged by the policy quality
+//! (specification §6), as every run beyond the paper is: the oracle's verdicts assume
+//! CLASSIFY's descriptions.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::Error;
+
+/// The learner of a run.
+///
+/// ```
+/// use csql::LearnerKind;
+/// assert_eq!(LearnerKind::default(), LearnerKind::CsQl);
+/// assert_eq!("u-tree".parse::<LearnerKind>().unwrap(), LearnerKind::UTree);
+/// assert_eq!(LearnerKind::FullSensing.to_string(), "full-sensing");
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LearnerKind {
+    /// CS-QL (the paper's method; the default).
+    #[default]
+    CsQl,
+    /// A U-Tree-like statistical splitter (McCallum, 1995), charged as CLASSIFY is.
+    UTree,
+    /// Q-learning on the whole sensable view, charged every feature at every step.
+    FullSensing,
+}
+
+impl LearnerKind {
+    /// The three learners, in order.
+    ///
+    /// ```
+    /// assert_eq!(csql::LearnerKind::ALL.len(), 3);
+    /// ```
+    pub const ALL: [LearnerKind; 3] = [
+        LearnerKind::CsQl,
+        LearnerKind::UTree,
+        LearnerKind::FullSensing,
+    ];
+
+    /// The setting's value: `cs-ql`, `u-tree` or `full-sensing`.
+    ///
+    /// ```
+    /// assert_eq!(csql::LearnerKind::CsQl.name(), "cs-ql");
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            LearnerKind::CsQl => "cs-ql",
+            LearnerKind::UTree => "u-tree",
+            LearnerKind::FullSensing => "full-sensing",
+        }
+    }
+
+    /// Whether this is CS-QL (for serde's `skip_serializing_if`).
+    ///
+    /// ```
+    /// assert!(csql::LearnerKind::CsQl.is_cs_ql());
+    /// ```
+    pub fn is_cs_ql(&self) -> bool {
+        *self == LearnerKind::CsQl
+    }
+}
+
+impl std::fmt::Display for LearnerKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for LearnerKind {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<LearnerKind, Error> {
+        LearnerKind::ALL
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| Error::InvalidSetting {
+                value: s.to_string(),
+                expected: "cs-ql, u-tree or full-sensing",
+            })
+    }
+}
+
+/// The U-Tree learner's parameters (the TOML table `[u_tree]`; see [`crate::UTree`]).
+///
+/// ```
+/// let p = csql::UTreeParams::default();
+/// assert_eq!((p.fringe, p.window, p.test_every, p.min_group, p.patience), (4, 2000, 25, 5, 1000));
+/// assert_eq!(p.alpha, 0.01);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct UTreeParams {
+    /// Candidate features of a leaf (its fringe): the cheapest ones its path lacks. They
+    /// are measured, and charged, at every visit of a leaf that still collects.
+    pub fringe: usize,
+    /// Significance of the Kolmogorov-Smirnov test, before the Bonferroni correction for
+    /// the tests made together.
+    pub alpha: f64,
+    /// Instances a leaf keeps (the most recent).
+    pub window: usize,
+    /// New instances between two tests of a leaf.
+    pub test_every: usize,
+    /// Fewest instances on each side of a comparison.
+    pub min_group: usize,
+    /// Tests after which a leaf that never split stops collecting (and measuring its
+    /// fringe).
+    pub patience: u32,
+}
+
+impl Default for UTreeParams {
+    fn default() -> UTreeParams {
+        UTreeParams {
+            fringe: 4,
+            alpha: 0.01,
+            window: 2000,
+            test_every: 25,
+            min_group: 5,
+            patience: 1000,
+        }
+    }
+}
+
+impl UTreeParams {
+    /// Whether every parameter is the default (for serde's `skip_serializing_if`).
+    ///
+    /// ```
+    /// assert!(csql::UTreeParams::default().is_default());
+    /// ```
+    pub fn is_default(&self) -> bool {
+        *self == UTreeParams::default()
+    }
+
+    pub(crate) fn validate(&self) -> Result<(), Error> {
+        let bad = |name: &str, value: String, expected: &'static str| {
+            Err(Error::InvalidSetting {
+                value: format!("u_tree.{name} = {value}"),
+                expected,
+            })
+        };
+        if !(1..=16).contains(&self.fringe) {
+            return bad("fringe", self.fringe.to_string(), "1 to 16");
+        }
+        if !(self.alpha > 0.0 && self.alpha < 1.0) {
+            return bad("alpha", self.alpha.to_string(), "a number in (0, 1)");
+        }
+        if !(2..=100_000).contains(&self.window) {
+            return bad("window", self.window.to_string(), "2 to 100000");
+        }
+        if self.test_every == 0 {
+            return bad("test_every", "0".into(), "at least 1");
+        }
+        if self.min_group == 0 || 2 * self.min_group > self.window {
+            return bad(
+                "min_group",
+                self.min_group.to_string(),
+                "at least 1 and at most half the window",
+            );
+        }
+        if self.patience == 0 {
+            return bad("patience", "0".into(), "at least 1");
+        }
+        Ok(())
+    }
+}
