@@ -188,6 +188,9 @@ pub(crate) fn policy_quality<P: Sees, R: Rng + ?Sized>(
             episodes: 0,
         };
     }
+    // Without slip and noise, an episode is a function of its start: one round is the
+    // exact value (up to MC_MAX_MOVES moves, beyond which nothing is left to earn).
+    let deterministic = noise.is_zero() && model.slip().is_zero();
     let mut rounds: Vec<f64> = Vec::new();
     let mut returns = vec![0.0; mdp::Mdp::num_states(world)];
     let mut se = f64::INFINITY;
@@ -211,6 +214,14 @@ pub(crate) fn policy_quality<P: Sees, R: Rng + ?Sized>(
             returns[s.index()] = g;
         }
         rounds.push(ratio_mean(&states, truth, |s| returns[s.index()]));
+        if deterministic {
+            return QualityEstimate {
+                quality: rounds[0],
+                method: QualityMethod::Exact,
+                standard_error: 0.0,
+                episodes: states.len() as u64,
+            };
+        }
         let n = rounds.len() as f64;
         if rounds.len() >= MC_MIN_ROUNDS as usize {
             let mean = rounds.iter().sum::<f64>() / n;
