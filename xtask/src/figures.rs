@@ -10,7 +10,7 @@ use csql::TracePoint;
 use mdp::{Cell, Feature, FeatureSpace};
 use plotters::prelude::*;
 
-fn register_font() {
+pub fn register_font() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         // The bytes are a valid TrueType font shipped by the dejavu crate.
@@ -187,7 +187,7 @@ pub fn learning_curves(path: &Path, title: &str, curves: &[Curve]) -> Result<()>
 }
 
 /// A cost on an axis: `250k`, `1.2M`.
-fn short(y: f64) -> String {
+pub fn short(y: f64) -> String {
     if y >= 1e6 {
         format!("{:.1}M", y / 1e6)
     } else if y >= 1e3 {

@@ -5,6 +5,8 @@
 //! * `cargo xtask png`: figures rendered to PNG (resvg), to look at them as a reader would.
 //! * `cargo xtask sweep` and `cargo xtask merge`: grids of settings, sharded across
 //!   machines (see `docs/sweeps.md`).
+//! * `cargo xtask robustness`: CS-QL, U-Tree and full sensing beyond the paper's
+//!   assumptions (see `docs/robustness.md`).
 //! * `cargo xtask bench scale` and `cargo xtask bench throughput`: how CS-QL's cost grows
 //!   with the world, and its moves per second against a plain Q-learning loop.
 
@@ -15,7 +17,9 @@ mod fit;
 
 mod render;
 mod reproduce;
+mod robustness;
 mod sense;
+mod shard;
 mod stats;
 mod sweep;
 
@@ -49,6 +53,8 @@ enum Command {
     Sweep(sweep::SweepArgs),
     /// Merge the outputs of sweep shards into one table.
     Merge(sweep::MergeArgs),
+    /// CS-QL and two baselines under slip, sensor noise and a sensing range.
+    Robustness(robustness::RobustnessArgs),
     /// Benchmarks: CS-QL's growth with the world's size, and its moves per second.
     Bench(bench::BenchArgs),
 }
@@ -72,6 +78,7 @@ fn main() -> ExitCode {
         Command::Png { files, scale } => render::run(files, *scale),
         Command::Sweep(args) => sweep::sweep(args),
         Command::Merge(args) => sweep::merge(args),
+        Command::Robustness(args) => robustness::robustness(&args),
         Command::Bench(args) => bench::run(args),
     };
     match result {

@@ -2,25 +2,20 @@
 //! shards that can run on different machines, and the merge of their outputs.
 //!
 //! The job list is built in a fixed order (map, then strategy, then run) and numbered
-//! from 0; shard `K/N` runs the jobs whose number is `K - 1` modulo `N`. Run `i` uses seed
-//! `S + i`. Each shard writes `shard-K-of-N/manifest.json` (through a temporary file and a
-//! rename) and appends one line per finished job to `shard-K-of-N/results.jsonl`, flushed
-//! at once: a shard that is killed and started again skips the jobs it already has.
+//! from 0; run `i` uses seed `S + i`. Shards, resuming and merging are those of
+//! [`crate::shard`].
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
-use std::io::Write as _;
-use std::path::{Path, PathBuf};
-use std::sync::Mutex;
+use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use csql::{RunSettings, Setup, StrategyKind, Table1};
-use indicatif::ProgressBar;
 use mdp::Map;
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
+use crate::shard::JobLine;
 use crate::stats::Summary;
 
 /// Arguments of `cargo xtask sweep`.
@@ -78,15 +73,6 @@ struct Definition {
     max_trials: u32,
 }
 
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-struct Manifest {
-    sweep: Definition,
-    shard: u64,
-    shards: u64,
-    total_jobs: u64,
-    job_ids: Vec<u64>,
-}
-
 #[derive(Clone, Debug, Serialize, Deserialize)]
 struct JobResult {
     id: u64,
@@ -129,103 +115,14 @@ impl From<&Table1> for Table1Row {
     }
 }
 
-/// Parse `K/N`.
-fn parse_shard(s: &str) -> Result<(u64, u64)> {
-    let (k, n) = s
-        .split_once('/')
-        .with_context(|| format!("--shard `{s}`: expected K/N, for example 2/8"))?;
-    let k: u64 = k
-        .trim()
-        .parse()
-        .with_context(|| format!("--shard `{s}`: K is not a number"))?;
-    let n: u64 = n
-        .trim()
-        .parse()
-        .with_context(|| format!("--shard `{s}`: N is not a number"))?;
-    if n == 0 || k == 0 || k > n {
-        bail!("--shard `{s}`: need 1 <= K <= N");
+impl JobLine for JobResult {
+    fn id(&self) -> u64 {
+        self.id
     }
-    Ok((k, n))
-}
-
-/// A shard's results file as read: the good results, and the lines that are not results.
-struct ReadResults {
-    results: Vec<JobResult>,
-    /// `(line number, text)` of every line that is not a result: a last line cut short by
-    /// a kill (no newline), or a corrupt line anywhere.
-    bad: Vec<(usize, String)>,
-}
-
-/// Read a shard's results, line by line; nothing is changed on disk.
-fn read_results(path: &Path) -> Result<ReadResults> {
-    let text = match std::fs::read(path) {
-        Ok(t) => String::from_utf8_lossy(&t).into_owned(),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-            return Ok(ReadResults {
-                results: Vec::new(),
-                bad: Vec::new(),
-            });
-        }
-        Err(e) => return Err(e).with_context(|| format!("cannot read {}", path.display())),
-    };
-    let mut out = ReadResults {
-        results: Vec::new(),
-        bad: Vec::new(),
-    };
-    for (i, line) in text.split_inclusive('\n').enumerate() {
-        let parsed = line
-            .ends_with('\n')
-            .then(|| serde_json::from_str::<JobResult>(line).ok())
-            .flatten();
-        match parsed {
-            Some(r) => out.results.push(r),
-            None => out.bad.push((i + 1, line.to_string())),
-        }
-    }
-    Ok(out)
-}
-
-/// Before a shard resumes: move every line of its results file that is not a result
-/// into `results.corrupt.jsonl` beside it (appended, never deleted), say so, and rewrite
-/// the results file with the good lines only. Their jobs then run again.
-fn set_aside_bad_lines(path: &Path, read: &ReadResults) -> Result<()> {
-    if read.bad.is_empty() {
-        return Ok(());
-    }
-    let aside = path.with_file_name("results.corrupt.jsonl");
-    let mut kept = std::fs::OpenOptions::new()
-        .create(true)
-        .append(true)
-        .open(&aside)
-        .with_context(|| format!("cannot open {}", aside.display()))?;
-    for (line, text) in &read.bad {
-        crate::note(&format!(
-            "{}:{line}: not a result line{}; set aside in {} and its job will run again",
-            path.display(),
-            if text.ends_with('\n') {
-                ""
-            } else {
-                " (cut short)"
-            },
-            aside.display()
-        ));
-        kept.write_all(text.as_bytes())?;
-        if !text.ends_with('\n') {
-            kept.write_all(b"\n")?;
-        }
-    }
-    kept.sync_all()?;
-    let mut good = String::new();
-    for r in &read.results {
-        good.push_str(&serde_json::to_string(r)?);
-        good.push('\n');
-    }
-    crate::files::write_atomic(path, good)
 }
 
 /// `cargo xtask sweep`.
 pub fn sweep(args: &SweepArgs) -> Result<()> {
-    let (k, n) = parse_shard(&args.shard)?;
     if args.runs == 0 || args.strategies.is_empty() {
         bail!("a sweep needs --runs >= 1 and at least one strategy");
     }
@@ -253,41 +150,6 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
         }
     }
     let total = jobs.len() as u64;
-    let mine: Vec<u64> = (0..total).filter(|id| id % n == k - 1).collect();
-    let dir = args.out.join(format!("shard-{k}-of-{n}"));
-    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    let _lock = crate::files::OutLock::acquire(&dir)?;
-    let manifest = Manifest {
-        sweep: definition,
-        shard: k,
-        shards: n,
-        total_jobs: total,
-        job_ids: mine.clone(),
-    };
-    let manifest_path = dir.join("manifest.json");
-    if let Ok(text) = std::fs::read_to_string(&manifest_path) {
-        let old: Manifest = serde_json::from_str(&text)
-            .with_context(|| format!("{} is not a sweep manifest", manifest_path.display()))?;
-        if old != manifest {
-            bail!(
-                "{} holds a different sweep; use another --out or remove it",
-                dir.display()
-            );
-        }
-    } else {
-        crate::files::write_atomic(&manifest_path, serde_json::to_string_pretty(&manifest)?)?;
-    }
-    let results_path = dir.join("results.jsonl");
-    let read = read_results(&results_path)?;
-    set_aside_bad_lines(&results_path, &read)?;
-    let done: Vec<u64> = read.results.iter().map(|r| r.id).collect();
-    let todo: Vec<u64> = mine.into_iter().filter(|id| !done.contains(id)).collect();
-    crate::note(&format!(
-        "shard {k}/{n}: {} jobs of {total}, {} already done, {} to run",
-        todo.len() + done.len(),
-        done.len(),
-        todo.len()
-    ));
     let setups: Vec<Setup> = maps
         .iter()
         .map(|m| {
@@ -295,21 +157,19 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
             Setup::for_map(m.clone(), &s)
         })
         .collect::<Result<_, _>>()?;
-    let file = std::fs::OpenOptions::new()
-        .create(true)
-        .append(true)
-        .open(&results_path)
-        .with_context(|| format!("cannot open {}", results_path.display()))?;
-    let file = Mutex::new(file);
-    let bar = ProgressBar::new(todo.len() as u64);
     let cap = csql::TrialCap::new(args.max_trials)?;
-    crate::reproduce::pool(args.threads)?.install(|| {
-        todo.par_iter().try_for_each(|&id| -> Result<()> {
+    crate::shard::run_shard(
+        &args.out,
+        &args.shard,
+        definition,
+        total,
+        args.threads,
+        |id| {
             let (m, strategy, run) = jobs[id as usize];
             let mut settings = RunSettings::tan1991(&args.maps[m], strategy, args.seed + run);
             settings.max_trials = cap;
             let report = csql::run_on(&setups[m], &settings);
-            let result = JobResult {
+            Ok(JobResult {
                 id,
                 map: args.maps[m].clone(),
                 strategy,
@@ -318,105 +178,16 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
                 converged: report.converged,
                 trials: report.trials,
                 table1: Table1Row::from(&report.table1),
-            };
-            let line = serde_json::to_string(&result)? + "\n";
-            let mut f = file
-                .lock()
-                .map_err(|_| anyhow::anyhow!("a writer of {} failed", results_path.display()))?;
-            f.write_all(line.as_bytes())?;
-            f.flush()?;
-            bar.inc(1);
-            Ok(())
-        })
-    })?;
-    bar.finish_and_clear();
-    crate::note(&format!(
-        "shard {k}/{n} complete: {}",
-        results_path.display()
-    ));
-    Ok(())
-}
-
-/// Every `shard-*` folder in or at the given paths.
-fn shard_dirs(dirs: &[PathBuf]) -> Result<Vec<PathBuf>> {
-    let mut out = Vec::new();
-    for d in dirs {
-        if d.join("manifest.json").is_file() {
-            out.push(d.clone());
-            continue;
-        }
-        let entries =
-            std::fs::read_dir(d).with_context(|| format!("cannot read {}", d.display()))?;
-        let mut found: Vec<PathBuf> = entries
-            .filter_map(|e| e.ok().map(|e| e.path()))
-            .filter(|p| p.join("manifest.json").is_file())
-            .collect();
-        if found.is_empty() {
-            bail!("{} holds no sweep shard (no manifest.json)", d.display());
-        }
-        found.sort();
-        out.extend(found);
-    }
-    Ok(out)
+            })
+        },
+    )
 }
 
 /// `cargo xtask merge`.
 pub fn merge(args: &MergeArgs) -> Result<()> {
-    let dirs = shard_dirs(&args.dirs)?;
-    let mut definition: Option<(Definition, u64)> = None;
-    let mut by_id: BTreeMap<u64, JobResult> = BTreeMap::new();
-    for dir in &dirs {
-        let path = dir.join("manifest.json");
-        let text = std::fs::read_to_string(&path)
-            .with_context(|| format!("cannot read {}", path.display()))?;
-        let m: Manifest = serde_json::from_str(&text)
-            .with_context(|| format!("{} is not a sweep manifest", path.display()))?;
-        match &definition {
-            None => definition = Some((m.sweep.clone(), m.total_jobs)),
-            Some((d, _)) if *d != m.sweep => bail!(
-                "{} belongs to a different sweep than {}",
-                dir.display(),
-                dirs[0].display()
-            ),
-            Some(_) => {}
-        }
-        let path = dir.join("results.jsonl");
-        let read = read_results(&path)?;
-        // A corrupt line is never dropped silently: the merge stops and names it. A last
-        // line cut short by a kill is a job that did not finish, reported as missing below.
-        if let Some((line, _)) = read.bad.iter().find(|(_, t)| t.ends_with('\n')) {
-            bail!(
-                "{}:{line}: not a result line; nothing was merged. Run this shard's sweep again: \
-                 it sets such lines aside in results.corrupt.jsonl and runs their jobs again",
-                path.display()
-            );
-        }
-        for r in read.results {
-            if !m.job_ids.contains(&r.id) {
-                bail!(
-                    "{}: job {} does not belong to this shard",
-                    dir.display(),
-                    r.id
-                );
-            }
-            if by_id.insert(r.id, r).is_some() {
-                bail!("job appears twice (in {} and another shard)", dir.display());
-            }
-        }
-    }
-    let Some((definition, total)) = definition else {
-        bail!("no sweep shard to merge");
-    };
-    let missing: Vec<u64> = (0..total).filter(|id| !by_id.contains_key(id)).collect();
-    if !missing.is_empty() {
-        let shown: Vec<String> = missing.iter().take(20).map(u64::to_string).collect();
-        bail!(
-            "{} of {total} jobs are missing (ids {}{}); run their shards (again) before merging",
-            missing.len(),
-            shown.join(", "),
-            if missing.len() > 20 { ", ..." } else { "" }
-        );
-    }
+    let (definition, by_id): (Definition, BTreeMap<u64, JobResult>) =
+        crate::shard::collect(&args.dirs)?;
+    let total = by_id.len();
     let mut md = String::from("# Sweep\n\n");
     let _ = writeln!(
         md,
@@ -475,8 +246,7 @@ pub fn merge(args: &MergeArgs) -> Result<()> {
     crate::files::write_atomic(&args.out.join("sweep.md"), &md)?;
     crate::files::write_atomic(&args.out.join("sweep.csv"), &csv)?;
     crate::emit(&format!(
-        "{md}\nMerged {} shards, {total} jobs: {}\n",
-        dirs.len(),
+        "{md}\nMerged {total} jobs: {}\n",
         args.out.join("sweep.md").display()
     ))?;
     Ok(())
@@ -485,22 +255,6 @@ pub fn merge(args: &MergeArgs) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn shards_parse_and_cover_the_jobs_once() {
-        assert_eq!(parse_shard("2/8").unwrap(), (2, 8));
-        for bad in ["0/3", "4/3", "x/3", "3", "1/0"] {
-            assert!(parse_shard(bad).is_err(), "{bad}");
-        }
-        let n = 3;
-        let mut seen = [0; 10];
-        for k in 1..=n {
-            for id in (0..10u64).filter(|id| id % n == k - 1) {
-                seen[id as usize] += 1;
-            }
-        }
-        assert!(seen.iter().all(|&c| c == 1));
-    }
 
     fn result(id: u64) -> String {
         let r = JobResult {
@@ -517,45 +271,11 @@ mod tests {
     }
 
     #[test]
-    fn a_cut_last_line_is_set_aside_not_lost() {
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("results.jsonl");
-        let line = result(4);
-        std::fs::write(&path, format!("{line}\n{}", &line[..10])).unwrap();
-        let read = read_results(&path).unwrap();
-        assert_eq!((read.results.len(), read.bad.len()), (1, 1));
-        set_aside_bad_lines(&path, &read).unwrap();
-        assert_eq!(std::fs::read_to_string(&path).unwrap(), format!("{line}\n"));
-        let aside = std::fs::read_to_string(dir.path().join("results.corrupt.jsonl")).unwrap();
-        assert_eq!(aside, format!("{}\n", &line[..10]));
-    }
-
-    #[test]
-    fn a_corrupt_middle_line_keeps_every_later_result() {
-        // Once: the file was cut at the corrupt line, deleting every later result.
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("results.jsonl");
-        let text = format!("{}\n{{not json\n{}\n{}\n", result(0), result(1), result(2));
-        std::fs::write(&path, &text).unwrap();
-        let read = read_results(&path).unwrap();
-        let ids: Vec<u64> = read.results.iter().map(|r| r.id).collect();
-        assert_eq!(ids, [0, 1, 2]);
-        assert_eq!(read.bad, [(2, "{not json\n".to_string())]);
-        // Reading changes nothing on disk.
-        assert_eq!(std::fs::read_to_string(&path).unwrap(), text);
-        set_aside_bad_lines(&path, &read).unwrap();
-        let kept = std::fs::read_to_string(&path).unwrap();
-        assert_eq!(kept.lines().count(), 3);
-        let aside = std::fs::read_to_string(dir.path().join("results.corrupt.jsonl")).unwrap();
-        assert_eq!(aside, "{not json\n");
-    }
-
-    #[test]
     fn merge_refuses_a_corrupt_line_and_names_it() {
         let dir = tempfile::tempdir().unwrap();
         let shard = dir.path().join("shard-1-of-1");
         std::fs::create_dir_all(&shard).unwrap();
-        let manifest = Manifest {
+        let manifest = crate::shard::Manifest {
             sweep: Definition {
                 maps: vec!["m".into()],
                 strategies: vec![StrategyKind::Lazy],

@@ -100,6 +100,12 @@ pub struct Classify {
     noise: SensorNoise,
     noise_rng: Xoshiro256PlusPlus,
     matching: Matching,
+    /// Sightings of a measurement before it makes a new description (1: at once, the
+    /// paper's CLASSIFY), and the unmatched measurements seen so far.
+    confirm: u32,
+    /// Reads of each measured feature (majority), each charged.
+    reads: u32,
+    sightings: std::collections::HashMap<Vec<(Feature, Cell)>, u32>,
 }
 
 impl Classify {
@@ -140,6 +146,9 @@ impl Classify {
             noise: SensorNoise::default(),
             noise_rng: Xoshiro256PlusPlus::seed_from_u64(0),
             matching: Matching::Exact,
+            confirm: 1,
+            reads: 1,
+            sightings: std::collections::HashMap::new(),
         }
     }
 
@@ -193,10 +202,88 @@ impl Classify {
         self
     }
 
+    /// Create a description only for a measurement that matched nothing `sightings` times
+    /// (the same features with the same values); until then the state is given the
+    /// closest description (see [`Classify::closest`]). 1, the default, creates at once,
+    /// as the paper's CLASSIFY does. A misread measurement seldom repeats, while a state
+    /// that no description covers yields the same measurement at every visit: under
+    /// sensor noise this keeps misreadings from becoming descriptions (the run setting
+    /// `extensions.confirm_new`). With no description yet, the first one is made at once.
+    ///
+    /// ```
+    /// use mdp::{Cell, Feature, FeatureSpace, GridWorld, Manhattan};
+    /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let mut rep = csql::Representation::default();
+    /// rep.push(&[(Feature(0), Cell::Obstacle)]); // a wall above
+    /// let mut c = csql::Classify::with_representation(&space, rep).with_confirmation(2);
+    /// let below = world.state_at(mdp::Pos::new(1, 0)).unwrap();
+    /// // The first sighting of "no wall above" takes the closest description...
+    /// assert!(!c.classify_state(&world, below).created);
+    /// // ...the second makes one.
+    /// assert!(c.classify_state(&world, below).created);
+    /// ```
+    pub fn with_confirmation(mut self, sightings: u32) -> Classify {
+        self.confirm = sightings.max(1);
+        self
+    }
+
+    /// Read every measured feature `reads` times and take the value read most often
+    /// ([`mdp::SensorNoise::majority`]); each read is charged, so every cost of a
+    /// classification is multiplied by `reads`. 1, the default, is the paper's sensing
+    /// (the run setting `extensions.reads`).
+    ///
+    /// ```
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let mut c = csql::Classify::new(&space).with_reads(3);
+    /// let s = world.states()[0];
+    /// let d = c.classify_state(&world, s).description;
+    /// assert_eq!(c.add_feature(&world, d, s), Some(3.0)); // a feature of cost 1, read three times
+    /// ```
+    pub fn with_reads(mut self, reads: u32) -> Classify {
+        self.reads = reads.max(1);
+        self
+    }
+
+    /// The description that agrees best with a measurement: the most features with the
+    /// measured value less those with another value (features not measured count for
+    /// neither); ties go to the lowest id. `None` with no description.
+    ///
+    /// ```
+    /// use mdp::{Cell, Feature, FeatureSpace, Manhattan};
+    /// let space = FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &Manhattan).unwrap();
+    /// let mut rep = csql::Representation::default();
+    /// rep.push(&[(Feature(0), Cell::Obstacle), (Feature(1), Cell::Empty)]);
+    /// rep.push(&[(Feature(0), Cell::Empty), (Feature(1), Cell::Empty)]);
+    /// let c = csql::Classify::with_representation(&space, rep);
+    /// let seen = [(Feature(0), Cell::Empty), (Feature(1), Cell::Obstacle)];
+    /// assert_eq!(c.closest(&seen), Some(csql::DescriptionId(1)));
+    /// ```
+    pub fn closest(&self, measured: &[(Feature, Cell)]) -> Option<DescriptionId> {
+        let score = |d: crate::Description<'_>| -> i64 {
+            d.features()
+                .map(|(f, v)| match measured.iter().find(|(m, _)| *m == f) {
+                    Some(&(_, x)) if x == v => 1,
+                    Some(_) => -1,
+                    None => 0,
+                })
+                .sum()
+        };
+        let mut best: Option<(i64, DescriptionId)> = None;
+        for (id, d) in self.rep.iter() {
+            let sc = score(d);
+            if best.is_none_or(|(b, _)| sc > b) {
+                best = Some((sc, id));
+            }
+        }
+        best.map(|(_, id)| id)
+    }
+
     /// What the sensors report for feature `f` of state `s`.
     fn read(&mut self, world: &GridWorld, s: StateId, f: Feature) -> Cell {
         let truth = self.space.measure(world, s, f);
-        self.noise.corrupt(truth, &mut self.noise_rng)
+        self.noise.majority(truth, self.reads, &mut self.noise_rng)
     }
 
     /// Nearest matching (see [`Classify::with_matching`]): after the walk found no
@@ -434,6 +521,20 @@ impl Classify {
     fn settle(&mut self, found: Option<DescriptionId>) -> (DescriptionId, bool) {
         match found {
             Some(d) => (d, false),
+            None if self.confirm > 1 && !self.rep.is_empty() => {
+                let seen = self.sightings.entry(self.measured.clone()).or_insert(0);
+                *seen += 1;
+                if *seen < self.confirm {
+                    let d = self
+                        .closest(&self.measured)
+                        .expect("there is a description");
+                    return (d, false);
+                }
+                self.sightings.remove(&self.measured);
+                let d = self.rep.push(&self.measured);
+                self.cache.on_push(self.rep.library(), d);
+                (d, true)
+            }
             None => {
                 let d = self.rep.push(&self.measured);
                 self.cache.on_push(self.rep.library(), d);
@@ -466,7 +567,8 @@ impl Classify {
     /// assert_eq!(c.last_cost(), out.cost);
     /// ```
     pub fn last_cost(&self) -> f64 {
-        self.measured.iter().map(|&(f, _)| self.space.cost(f)).sum()
+        let once: f64 = self.measured.iter().map(|&(f, _)| self.space.cost(f)).sum();
+        once * f64::from(self.reads)
     }
 
     /// Step 2 and 3 for the current attended candidates and measured features.
@@ -521,10 +623,10 @@ impl Classify {
     /// classification has been before.
     fn walk_cached(&mut self, world: &GridWorld, s: StateId) -> Option<DescriptionId> {
         let space = &self.space;
-        let (noise, noise_rng) = (self.noise, &mut self.noise_rng);
+        let (noise, reads, noise_rng) = (self.noise, self.reads, &mut self.noise_rng);
         self.cache
             .walk(self.rep.library(), &self.costs, &mut self.measured, |f| {
-                noise.corrupt(space.measure(world, s, f), noise_rng)
+                noise.majority(space.measure(world, s, f), reads, noise_rng)
             })
     }
 
@@ -579,32 +681,46 @@ impl Classify {
         noise: SensorNoise,
         rng: &mut R,
     ) -> Option<DescriptionId> {
-        let space = &self.space;
+        let (space, reads) = (&self.space, self.reads);
         let found = self
             .cache
             .walk(self.rep.library(), &self.costs, &mut self.probe, |f| {
-                noise.corrupt(space.measure(world, s, f), rng)
+                noise.majority(space.measure(world, s, f), reads, rng)
             });
-        if found.is_some() || self.matching == Matching::Exact {
+        if found.is_some() {
             return found;
+        }
+        if self.matching == Matching::Exact {
+            // A measurement seen for the first time takes the closest description when
+            // new ones need confirming.
+            return if self.confirm > 1 {
+                self.closest(&self.probe)
+            } else {
+                None
+            };
         }
         // Nearest matching, read for free.
         let measured = &self.probe;
-        self.rep.iter().find_map(|(id, d)| {
+        let near = self.rep.iter().find_map(|(id, d)| {
             if d.len() < 3 {
                 return None;
             }
             let wrong = d
                 .features()
                 .filter(|&(f, v)| {
-                    let x = measured
-                        .iter()
-                        .find(|(m, _)| *m == f)
-                        .map_or_else(|| noise.corrupt(space.measure(world, s, f), rng), |p| p.1);
+                    let x = measured.iter().find(|(m, _)| *m == f).map_or_else(
+                        || noise.majority(space.measure(world, s, f), reads, rng),
+                        |p| p.1,
+                    );
                     x != v
                 })
                 .count();
             (wrong == 1).then_some(id)
+        });
+        near.or_else(|| {
+            (self.confirm > 1)
+                .then(|| self.closest(&self.probe))
+                .flatten()
         })
     }
 
@@ -627,7 +743,8 @@ impl Classify {
             .walk(self.rep.library(), &self.costs, &mut self.probe, |f| {
                 space.measure(world, s, f)
             });
-        self.probe.iter().map(|&(f, _)| space.cost(f)).sum()
+        let once: f64 = self.probe.iter().map(|&(f, _)| space.cost(f)).sum();
+        once * f64::from(self.reads)
     }
 
     /// Add the next cheapest feature a description lacks, valued at state `s`; returns the
@@ -648,7 +765,7 @@ impl Classify {
         let v = self.read(world, s, f);
         self.rep.refine(d, f, v);
         self.cache.on_refine(self.rep.library(), d, f, v);
-        Some(self.space.cost(f))
+        Some(self.space.cost(f) * f64::from(self.reads))
     }
 }
 

@@ -82,10 +82,23 @@ pub struct Extensions {
     /// How CLASSIFY matches descriptions.
     #[serde(skip_serializing_if = "is_exact")]
     pub matching: Matching,
+    /// Sightings of an unmatched measurement before it becomes a new description (1: at
+    /// once, the paper's CLASSIFY; see [`crate::Classify::with_confirmation`]). 1 to 16.
+    #[serde(skip_serializing_if = "is_one")]
+    pub confirm_new: u32,
+    /// Reads of each measured feature, the majority taken, each charged (1: the paper's
+    /// single read; see [`crate::Classify::with_reads`]). 1 to 9.
+    #[serde(skip_serializing_if = "is_one")]
+    pub reads: u32,
     /// Steps of history a description may use once its sensable features are exhausted
     /// (0: none, the paper's CLASSIFY; see [`crate::Remembering`]). At most 8.
     #[serde(skip_serializing_if = "is_zero")]
     pub memory: u32,
+    /// Judge the run by the policy quality even in the paper's world (as every run beyond
+    /// it is judged), so that runs in and beyond it are measured alike. Off by default:
+    /// the paper's runs are judged by the oracle's convergence.
+    #[serde(skip_serializing_if = "is_false")]
+    pub judge_by_quality: bool,
     /// In a world beyond the paper's: trials between two evaluations of the policy
     /// quality.
     #[serde(skip_serializing_if = "is_ten")]
@@ -105,6 +118,12 @@ fn is_default_rate(r: &RateParams) -> bool {
 fn is_exact(m: &Matching) -> bool {
     *m == Matching::Exact
 }
+fn is_one(x: &u32) -> bool {
+    *x == 1
+}
+fn is_false(x: &bool) -> bool {
+    !*x
+}
 fn is_zero(x: &u32) -> bool {
     *x == 0
 }
@@ -121,7 +140,10 @@ impl Default for Extensions {
             detector: DetectorKind::Decrease,
             rate: RateParams::default(),
             matching: Matching::Exact,
+            confirm_new: 1,
+            reads: 1,
             memory: 0,
+            judge_by_quality: false,
             quality_every: 10,
             quality_patience: 20,
         }
@@ -145,6 +167,16 @@ impl Extensions {
                 expected,
             })
         };
+        if !(1..=16).contains(&self.confirm_new) {
+            return bad(
+                "extensions.confirm_new",
+                self.confirm_new.to_string(),
+                "1 to 16",
+            );
+        }
+        if !(1..=9).contains(&self.reads) {
+            return bad("extensions.reads", self.reads.to_string(), "1 to 9");
+        }
         if self.memory > 8 {
             return bad("extensions.memory", self.memory.to_string(), "0 to 8");
         }

@@ -198,7 +198,8 @@ pub use observe::{Flow, KeepTrace, Observer};
 pub use perception::{FullView, Identified, Perception};
 pub use predict::{PredictSensing, Predicting, Prediction, PredictionStats, TransitionModel};
 pub use quality::{
-    MC_MAX_MOVES, MC_MAX_ROUNDS, MC_MIN_ROUNDS, QualityEstimate, QualityMethod, Sees,
+    MC_MAX_MOVES, MC_MAX_ROUNDS, MC_MIN_ROUNDS, POLICY_BATCHES, POLICY_SAMPLES, QualityEstimate,
+    QualityMethod, Sees,
 };
 pub use reference::{
     Reference, cheapest_interior_cost, fixed_representation_reference, full_sensing_reference,

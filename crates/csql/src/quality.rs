@@ -7,12 +7,19 @@
 //! divided by that state's V* on the same model, and the ratios are averaged. Without
 //! sensor noise, and for a perception without a memory of its moves, classification is a
 //! function of the state and the value is computed exactly by policy evaluation
-//! ([`mdp::evaluate_policy`]). With sensor noise the policy is random, and with a memory
-//! ([`Sees::memoryless`] false: [`crate::Remembering`], [`crate::UTree`]) it depends on
-//! the path; its value is then a seeded Monte Carlo estimate: rounds of one episode from
-//! every state (the noise and the slips drawn from the evaluation's own generator, at most
-//! [`MC_MAX_MOVES`] moves an episode), until the standard error of the mean over rounds is
-//! below 0.005 (after at least [`MC_MIN_ROUNDS`] rounds, at most [`MC_MAX_ROUNDS`]). The
+//! ([`mdp::evaluate_policy`]). Under sensor noise, a memoryless policy is a stochastic
+//! policy: in each state, each action has the probability that a noisy classification
+//! leads to it. Those probabilities are estimated from [`POLICY_SAMPLES`] seeded
+//! classifications per state (drawn from the evaluation's own generator), and the
+//! stochastic policy is evaluated exactly ([`mdp::evaluate_stochastic_policy`]); the
+//! standard error comes from the spread of [`POLICY_BATCHES`] batches. A perception with
+//! a memory ([`Sees::memoryless`] false: [`crate::Remembering`], [`crate::UTree`])
+//! acts on its path, not on its state: without slip and noise one simulated episode
+//! from every state gives its exact value; otherwise the value is a seeded Monte Carlo
+//! estimate: rounds of one episode from every state (the noise and the slips drawn from
+//! the evaluation's own generator, at most [`MC_MAX_MOVES`] moves an episode), until the
+//! standard error of the mean over rounds is below 0.005 (after at least
+//! [`MC_MIN_ROUNDS`] rounds, at most [`MC_MAX_ROUNDS`]). The
 //! measure is never charged and the learner never sees it.
 
 use mdp::{ActionId, GridWorld, Oracle, SensorNoise, SlipperyGrid, StateId, StochasticMdp};
@@ -135,10 +142,29 @@ impl Sees for Identified {
 pub enum QualityMethod {
     /// Exact policy evaluation on the true model.
     Exact,
-    /// A seeded Monte Carlo estimate (under sensor noise, or for a perception with a
-    /// memory).
+    /// A seeded Monte Carlo estimate of episodes (for a perception with a memory, in a
+    /// world with slip or sensor noise).
     MonteCarlo,
+    /// Under sensor noise, without a memory: the noisy policy's probability of each
+    /// action in each state, estimated from [`POLICY_SAMPLES`] seeded classifications
+    /// per state, then evaluated exactly on the true model.
+    SampledPolicy,
 }
+
+/// Classifications per state that estimate a noisy policy's action probabilities
+/// ([`QualityMethod::SampledPolicy`]), in [`POLICY_BATCHES`] batches whose spread gives
+/// the standard error.
+///
+/// ```
+/// assert_eq!(csql::POLICY_SAMPLES, 400);
+/// ```
+pub const POLICY_SAMPLES: usize = 400;
+/// Batches of [`POLICY_SAMPLES`].
+///
+/// ```
+/// assert_eq!(csql::POLICY_BATCHES, 4);
+/// ```
+pub const POLICY_BATCHES: usize = 4;
 
 /// One evaluation of the policy quality.
 ///
@@ -187,6 +213,9 @@ pub(crate) fn policy_quality<P: Sees, R: Rng + ?Sized>(
             standard_error: 0.0,
             episodes: 0,
         };
+    }
+    if perception.memoryless() {
+        return sampled_policy_quality(model, truth, perception, table, noise, rng);
     }
     // Without slip and noise, an episode is a function of its start: one round is the
     // exact value (up to MC_MAX_MOVES moves, beyond which nothing is left to earn).
@@ -238,6 +267,67 @@ pub(crate) fn policy_quality<P: Sees, R: Rng + ?Sized>(
         method: QualityMethod::MonteCarlo,
         standard_error: se,
         episodes: rounds.len() as u64 * states.len() as u64,
+    }
+}
+
+/// The quality of a memoryless policy under sensor noise ([`QualityMethod::SampledPolicy`]).
+fn sampled_policy_quality<P: Sees, R: Rng + ?Sized>(
+    model: &SlipperyGrid<'_>,
+    truth: &Oracle,
+    perception: &mut P,
+    table: &QTable,
+    noise: SensorNoise,
+    rng: &mut R,
+) -> QualityEstimate {
+    let world = model.world();
+    let states = world.states();
+    let n = mdp::Mdp::num_states(world);
+    let actions = table.num_actions();
+    let per_batch = POLICY_SAMPLES / POLICY_BATCHES;
+    // counts[b][s][a]: how often batch b's classifications of s led to action a.
+    let mut counts = vec![vec![vec![0u32; actions]; n]; POLICY_BATCHES];
+    for &s in &states {
+        for batch in counts.iter_mut() {
+            for _ in 0..per_batch {
+                let a = perception
+                    .sees(world, s, noise, rng)
+                    .map_or(ActionId(0), |r| table.greedy(r));
+                batch[s.index()][a.index()] += 1;
+            }
+        }
+    }
+    let quality_of = |batches: &[Vec<Vec<u32>>]| -> f64 {
+        let total = (batches.len() * per_batch) as f64;
+        let policy: Vec<Vec<f64>> = (0..n)
+            .map(|s| {
+                if StateId(s as u32) == world.goal() {
+                    let mut p = vec![0.0; actions];
+                    p[0] = 1.0;
+                    return p;
+                }
+                (0..actions)
+                    .map(|a| batches.iter().map(|b| b[s][a]).sum::<u32>() as f64 / total)
+                    .collect()
+            })
+            .collect();
+        match mdp::evaluate_stochastic_policy(model, truth.gamma(), &policy) {
+            Ok(v) => ratio_mean(&states, truth, |s| v[s.index()]),
+            Err(_) => 0.0,
+        }
+    };
+    let quality = quality_of(&counts);
+    let parts: Vec<f64> = (0..POLICY_BATCHES)
+        .map(|b| quality_of(&counts[b..=b]))
+        .collect();
+    let k = POLICY_BATCHES as f64;
+    let mean = parts.iter().sum::<f64>() / k;
+    let var = parts.iter().map(|q| (q - mean).powi(2)).sum::<f64>() / (k - 1.0);
+    QualityEstimate {
+        quality,
+        method: QualityMethod::SampledPolicy,
+        // The spread of the batch estimates, scaled to the whole sample.
+        standard_error: (var / k).sqrt(),
+        episodes: 0,
     }
 }
 

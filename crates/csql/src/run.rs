@@ -340,7 +340,9 @@ fn run_classify(
     sensor_rng.jump();
     let classify = classify
         .with_noise(settings.world.sensor_noise, sensor_rng)
-        .with_matching(settings.extensions.matching);
+        .with_matching(settings.extensions.matching)
+        .with_confirmation(settings.extensions.confirm_new)
+        .with_reads(settings.extensions.reads);
     let learner = settings.learner;
     let predicting = match (learner, settings.predict_sensing) {
         (LearnerKind::FullSensing, _) => {

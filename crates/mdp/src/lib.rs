@@ -86,5 +86,7 @@ pub use random::RandomMap;
 pub use render::{Overlay, render_svg, render_text};
 pub use sensing::{BadCost, CostModel, Feature, FeatureSpace, Manhattan};
 pub use spec::{MAX_GOAL_MOVES, resolve};
-pub use stochastic::{SensorNoise, Slip, SlipperyGrid, StochasticMdp, evaluate_policy};
+pub use stochastic::{
+    SensorNoise, Slip, SlipperyGrid, StochasticMdp, evaluate_policy, evaluate_stochastic_policy,
+};
 pub use tabular::{NegativeRewards, TabularMdp};

@@ -142,6 +142,43 @@ impl SensorNoise {
     }
 }
 
+impl SensorNoise {
+    /// Read a condition `reads` times (each read noisy, independently) and report the
+    /// value read most often; ties go to the value first read among the tied. One read
+    /// is [`SensorNoise::corrupt`], with the same draws. With noise `p` and three reads a
+    /// value is wrong with probability about `1.5 p^2` instead of `p`.
+    ///
+    /// ```
+    /// use mdp::{Cell, SensorNoise};
+    /// use rand::SeedableRng;
+    /// let noise = SensorNoise::new(0.1).unwrap();
+    /// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(3);
+    /// let wrong = |reads: u32, rng: &mut rand_xoshiro::Xoshiro256PlusPlus| {
+    ///     (0..10_000).filter(|_| noise.majority(Cell::Empty, reads, rng) != Cell::Empty).count()
+    /// };
+    /// let (one, three) = (wrong(1, &mut rng), wrong(3, &mut rng));
+    /// assert!(one > 800 && one < 1200, "{one}");
+    /// assert!(three < 250, "{three}");
+    /// ```
+    pub fn majority<R: Rng + ?Sized>(self, truth: Cell, reads: u32, rng: &mut R) -> Cell {
+        if reads <= 1 {
+            return self.corrupt(truth, rng);
+        }
+        let mut seen: Vec<(Cell, u32)> = Vec::with_capacity(3);
+        for _ in 0..reads {
+            let v = self.corrupt(truth, rng);
+            match seen.iter_mut().find(|(c, _)| *c == v) {
+                Some((_, n)) => *n += 1,
+                None => seen.push((v, 1)),
+            }
+        }
+        let most = seen.iter().map(|&(_, n)| n).max().unwrap_or(0);
+        seen.iter()
+            .find(|&&(_, n)| n == most)
+            .map_or(truth, |&(c, _)| c)
+    }
+}
+
 impl TryFrom<f64> for SensorNoise {
     type Error = MdpError;
     fn try_from(p: f64) -> Result<SensorNoise, MdpError> {
@@ -328,6 +365,72 @@ pub fn evaluate_policy<M: StochasticMdp + ?Sized>(
             actions: na,
         });
     }
+    iterate_bellman(mdp, |s, v, out| {
+        mdp.outcomes(s, policy[s.index()], out);
+        backup(out, v, gamma)
+    })
+}
+
+/// The value of a stochastic policy (for every state, a probability per action) from
+/// every state, on the true model, as [`evaluate_policy`] computes it. Actions of
+/// probability 0 are never looked at, so a policy whose probabilities are all 0 or 1
+/// gives exactly what [`evaluate_policy`] gives.
+///
+/// ```
+/// use mdp::{ActionId, GridWorld, Slip, SlipperyGrid};
+/// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+/// let model = SlipperyGrid::new(&world, Slip::new(0.1).unwrap());
+/// let fixed = vec![ActionId(1); 9];
+/// let one_hot: Vec<Vec<f64>> = (0..9).map(|_| vec![0.0, 1.0, 0.0, 0.0]).collect();
+/// assert_eq!(
+///     mdp::evaluate_policy(&model, 0.9, &fixed).unwrap(),
+///     mdp::evaluate_stochastic_policy(&model, 0.9, &one_hot).unwrap(),
+/// );
+/// let uniform: Vec<Vec<f64>> = (0..9).map(|_| vec![0.25; 4]).collect();
+/// let v = mdp::evaluate_stochastic_policy(&model, 0.9, &uniform).unwrap();
+/// assert!(v.iter().all(|&x| (0.0..=1.0).contains(&x)));
+/// assert!(mdp::evaluate_stochastic_policy(&model, 0.9, &uniform[..3]).is_err());
+/// ```
+pub fn evaluate_stochastic_policy<M: StochasticMdp + ?Sized>(
+    mdp: &M,
+    gamma: f64,
+    policy: &[Vec<f64>],
+) -> Result<Vec<f64>, MdpError> {
+    if !(0.0..1.0).contains(&gamma) {
+        return Err(MdpError::InvalidDiscount { gamma });
+    }
+    let (n, na) = (mdp.base().num_states(), mdp.base().num_actions());
+    let bad = |p: &Vec<f64>| {
+        p.len() != na
+            || p.iter().any(|x| !(0.0..=1.0).contains(x))
+            || (p.iter().sum::<f64>() - 1.0).abs() > 1e-9
+    };
+    if policy.len() != n || policy.iter().any(bad) {
+        return Err(MdpError::BadPolicy {
+            found: policy.len(),
+            states: n,
+            actions: na,
+        });
+    }
+    iterate_bellman(mdp, |s, v, out| {
+        let mut value = 0.0;
+        for (a, &p) in policy[s.index()].iter().enumerate() {
+            if p > 0.0 {
+                mdp.outcomes(s, ActionId(a as u32), out);
+                value += p * backup(out, v, gamma);
+            }
+        }
+        value
+    })
+}
+
+/// Iterate `v(s) <- value(s, v)` over the non-terminal states, in place, until nothing
+/// changes by more than 1e-13.
+fn iterate_bellman<M: StochasticMdp + ?Sized>(
+    mdp: &M,
+    value: impl Fn(StateId, &[f64], &mut Vec<(f64, Step)>) -> f64,
+) -> Result<Vec<f64>, MdpError> {
+    let n = mdp.base().num_states();
     let mut v = vec![0.0; n];
     let mut out = Vec::new();
     loop {
@@ -337,10 +440,9 @@ pub fn evaluate_policy<M: StochasticMdp + ?Sized>(
             if mdp.base().is_terminal(sid) {
                 continue;
             }
-            mdp.outcomes(sid, policy[s], &mut out);
-            let value = backup(&out, &v, gamma);
-            change = change.max((value - v[s]).abs());
-            v[s] = value;
+            let x = value(sid, &v, &mut out);
+            change = change.max((x - v[s]).abs());
+            v[s] = x;
         }
         if change <= 1e-13 {
             return Ok(v);

@@ -1,0 +1,814 @@
+//! `cargo xtask robustness`: CS-QL and two baselines in worlds beyond the paper's
+//! assumptions (slip, sensor noise, a sensing range), one departure at a time.
+//!
+//! # The job list
+//!
+//! In a fixed order, numbered from 0 (see [`crate::shard`] for shards and resuming): for
+//! each map, each [`Condition`] (the paper's world, slip 0.05, 0.1 and 0.2, sensor noise
+//! 0.01, 0.05 and 0.1, sensing radius 2 and 1), each [`Learner`] and each run `i` (seed
+//! `S + i`):
+//!
+//! * `resetting`, `lazy`, `random`, `eager`: plain CS-QL (the paper's decrease rule and
+//!   exact matching);
+//! * `lazy+fit`: lazy CS-QL with the extension that fits the departure: the statistical
+//!   detector under slip; under noise the statistical detector, nearest matching, new
+//!   descriptions confirmed by 3 sightings and every feature read 5 times (the majority
+//!   kept, each read charged); a memory of 2 steps under a sensing radius (not run in the paper's world, where it
+//!   would be `lazy`);
+//! * `u-tree`: the U-Tree baseline; `full-sensing`: Q-learning on the whole sensable view.
+//!
+//! Every run is judged by the policy quality (`extensions.judge_by_quality`), evaluated
+//! every `--quality-every` trials, and ends once it has stayed at or above 0.95 for
+//! `--patience` evaluations, or at the trial cap. Under slip or noise every learner uses
+//! beta 0.2 (with beta 1 a stochastic target overwrites Q at every update); elsewhere the
+//! paper's settings.
+//!
+//! # The report
+//!
+//! When every job is done (`--shard 1/1`, or `--report` after all shards), the report is
+//! written under `--out`: `robustness.md` and `robustness.csv` (per condition and
+//! learner, over maps and runs; the CSV also per map), and one figure per departure,
+//! `robustness_{slip,noise,radius}.svg`. With `--bless` the table and figures are also
+//! written to `docs/robustness_table.md` and `docs/figures/`.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Result, anyhow, bail};
+use clap::Args;
+use csql::{DetectorKind, LearnerKind, Matching, RunSettings, Setup, StrategyKind};
+use mdp::{Map, SensorNoise, Slip};
+use plotters::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::shard::JobLine;
+
+/// Arguments of `cargo xtask robustness`.
+#[derive(Args, Clone, Debug)]
+pub struct RobustnessArgs {
+    /// Maps, comma-separated (as for `cargo xtask sweep`).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "tan8x8,tan8x8-maze,dyna9x6,corridors9x5"
+    )]
+    maps: Vec<String>,
+    /// Runs per map, condition and learner.
+    #[arg(long, default_value_t = 10)]
+    runs: u64,
+    /// Base seed: run i uses seed S + i.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Trial cap of each run.
+    #[arg(long, default_value_t = 1500)]
+    max_trials: u32,
+    /// Trials between two evaluations of the policy quality.
+    #[arg(long, default_value_t = 25)]
+    quality_every: u32,
+    /// Evaluations at or above 0.95 in a row that end a run.
+    #[arg(long, default_value_t = 8)]
+    patience: u32,
+    /// This machine's shard, `K/N` (K from 1 to N).
+    #[arg(long, default_value = "1/1")]
+    shard: String,
+    /// Worker threads (default: every core). Results do not depend on it.
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Output folder (shared by all shards).
+    #[arg(long, default_value = "results/robustness")]
+    out: PathBuf,
+    /// Run nothing: write the report from the shards under `--out`.
+    #[arg(long)]
+    report: bool,
+    /// Also write the table and figures into `docs/`.
+    #[arg(long)]
+    bless: bool,
+}
+
+/// One departure from the paper's world.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Condition {
+    /// The paper's world.
+    Paper,
+    /// Slippery moves.
+    Slip(f64),
+    /// Noisy sensors.
+    Noise(f64),
+    /// A bounded sensing range.
+    Radius(u32),
+}
+
+impl Condition {
+    /// The conditions of the sweep, in order.
+    pub const ALL: [Condition; 9] = [
+        Condition::Paper,
+        Condition::Slip(0.05),
+        Condition::Slip(0.1),
+        Condition::Slip(0.2),
+        Condition::Noise(0.01),
+        Condition::Noise(0.05),
+        Condition::Noise(0.1),
+        Condition::Radius(2),
+        Condition::Radius(1),
+    ];
+
+    fn label(self) -> String {
+        match self {
+            Condition::Paper => "paper's world".into(),
+            Condition::Slip(p) => format!("slip {p}"),
+            Condition::Noise(p) => format!("noise {p}"),
+            Condition::Radius(r) => format!("radius {r}"),
+        }
+    }
+
+    fn stochastic(self) -> bool {
+        matches!(self, Condition::Slip(_) | Condition::Noise(_))
+    }
+}
+
+/// A learner of the sweep.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Learner {
+    /// Plain CS-QL with a strategy.
+    Plain(StrategyKind),
+    /// Lazy CS-QL with the extension that fits the condition.
+    LazyFit,
+    /// The U-Tree baseline.
+    UTree,
+    /// Full sensing.
+    FullSensing,
+}
+
+impl Learner {
+    const ALL: [Learner; 7] = [
+        Learner::Plain(StrategyKind::Resetting),
+        Learner::Plain(StrategyKind::Lazy),
+        Learner::Plain(StrategyKind::Random),
+        Learner::Plain(StrategyKind::Eager),
+        Learner::LazyFit,
+        Learner::UTree,
+        Learner::FullSensing,
+    ];
+
+    fn label(self) -> String {
+        match self {
+            Learner::Plain(k) => k.to_string(),
+            Learner::LazyFit => "lazy+fit".into(),
+            Learner::UTree => "u-tree".into(),
+            Learner::FullSensing => "full-sensing".into(),
+        }
+    }
+}
+
+/// What shards of the same sweep agree on.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+struct Definition {
+    maps: Vec<String>,
+    runs: u64,
+    seed: u64,
+    max_trials: u32,
+    quality_every: u32,
+    patience: u32,
+}
+
+/// The measures of one run.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+struct JobResult {
+    id: u64,
+    map: String,
+    condition: Condition,
+    learner: Learner,
+    seed: u64,
+    trials: u32,
+    total_cost: f64,
+    quality: f64,
+    method: String,
+    trials_to_quality: Option<u32>,
+    cost_to_quality: Option<f64>,
+    sensing_cost_per_state: f64,
+    descriptions: usize,
+    mean_features: f64,
+}
+
+impl JobLine for JobResult {
+    fn id(&self) -> u64 {
+        self.id
+    }
+}
+
+/// The jobs in order: (map, condition, learner, run).
+fn jobs(def: &Definition) -> Vec<(usize, Condition, Learner, u64)> {
+    let mut out = Vec::new();
+    for m in 0..def.maps.len() {
+        for c in Condition::ALL {
+            for l in Learner::ALL {
+                if c == Condition::Paper && l == Learner::LazyFit {
+                    continue;
+                }
+                for run in 0..def.runs {
+                    out.push((m, c, l, run));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The settings of one job.
+fn settings(
+    def: &Definition,
+    map: &str,
+    condition: Condition,
+    learner: Learner,
+    run: u64,
+) -> Result<RunSettings> {
+    let strategy = match learner {
+        Learner::Plain(k) => k,
+        _ => StrategyKind::Lazy,
+    };
+    let mut s = RunSettings::tan1991(map, strategy, def.seed + run);
+    s.max_trials = csql::TrialCap::new(def.max_trials)?;
+    s.extensions.judge_by_quality = true;
+    s.extensions.quality_every = def.quality_every;
+    s.extensions.quality_patience = def.patience;
+    match condition {
+        Condition::Paper => {}
+        Condition::Slip(p) => s.world.slip = Slip::new(p)?,
+        Condition::Noise(p) => s.world.sensor_noise = SensorNoise::new(p)?,
+        Condition::Radius(r) => s.world.sensing_radius = Some(r),
+    }
+    if condition.stochastic() {
+        s.beta = qlearn::LearningRate::new(0.2)?;
+    }
+    match learner {
+        Learner::Plain(_) => {}
+        Learner::LazyFit => match condition {
+            Condition::Paper => {}
+            Condition::Slip(_) => s.extensions.detector = DetectorKind::Statistical,
+            Condition::Noise(_) => {
+                s.extensions.detector = DetectorKind::Statistical;
+                s.extensions.matching = Matching::Nearest;
+                s.extensions.confirm_new = 3;
+                s.extensions.reads = 5;
+            }
+            Condition::Radius(_) => s.extensions.memory = 2,
+        },
+        Learner::UTree => s.learner = LearnerKind::UTree,
+        Learner::FullSensing => s.learner = LearnerKind::FullSensing,
+    }
+    s.validate()?;
+    Ok(s)
+}
+
+/// `cargo xtask robustness`.
+pub fn robustness(args: &RobustnessArgs) -> Result<()> {
+    if args.runs == 0 || args.quality_every == 0 || args.patience == 0 {
+        bail!("robustness needs --runs, --quality-every and --patience of at least 1");
+    }
+    crate::files::seeds(args.seed, args.runs)?;
+    crate::files::distinct("--maps", &args.maps)?;
+    let def = Definition {
+        maps: args.maps.clone(),
+        runs: args.runs,
+        seed: args.seed,
+        max_trials: args.max_trials,
+        quality_every: args.quality_every,
+        patience: args.patience,
+    };
+    if !args.report {
+        let maps: Vec<Map> = args
+            .maps
+            .iter()
+            .map(|m| mdp::resolve(m))
+            .collect::<Result<_, _>>()?;
+        let list = jobs(&def);
+        // Check every job's settings before running any.
+        for &(m, c, l, run) in &list {
+            settings(&def, &args.maps[m], c, l, run)?;
+        }
+        let total = list.len() as u64;
+        crate::shard::run_shard(
+            &args.out,
+            &args.shard,
+            def.clone(),
+            total,
+            args.threads,
+            |id| {
+                let (m, condition, learner, run) = list[id as usize];
+                let s = settings(&def, &args.maps[m], condition, learner, run)?;
+                let setup = Setup::for_map(maps[m].clone(), &s)?;
+                let report = csql::run_on(&setup, &s);
+                let q = report
+                    .quality
+                    .ok_or_else(|| anyhow!("job {id}: a run judged by quality reports it"))?;
+                Ok(JobResult {
+                    id,
+                    map: args.maps[m].clone(),
+                    condition,
+                    learner,
+                    seed: s.seed,
+                    trials: report.trials,
+                    total_cost: report.total_cost,
+                    quality: q.policy_quality,
+                    method: serde_json::to_value(q.method)?
+                        .as_str()
+                        .unwrap_or_default()
+                        .to_string(),
+                    trials_to_quality: q.trials_to_quality,
+                    cost_to_quality: q.cost_to_quality,
+                    sensing_cost_per_state: q.sensing_cost_per_state,
+                    descriptions: q.descriptions,
+                    mean_features: q.mean_features,
+                })
+            },
+        )?;
+        if crate::shard::parse_shard(&args.shard)?.1 > 1 {
+            crate::note("run `cargo xtask robustness --report` once every shard is done");
+            return Ok(());
+        }
+    }
+    let (found, by_id): (Definition, BTreeMap<u64, JobResult>) =
+        crate::shard::collect(&[args.out.clone()])?;
+    if found != def {
+        bail!(
+            "{} holds another sweep ({found:?}); give its arguments, or another --out",
+            args.out.display()
+        );
+    }
+    let results: Vec<JobResult> = by_id.into_values().collect();
+    write_report(&def, &results, &args.out)?;
+    if args.bless {
+        write_report(&def, &results, Path::new("docs"))?;
+    }
+    Ok(())
+}
+
+/// Aggregates of a group of runs.
+struct Cell {
+    runs: usize,
+    reached: usize,
+    quality: f64,
+    /// Median over the runs that reached 0.95.
+    cost_to_quality: Option<f64>,
+    trials_to_quality: Option<f64>,
+    cost_per_state: f64,
+    descriptions: f64,
+    features: f64,
+}
+
+fn median(mut xs: Vec<f64>) -> Option<f64> {
+    if xs.is_empty() {
+        return None;
+    }
+    xs.sort_by(f64::total_cmp);
+    let n = xs.len();
+    Some(if n % 2 == 1 {
+        xs[n / 2]
+    } else {
+        (xs[n / 2 - 1] + xs[n / 2]) / 2.0
+    })
+}
+
+fn cell(rs: &[&JobResult]) -> Option<Cell> {
+    if rs.is_empty() {
+        return None;
+    }
+    let n = rs.len() as f64;
+    let mean = |f: fn(&JobResult) -> f64| rs.iter().map(|r| f(r)).sum::<f64>() / n;
+    // A median over fewer than half the runs would describe the lucky ones only.
+    let reached: Vec<&&JobResult> = rs.iter().filter(|r| r.cost_to_quality.is_some()).collect();
+    let enough = 2 * reached.len() >= rs.len();
+    Some(Cell {
+        runs: rs.len(),
+        reached: reached.len(),
+        quality: mean(|r| r.quality),
+        cost_to_quality: enough
+            .then(|| median(reached.iter().filter_map(|r| r.cost_to_quality).collect()))
+            .flatten(),
+        trials_to_quality: enough
+            .then(|| {
+                median(
+                    reached
+                        .iter()
+                        .filter_map(|r| r.trials_to_quality.map(f64::from))
+                        .collect(),
+                )
+            })
+            .flatten(),
+        cost_per_state: mean(|r| r.sensing_cost_per_state),
+        descriptions: mean(|r| r.descriptions as f64),
+        features: mean(|r| r.mean_features),
+    })
+}
+
+fn write_report(def: &Definition, results: &[JobResult], out: &Path) -> Result<()> {
+    let figures = if out == Path::new("docs") {
+        out.join("figures")
+    } else {
+        out.to_path_buf()
+    };
+    std::fs::create_dir_all(&figures)?;
+    let group = |map: Option<&str>, c: Condition, l: Learner| -> Vec<&JobResult> {
+        results
+            .iter()
+            .filter(|r| r.condition == c && r.learner == l && map.is_none_or(|m| r.map == m))
+            .collect()
+    };
+    let mut md = String::from("# Robustness: CS-QL beyond the paper's assumptions\n\n");
+    let _ = writeln!(
+        md,
+        "Generated by `cargo xtask robustness` (maps {}; {} runs each, seeds {}..={}; trial cap {}; \
+         quality every {} trials, a run ends after {} evaluations in a row at or above 0.95). \
+         Each cell is over every map and run: runs that reached quality 0.95 and stayed there, \
+         the mean final quality, the median sensing cost (and trials) until the quality was \
+         reached over the runs that reached it (— when fewer than half did), and the mean \
+         sensing cost per state after learning and descriptions (rows of the Q table). \
+         The reading is in `docs/robustness.md`.\n",
+        def.maps.join(", "),
+        def.runs,
+        def.seed,
+        def.seed + def.runs - 1,
+        def.max_trials,
+        def.quality_every,
+        def.patience
+    );
+    md.push_str("| condition | learner | reached 0.95 | final quality | cost to quality | trials to quality | cost/state after | descriptions | features/description |\n|---|---|---|---|---|---|---|---|---|\n");
+    let mut csv = String::from(
+        "map,condition,learner,runs,reached,quality_mean,cost_to_quality_median,trials_to_quality_median,cost_per_state_mean,descriptions_mean,features_mean\n",
+    );
+    let opt = |x: Option<f64>, d: usize| x.map_or("—".to_string(), |v| format!("{v:.d$}"));
+    for c in Condition::ALL {
+        for l in Learner::ALL {
+            let Some(x) = cell(&group(None, c, l)) else {
+                continue;
+            };
+            let _ = writeln!(
+                md,
+                "| {} | {} | {}/{} | {:.3} | {} | {} | {:.1} | {:.1} | {:.2} |",
+                c.label(),
+                l.label(),
+                x.reached,
+                x.runs,
+                x.quality,
+                opt(x.cost_to_quality, 0),
+                opt(x.trials_to_quality, 0),
+                x.cost_per_state,
+                x.descriptions,
+                x.features
+            );
+            for map in std::iter::once(None).chain(def.maps.iter().map(|m| Some(m.as_str()))) {
+                let Some(x) = cell(&group(map, c, l)) else {
+                    continue;
+                };
+                let _ = writeln!(
+                    csv,
+                    "\"{}\",{},{},{},{},{:.6},{},{},{:.6},{:.6},{:.6}",
+                    map.unwrap_or("all"),
+                    c.label(),
+                    l.label(),
+                    x.runs,
+                    x.reached,
+                    x.quality,
+                    x.cost_to_quality
+                        .map_or(String::new(), |v| format!("{v:.1}")),
+                    x.trials_to_quality
+                        .map_or(String::new(), |v| format!("{v:.1}")),
+                    x.cost_per_state,
+                    x.descriptions,
+                    x.features
+                );
+            }
+        }
+    }
+    let table = if out == Path::new("docs") {
+        out.join("robustness_table.md")
+    } else {
+        out.join("robustness.md")
+    };
+    crate::files::write_atomic(&table, &md)?;
+    crate::files::write_atomic(&out.join("robustness.csv"), &csv)?;
+    for (name, axis, conditions) in [
+        (
+            "slip",
+            "slip probability",
+            vec![
+                Condition::Paper,
+                Condition::Slip(0.05),
+                Condition::Slip(0.1),
+                Condition::Slip(0.2),
+            ],
+        ),
+        (
+            "noise",
+            "sensor noise",
+            vec![
+                Condition::Paper,
+                Condition::Noise(0.01),
+                Condition::Noise(0.05),
+                Condition::Noise(0.1),
+            ],
+        ),
+        (
+            "radius",
+            "sensing radius",
+            vec![Condition::Paper, Condition::Radius(2), Condition::Radius(1)],
+        ),
+    ] {
+        let series: Vec<Series> = Learner::ALL
+            .iter()
+            .map(|&l| Series {
+                name: l.label(),
+                points: conditions
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &c)| (i, cell(&group(None, c, l))))
+                    .collect(),
+            })
+            .collect();
+        let ticks: Vec<String> = conditions
+            .iter()
+            .map(|c| match c {
+                Condition::Paper => {
+                    if name == "radius" {
+                        "unbounded".into()
+                    } else {
+                        "0".into()
+                    }
+                }
+                Condition::Slip(p) | Condition::Noise(p) => format!("{p}"),
+                Condition::Radius(r) => r.to_string(),
+            })
+            .collect();
+        let path = figures.join(format!("robustness_{name}.svg"));
+        figure(&path, &format!("Against {axis}"), axis, &ticks, &series)?;
+    }
+    crate::emit(&format!("{md}\nWrote {}\n", table.display()))?;
+    Ok(())
+}
+
+struct Series {
+    name: String,
+    points: Vec<(usize, Option<Cell>)>,
+}
+
+/// Okabe and Ito's colour-blind-safe palette, and one marker shape per series, so that
+/// the figure reads in grey too.
+const PALETTE: [RGBColor; 7] = [
+    RGBColor(0, 0, 0),
+    RGBColor(230, 159, 0),
+    RGBColor(86, 180, 233),
+    RGBColor(0, 158, 115),
+    RGBColor(213, 94, 0),
+    RGBColor(0, 114, 178),
+    RGBColor(204, 121, 167),
+];
+
+/// Three panels against one departure: final quality, sensing cost until quality 0.95
+/// (log scale), sensing cost per state after learning (log scale).
+fn figure(path: &Path, title: &str, axis: &str, ticks: &[String], series: &[Series]) -> Result<()> {
+    crate::figures::register_font();
+    let plot_err = |e: &dyn std::fmt::Display| anyhow!("drawing {}: {e}", path.display());
+    let mut svg = String::new();
+    let base = SVGBackend::with_string(&mut svg, (1500, 470)).into_drawing_area();
+    base.fill(&WHITE).map_err(|e| plot_err(&e))?;
+    let root = base
+        .titled(title, ("sans-serif", 22))
+        .map_err(|e| plot_err(&e))?;
+    let (plots, legend) = root.split_horizontally(1290);
+    let panels = plots.split_evenly((1, 3));
+    let n = ticks.len();
+    let x_range = -0.2..(n as f64 - 0.8);
+    let tick_label = |x: &f64| {
+        let i = x.round();
+        if (x - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < n {
+            ticks[i as usize].clone()
+        } else {
+            String::new()
+        }
+    };
+    // Panel 1: final quality.
+    {
+        let mut chart = ChartBuilder::on(&panels[0])
+            .caption("final policy quality", ("sans-serif", 18))
+            .margin(12)
+            .x_label_area_size(46)
+            .y_label_area_size(56)
+            .build_cartesian_2d(x_range.clone(), 0.0..1.05)
+            .map_err(|e| plot_err(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc(axis)
+            .y_desc("quality (1 = optimal)")
+            .axis_desc_style(("sans-serif", 15))
+            .label_style(("sans-serif", 13))
+            .x_labels(n)
+            .x_label_formatter(&tick_label)
+            .light_line_style(WHITE)
+            .bold_line_style(RGBColor(230, 230, 230))
+            .draw()
+            .map_err(|e| plot_err(&e))?;
+        for (k, s) in series.iter().enumerate() {
+            let pts: Vec<(f64, f64)> = s
+                .points
+                .iter()
+                .filter_map(|(i, c)| c.as_ref().map(|c| (*i as f64, c.quality)))
+                .collect();
+            draw_series(&mut chart, k, &pts).map_err(|e| plot_err(&e))?;
+        }
+    }
+    // Panels 2 and 3: costs on log scales.
+    type Pick = fn(&Cell) -> Option<f64>;
+    let costs: [(&str, &str, Pick); 2] = [
+        (
+            "sensing cost until quality 0.95",
+            "median cost (log)",
+            |c| c.cost_to_quality,
+        ),
+        (
+            "sensing cost per state after learning",
+            "mean cost per state (log)",
+            |c| Some(c.cost_per_state),
+        ),
+    ];
+    for (panel, (caption, y_desc, pick)) in panels[1..].iter().zip(costs) {
+        let values: Vec<f64> = series
+            .iter()
+            .flat_map(|s| {
+                s.points
+                    .iter()
+                    .filter_map(|(_, c)| c.as_ref().and_then(pick))
+            })
+            .filter(|v| *v > 0.0)
+            .collect();
+        let lo = values.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = values.iter().copied().fold(0.0, f64::max);
+        let (lo, hi) = if values.is_empty() {
+            (1.0, 10.0)
+        } else {
+            (lo / 1.5, hi * 1.5)
+        };
+        let mut chart = ChartBuilder::on(panel)
+            .caption(caption, ("sans-serif", 18))
+            .margin(12)
+            .x_label_area_size(46)
+            .y_label_area_size(70)
+            .build_cartesian_2d(x_range.clone(), (lo..hi).log_scale())
+            .map_err(|e| plot_err(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc(axis)
+            .y_desc(y_desc)
+            .axis_desc_style(("sans-serif", 15))
+            .label_style(("sans-serif", 13))
+            .x_labels(n)
+            .x_label_formatter(&tick_label)
+            .y_label_formatter(&|y| crate::figures::short(*y))
+            .light_line_style(WHITE)
+            .bold_line_style(RGBColor(230, 230, 230))
+            .draw()
+            .map_err(|e| plot_err(&e))?;
+        for (k, s) in series.iter().enumerate() {
+            let pts: Vec<(f64, f64)> = s
+                .points
+                .iter()
+                .filter_map(|(i, c)| c.as_ref().and_then(pick).map(|v| (*i as f64, v)))
+                .filter(|p| p.1 > 0.0)
+                .collect();
+            draw_series(&mut chart, k, &pts).map_err(|e| plot_err(&e))?;
+        }
+    }
+    // The legend, once, to the right.
+    for (k, s) in series.iter().enumerate() {
+        let y = 90 + 34 * k as i32;
+        let color = PALETTE[k % PALETTE.len()];
+        legend
+            .draw(&PathElement::new(
+                vec![(10, y), (50, y)],
+                color.stroke_width(2),
+            ))
+            .map_err(|e| plot_err(&e))?;
+        legend
+            .draw(&marker(k, (30, y), color))
+            .map_err(|e| plot_err(&e))?;
+        legend
+            .draw(&Text::new(
+                s.name.clone(),
+                (60, y - 8),
+                ("sans-serif", 16).into_font(),
+            ))
+            .map_err(|e| plot_err(&e))?;
+    }
+    root.present().map_err(|e| plot_err(&e))?;
+    drop(panels);
+    drop(plots);
+    drop(legend);
+    drop(root);
+    drop(base);
+    crate::files::write_atomic(path, svg)
+}
+
+/// Series `k`'s marker at `at`.
+fn marker<DB: DrawingBackend>(
+    k: usize,
+    at: (i32, i32),
+    color: RGBColor,
+) -> DynElement<'static, DB, (i32, i32)> {
+    let style = color.filled();
+    match k % 4 {
+        0 => Circle::new(at, 5, style).into_dyn(),
+        1 => TriangleMarker::new(at, 6, style).into_dyn(),
+        2 => Cross::new(at, 5, color.stroke_width(2)).into_dyn(),
+        _ => Rectangle::new([(at.0 - 4, at.1 - 4), (at.0 + 4, at.1 + 4)], style).into_dyn(),
+    }
+}
+
+fn draw_series<DB: DrawingBackend, Y: Ranged<ValueType = f64>>(
+    chart: &mut ChartContext<'_, DB, Cartesian2d<plotters::coord::types::RangedCoordf64, Y>>,
+    k: usize,
+    pts: &[(f64, f64)],
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let color = PALETTE[k % PALETTE.len()];
+    // Each series is shifted a little sideways, so that equal values stay visible.
+    let shift = (k as f64 - 3.0) * 0.025;
+    let pts: Vec<(f64, f64)> = pts.iter().map(|&(x, y)| (x + shift, y)).collect();
+    chart.draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))?;
+    chart.draw_series(
+        pts.iter()
+            .map(|&(x, y)| EmptyElement::at((x, y)) + marker::<DB>(k, (0, 0), color)),
+    )?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn def() -> Definition {
+        Definition {
+            maps: vec!["tan3x3".into()],
+            runs: 1,
+            seed: 1,
+            max_trials: 200,
+            quality_every: 10,
+            patience: 2,
+        }
+    }
+
+    #[test]
+    fn every_job_has_valid_settings_that_say_what_the_job_is() {
+        let d = def();
+        let list = jobs(&d);
+        assert_eq!(list.len(), 9 * 7 - 1);
+        for &(m, c, l, run) in &list {
+            let s = settings(&d, &d.maps[m], c, l, run).unwrap();
+            assert!(s.beyond_paper());
+            assert_eq!(s.beta.get() < 1.0, c.stochastic());
+            assert_eq!(s.learner == LearnerKind::UTree, l == Learner::UTree);
+            let extended = s.extensions.memory > 0
+                || s.extensions.matching == Matching::Nearest
+                || s.extensions.detector == DetectorKind::Statistical
+                || s.extensions.reads > 1;
+            assert_eq!(extended, l == Learner::LazyFit, "{c:?} {l:?}");
+        }
+    }
+
+    #[test]
+    fn a_small_sweep_runs_resumes_and_reports() {
+        let dir = tempfile::tempdir().unwrap();
+        let args = RobustnessArgs {
+            maps: vec!["tan3x3".into()],
+            runs: 1,
+            seed: 1,
+            max_trials: 60,
+            quality_every: 10,
+            patience: 2,
+            shard: "1/1".into(),
+            threads: Some(1),
+            out: dir.path().to_path_buf(),
+            report: false,
+            bless: false,
+        };
+        robustness(&args).unwrap();
+        let table = std::fs::read_to_string(dir.path().join("robustness.md")).unwrap();
+        assert_eq!(table.matches("| u-tree |").count(), 9);
+        for name in ["slip", "noise", "radius"] {
+            let svg =
+                std::fs::read_to_string(dir.path().join(format!("robustness_{name}.svg"))).unwrap();
+            let tree = resvg::usvg::Tree::from_str(&svg, &resvg::usvg::Options::default()).unwrap();
+            assert!(tree.size().width() > 1000.0);
+        }
+        // Resuming runs nothing again; the report is the same.
+        robustness(&RobustnessArgs {
+            report: true,
+            ..args
+        })
+        .unwrap();
+        assert_eq!(
+            std::fs::read_to_string(dir.path().join("robustness.md")).unwrap(),
+            table
+        );
+    }
+}
