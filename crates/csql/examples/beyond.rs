@@ -3,7 +3,7 @@
 //! features per description, the descriptions, the sensing cost until the quality was
 //! reached and the final quality.
 //!
-//! `cargo run --release -p csql --example beyond -- tan8x8 1 10`
+//! `cargo run --release -p csql --example beyond -- tan8x8 1 10 [NAME-PART]`
 
 use csql::{RunSettings, StrategyKind};
 
@@ -13,33 +13,41 @@ fn main() -> Result<(), csql::Error> {
     let first: u64 = args.get(2).and_then(|a| a.parse().ok()).unwrap_or(1);
     let seeds: u64 = args.get(3).and_then(|a| a.parse().ok()).unwrap_or(10);
     let only = args.get(4).cloned();
-    let configs: [(&str, &str); 8] = [
-        ("deterministic beta 1", ""),
-        ("deterministic beta 0.2", "beta = 0.2"),
+    let noise = "beta = 0.2\nmax_trials = 1500\n[world]\nsensor_noise = 0.05\n[extensions]\nquality_every = 25";
+    let radius = "max_trials = 1500\n[world]\nsensing_radius = 1\n[extensions]\nquality_every = 25";
+    let configs: Vec<(&str, String)> = vec![
+        ("deterministic beta 1", String::new()),
+        ("deterministic beta 0.2", "beta = 0.2".into()),
         (
             "slip 0.1 beta 0.2 decrease",
-            "beta = 0.2\nmax_trials = 3000\n[world]\nslip = 0.1",
+            "beta = 0.2\nmax_trials = 3000\n[world]\nslip = 0.1".into(),
         ),
         (
             "slip 0.1 beta 0.2 statistical",
-            "beta = 0.2\nmax_trials = 3000\n[world]\nslip = 0.1\n[extensions]\ndetector = \"statistical\"",
+            "beta = 0.2\nmax_trials = 3000\n[world]\nslip = 0.1\n[extensions]\ndetector = \"statistical\"".into(),
+        ),
+        ("noise 0.05 exact", noise.into()),
+        ("noise 0.05 nearest", format!("{noise}\nmatching = \"nearest\"")),
+        (
+            "noise 0.05 nearest statistical confirm 3",
+            format!("{noise}\nmatching = \"nearest\"\ndetector = \"statistical\"\nconfirm_new = 3"),
         ),
         (
-            "noise 0.05 exact",
-            "max_trials = 3000\n[world]\nsensor_noise = 0.05",
+            "noise 0.05 nearest statistical confirm 3 reads 5",
+            format!("{noise}\nmatching = \"nearest\"\ndetector = \"statistical\"\nconfirm_new = 3\nreads = 5"),
         ),
-        (
-            "noise 0.05 nearest",
-            "max_trials = 3000\n[world]\nsensor_noise = 0.05\n[extensions]\nmatching = \"nearest\"",
-        ),
-        ("radius 1", "max_trials = 3000\n[world]\nsensing_radius = 1"),
-        ("radius 2", "max_trials = 3000\n[world]\nsensing_radius = 2"),
+        ("radius 2", "max_trials = 1500\n[world]\nsensing_radius = 2".into()),
+        ("radius 1", radius.into()),
+        ("radius 1 memory 1", format!("{radius}\nmemory = 1")),
+        ("radius 1 memory 2", format!("{radius}\nmemory = 2")),
+        ("radius 1 full sensing", format!("learner = \"full-sensing\"\n{radius}")),
+        ("radius 1 u-tree", format!("learner = \"u-tree\"\n{radius}")),
     ];
     println!(
         "| configuration | reached 0.95 | features/description | descriptions | cost to quality (or converge) | trials | final quality |"
     );
     println!("|---|---|---|---|---|---|---|");
-    for (name, toml) in configs {
+    for (name, toml) in &configs {
         if only.as_deref().is_some_and(|o| !name.contains(o)) {
             continue;
         }

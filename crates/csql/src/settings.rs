@@ -492,6 +492,18 @@ impl RunSettings {
                 "predict_sensing = off with a learner other than cs-ql",
             );
         }
+        let e = &self.extensions;
+        let cs_ql_only = e.detector != crate::DetectorKind::default()
+            || e.matching != crate::Matching::Exact
+            || e.confirm_new != 1
+            || e.reads != 1
+            || e.memory > 0;
+        if !self.learner.is_cs_ql() && cs_ql_only {
+            return refuse(
+                format!("an extension of CS-QL with learner = {}", self.learner),
+                "detector, matching, confirm_new, reads and memory at their defaults with a learner other than cs-ql",
+            );
+        }
         if self.extensions.memory > 0 && !(self.learner.is_cs_ql() && self.predict_sensing.is_off())
         {
             return refuse(

@@ -32,6 +32,12 @@ fn each_extension_changes_the_run_only_when_on() {
         "max_trials = 100\n[extensions]\nquality_every = 50\n[world]\nsensing_radius = 1",
         "max_trials = 100\n[extensions]\nquality_every = 50\ndetector = \"statistical\"",
         "max_trials = 100\n[world]\nsensor_noise = 0.05\n[extensions]\nquality_every = 50\nmatching = \"nearest\"",
+        "max_trials = 100\n[world]\nsensor_noise = 0.05\n[extensions]\nquality_every = 50\nconfirm_new = 3",
+        "max_trials = 100\n[extensions]\nquality_every = 50\nreads = 3",
+        "max_trials = 100\n[world]\nsensing_radius = 1\n[extensions]\nquality_every = 50\nmemory = 2",
+        "max_trials = 100\n[extensions]\nquality_every = 50\njudge_by_quality = true",
+        "max_trials = 100\nlearner = \"u-tree\"\n[extensions]\nquality_every = 50",
+        "max_trials = 100\nlearner = \"full-sensing\"\n[extensions]\nquality_every = 50",
     ];
     for t in tweaks {
         let mut s = base.clone();
@@ -52,8 +58,10 @@ fn runs_beyond_the_paper_are_pure_functions_of_their_settings() {
     .unwrap();
     assert_eq!(json(&s), json(&s));
     let q = csql::run(&s).unwrap().quality.unwrap();
-    assert_eq!(q.method, csql::QualityMethod::MonteCarlo);
-    assert!(q.standard_error < 0.005 || q.standard_error.is_finite());
+    // Under noise a memoryless policy is evaluated exactly from its sampled action
+    // probabilities.
+    assert_eq!(q.method, csql::QualityMethod::SampledPolicy);
+    assert!(q.standard_error.is_finite() && q.standard_error < 0.05);
 }
 
 #[test]
@@ -111,4 +119,141 @@ fn bad_settings_say_what_and_where() {
         s.apply_toml("[extensions]\ndetectr = \"statistical\"", "m")
             .is_err()
     );
+}
+
+#[test]
+fn new_settings_at_their_defaults_change_nothing() {
+    let plain = RunSettings::tan1991("tan3x3", StrategyKind::Eager, 2);
+    let mut explicit = plain.clone();
+    explicit
+        .apply_toml(
+            "learner = \"cs-ql\"\n[extensions]\nconfirm_new = 1\nreads = 1\nmemory = 0\njudge_by_quality = false",
+            "t",
+        )
+        .unwrap();
+    assert_eq!(json(&plain), json(&explicit));
+    let out = json(&plain);
+    for name in [
+        "learner",
+        "confirm_new",
+        "reads",
+        "memory",
+        "judge_by_quality",
+        "u_tree",
+    ] {
+        assert!(!out.contains(name), "{name}");
+    }
+}
+
+#[test]
+fn reading_three_times_without_noise_learns_the_same_at_three_times_the_cost() {
+    // Without noise every read agrees: the run is the same, each charge tripled.
+    let mut once = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 6);
+    once.extensions.judge_by_quality = true;
+    let mut thrice = once.clone();
+    thrice.extensions.reads = 3;
+    let (a, b) = (csql::run(&once).unwrap(), csql::run(&thrice).unwrap());
+    assert_eq!(a.trials, b.trials);
+    assert_eq!(a.descriptions, b.descriptions);
+    assert_eq!(b.total_cost, 3.0 * a.total_cost);
+    let (qa, qb) = (a.quality.unwrap(), b.quality.unwrap());
+    assert_eq!(qb.sensing_cost_per_state, 3.0 * qa.sensing_cost_per_state);
+    assert_eq!(
+        qb.cost_to_quality.unwrap(),
+        3.0 * qa.cost_to_quality.unwrap()
+    );
+}
+
+#[test]
+fn confirming_new_descriptions_keeps_misreadings_out() {
+    let mut plain = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 4);
+    plain
+        .apply_toml(
+            "beta = 0.2\nmax_trials = 300\n[world]\nsensor_noise = 0.05\n[extensions]\nquality_every = 300\nmatching = \"nearest\"",
+            "t",
+        )
+        .unwrap();
+    let mut confirmed = plain.clone();
+    confirmed.extensions.confirm_new = 3;
+    let a = csql::run(&plain).unwrap().quality.unwrap();
+    let b = csql::run(&confirmed).unwrap().quality.unwrap();
+    assert!(
+        2 * b.descriptions < a.descriptions,
+        "{} vs {}",
+        b.descriptions,
+        a.descriptions
+    );
+}
+
+#[test]
+fn memory_tells_apart_what_a_radius_of_one_cannot() {
+    let mut plain = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 1);
+    plain
+        .apply_toml(
+            "max_trials = 300\n[world]\nsensing_radius = 1\n[extensions]\nquality_every = 300",
+            "t",
+        )
+        .unwrap();
+    let mut remembering = plain.clone();
+    remembering.extensions.memory = 1;
+    let a = csql::run(&plain).unwrap().quality.unwrap();
+    let b = csql::run(&remembering).unwrap().quality.unwrap();
+    // Four neighbours give at most 3^4 views; a step of history gives more rows, and a
+    // better policy.
+    assert!(a.descriptions <= 81);
+    assert!(b.descriptions > a.descriptions);
+    assert!(
+        b.policy_quality > a.policy_quality,
+        "{} vs {}",
+        b.policy_quality,
+        a.policy_quality
+    );
+    // Remembering is free: every description still has at most the four features.
+    assert!(b.mean_features <= 4.0);
+}
+
+#[test]
+fn the_baselines_learn_the_paper_world() {
+    for learner in [csql::LearnerKind::UTree, csql::LearnerKind::FullSensing] {
+        let mut s = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 2);
+        s.learner = learner;
+        s.max_trials = csql::TrialCap::new(2000).unwrap();
+        let r = csql::run(&s).unwrap();
+        let q = r.quality.unwrap();
+        assert!(q.policy_quality >= 0.95, "{learner}: {q:?}");
+        assert!(q.trials_to_quality.is_some(), "{learner}");
+        if learner == csql::LearnerKind::FullSensing {
+            // One row per state, charged the whole view.
+            assert_eq!(q.descriptions, 50);
+            let setup = csql::Setup::new(&s).unwrap();
+            let whole: f64 = setup
+                .world
+                .states()
+                .iter()
+                .map(|&x| csql::whole_world_cost(&setup.world, &setup.space, x))
+                .sum::<f64>()
+                / 50.0;
+            assert_eq!(q.sensing_cost_per_state, whole);
+        }
+    }
+}
+
+#[test]
+fn cs_ql_extensions_are_refused_with_another_learner() {
+    let mut s = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
+    let e = s
+        .apply_toml("learner = \"u-tree\"\n[extensions]\nreads = 3", "mine.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("u-tree"), "{e}");
+    let e = s
+        .apply_toml(
+            "learner = \"full-sensing\"\npredict_sensing = \"learned\"",
+            "mine.toml",
+        )
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("predict_sensing"), "{e}");
+    assert!(s.apply_toml("[u_tree]\nalpha = 1.5", "m").is_err());
+    assert!(s.apply_toml("[extensions]\nreads = 0", "m").is_err());
 }
