@@ -42,6 +42,8 @@
 //! | [`PredictSensing`], [`Prediction`], [`Predicting`], [`TransitionModel`] | sensing less (off by default): a learned model of the next description, and dead reckoning |
 //! | [`navigate`], [`Navigation`] | following the learned policy on the reduced map after learning |
 //! | [`WorldExtras`], [`Extensions`], [`Detector`], [`QualityReport`] | beyond the paper's assumptions (off by default): slip, sensor noise, a sensing range, a statistical detector, nearest matching, the policy quality |
+//! | [`Remembering`], [`Classify::with_confirmation`], [`Classify::with_reads`] | remedies beyond the paper (off by default): a memory of recent steps, confirmed new descriptions, repeated reads |
+//! | [`LearnerKind`], [`UTree`], [`FullView`], [`Describes`] | the baselines: a U-Tree-like statistical splitter and full sensing, reported as CS-QL is |
 //!
 //! # Choices where the paper is silent
 //!

@@ -151,6 +151,21 @@ pub enum QualityMethod {
     SampledPolicy,
 }
 
+impl QualityMethod {
+    /// The method's name, as in the JSON.
+    ///
+    /// ```
+    /// assert_eq!(csql::QualityMethod::SampledPolicy.name(), "sampled_policy");
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            QualityMethod::Exact => "exact",
+            QualityMethod::MonteCarlo => "monte_carlo",
+            QualityMethod::SampledPolicy => "sampled_policy",
+        }
+    }
+}
+
 /// Classifications per state that estimate a noisy policy's action probabilities
 /// ([`QualityMethod::SampledPolicy`]), in [`POLICY_BATCHES`] batches whose spread gives
 /// the standard error.

@@ -177,21 +177,54 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
 }
 
 fn print_report(r: &RunReport, out: &mut dyn Write) -> std::io::Result<()> {
-    writeln!(
-        out,
-        "CS-QL on {} with the {} strategy, seed {}: {} after {} trials ({} moves, sensing cost {:.0})",
-        r.map,
-        r.strategy,
-        r.seed,
-        if r.converged {
-            "converged"
-        } else {
-            "did NOT converge"
-        },
-        r.trials,
-        r.moves,
-        r.total_cost
-    )?;
+    let who = match r.settings.learner {
+        csql::LearnerKind::CsQl => format!("CS-QL on {} with the {} strategy", r.map, r.strategy),
+        csql::LearnerKind::UTree => format!("U-Tree on {}", r.map),
+        csql::LearnerKind::FullSensing => format!("Full sensing on {}", r.map),
+    };
+    match &r.quality {
+        // Judged by the policy quality (specification §6.3).
+        Some(q) => writeln!(
+            out,
+            "{who}, seed {}: {} after {} trials ({} moves, sensing cost {:.0})",
+            r.seed,
+            match (q.trials_to_quality, q.cost_to_quality) {
+                (Some(t), Some(c)) => format!(
+                    "policy quality {:.3} ({}), at least 0.95 since trial {t} (sensing cost {c:.0})",
+                    q.policy_quality,
+                    q.method.name()
+                ),
+                _ => format!(
+                    "policy quality {:.3} ({}), did NOT stay at 0.95",
+                    q.policy_quality,
+                    q.method.name()
+                ),
+            },
+            r.trials,
+            r.moves,
+            r.total_cost
+        )?,
+        None => writeln!(
+            out,
+            "{who}, seed {}: {} after {} trials ({} moves, sensing cost {:.0})",
+            r.seed,
+            if r.converged {
+                "converged"
+            } else {
+                "did NOT converge"
+            },
+            r.trials,
+            r.moves,
+            r.total_cost
+        )?,
+    }
+    if let Some(q) = &r.quality {
+        writeln!(
+            out,
+            "After learning: {} descriptions, {:.2} features each, sensing cost {:.2} per state",
+            q.descriptions, q.mean_features, q.sensing_cost_per_state
+        )?;
+    }
     writeln!(out)?;
     write!(out, "{}", r.table1)?;
     if let (Some(cost), Some(success)) = (r.navigation_cost_per_move, r.navigation_success) {
