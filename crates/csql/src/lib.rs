@@ -153,9 +153,17 @@ mod figure;
 mod judge;
 mod learner;
 mod main_loop;
+#[allow(
+    clippy::expect_used,
+    reason = "grid worlds have four actions, which a table accepts"
+)]
 mod memory;
 mod navigate;
 mod observe;
+#[allow(
+    clippy::expect_used,
+    reason = "internal invariant: every state but the goal has a view"
+)]
 mod perception;
 mod predict;
 mod quality;
@@ -182,6 +190,10 @@ mod run;
 mod settings;
 mod strategy;
 mod tree;
+#[allow(
+    clippy::expect_used,
+    reason = "internal invariant: a walk given a table always ends at a row"
+)]
 mod utree;
 
 pub use classify::{Classification, Classify};
