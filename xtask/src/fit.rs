@@ -86,28 +86,28 @@ pub struct FitArgs {
     #[arg(long)]
     pub target: Option<PathBuf>,
     /// Random layouts scored in phase 1 (also the score distribution reported).
-    #[arg(long, default_value_t = 250)]
+    #[arg(long, default_value_t = 300)]
     pub random: usize,
     /// Local searches, started from the best random layouts.
-    #[arg(long, default_value_t = 4)]
+    #[arg(long, default_value_t = 6)]
     pub restarts: usize,
     /// Rounds of local moves per restart.
-    #[arg(long, default_value_t = 15)]
+    #[arg(long, default_value_t = 20)]
     pub rounds: usize,
     /// Moves proposed per restart and round.
     #[arg(long, default_value_t = 6)]
     pub neighbours: usize,
     /// Candidates (best on the search seeds) re-scored on the selection seeds.
-    #[arg(long, default_value_t = 8)]
+    #[arg(long, default_value_t = 12)]
     pub candidates: usize,
     /// Search seeds per strategy (seeds 100, 101, ...).
-    #[arg(long, default_value_t = 8)]
+    #[arg(long, default_value_t = 12)]
     pub search_seeds: u64,
     /// Selection seeds per strategy (seeds 200, 201, ...).
-    #[arg(long, default_value_t = 10)]
+    #[arg(long, default_value_t = 20)]
     pub select_seeds: u64,
     /// Report seeds per strategy (seeds 300, 301, ...), never used to choose.
-    #[arg(long, default_value_t = 10)]
+    #[arg(long, default_value_t = 20)]
     pub report_seeds: u64,
     /// Trial cap of each run; a layout with a run that does not converge has no score.
     #[arg(long, default_value_t = 6000)]

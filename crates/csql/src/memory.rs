@@ -14,7 +14,7 @@
 //! The policy is then a function of the path, not of the state, so its quality is
 //! estimated by Monte Carlo (specification §6).
 
-use std::collections::{HashMap, VecDeque};
+use std::collections::{BTreeMap, VecDeque};
 
 use mdp::{ActionId, Cell, Feature, GridWorld, SensorNoise, StateId};
 use qlearn::{QTable, RowId};
@@ -51,7 +51,7 @@ pub struct Remembering {
     limit: u32,
     /// Steps of history each description uses (indexed by description).
     depth: Vec<u32>,
-    rows: HashMap<(u32, Vec<Step>), RowId>,
+    rows: BTreeMap<(u32, Vec<Step>), RowId>,
     /// The description of each row.
     description_of: Vec<u32>,
     /// The last steps, most recent first, and the description last given.
@@ -76,7 +76,7 @@ impl Remembering {
             inner_table: QTable::new(4).expect("four actions"),
             limit,
             depth: Vec::new(),
-            rows: HashMap::new(),
+            rows: BTreeMap::new(),
             description_of: Vec::new(),
             history: VecDeque::new(),
             current: 0,

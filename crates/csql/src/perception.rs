@@ -190,7 +190,7 @@ impl FullView {
     pub fn new(world: &GridWorld, space: &mdp::FeatureSpace) -> FullView {
         let mut class = vec![None; world.num_states()];
         let mut views: Vec<Vec<(mdp::Feature, mdp::Cell)>> = Vec::new();
-        let mut index = std::collections::HashMap::new();
+        let mut index = std::collections::BTreeMap::new();
         let mut cost = vec![0.0; world.num_states()];
         for s in world.states() {
             let view = crate::reference::bordered_features(world, space, s, 1)

@@ -911,6 +911,20 @@ impl Perception for Predicting {
     }
 }
 
+/// A report reads CLASSIFY underneath: prediction changes what is charged while
+/// learning, not the descriptions or what they cost after it.
+impl crate::report::Describes for Predicting {
+    fn described(&self) -> Vec<(RowId, Vec<(mdp::Feature, mdp::Cell)>)> {
+        self.inner.described()
+    }
+    fn cost_after_learning(&mut self, world: &GridWorld, s: StateId) -> f64 {
+        self.inner.cost_after_learning(world, s)
+    }
+    fn table1_costs(&mut self, setup: &crate::Setup) -> (f64, f64) {
+        self.inner.table1_costs(setup)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -999,19 +1013,5 @@ mod tests {
             PredictSensing::Motion
         );
         assert!("on".parse::<PredictSensing>().is_err());
-    }
-}
-
-/// A report reads CLASSIFY underneath: prediction changes what is charged while
-/// learning, not the descriptions or what they cost after it.
-impl crate::report::Describes for Predicting {
-    fn described(&self) -> Vec<(RowId, Vec<(mdp::Feature, mdp::Cell)>)> {
-        self.inner.described()
-    }
-    fn cost_after_learning(&mut self, world: &GridWorld, s: StateId) -> f64 {
-        self.inner.cost_after_learning(world, s)
-    }
-    fn table1_costs(&mut self, setup: &crate::Setup) -> (f64, f64) {
-        self.inner.table1_costs(setup)
     }
 }
