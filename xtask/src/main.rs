@@ -78,7 +78,7 @@ fn main() -> ExitCode {
         Command::Png { files, scale } => render::run(files, *scale),
         Command::Sweep(args) => sweep::sweep(args),
         Command::Merge(args) => sweep::merge(args),
-        Command::Robustness(args) => robustness::robustness(&args),
+        Command::Robustness(args) => robustness::robustness(args),
         Command::Bench(args) => bench::run(args),
     };
     match result {

@@ -331,7 +331,7 @@ pub fn robustness(args: &RobustnessArgs) -> Result<()> {
         }
     }
     let (found, by_id): (Definition, BTreeMap<u64, JobResult>) =
-        crate::shard::collect(&[args.out.clone()])?;
+        crate::shard::collect(std::slice::from_ref(&args.out))?;
     if found != def {
         bail!(
             "{} holds another sweep ({found:?}); give its arguments, or another --out",
@@ -543,7 +543,12 @@ fn write_report(def: &Definition, results: &[JobResult], out: &Path) -> Result<(
             })
             .collect();
         let path = figures.join(format!("robustness_{name}.svg"));
-        figure(&path, &format!("Against {axis}"), axis, &ticks, &series)?;
+        let title = format!(
+            "Every learner against {axis}: means over {} maps x {} runs",
+            def.maps.len(),
+            def.runs
+        );
+        figure(&path, &title, axis, &ticks, &series)?;
     }
     crate::emit(&format!("{md}\nWrote {}\n", table.display()))?;
     Ok(())
@@ -710,18 +715,23 @@ fn figure(path: &Path, title: &str, axis: &str, ticks: &[String], series: &[Seri
     crate::files::write_atomic(path, svg)
 }
 
-/// Series `k`'s marker at `at`.
+/// Series `k`'s marker at `at`: seven shapes, filled or hollow, told apart in grey.
 fn marker<DB: DrawingBackend>(
     k: usize,
     at: (i32, i32),
     color: RGBColor,
 ) -> DynElement<'static, DB, (i32, i32)> {
-    let style = color.filled();
-    match k % 4 {
-        0 => Circle::new(at, 5, style).into_dyn(),
-        1 => TriangleMarker::new(at, 6, style).into_dyn(),
-        2 => Cross::new(at, 5, color.stroke_width(2)).into_dyn(),
-        _ => Rectangle::new([(at.0 - 4, at.1 - 4), (at.0 + 4, at.1 + 4)], style).into_dyn(),
+    let (filled, hollow) = (color.filled(), color.stroke_width(2));
+    let square =
+        |style: ShapeStyle| Rectangle::new([(at.0 - 4, at.1 - 4), (at.0 + 4, at.1 + 4)], style);
+    match k % 7 {
+        0 => Circle::new(at, 5, filled).into_dyn(),
+        1 => TriangleMarker::new(at, 6, filled).into_dyn(),
+        2 => Cross::new(at, 5, hollow).into_dyn(),
+        3 => square(filled).into_dyn(),
+        4 => Circle::new(at, 5, hollow).into_dyn(),
+        5 => TriangleMarker::new(at, 6, hollow).into_dyn(),
+        _ => square(hollow).into_dyn(),
     }
 }
 

@@ -105,7 +105,7 @@ pub struct Classify {
     confirm: u32,
     /// Reads of each measured feature (majority), each charged.
     reads: u32,
-    sightings: std::collections::HashMap<Vec<(Feature, Cell)>, u32>,
+    sightings: std::collections::BTreeMap<Vec<(Feature, Cell)>, u32>,
 }
 
 impl Classify {
@@ -148,7 +148,7 @@ impl Classify {
             matching: Matching::Exact,
             confirm: 1,
             reads: 1,
-            sightings: std::collections::HashMap::new(),
+            sightings: std::collections::BTreeMap::new(),
         }
     }
 
