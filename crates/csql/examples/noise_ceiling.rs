@@ -5,7 +5,8 @@
 //! the agent to another description's action; this is the ceiling of learning under
 //! that noise with representations of that kind.
 //!
-//! For each noise level: the quality (exact evaluation of the noisy policy, whose
+//! For each noise level and number of reads per feature (the majority kept, as the
+//! setting `extensions.reads`): the quality (exact evaluation of the noisy policy, whose
 //! action probabilities come from 2000 seeded classifications per state) with exact and
 //! with nearest matching, and the share of classifications that return the state's own
 //! description.
@@ -23,9 +24,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let first: u64 = args.get(2).and_then(|a| a.parse().ok()).unwrap_or(1);
     let seeds: u64 = args.get(3).and_then(|a| a.parse().ok()).unwrap_or(5);
     println!(
-        "| noise | matching | quality (mean over {seeds} representations) | own description read |"
+        "| noise | reads | matching | quality (mean over {seeds} representations) | own description read |"
     );
-    println!("|---|---|---|---|");
+    println!("|---|---|---|---|---|");
     let mut reps = Vec::new();
     for seed in first..first + seeds {
         let settings = RunSettings::tan1991(map, StrategyKind::Lazy, seed);
@@ -35,19 +36,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         reps.push((setup, rep));
     }
     for noise in [0.01, 0.05, 0.1] {
-        for matching in [Matching::Exact, Matching::Nearest] {
-            let (mut quality, mut own) = (0.0, 0.0);
-            for (k, (setup, rep)) in reps.iter().enumerate() {
-                let (q, o) = ceiling(setup, rep, noise, matching, k as u64)?;
-                quality += q;
-                own += o;
+        for reads in [1, 3, 5] {
+            for matching in [Matching::Exact, Matching::Nearest] {
+                let (mut quality, mut own) = (0.0, 0.0);
+                for (k, (setup, rep)) in reps.iter().enumerate() {
+                    let (q, o) = ceiling(setup, rep, noise, reads, matching, k as u64)?;
+                    quality += q;
+                    own += o;
+                }
+                let n = reps.len() as f64;
+                println!(
+                    "| {noise} | {reads} | {matching:?} | {:.3} | {:.3} |",
+                    quality / n,
+                    own / n
+                );
             }
-            let n = reps.len() as f64;
-            println!(
-                "| {noise} | {matching:?} | {:.3} | {:.3} |",
-                quality / n,
-                own / n
-            );
         }
     }
     Ok(())
@@ -59,13 +62,15 @@ fn ceiling(
     setup: &Setup,
     rep: &csql::Representation,
     noise: f64,
+    reads: u32,
     matching: Matching,
     seed: u64,
 ) -> Result<(f64, f64), Box<dyn std::error::Error>> {
     let world = &setup.world;
     let noise = SensorNoise::new(noise)?;
-    let mut classify =
-        Classify::with_representation(&setup.space, rep.clone()).with_matching(matching);
+    let mut classify = Classify::with_representation(&setup.space, rep.clone())
+        .with_matching(matching)
+        .with_reads(reads);
     let states = world.states();
     // Each description acts as an optimal action of the states it describes.
     let mut action = vec![ActionId(0); rep.len()];
