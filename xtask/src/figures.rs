@@ -167,11 +167,11 @@ pub fn learning_curves(path: &Path, title: &str, curves: &[Curve]) -> Result<()>
             .map_err(|e| plot_err(&e))?
             .label("a run converges")
             .legend(|(x, y)| TriangleMarker::new((x + 12, y), 7, BLACK.filled()));
-        // One legend, in the first panel's empty lower right, serves every panel.
+        // One legend, in the first panel's empty upper left (above a rising curve), serves every panel.
         if i == 0 {
             chart
                 .configure_series_labels()
-                .position(SeriesLabelPosition::LowerRight)
+                .position(SeriesLabelPosition::UpperLeft)
                 .background_style(WHITE.mix(0.9))
                 .border_style(RGBColor(150, 150, 150))
                 .label_font(("sans-serif", 14))
