@@ -54,18 +54,21 @@ fn assert_optimal(setup: &Setup, r: &RunReport) {
     );
 }
 
-/// Seeds 2 to 4: on seed 1 the random strategy ends with 49 descriptions, two states of
-/// equal utility and a shared best action keeping one (`docs/table1.md`, row 5); on these
-/// seeds every strategy ends with one description per state, as in the paper.
+/// Seeds 1 to 3. A run may end with fewer descriptions than states: two states of equal
+/// utility and a shared best action can keep one description (`docs/table1.md`, row 5;
+/// on seed 1 the random strategy ends with 49). `assert_optimal` checks that every state's
+/// value is V* and its greedy action optimal, so states that share a description are
+/// equivalent.
 #[test]
 fn every_strategy_converges_to_the_optimal_policy_on_tan8x8() {
     let mut cost = [0.0; 4];
     let mut features = [0.0; 4];
     for (i, k) in StrategyKind::ALL.into_iter().enumerate() {
-        for seed in 2..=4 {
+        for seed in 1..=3 {
             let (setup, r) = run("tan8x8", k, seed);
             assert_optimal(&setup, &r);
-            assert_eq!(r.table1.descriptions, Some(50));
+            let descriptions = r.table1.descriptions.unwrap();
+            assert!((45..=50).contains(&descriptions), "{descriptions}");
             cost[i] += r.table1.cost_to_converge.unwrap();
             features[i] += r.table1.mean_features.unwrap();
         }
