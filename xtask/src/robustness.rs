@@ -670,6 +670,7 @@ fn figure(path: &Path, title: &str, axis: &str, ticks: &[String], series: &[Seri
             .label_style(("sans-serif", 13))
             .x_labels(n)
             .x_label_formatter(&tick_label)
+            .y_labels(5)
             .y_label_formatter(&|y| crate::figures::short(*y))
             .light_line_style(WHITE)
             .bold_line_style(RGBColor(230, 230, 230))

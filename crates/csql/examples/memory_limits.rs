@@ -8,10 +8,10 @@
 //! ambiguous. At a trial's start there is no history at all: there, only the view
 //! counts, whatever K is.
 //!
-//! Prints, per radius and K, how many states end an ambiguous full K-step history, how
-//! many end one shared with a state of another V* (Q-learning on a row needs one value:
-//! the paper's Theorem 2 asks for descriptions whose states agree), and the same two
-//! counts for the view alone (the first move of a trial).
+//! Prints, per radius and K, the share of (state, full K-step history) pairs whose history
+//! is ambiguous, and whose history is shared with a state of another V* (Q-learning on a
+//! row needs one value: the paper's Theorem 2 asks for descriptions whose states agree),
+//! and the shares of states whose view alone is so (the first move of a trial).
 //!
 //! `cargo run --release -p csql --example memory_limits -- tan8x8`
 
@@ -28,7 +28,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let map = args.get(1).map_or("tan8x8", String::as_str);
     println!(
-        "| radius | K | states ending an ambiguous K-step history | ending one shared with another V* | with an ambiguous view (a trial's first move) | with a view shared with another V* |"
+        "| radius | K | share of (state, K-step history) pairs: ambiguous | shared with another V* | share of states: ambiguous view (a trial's first move) | view shared with another V* |"
     );
     println!("|---|---|---|---|---|---|");
     for radius in [1u32, 2] {
@@ -106,19 +106,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     owners.entry(h).or_default().push(*s);
                 }
             }
-            let ends = |bad: &dyn Fn(&[StateId]) -> bool| -> usize {
-                owners
-                    .values()
-                    .filter(|ss| bad(ss))
-                    .flat_map(|ss| ss.iter().copied())
-                    .collect::<BTreeSet<StateId>>()
-                    .len()
+            // The share of (state, full history) pairs whose history is bad.
+            let pairs: usize = owners.values().map(Vec::len).sum();
+            let share = |bad: &dyn Fn(&[StateId]) -> bool| -> f64 {
+                let n: usize = owners.values().filter(|ss| bad(ss)).map(Vec::len).sum();
+                n as f64 / pairs as f64
             };
             println!(
-                "| {radius} | {k} | {} of {} | {} | {alone} | {mixed_view} |",
-                ends(&ambiguous),
-                states.len(),
-                ends(&mixed)
+                "| {radius} | {k} | {:.2} | {:.2} | {:.2} | {:.2} |",
+                share(&ambiguous),
+                share(&mixed),
+                alone as f64 / states.len() as f64,
+                mixed_view as f64 / states.len() as f64
             );
         }
     }
