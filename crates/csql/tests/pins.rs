@@ -224,3 +224,74 @@ fn random_maps_are_pinned() {
     }
     assert!(wrong.is_empty(), "random maps changed: {wrong:?}");
 }
+
+/// Runs beyond the paper, pinned the same way: (map, strategy, seed, TOML settings, hash
+/// of the full JSON report, its length). Short runs (a trial cap) of every learner and
+/// remedy, so that a refactor of the perceptions, the quality measure or the sensors
+/// cannot change them unnoticed.
+const BEYOND: &[(&str, StrategyKind, u64, &str, u64, usize)] = &[
+    (
+        "tan8x8",
+        StrategyKind::Lazy,
+        1,
+        "",
+        0x22124b650e4f1daa,
+        49766,
+    ),
+    (
+        "tan8x8",
+        StrategyKind::Lazy,
+        2,
+        "beta = 0.2\nmax_trials = 300\n[world]\nslip = 0.1\n[extensions]\ndetector = \"statistical\"",
+        0x5e6501b818842f56,
+        64305,
+    ),
+    (
+        "tan8x8",
+        StrategyKind::Lazy,
+        3,
+        "beta = 0.2\nmax_trials = 200\n[world]\nsensor_noise = 0.05\n[extensions]\nmatching = \"nearest\"\nconfirm_new = 3\nreads = 5\nquality_every = 50",
+        0x20ea7bbb365a3db9,
+        61451,
+    ),
+    (
+        "tan8x8",
+        StrategyKind::Lazy,
+        4,
+        "max_trials = 200\n[world]\nsensing_radius = 1\n[extensions]\nmemory = 2\nquality_every = 50",
+        0x53312e21d5cd158b,
+        181084,
+    ),
+    (
+        "tan8x8",
+        StrategyKind::Lazy,
+        5,
+        "learner = \"u-tree\"\nmax_trials = 300",
+        0xd3f34186b35bca99,
+        61834,
+    ),
+    (
+        "dyna9x6",
+        StrategyKind::Eager,
+        6,
+        "learner = \"full-sensing\"\nmax_trials = 300\n[world]\nsensing_radius = 2",
+        0xd353eba1db9ec5b0,
+        68471,
+    ),
+];
+
+#[test]
+fn runs_beyond_the_paper_are_pinned() {
+    let mut wrong = Vec::new();
+    for &(map, strategy, seed, toml, hash, len) in BEYOND {
+        let mut settings = RunSettings::tan1991(map, strategy, seed);
+        settings.apply_toml(toml, "pin").unwrap();
+        let json = serde_json::to_string(&csql::run(&settings).unwrap()).unwrap();
+        let got = (fnv1a(json.as_bytes()), json.len());
+        println!("    {map} {strategy:?} {seed}: {:#018x}, {}", got.0, got.1);
+        if got != (hash, len) {
+            wrong.push(format!("{map} {strategy:?} seed {seed} {toml:?}"));
+        }
+    }
+    assert!(wrong.is_empty(), "results changed: {wrong:?}");
+}
