@@ -37,7 +37,7 @@ enum Command {
     /// Show or check a map.
     #[command(subcommand)]
     Map(maps::MapCommand),
-    /// Run CS-QL once and report the measures of the paper's Table 1.
+    /// Run CS-QL (or a baseline, `--learner`) once and report the measures of the paper's Table 1.
     Run(run::RunArgs),
     /// Stream a CSV table through a cost-sensitive learner and report errors and costs.
     Classify(classify::ClassifyArgs),

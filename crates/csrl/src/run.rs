@@ -43,8 +43,9 @@ pub struct RunArgs {
     /// Stop an unconverged run after this many trials.
     #[arg(long)]
     max_trials: Option<csql::TrialCap>,
-    /// Exit with code 3 if the run does not converge (by default a run that reaches its
-    /// trial cap is a result like any other and exits 0).
+    /// Exit with code 3 if the run does not converge, or, for a run judged by the policy
+    /// quality, if the quality did not reach 0.95 and stay there (by default a run that
+    /// reaches its trial cap is a result like any other and exits 0).
     #[arg(long)]
     require_convergence: bool,
     /// Keep the per-trial learning curve and print it as the JSON's `trace` (one point
@@ -170,7 +171,13 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     if watch.stopped {
         return Err(Status::interrupted(report.trials).into());
     }
-    if args.require_convergence && !report.converged {
+    // Beyond the paper, "converged" is the policy quality reached and kept
+    // (specification §6.3).
+    let settled = match &report.quality {
+        Some(q) => q.trials_to_quality.is_some(),
+        None => report.converged,
+    };
+    if args.require_convergence && !settled {
         return Err(Status::not_converged(report.trials).into());
     }
     Ok(())

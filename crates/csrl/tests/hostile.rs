@@ -108,6 +108,15 @@ fn non_convergence_has_its_exit_code_on_request() {
     assert!(stderr(&out).contains("did not converge"));
     let out = csrl(&["run", "--map", "tan3x3", "--require-convergence"]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    // A baseline is judged by the policy quality: reaching it and keeping it counts.
+    let base = ["run", "--map", "tan3x3", "--learner", "full-sensing"];
+    let out = csrl(&[&base[..], &["--require-convergence"]].concat());
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let out = csrl(&[&base[..], &["--max-trials", "1", "--require-convergence"]].concat());
+    assert_eq!(out.status.code(), Some(3), "{}", stderr(&out));
+    let text = String::from_utf8_lossy(&csrl(&base).stdout).into_owned();
+    assert!(text.starts_with("Full sensing on tan3x3"), "{text}");
+    assert!(text.contains("policy quality"), "{text}");
 }
 
 #[test]
