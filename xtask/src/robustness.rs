@@ -811,6 +811,23 @@ mod tests {
             let tree = resvg::usvg::Tree::from_str(&svg, &resvg::usvg::Options::default()).unwrap();
             assert!(tree.size().width() > 1000.0);
         }
+        // Another thread count gives the same results, job by job.
+        let other = tempfile::tempdir().unwrap();
+        robustness(&RobustnessArgs {
+            threads: Some(2),
+            out: other.path().to_path_buf(),
+            ..args.clone()
+        })
+        .unwrap();
+        let lines = |dir: &Path| {
+            let (_, by_id): (Definition, BTreeMap<u64, JobResult>) =
+                crate::shard::collect(&[dir.to_path_buf()]).unwrap();
+            by_id
+                .values()
+                .map(|r| serde_json::to_string(r).unwrap())
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(lines(dir.path()), lines(other.path()));
         // Resuming runs nothing again; the report is the same.
         robustness(&RobustnessArgs {
             report: true,
