@@ -202,31 +202,9 @@ impl UTree {
         self.nodes.len() - 1
     }
 
-    /// Read a distinction at state `s` (charged through `cost` for a feature).
-    fn read(
-        &mut self,
-        world: &GridWorld,
-        s: StateId,
-        d: Distinction,
-        previous: u8,
-        cost: &mut f64,
-        noisy: bool,
-    ) -> u8 {
-        match d {
-            Distinction::PreviousAction => previous,
-            Distinction::Feature(f) => {
-                *cost += self.space.cost(f);
-                let truth = self.space.measure(world, s, f);
-                let seen = match (&mut self.rng, noisy) {
-                    (Some(rng), true) => self.noise.corrupt(truth, rng),
-                    _ => truth,
-                };
-                seen.code() as u8
-            }
-        }
-    }
-
-    /// Walk the tree to a leaf; `table` is given when unseen values may add leaves.
+    /// Walk the tree to a leaf through the learner's sensors (charged through `cost`);
+    /// `table` is given when unseen values may add leaves, else a value with no branch
+    /// gives `None`.
     fn walk(
         &mut self,
         world: &GridWorld,
@@ -239,26 +217,28 @@ impl UTree {
             let table = table.as_deref_mut()?;
             self.new_leaf(Vec::new(), table);
         }
-        let mut node = 0;
+        let mut at = 0;
         loop {
-            let (test, children) = match &self.nodes[node] {
-                Node::Leaf(row) => return Some(*row),
-                Node::Split { test, children } => (*test, children.clone()),
+            let (space, noise) = (&self.space, self.noise);
+            let mut sensor = self.rng.as_mut().map(|rng| (noise, rng));
+            let found = descend(&self.nodes, at, |d| {
+                read(space, world, s, d, previous, sensor.as_mut(), cost)
+            });
+            let (node, value) = match found {
+                Ok(row) => return Some(row),
+                Err(missing) => missing,
             };
-            let value = self.read(world, s, test, previous, cost, true);
-            node = match children.iter().find(|(v, _)| *v == value) {
-                Some(&(_, child)) => child,
-                None => {
-                    let table = table.as_deref_mut()?;
-                    let mut path = self.paths[node].clone();
-                    path.push((test, value));
-                    let child = self.new_leaf(path, table);
-                    if let Node::Split { children, .. } = &mut self.nodes[node] {
-                        children.push((value, child));
-                    }
-                    child
-                }
+            let table = table.as_deref_mut()?;
+            let Node::Split { test, .. } = self.nodes[node] else {
+                unreachable!("only a split node lacks a branch");
             };
+            let mut path = self.paths[node].clone();
+            path.push((test, value));
+            let child = self.new_leaf(path, table);
+            if let Node::Split { children, .. } = &mut self.nodes[node] {
+                children.push((value, child));
+            }
+            at = child;
         }
     }
 
@@ -269,11 +249,12 @@ impl UTree {
             self.last = self.current.take();
             return;
         }
-        let candidates = leaf.candidates.clone();
-        let previous = self.previous;
-        let values = candidates
+        let (space, noise, previous) = (&self.space, self.noise, self.previous);
+        let mut sensor = self.rng.as_mut().map(|rng| (noise, rng));
+        let values = leaf
+            .candidates
             .iter()
-            .map(|&d| self.read(world, s, d, previous, cost, true))
+            .map(|&d| read(space, world, s, d, previous, sensor.as_mut(), cost))
             .collect();
         self.last = self.current.replace(Pending { row, values });
     }
@@ -392,12 +373,15 @@ impl UTree {
 
     /// The row of state `s` after the previous action `previous`, free and noiseless
     /// (`None` where classifying would add a leaf).
-    fn peek(&mut self, world: &GridWorld, s: StateId, previous: u8) -> Option<RowId> {
-        let rng = self.rng.take();
+    fn peek(&self, world: &GridWorld, s: StateId, previous: u8) -> Option<RowId> {
+        if self.nodes.is_empty() {
+            return None;
+        }
         let mut cost = 0.0;
-        let row = self.walk(world, s, previous, None, &mut cost);
-        self.rng = rng;
-        row
+        descend(&self.nodes, 0, |d| {
+            read::<Xoshiro256PlusPlus>(&self.space, world, s, d, previous, None, &mut cost)
+        })
+        .ok()
     }
 }
 
@@ -488,29 +472,24 @@ impl crate::quality::Sees for UTree {
         noise: SensorNoise,
         rng: &mut R,
     ) -> Option<RowId> {
-        let previous = self.seen_previous;
-        if noise.is_zero() {
-            return self.peek(world, s, previous);
-        }
-        // Walk with the evaluation's own noise.
-        let mut node = 0;
         if self.nodes.is_empty() {
             return None;
         }
-        loop {
-            match &self.nodes[node] {
-                Node::Leaf(row) => return Some(*row),
-                Node::Split { test, children } => {
-                    let value = match *test {
-                        Distinction::PreviousAction => previous,
-                        Distinction::Feature(f) => {
-                            noise.corrupt(self.space.measure(world, s, f), rng).code() as u8
-                        }
-                    };
-                    node = children.iter().find(|(v, _)| *v == value)?.1;
-                }
-            }
-        }
+        // The evaluation's own noise; the charge is not counted.
+        let (previous, mut cost) = (self.seen_previous, 0.0);
+        let mut sensor = Some((noise, rng));
+        descend(&self.nodes, 0, |d| {
+            read(
+                &self.space,
+                world,
+                s,
+                d,
+                previous,
+                sensor.as_mut(),
+                &mut cost,
+            )
+        })
+        .ok()
     }
     fn memoryless(&self) -> bool {
         !self.nodes.iter().any(|n| {
@@ -556,17 +535,61 @@ impl crate::report::Describes for UTree {
     /// measured once learning is over).
     fn cost_after_learning(&mut self, world: &GridWorld, s: StateId) -> f64 {
         let mut cost = 0.0;
-        let rng = self.rng.take();
-        let mut node = 0;
-        while let Some(Node::Split { test, children }) = self.nodes.get(node).cloned() {
-            let value = self.read(world, s, test, NO_ACTION, &mut cost, false);
-            match children.iter().find(|(v, _)| *v == value) {
-                Some(&(_, c)) => node = c,
-                None => break,
+        if !self.nodes.is_empty() {
+            // A value with no branch ends the walk where it was read.
+            let _ = descend(&self.nodes, 0, |d| {
+                read::<Xoshiro256PlusPlus>(&self.space, world, s, d, NO_ACTION, None, &mut cost)
+            });
+        }
+        cost
+    }
+}
+
+/// Descend from `node` to a leaf, reading each tested distinction with `read`: the
+/// leaf's row, or the split node and the value read there that has no branch.
+fn descend(
+    nodes: &[Node],
+    mut node: usize,
+    mut read: impl FnMut(Distinction) -> u8,
+) -> Result<RowId, (usize, u8)> {
+    loop {
+        match &nodes[node] {
+            Node::Leaf(row) => return Ok(*row),
+            Node::Split { test, children } => {
+                let value = read(*test);
+                node = children
+                    .iter()
+                    .find(|(v, _)| *v == value)
+                    .ok_or((node, value))?
+                    .1;
             }
         }
-        self.rng = rng;
-        cost
+    }
+}
+
+/// Read a distinction at state `s`: the previous action, or a feature's value through
+/// `sensor` (the noise and the generator its errors come from; exact without), its cost
+/// added to `cost`.
+fn read<R: Rng + ?Sized>(
+    space: &FeatureSpace,
+    world: &GridWorld,
+    s: StateId,
+    d: Distinction,
+    previous: u8,
+    sensor: Option<&mut (SensorNoise, &mut R)>,
+    cost: &mut f64,
+) -> u8 {
+    match d {
+        Distinction::PreviousAction => previous,
+        Distinction::Feature(f) => {
+            *cost += space.cost(f);
+            let truth = space.measure(world, s, f);
+            let seen = match sensor {
+                Some((noise, rng)) => noise.corrupt(truth, &mut **rng),
+                None => truth,
+            };
+            seen.code() as u8
+        }
     }
 }
 
