@@ -266,11 +266,8 @@ pub(crate) fn policy_quality<P: Sees, R: Rng + ?Sized>(
                 episodes: states.len() as u64,
             };
         }
-        let n = rounds.len() as f64;
         if rounds.len() >= MC_MIN_ROUNDS as usize {
-            let mean = rounds.iter().sum::<f64>() / n;
-            let var = rounds.iter().map(|q| (q - mean).powi(2)).sum::<f64>() / (n - 1.0);
-            se = (var / n).sqrt();
+            se = standard_error(&rounds);
             if se < 0.005 {
                 break;
             }
@@ -334,16 +331,21 @@ fn sampled_policy_quality<P: Sees, R: Rng + ?Sized>(
     let parts: Vec<f64> = (0..POLICY_BATCHES)
         .map(|b| quality_of(&counts[b..=b]))
         .collect();
-    let k = POLICY_BATCHES as f64;
-    let mean = parts.iter().sum::<f64>() / k;
-    let var = parts.iter().map(|q| (q - mean).powi(2)).sum::<f64>() / (k - 1.0);
     QualityEstimate {
         quality,
         method: QualityMethod::SampledPolicy,
         // The spread of the batch estimates, scaled to the whole sample.
-        standard_error: (var / k).sqrt(),
+        standard_error: standard_error(&parts),
         episodes: 0,
     }
+}
+
+/// The standard error of the mean of `xs` (sample variance over `n`), for `n >= 2`.
+fn standard_error(xs: &[f64]) -> f64 {
+    let n = xs.len() as f64;
+    let mean = xs.iter().sum::<f64>() / n;
+    let var = xs.iter().map(|q| (q - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    (var / n).sqrt()
 }
 
 /// Mean over states with a positive V* of value / V*.
