@@ -490,31 +490,27 @@ fn write_report(def: &Definition, results: &[JobResult], out: &Path) -> Result<(
     };
     crate::files::write_atomic(&table, &md)?;
     crate::files::write_atomic(&out.join("robustness.csv"), &csv)?;
+    // Each figure: the paper's world, then the conditions of one departure, in order.
+    let along = |departs: fn(&Condition) -> bool| -> Vec<Condition> {
+        std::iter::once(Condition::Paper)
+            .chain(Condition::ALL.into_iter().filter(departs))
+            .collect()
+    };
     for (name, axis, conditions) in [
         (
             "slip",
             "slip probability",
-            vec![
-                Condition::Paper,
-                Condition::Slip(0.05),
-                Condition::Slip(0.1),
-                Condition::Slip(0.2),
-            ],
+            along(|c| matches!(c, Condition::Slip(_))),
         ),
         (
             "noise",
             "sensor noise",
-            vec![
-                Condition::Paper,
-                Condition::Noise(0.01),
-                Condition::Noise(0.05),
-                Condition::Noise(0.1),
-            ],
+            along(|c| matches!(c, Condition::Noise(_))),
         ),
         (
             "radius",
             "sensing radius",
-            vec![Condition::Paper, Condition::Radius(2), Condition::Radius(1)],
+            along(|c| matches!(c, Condition::Radius(_))),
         ),
     ] {
         let series: Vec<Series> = Learner::ALL
