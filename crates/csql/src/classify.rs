@@ -385,7 +385,11 @@ impl Classify {
     /// Classify without building a [`Classification`]: the hot path of the main loop, which
     /// allocates nothing once the cache is warm. The measured features stay in
     /// `self.measured`.
-    fn classify_quietly(&mut self, world: &GridWorld, s: StateId) -> (DescriptionId, bool) {
+    pub(crate) fn classify_quietly(
+        &mut self,
+        world: &GridWorld,
+        s: StateId,
+    ) -> (DescriptionId, bool) {
         let found = if self.use_cache {
             self.walk_cached(world, s)
         } else {

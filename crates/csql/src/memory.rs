@@ -45,9 +45,6 @@ type Step = (u8, u32);
 #[derive(Clone, Debug)]
 pub struct Remembering {
     inner: Classify,
-    /// CLASSIFY's own rows (one per description); the agent's table holds this
-    /// perception's rows.
-    inner_table: QTable,
     limit: u32,
     /// Steps of history each description uses (indexed by description).
     depth: Vec<u32>,
@@ -73,7 +70,6 @@ impl Remembering {
     pub fn new(inner: Classify, limit: u32) -> Remembering {
         Remembering {
             inner,
-            inner_table: QTable::new(4).expect("four actions"),
             limit,
             depth: Vec::new(),
             rows: BTreeMap::new(),
@@ -139,9 +135,9 @@ impl Remembering {
     }
 
     fn classify_here(&mut self, world: &GridWorld, s: StateId, table: &mut QTable) -> (RowId, f64) {
-        let (inner, cost) = self.inner.classify(world, s, &mut self.inner_table);
-        self.current = inner.0;
-        (self.row(inner.0, table), cost)
+        let (d, _) = self.inner.classify_quietly(world, s);
+        self.current = d.0;
+        (self.row(d.0, table), self.inner.last_cost())
     }
 }
 
