@@ -73,6 +73,7 @@ mod sensing;
 mod spec;
 mod stochastic;
 mod tabular;
+mod world;
 
 pub use builtin::{builtin, builtin_names};
 pub use error::{MapError, MdpError, Position};
@@ -90,3 +91,4 @@ pub use stochastic::{
     SensorNoise, Slip, SlipperyGrid, StochasticMdp, evaluate_policy, evaluate_stochastic_policy,
 };
 pub use tabular::{NegativeRewards, TabularMdp};
+pub use world::{Reading, SensedGrid, Sensors, World};

@@ -64,7 +64,7 @@ impl Oracle {
             o.distance = Some(distance);
             return Ok(o);
         }
-        let n = world.num_states();
+        let n = Mdp::num_states(world);
         let r = world.options().goal_reward;
         let v_star: Vec<f64> = distance
             .iter()
@@ -171,7 +171,7 @@ impl Oracle {
         gamma: f64,
     ) -> Result<Oracle, MdpError> {
         check_gamma(gamma)?;
-        let (n, na) = (mdp.base().num_states(), mdp.base().num_actions());
+        let (n, na) = (mdp.num_states(), mdp.num_actions());
         let mut v = vec![0.0; n];
         let mut out = Vec::new();
         let q = |v: &[f64], s: usize, a: usize, out: &mut Vec<_>| {
@@ -181,7 +181,7 @@ impl Oracle {
         loop {
             let mut change: f64 = 0.0;
             for s in 0..n {
-                if mdp.base().is_terminal(StateId(s as u32)) {
+                if mdp.is_terminal(StateId(s as u32)) {
                     continue;
                 }
                 let best = (0..na)
@@ -196,7 +196,7 @@ impl Oracle {
         }
         let mut optimal = vec![false; n * na];
         for s in 0..n {
-            if mdp.base().is_terminal(StateId(s as u32)) {
+            if mdp.is_terminal(StateId(s as u32)) {
                 continue;
             }
             for a in 0..na {
@@ -278,7 +278,7 @@ impl Oracle {
 
 /// Breadth-first distances to the goal over the reversed transition graph.
 fn grid_distances(world: &GridWorld) -> Vec<Option<u32>> {
-    let n = world.num_states();
+    let n = Mdp::num_states(world);
     let mut graph: DiGraph<(), ()> = DiGraph::with_capacity(n, n * 4);
     for _ in 0..n {
         graph.add_node(());

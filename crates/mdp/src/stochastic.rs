@@ -208,11 +208,12 @@ impl From<SensorNoise> for f64 {
 /// assert!((total - 1.0).abs() < 1e-12);
 /// ```
 pub trait StochasticMdp {
-    /// The deterministic MDP whose states, actions and terminal states this one shares
-    /// (for a grid world, the world itself).
-    type Base: Mdp + ?Sized;
-    /// The shared states, actions and terminal states.
-    fn base(&self) -> &Self::Base;
+    /// The number of states; ids are `0..num_states()`.
+    fn num_states(&self) -> usize;
+    /// The number of actions, the same in every state; ids are `0..num_actions()`.
+    fn num_actions(&self) -> usize;
+    /// Whether `s` is terminal (no action is taken there).
+    fn is_terminal(&self, s: StateId) -> bool;
     /// The outcomes of `a` in `s` with their probabilities, written into `out` (cleared
     /// first); outcomes may repeat a next state.
     fn outcomes(&self, s: StateId, a: ActionId, out: &mut Vec<(f64, Step)>);
@@ -221,9 +222,14 @@ pub trait StochasticMdp {
 }
 
 impl StochasticMdp for GridWorld {
-    type Base = GridWorld;
-    fn base(&self) -> &GridWorld {
-        self
+    fn num_states(&self) -> usize {
+        Mdp::num_states(self)
+    }
+    fn num_actions(&self) -> usize {
+        4
+    }
+    fn is_terminal(&self, s: StateId) -> bool {
+        Mdp::is_terminal(self, s)
     }
     fn outcomes(&self, s: StateId, a: ActionId, out: &mut Vec<(f64, Step)>) {
         out.clear();
@@ -302,9 +308,14 @@ impl<'w> SlipperyGrid<'w> {
 }
 
 impl StochasticMdp for SlipperyGrid<'_> {
-    type Base = GridWorld;
-    fn base(&self) -> &GridWorld {
-        self.world
+    fn num_states(&self) -> usize {
+        Mdp::num_states(self.world)
+    }
+    fn num_actions(&self) -> usize {
+        4
+    }
+    fn is_terminal(&self, s: StateId) -> bool {
+        Mdp::is_terminal(self.world, s)
     }
     fn outcomes(&self, s: StateId, a: ActionId, out: &mut Vec<(f64, Step)>) {
         out.clear();
@@ -357,7 +368,7 @@ pub fn evaluate_policy<M: StochasticMdp + ?Sized>(
     if !(0.0..1.0).contains(&gamma) {
         return Err(MdpError::InvalidDiscount { gamma });
     }
-    let (n, na) = (mdp.base().num_states(), mdp.base().num_actions());
+    let (n, na) = (mdp.num_states(), mdp.num_actions());
     if policy.len() != n || policy.iter().any(|a| a.index() >= na) {
         return Err(MdpError::BadPolicy {
             found: policy.len(),
@@ -399,7 +410,7 @@ pub fn evaluate_stochastic_policy<M: StochasticMdp + ?Sized>(
     if !(0.0..1.0).contains(&gamma) {
         return Err(MdpError::InvalidDiscount { gamma });
     }
-    let (n, na) = (mdp.base().num_states(), mdp.base().num_actions());
+    let (n, na) = (mdp.num_states(), mdp.num_actions());
     let bad = |p: &Vec<f64>| {
         p.len() != na
             || p.iter().any(|x| !(0.0..=1.0).contains(x))
@@ -430,14 +441,14 @@ fn iterate_bellman<M: StochasticMdp + ?Sized>(
     mdp: &M,
     value: impl Fn(StateId, &[f64], &mut Vec<(f64, Step)>) -> f64,
 ) -> Result<Vec<f64>, MdpError> {
-    let n = mdp.base().num_states();
+    let n = mdp.num_states();
     let mut v = vec![0.0; n];
     let mut out = Vec::new();
     loop {
         let mut change: f64 = 0.0;
         for s in 0..n {
             let sid = StateId(s as u32);
-            if mdp.base().is_terminal(sid) {
+            if mdp.is_terminal(sid) {
                 continue;
             }
             let x = value(sid, &v, &mut out);
