@@ -36,7 +36,7 @@
 mod cache;
 
 use cslearn::{Attend, Attention, Cost, FeatureId, InfoCost, MissingRule, RuleAttending};
-use mdp::{Cell, Feature, FeatureSpace, GridWorld, SensorNoise, StateId};
+use mdp::{Feature, Reading, SensorNoise, Sensors, StateId};
 use qlearn::{QTable, RowId};
 use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -62,7 +62,7 @@ pub struct Classification {
     /// Whether it was created by this call.
     pub created: bool,
     /// The features measured, in order, with the values read.
-    pub measured: Vec<(Feature, Cell)>,
+    pub measured: Vec<(Feature, Reading)>,
     /// Their summed cost.
     pub cost: f64,
 }
@@ -85,14 +85,15 @@ pub struct Classification {
 /// ```
 #[derive(Clone, Debug)]
 pub struct Classify {
-    space: FeatureSpace,
+    prices: Vec<f64>,
+    readings: Vec<u32>,
     costs: Vec<Cost>,
     rep: Representation,
     select: InfoCost,
     attention: Attention,
-    measured: Vec<(Feature, Cell)>,
+    measured: Vec<(Feature, Reading)>,
     /// What the free view reads (never charged, never part of a classification).
-    probe: Vec<(Feature, Cell)>,
+    probe: Vec<(Feature, Reading)>,
     cache: Cache,
     use_cache: bool,
     /// The sensors' error rate and the generator their errors are drawn from (never
@@ -105,7 +106,7 @@ pub struct Classify {
     confirm: u32,
     /// Reads of each measured feature (majority), each charged.
     reads: u32,
-    sightings: std::collections::BTreeMap<Vec<(Feature, Cell)>, u32>,
+    sightings: std::collections::BTreeMap<Vec<(Feature, Reading)>, u32>,
 }
 
 impl Classify {
@@ -115,8 +116,8 @@ impl Classify {
     /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
     /// assert!(csql::Classify::new(&space).representation().is_empty());
     /// ```
-    pub fn new(space: &FeatureSpace) -> Classify {
-        Classify::with_representation(space, Representation::default())
+    pub fn new<W: Sensors + ?Sized>(world: &W) -> Classify {
+        Classify::with_representation(world, Representation::default())
     }
 
     /// CLASSIFY over a given representation (for learning on a fixed one).
@@ -127,14 +128,16 @@ impl Classify {
     /// rep.push(&[]);
     /// assert_eq!(csql::Classify::with_representation(&space, rep).representation().len(), 1);
     /// ```
-    pub fn with_representation(space: &FeatureSpace, rep: Representation) -> Classify {
-        let costs = space
-            .costs()
+    pub fn with_representation<W: Sensors + ?Sized>(world: &W, rep: Representation) -> Classify {
+        let features = (0..world.num_features() as u32).map(Feature);
+        let prices: Vec<f64> = features.clone().map(|f| world.price(f)).collect();
+        let costs = prices
             .iter()
-            .map(|&c| Cost::new(c).expect("feature spaces hold valid costs"))
+            .map(|&c| Cost::new(c).expect("worlds hold valid prices"))
             .collect();
         Classify {
-            space: space.clone(),
+            readings: features.map(|f| world.readings(f)).collect(),
+            prices,
             costs,
             rep,
             select: InfoCost::new(MissingRule::C45),
@@ -260,7 +263,7 @@ impl Classify {
     /// let seen = [(Feature(0), Cell::Empty), (Feature(1), Cell::Obstacle)];
     /// assert_eq!(c.closest(&seen), Some(csql::DescriptionId(1)));
     /// ```
-    pub fn closest(&self, measured: &[(Feature, Cell)]) -> Option<DescriptionId> {
+    pub fn closest(&self, measured: &[(Feature, Reading)]) -> Option<DescriptionId> {
         let score = |d: crate::Description<'_>| -> i64 {
             d.features()
                 .map(|(f, v)| match measured.iter().find(|(m, _)| *m == f) {
@@ -281,14 +284,15 @@ impl Classify {
     }
 
     /// What the sensors report for feature `f` of state `s`.
-    fn read(&mut self, world: &GridWorld, s: StateId, f: Feature) -> Cell {
-        let truth = self.space.measure(world, s, f);
-        self.noise.majority(truth, self.reads, &mut self.noise_rng)
+    fn read<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId, f: Feature) -> Reading {
+        let truth = world.read(s, f);
+        self.noise
+            .majority_reading(truth, self.readings[f.index()], self.reads, &mut self.noise_rng)
     }
 
     /// Nearest matching (see [`Classify::with_matching`]): after the walk found no
     /// description, the first one at distance one from the state, if any.
-    fn nearest(&mut self, world: &GridWorld, s: StateId) -> Option<DescriptionId> {
+    fn nearest<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> Option<DescriptionId> {
         let ids: Vec<DescriptionId> = self
             .rep
             .iter()
@@ -362,8 +366,8 @@ impl Classify {
     /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
     /// assert_eq!(csql::Classify::new(&space).space().len(), 80);
     /// ```
-    pub fn space(&self) -> &FeatureSpace {
-        &self.space
+    pub fn prices(&self) -> &[f64] {
+        &self.prices
     }
 
     /// Classify a state, creating a description if none matches; every measurement is
@@ -377,7 +381,7 @@ impl Classify {
     /// let s = world.states()[0];
     /// assert_eq!(c.classify_state(&world, s).description.0, 0);
     /// ```
-    pub fn classify_state(&mut self, world: &GridWorld, s: StateId) -> Classification {
+    pub fn classify_state<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> Classification {
         let (d, created) = self.classify_quietly(world, s);
         self.report(d, created)
     }
@@ -385,9 +389,9 @@ impl Classify {
     /// Classify without building a [`Classification`]: the hot path of the main loop, which
     /// allocates nothing once the cache is warm. The measured features stay in
     /// `self.measured`.
-    pub(crate) fn classify_quietly(
+    pub(crate) fn classify_quietly<W: Sensors + ?Sized>(
         &mut self,
-        world: &GridWorld,
+        world: &W,
         s: StateId,
     ) -> (DescriptionId, bool) {
         let found = if self.use_cache {
@@ -418,7 +422,7 @@ impl Classify {
     /// assert_eq!(out.measured, vec![(Feature(0), Cell::Empty)]);
     /// assert!(out.created && out.cost == 1.0);
     /// ```
-    pub fn classify_plain(&mut self, world: &GridWorld, s: StateId) -> Classification {
+    pub fn classify_plain<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> Classification {
         let found = self.walk_plain(world, s);
         let (d, created) = self.settle(found);
         self.report(d, created)
@@ -426,7 +430,7 @@ impl Classify {
 
     /// Run the plain procedure until it finds a description (`Some`) or decides to create
     /// one (`None`).
-    fn walk_plain(&mut self, world: &GridWorld, s: StateId) -> Option<DescriptionId> {
+    fn walk_plain<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> Option<DescriptionId> {
         self.measured.clear();
         RuleAttending.start(self.rep.library(), &mut self.attention);
         loop {
@@ -439,7 +443,7 @@ impl Classify {
     }
 
     /// Measure feature `f` on state `s` (charged) and drop the candidates it rules out.
-    fn measure_and_attend(&mut self, world: &GridWorld, s: StateId, f: Feature) {
+    fn measure_and_attend<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId, f: Feature) {
         let v = self.read(world, s, f);
         self.measured.push((f, v));
         RuleAttending.attend(
@@ -464,9 +468,9 @@ impl Classify {
     /// assert!(!c.matches(&world, below, wall));
     /// assert_eq!(c.last_measured().len(), 1);
     /// ```
-    pub fn matches(&mut self, world: &GridWorld, s: StateId, d: DescriptionId) -> bool {
+    pub fn matches<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId, d: DescriptionId) -> bool {
         self.measured.clear();
-        let wanted: Vec<(Feature, Cell)> = self.rep.get(d).features().collect();
+        let wanted: Vec<(Feature, Reading)> = self.rep.get(d).features().collect();
         for (f, want) in wanted {
             let v = self.read(world, s, f);
             self.measured.push((f, v));
@@ -496,9 +500,9 @@ impl Classify {
     /// assert_eq!(c.classify_among(&world, below, &[wall, open]), Some(open));
     /// assert_eq!(c.last_measured(), [(Feature(0), Cell::Empty)]);
     /// ```
-    pub fn classify_among(
+    pub fn classify_among<W: Sensors + ?Sized>(
         &mut self,
-        world: &GridWorld,
+        world: &W,
         s: StateId,
         candidates: &[DescriptionId],
     ) -> Option<DescriptionId> {
@@ -556,7 +560,7 @@ impl Classify {
     /// c.classify_state(&world, world.states()[0]);
     /// assert!(c.last_measured().is_empty()); // the first description is the empty one
     /// ```
-    pub fn last_measured(&self) -> &[(Feature, Cell)] {
+    pub fn last_measured(&self) -> &[(Feature, Reading)] {
         &self.measured
     }
 
@@ -571,7 +575,7 @@ impl Classify {
     /// assert_eq!(c.last_cost(), out.cost);
     /// ```
     pub fn last_cost(&self) -> f64 {
-        let once: f64 = self.measured.iter().map(|&(f, _)| self.space.cost(f)).sum();
+        let once: f64 = self.measured.iter().map(|&(f, _)| self.prices[f.index()]).sum();
         once * f64::from(self.reads)
     }
 
@@ -625,12 +629,12 @@ impl Classify {
 
     /// The cached path: walk the decision tree of the procedure, growing it where no
     /// classification has been before.
-    fn walk_cached(&mut self, world: &GridWorld, s: StateId) -> Option<DescriptionId> {
-        let space = &self.space;
+    fn walk_cached<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> Option<DescriptionId> {
+        let readings = &self.readings;
         let (noise, reads, noise_rng) = (self.noise, self.reads, &mut self.noise_rng);
         self.cache
             .walk(self.rep.library(), &self.costs, &mut self.measured, |f| {
-                noise.majority(space.measure(world, s, f), reads, noise_rng)
+                noise.majority_reading(world.read(s, f), readings[f.index()], reads, noise_rng)
             })
     }
 
@@ -650,15 +654,14 @@ impl Classify {
     /// assert_eq!(c.lookup(&world, s), Some(d));
     /// assert_eq!(c.representation().len(), 1);
     /// ```
-    pub fn lookup(&mut self, world: &GridWorld, s: StateId) -> Option<DescriptionId> {
-        let space = &self.space;
+    pub fn lookup<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> Option<DescriptionId> {
         if self.use_cache {
             self.cache
                 .walk(self.rep.library(), &self.costs, &mut self.probe, |f| {
-                    space.measure(world, s, f)
+                    world.read(s, f)
                 })
         } else {
-            self.rep.matching(world, space, s)
+            self.rep.matching(world, s)
         }
     }
 
@@ -678,18 +681,18 @@ impl Classify {
     /// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(2);
     /// assert_eq!(c.lookup_noisy(&world, s, SensorNoise::new(0.5).unwrap(), &mut rng), Some(d));
     /// ```
-    pub fn lookup_noisy<R: rand::Rng + ?Sized>(
+    pub fn lookup_noisy<W: Sensors + ?Sized, R: rand::Rng + ?Sized>(
         &mut self,
-        world: &GridWorld,
+        world: &W,
         s: StateId,
         noise: SensorNoise,
         rng: &mut R,
     ) -> Option<DescriptionId> {
-        let (space, reads) = (&self.space, self.reads);
+        let (readings, reads) = (&self.readings, self.reads);
         let found = self
             .cache
             .walk(self.rep.library(), &self.costs, &mut self.probe, |f| {
-                noise.majority(space.measure(world, s, f), reads, rng)
+                noise.majority_reading(world.read(s, f), readings[f.index()], reads, rng)
             });
         if found.is_some() {
             return found;
@@ -713,7 +716,7 @@ impl Classify {
                 .features()
                 .filter(|&(f, v)| {
                     let x = measured.iter().find(|(m, _)| *m == f).map_or_else(
-                        || noise.majority(space.measure(world, s, f), reads, rng),
+                        || noise.majority_reading(world.read(s, f), readings[f.index()], reads, rng),
                         |p| p.1,
                     );
                     x != v
@@ -741,13 +744,13 @@ impl Classify {
     /// c.add_feature(&world, d, s);
     /// assert_eq!(c.lookup_cost(&world, s), 1.0);
     /// ```
-    pub fn lookup_cost(&mut self, world: &GridWorld, s: StateId) -> f64 {
-        let space = &self.space;
+    pub fn lookup_cost<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> f64 {
         self.cache
             .walk(self.rep.library(), &self.costs, &mut self.probe, |f| {
-                space.measure(world, s, f)
+                world.read(s, f)
             });
-        let once: f64 = self.probe.iter().map(|&(f, _)| space.cost(f)).sum();
+        let prices = &self.prices;
+        let once: f64 = self.probe.iter().map(|&(f, _)| prices[f.index()]).sum();
         once * f64::from(self.reads)
     }
 
@@ -764,17 +767,17 @@ impl Classify {
     /// assert_eq!(c.add_feature(&world, d, s), Some(1.0));
     /// assert_eq!(c.representation().get(d).len(), 1);
     /// ```
-    pub fn add_feature(&mut self, world: &GridWorld, d: DescriptionId, s: StateId) -> Option<f64> {
-        let f = self.rep.get(d).next_missing(self.space.len())?;
+    pub fn add_feature<W: Sensors + ?Sized>(&mut self, world: &W, d: DescriptionId, s: StateId) -> Option<f64> {
+        let f = self.rep.get(d).next_missing(self.prices.len())?;
         let v = self.read(world, s, f);
         self.rep.refine(d, f, v);
         self.cache.on_refine(self.rep.library(), d, f, v);
-        Some(self.space.cost(f) * f64::from(self.reads))
+        Some(self.prices[f.index()] * f64::from(self.reads))
     }
 }
 
 impl Perception for Classify {
-    fn classify(&mut self, world: &GridWorld, s: StateId, table: &mut QTable) -> (RowId, f64) {
+    fn classify<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId, table: &mut QTable) -> (RowId, f64) {
         let (d, created) = self.classify_quietly(world, s);
         if created {
             let row = table.add_row();
@@ -783,7 +786,7 @@ impl Perception for Classify {
         (d.row(), self.last_cost())
     }
 
-    fn refine(&mut self, world: &GridWorld, row: RowId, s: StateId) -> Option<f64> {
+    fn refine<W: Sensors + ?Sized>(&mut self, world: &W, row: RowId, s: StateId) -> Option<f64> {
         self.add_feature(world, DescriptionId(row.0), s)
     }
 
@@ -791,7 +794,7 @@ impl Perception for Classify {
         self.rep.len()
     }
 
-    fn lookup(&mut self, world: &GridWorld, s: StateId) -> Option<RowId> {
+    fn lookup<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> Option<RowId> {
         Classify::lookup(self, world, s).map(DescriptionId::row)
     }
 }

@@ -37,6 +37,12 @@ pub enum Error {
     /// The cost model gave a bad cost.
     #[error(transparent)]
     Cost(#[from] mdp::BadCost),
+    /// A setting or a measure that only makes sense on a grid map, asked of another world.
+    #[error("{what} needs a grid map; this world is not one")]
+    GridOnly {
+        /// What was asked.
+        what: &'static str,
+    },
 }
 
 /// What is wrong with a settings file.

@@ -1,8 +1,8 @@
 //! The learned policy and descriptions drawn on the map (the paper's Figure 4b).
 
-use mdp::{Action, Cell, Pos};
+use mdp::{Action, Pos};
 
-use crate::report::RunReport;
+use crate::report::{FeatureReport, RunReport, StateReport};
 use crate::run::Setup;
 
 /// The map as SVG with, for every state, its greedy action as an arrow and its
@@ -50,7 +50,7 @@ pub fn policy_svg(setup: &Setup, report: &RunReport) -> String {
         report
             .states
             .iter()
-            .find(|st| st.row == row && st.col == col)
+            .find(|st| st.row == Some(row) && st.col == Some(col))
     };
     // Cells, with the border of obstacles around the interior.
     for r in 0..h as usize {
@@ -91,14 +91,14 @@ pub fn policy_svg(setup: &Setup, report: &RunReport) -> String {
                     "<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"12\" fill=\"#222\">d{label}<title>row {}, col {}: d{label}, V = {:.4} (V* = {:.4}): {}</title></text>",
                     x + 3.0,
                     y + BAND - 3.0,
-                    st.row,
-                    st.col,
+                    row_of(st),
+                    col_of(st),
                     st.value.unwrap_or(0.0),
                     st.v_star,
                     features_text(report, label)
                 );
             }
-            if let Some(a) = st.greedy_action {
+            if let Some(a) = st.greedy_action.as_deref().and_then(action_named) {
                 // The arrow lives below the label band: centre of the lower part.
                 let (cx, cy) = (x + CELL / 2.0, y + BAND + (CELL - BAND) / 2.0);
                 s.push_str(&arrow(cx, cy, a, (CELL - BAND) * 0.36, "arrow"));
@@ -181,6 +181,40 @@ fn escape(s: &str) -> String {
 }
 
 /// A description's features as `(dx, dy) value`, comma-separated.
+/// A feature's offset on a grid (`(0, 0)` for a feature that has none).
+fn offset(f: &FeatureReport) -> (i32, i32) {
+    (f.dx.unwrap_or(0), f.dy.unwrap_or(0))
+}
+
+/// A feature as a reader knows it: its offset on a grid, its name elsewhere.
+fn feature_label(f: &FeatureReport) -> String {
+    match (&f.feature, f.dx, f.dy) {
+        (Some(name), _, _) => name.clone(),
+        (None, dx, dy) => format!("({}, {})", dx.unwrap_or(0), dy.unwrap_or(0)),
+    }
+}
+
+/// A state as a reader knows it: `(row, col)` on a grid, its label elsewhere.
+fn state_label(st: &StateReport) -> String {
+    match &st.label {
+        Some(label) => label.clone(),
+        None => format!("({}, {})", row_of(st), col_of(st)),
+    }
+}
+
+fn row_of(st: &StateReport) -> usize {
+    st.row.unwrap_or(0)
+}
+
+fn col_of(st: &StateReport) -> usize {
+    st.col.unwrap_or(0)
+}
+
+/// The grid action of a report's action name.
+fn action_named(name: &str) -> Option<Action> {
+    Action::ALL.into_iter().find(|a| a.name() == name)
+}
+
 fn features_text(report: &RunReport, label: u32) -> String {
     let d = &report.descriptions[label as usize];
     if d.features.is_empty() {
@@ -188,7 +222,7 @@ fn features_text(report: &RunReport, label: u32) -> String {
     }
     d.features
         .iter()
-        .map(|f| format!("({}, {}) {}", f.dx, f.dy, f.value.name()))
+        .map(|f| format!("{} {}", feature_label(f), f.value))
         .collect::<Vec<_>>()
         .join(", ")
 }
@@ -215,7 +249,7 @@ pub fn descriptions_table(report: &RunReport) -> String {
             .states
             .iter()
             .filter(|st| st.description == Some(d.label))
-            .map(|st| format!("({}, {})", st.row, st.col))
+            .map(state_label)
             .collect();
         let cost: f64 = d.features.iter().map(|f| f.cost).sum();
         let _ = writeln!(
@@ -250,7 +284,7 @@ pub fn descriptions_svg(report: &RunReport) -> String {
         .descriptions
         .iter()
         .flat_map(|d| &d.features)
-        .map(|f| f.dx.abs().max(f.dy.abs()))
+        .map(|f| offset(f).0.abs().max(offset(f).1.abs()))
         .max()
         .unwrap_or(1)
         .max(1);
@@ -288,18 +322,19 @@ pub fn descriptions_svg(report: &RunReport) -> String {
         );
         let cell_at = |dx: i32, dy: i32| ((dx + reach) * CELL, 14 + (reach - dy) * CELL);
         for f in &d.features {
-            let (x, y) = cell_at(f.dx, f.dy);
-            let fill = match f.value {
-                Cell::Obstacle => "#555555",
-                Cell::Goal => "#bbbbbb",
-                Cell::Empty => "#ffffff",
+            let (dx, dy) = offset(f);
+            let (x, y) = cell_at(dx, dy);
+            let fill = match f.value.as_str() {
+                "obstacle" => "#555555",
+                "goal" => "#bbbbbb",
+                _ => "#ffffff",
             };
             let _ = write!(
                 s,
                 "<rect x=\"{x}\" y=\"{y}\" width=\"{CELL}\" height=\"{CELL}\" fill=\"{fill}\" stroke=\"#888\" stroke-width=\"0.6\"><title>({}, {}) = {}, cost {}</title></rect>",
-                f.dx,
-                f.dy,
-                f.value.name(),
+                dx,
+                dy,
+                f.value,
                 f.cost
             );
         }

@@ -3,7 +3,7 @@
 //! Nothing here is charged and nothing here reaches the learner: it only decides when a
 //! run has found a sufficient representation and when it has converged.
 
-use mdp::{GridWorld, Oracle, StateId};
+use mdp::{Oracle, StateId, World};
 use qlearn::{QTable, RowId};
 use serde::Serialize;
 
@@ -24,7 +24,7 @@ use crate::perception::Perception;
 ///
 /// ```
 /// use csql::Verdict;
-/// use mdp::{GridWorld, Oracle, StateId};
+/// use mdp::{Oracle, StateId, World};
 /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
 /// let oracle = Oracle::for_grid(&world, 0.9).unwrap();
 /// let mut table = qlearn::QTable::new(4).unwrap();
@@ -54,7 +54,7 @@ impl Verdict {
     ///
     /// ```
     /// use csql::Verdict;
-    /// use mdp::{GridWorld, Oracle, StateId};
+    /// use mdp::{Oracle, StateId, World};
     /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let oracle = Oracle::for_grid(&world, 0.9).unwrap();
     /// let mut table = qlearn::QTable::new(4).unwrap();
@@ -63,8 +63,8 @@ impl Verdict {
     /// let v = Verdict::judge(&world, &oracle, &table, &rows, 1e-9);
     /// assert!(v.sufficient && v.consistent_literal && !v.converged);
     /// ```
-    pub fn judge(
-        world: &GridWorld,
+    pub fn judge<W: World + ?Sized>(
+        world: &W,
         oracle: &Oracle,
         table: &QTable,
         rows: &[Option<RowId>],
@@ -88,9 +88,9 @@ impl Verdict {
             let same_v = rest
                 .iter()
                 .all(|&s| (oracle.v_star(s) - v0).abs() <= 1e-12 * v0.abs().max(1.0));
-            let shared_action = mdp::Action::ALL
-                .iter()
-                .any(|a| group.iter().all(|&s| oracle.is_optimal(s, a.id())));
+            let shared_action = oracle
+                .actions()
+                .any(|a| group.iter().all(|&s| oracle.is_optimal(s, a)));
             if !(same_v && shared_action) {
                 inconsistent += 1;
             }
@@ -164,9 +164,9 @@ pub struct Judge {
 
 impl Judge {
     /// Judge an agent at the end of a trial.
-    pub fn judge<P: Perception, S>(
+    pub fn judge<W: World + ?Sized, P: Perception, S>(
         &mut self,
-        world: &GridWorld,
+        world: &W,
         oracle: &Oracle,
         agent: &mut Agent<P, S>,
         tolerance: f64,
@@ -269,14 +269,14 @@ impl Judge {
         let same_v = rest
             .iter()
             .all(|&i| (oracle.v_star(states[i as usize]) - v0).abs() <= 1e-12 * v0.abs().max(1.0));
-        let shared_action = mdp::Action::ALL.iter().any(|a| {
+        let shared_action = oracle.actions().any(|a| {
             group
                 .iter()
-                .all(|&i| oracle.is_optimal(states[i as usize], a.id()))
+                .all(|&i| oracle.is_optimal(states[i as usize], a))
         });
         let literal = rest.iter().all(|&i| {
-            mdp::Action::ALL.iter().all(|a| {
-                oracle.is_optimal(states[i as usize], a.id()) == oracle.is_optimal(first, a.id())
+            oracle.actions().all(|a| {
+                oracle.is_optimal(states[i as usize], a) == oracle.is_optimal(first, a)
             })
         });
         let settled = group.iter().all(|&i| {

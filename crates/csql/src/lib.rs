@@ -224,7 +224,9 @@ pub use report::{
     Table1, Table1Row, TracePoint,
 };
 pub use representation::{Description, DescriptionId, Representation};
-pub use run::{Setup, run, run_observed, run_on, run_on_with, run_with_representation};
+pub use run::{
+    Scene, Setup, run, run_in, run_observed, run_on, run_on_with, run_with_representation,
+};
 pub use settings::{MAX_SETTINGS_BYTES, MapSource, NonNegative, RunSettings, TrialCap};
 pub use strategy::{
     Eager, Lazy, Never, RandomMoves, Reaction, Resetting, Strategy, StrategyKind, UnknownStrategy,

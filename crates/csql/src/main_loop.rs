@@ -27,7 +27,7 @@
 //! Per trial: one `random_range(0..n)` for the start state. Per move: one uniform `f64`
 //! for Boltzmann selection, or one `random_range(0..4)` for a random move.
 
-use mdp::{GridWorld, Mdp, StateId, StochasticMdp};
+use mdp::{StateId, World};
 use qlearn::{QTable, RowId, Target};
 use rand::{Rng, RngExt};
 use serde::Serialize;
@@ -195,11 +195,12 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
     /// assert_eq!(rec.cost, rec.moves as f64 - if rec.reached_goal { 1.0 } else { 0.0 } + 1.0);
     /// ```
     ///
-    /// The world is any [`StochasticMdp`] over a grid world: the grid world itself, or a
-    /// [`mdp::SlipperyGrid`] whose moves draw from `rng` (a grid world draws nothing).
-    pub fn run_trial<W: StochasticMdp<Base = GridWorld> + ?Sized, R: Rng + ?Sized>(
+    /// The world is any [`World`]: a grid map sensed around the robot
+    /// ([`mdp::SensedGrid`], whose slippery moves draw from `rng`; without slip nothing is
+    /// drawn), or any finite world with priced features.
+    pub fn run_trial<W: World + ?Sized, R: Rng + ?Sized>(
         &mut self,
-        dynamics: &W,
+        world: &W,
         start: StateId,
         trial: u32,
         rng: &mut R,
@@ -212,7 +213,6 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
             journal,
             detector,
         } = self;
-        let world = dynamics.base();
         let mut rec = TrialRecord {
             trial,
             ..TrialRecord::default()
@@ -235,7 +235,7 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
             };
             // 2. y <- next-state(x, a), r <- reward.
             // 3. descrip(y) <- CLASSIFY(y); the goal ends the trial unclassified.
-            let step = dynamics.sample(x, a, rng);
+            let step = world.sample(x, a, rng);
             rec.moves += 1;
             let next = if step.terminated {
                 None

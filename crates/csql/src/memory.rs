@@ -16,7 +16,7 @@
 
 use std::collections::{BTreeMap, VecDeque};
 
-use mdp::{ActionId, Cell, Feature, GridWorld, SensorNoise, StateId};
+use mdp::{ActionId, Feature, Reading, SensorNoise, StateId, World};
 use qlearn::{QTable, RowId};
 use rand::Rng;
 
@@ -134,7 +134,7 @@ impl Remembering {
         row
     }
 
-    fn classify_here(&mut self, world: &GridWorld, s: StateId, table: &mut QTable) -> (RowId, f64) {
+    fn classify_here<W: World + ?Sized>(&mut self, world: &W, s: StateId, table: &mut QTable) -> (RowId, f64) {
         let (d, _) = self.inner.classify_quietly(world, s);
         self.current = d.0;
         (self.row(d.0, table), self.inner.last_cost())
@@ -142,14 +142,14 @@ impl Remembering {
 }
 
 impl Perception for Remembering {
-    fn classify(&mut self, world: &GridWorld, s: StateId, table: &mut QTable) -> (RowId, f64) {
+    fn classify<W: World + ?Sized>(&mut self, world: &W, s: StateId, table: &mut QTable) -> (RowId, f64) {
         self.history.clear();
         self.classify_here(world, s, table)
     }
 
-    fn classify_next<R: Rng + ?Sized>(
+    fn classify_next<W: World + ?Sized, R: Rng + ?Sized>(
         &mut self,
-        world: &GridWorld,
+        world: &W,
         _from: RowId,
         a: ActionId,
         s: StateId,
@@ -161,9 +161,9 @@ impl Perception for Remembering {
         self.classify_here(world, s, table)
     }
 
-    fn classify_again(
+    fn classify_again<W: World + ?Sized>(
         &mut self,
-        world: &GridWorld,
+        world: &W,
         _refined: RowId,
         _current: RowId,
         s: StateId,
@@ -172,7 +172,7 @@ impl Perception for Remembering {
         self.classify_here(world, s, table)
     }
 
-    fn refine(&mut self, world: &GridWorld, row: RowId, s: StateId) -> Option<f64> {
+    fn refine<W: World + ?Sized>(&mut self, world: &W, row: RowId, s: StateId) -> Option<f64> {
         let d = self.description_of[row.index()];
         let depth = &mut self.depth[d as usize];
         if *depth == 0
@@ -191,16 +191,16 @@ impl Perception for Remembering {
     }
 
     /// The row of `s` with no history (as at a trial's start).
-    fn lookup(&mut self, world: &GridWorld, s: StateId) -> Option<RowId> {
+    fn lookup<W: World + ?Sized>(&mut self, world: &W, s: StateId) -> Option<RowId> {
         let d = self.inner.lookup(world, s)?;
         self.rows.get(&(d.0, Vec::new())).copied()
     }
 }
 
 impl Sees for Remembering {
-    fn sees<R: Rng + ?Sized>(
+    fn sees<W: World + ?Sized, R: Rng + ?Sized>(
         &mut self,
-        world: &GridWorld,
+        world: &W,
         s: StateId,
         noise: SensorNoise,
         rng: &mut R,
@@ -223,7 +223,7 @@ impl Sees for Remembering {
 
 impl crate::report::Describes for Remembering {
     /// Each row with its description's features (its history is not a feature).
-    fn described(&self) -> Vec<(RowId, Vec<(Feature, Cell)>)> {
+    fn described(&self) -> Vec<(RowId, Vec<(Feature, Reading)>)> {
         let rep = self.inner.representation();
         self.description_of
             .iter()
@@ -236,7 +236,7 @@ impl crate::report::Describes for Remembering {
             })
             .collect()
     }
-    fn cost_after_learning(&mut self, world: &GridWorld, s: StateId) -> f64 {
+    fn cost_after_learning<W: World + ?Sized>(&mut self, world: &W, s: StateId) -> f64 {
         self.inner.lookup_cost(world, s)
     }
 }

@@ -4,7 +4,7 @@
 //! row, which makes the main loop plain Q-learning (the baseline and the paper's
 //! full-sensing reference).
 
-use mdp::{ActionId, GridWorld, Mdp, StateId};
+use mdp::{ActionId, Reading, StateId, World};
 use qlearn::{QTable, RowId};
 use rand::Rng;
 
@@ -25,7 +25,12 @@ use rand::Rng;
 pub trait Perception {
     /// The row of a non-terminal state, adding rows to `table` if the perception grows;
     /// returns the sensing cost charged.
-    fn classify(&mut self, world: &GridWorld, s: StateId, table: &mut QTable) -> (RowId, f64);
+    fn classify<W: World + ?Sized>(
+        &mut self,
+        world: &W,
+        s: StateId,
+        table: &mut QTable,
+    ) -> (RowId, f64);
     /// The row of a non-terminal state `s` reached by action `a` from a state of row
     /// `from`: a perception that predicts may skip measurements here (see
     /// [`crate::Predicting`]). By default, [`Perception::classify`], drawing nothing from
@@ -42,9 +47,9 @@ pub trait Perception {
     /// let (row, cost) = p.classify_next(&world, from, mdp::ActionId(3), mdp::StateId(1), &mut table, &mut rng);
     /// assert_eq!((row.0, cost), (1, 5.0));
     /// ```
-    fn classify_next<R: Rng + ?Sized>(
+    fn classify_next<W: World + ?Sized, R: Rng + ?Sized>(
         &mut self,
-        world: &GridWorld,
+        world: &W,
         from: RowId,
         a: ActionId,
         s: StateId,
@@ -65,9 +70,9 @@ pub trait Perception {
     /// let (row, _) = p.classify(&world, mdp::StateId(0), &mut table);
     /// assert_eq!(p.classify_again(&world, row, row, mdp::StateId(0), &mut table), (row, 5.0));
     /// ```
-    fn classify_again(
+    fn classify_again<W: World + ?Sized>(
         &mut self,
-        world: &GridWorld,
+        world: &W,
         refined: RowId,
         current: RowId,
         s: StateId,
@@ -91,13 +96,13 @@ pub trait Perception {
     }
     /// Make `row` more specific, using state `s` (which it describes) for the new value;
     /// returns the cost charged, or `None` if the row cannot be refined further.
-    fn refine(&mut self, world: &GridWorld, row: RowId, s: StateId) -> Option<f64>;
+    fn refine<W: World + ?Sized>(&mut self, world: &W, row: RowId, s: StateId) -> Option<f64>;
     /// How many rows (descriptions) the perception has made so far.
     fn rows(&self) -> usize;
     /// The row state `s` belongs to now, found without charging and without adding a
     /// row (`None` if classifying it would add one). This is the view the oracle judges
     /// the perception through; the learner never uses it.
-    fn lookup(&mut self, world: &GridWorld, s: StateId) -> Option<RowId>;
+    fn lookup<W: World + ?Sized>(&mut self, world: &W, s: StateId) -> Option<RowId>;
 }
 
 /// Every state identified by its own row, at a fixed price per classification (for
@@ -115,7 +120,7 @@ impl Identified {
     /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let p = csql::Identified::new(&world, vec![1.0; 9]);
     /// ```
-    pub fn new(world: &GridWorld, cost: Vec<f64>) -> Identified {
+    pub fn new<W: World + ?Sized>(world: &W, cost: Vec<f64>) -> Identified {
         Identified {
             rows: vec![None; world.num_states()],
             cost,
@@ -124,17 +129,22 @@ impl Identified {
 }
 
 impl Perception for Identified {
-    fn classify(&mut self, _world: &GridWorld, s: StateId, table: &mut QTable) -> (RowId, f64) {
+    fn classify<W: World + ?Sized>(
+        &mut self,
+        _world: &W,
+        s: StateId,
+        table: &mut QTable,
+    ) -> (RowId, f64) {
         let row = *self.rows[s.index()].get_or_insert_with(|| table.add_row());
         (row, self.cost[s.index()])
     }
-    fn refine(&mut self, _world: &GridWorld, _row: RowId, _s: StateId) -> Option<f64> {
+    fn refine<W: World + ?Sized>(&mut self, _world: &W, _row: RowId, _s: StateId) -> Option<f64> {
         None
     }
     fn rows(&self) -> usize {
         self.rows.iter().flatten().count()
     }
-    fn lookup(&mut self, _world: &GridWorld, s: StateId) -> Option<RowId> {
+    fn lookup<W: World + ?Sized>(&mut self, _world: &W, s: StateId) -> Option<RowId> {
         self.rows[s.index()]
     }
 }
@@ -174,7 +184,7 @@ pub struct FullView {
     /// The row of each view class, once it was seen.
     rows: Vec<Option<RowId>>,
     /// The whole view of each class: every feature in the bordered world and its value.
-    views: Vec<Vec<(mdp::Feature, mdp::Cell)>>,
+    views: Vec<Vec<(mdp::Feature, Reading)>>,
     /// What a classification of each state costs.
     cost: Vec<f64>,
 }
@@ -187,16 +197,26 @@ impl FullView {
     /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
     /// assert_eq!(csql::FullView::new(&world, &space).views(), 8);
     /// ```
-    pub fn new(world: &GridWorld, space: &mdp::FeatureSpace) -> FullView {
+    pub fn new<W: World + ?Sized>(world: &W) -> FullView {
         let mut class = vec![None; world.num_states()];
-        let mut views: Vec<Vec<(mdp::Feature, mdp::Cell)>> = Vec::new();
+        let mut views: Vec<Vec<(mdp::Feature, Reading)>> = Vec::new();
         let mut index = std::collections::BTreeMap::new();
         let mut cost = vec![0.0; world.num_states()];
+        let every: Vec<mdp::Feature> = (0..world.num_features() as u32).map(mdp::Feature).collect();
         for s in world.states() {
-            let view = crate::reference::bordered_features(world, space, s, 1)
-                .map(|f| (f, space.measure(world, s, f)))
+            // On a grid, every cell of the bordered world (the paper's reference);
+            // elsewhere, every feature.
+            let features: Vec<mdp::Feature> = match world.grid().zip(world.local_space()) {
+                Some((grid, space)) => {
+                    crate::reference::bordered_features(grid, space, s, 1).collect()
+                }
+                None => every.clone(),
+            };
+            cost[s.index()] = features.iter().map(|&f| world.price(f)).sum();
+            let view = features
+                .into_iter()
+                .map(|f| (f, world.read(s, f)))
                 .collect::<Vec<_>>();
-            cost[s.index()] = crate::reference::whole_world_cost(world, space, s);
             let next = views.len();
             let c = *index.entry(view.clone()).or_insert(next);
             if c == next {
@@ -229,24 +249,29 @@ impl FullView {
 }
 
 impl Perception for FullView {
-    fn classify(&mut self, _world: &GridWorld, s: StateId, table: &mut QTable) -> (RowId, f64) {
+    fn classify<W: World + ?Sized>(
+        &mut self,
+        _world: &W,
+        s: StateId,
+        table: &mut QTable,
+    ) -> (RowId, f64) {
         let c = self.class_of(s);
         let row = *self.rows[c].get_or_insert_with(|| table.add_row());
         (row, self.cost[s.index()])
     }
-    fn refine(&mut self, _world: &GridWorld, _row: RowId, _s: StateId) -> Option<f64> {
+    fn refine<W: World + ?Sized>(&mut self, _world: &W, _row: RowId, _s: StateId) -> Option<f64> {
         None
     }
     fn rows(&self) -> usize {
         self.rows.iter().flatten().count()
     }
-    fn lookup(&mut self, _world: &GridWorld, s: StateId) -> Option<RowId> {
+    fn lookup<W: World + ?Sized>(&mut self, _world: &W, s: StateId) -> Option<RowId> {
         self.class[s.index()].and_then(|c| self.rows[c])
     }
 }
 
 impl crate::report::Describes for FullView {
-    fn described(&self) -> Vec<(RowId, Vec<(mdp::Feature, mdp::Cell)>)> {
+    fn described(&self) -> Vec<(RowId, Vec<(mdp::Feature, Reading)>)> {
         let mut out: Vec<_> = self
             .rows
             .iter()
@@ -256,7 +281,7 @@ impl crate::report::Describes for FullView {
         out.sort_by_key(|(r, _)| *r);
         out
     }
-    fn cost_after_learning(&mut self, _world: &GridWorld, s: StateId) -> f64 {
+    fn cost_after_learning<W: World + ?Sized>(&mut self, _world: &W, s: StateId) -> f64 {
         self.cost[s.index()]
     }
 }

@@ -64,7 +64,7 @@
 //! probability [`Prediction::verify`] (and after `max_skips` unmeasured uses).
 
 use cslearn::{FeatureId, Sensor, Value};
-use mdp::{Action, ActionId, Cell, Feature, FeatureSpace, GridWorld, Offset, StateId};
+use mdp::{Action, ActionId, Cell, Feature, FeatureSpace, GridWorld, Offset, Reading, StateId, World};
 use qlearn::{QTable, RowId};
 use rand::{Rng, RngExt};
 use serde::{Deserialize, Serialize};
@@ -457,7 +457,8 @@ impl TransitionModel {
 struct Memory {
     /// Half the width and height of the area a trial can reach, offsets included.
     half: (i32, i32),
-    cells: Vec<Option<(Cell, u32)>>,
+    offsets: Vec<Offset>,
+    cells: Vec<Option<(Reading, u32)>>,
     /// The robot's position relative to where the memory was last anchored.
     pos: (i32, i32),
     /// Moves since the memory was anchored.
@@ -466,7 +467,7 @@ struct Memory {
 }
 
 impl Memory {
-    fn new(world: &GridWorld, keep: u32) -> Memory {
+    fn new(world: &GridWorld, space: &FeatureSpace, keep: u32) -> Memory {
         // Displacements stay within the map and offsets within its bordered size.
         let half = (
             2 * world.map().width() as i32 + 2,
@@ -475,6 +476,7 @@ impl Memory {
         let len = ((2 * half.0 + 1) * (2 * half.1 + 1)) as usize;
         Memory {
             half,
+            offsets: space.features().map(|f| space.offset(f)).collect(),
             cells: vec![None; len],
             pos: (0, 0),
             now: 0,
@@ -497,12 +499,12 @@ impl Memory {
     }
 
     /// The cell at offset `o` from the robot, if sensed recently enough.
-    fn known(&self, o: Offset) -> Option<Cell> {
+    fn known(&self, o: Offset) -> Option<Reading> {
         let (cell, when) = self.cells[self.index(o)?]?;
         (self.now - when <= self.keep).then_some(cell)
     }
 
-    fn record(&mut self, o: Offset, cell: Cell) {
+    fn record(&mut self, o: Offset, cell: Reading) {
         if let Some(i) = self.index(o) {
             self.cells[i] = Some((cell, self.now));
         }
@@ -514,7 +516,7 @@ impl Memory {
         let ahead = self.known(step);
         self.now += 1;
         match ahead {
-            Some(Cell::Obstacle) => {}
+            Some(r) if r == Reading::from(Cell::Obstacle) => {}
             Some(_) => self.pos = (self.pos.0 + step.dx, self.pos.1 + step.dy),
             None => self.clear(),
         }
@@ -561,7 +563,7 @@ pub struct Predicting {
     /// Navigating: the decision tree over the final descriptions, which identifies a
     /// state's description without measuring every feature of it.
     tree: Option<StateTree>,
-    scratch: Vec<(Feature, Cell)>,
+    scratch: Vec<(Feature, Reading)>,
     stats: PredictionStats,
 }
 
@@ -569,8 +571,8 @@ pub struct Predicting {
 /// and everything measured or carried is kept for the next state.
 fn charge(
     memory: Option<&mut Memory>,
-    space: &FeatureSpace,
-    measured: &[(Feature, Cell)],
+    prices: &[f64],
+    measured: &[(Feature, Reading)],
     full: f64,
 ) -> f64 {
     let Some(memory) = memory else {
@@ -578,12 +580,12 @@ fn charge(
     };
     let mut cost = 0.0;
     for &(f, cell) in measured {
-        let o = space.offset(f);
+        let o = memory.offsets[f.index()];
         match memory.known(o) {
             Some(remembered) => {
                 debug_assert_eq!(remembered, cell, "dead reckoning placed a cell wrongly");
             }
-            None => cost += space.cost(f),
+            None => cost += prices[f.index()],
         }
         memory.record(o, cell);
     }
@@ -591,20 +593,19 @@ fn charge(
 }
 
 /// A state sensed through the decision tree, keeping what was measured.
-struct Recording<'a> {
-    world: &'a GridWorld,
-    space: &'a FeatureSpace,
+struct Recording<'a, W: ?Sized> {
+    world: &'a W,
     state: StateId,
-    measured: &'a mut Vec<(Feature, Cell)>,
+    measured: &'a mut Vec<(Feature, Reading)>,
 }
 
-impl Sensor for Recording<'_> {
+impl<W: World + ?Sized> Sensor for Recording<'_, W> {
     fn measure(&mut self, feature: FeatureId) -> Option<Value> {
         let f = Feature(feature.0);
-        (f.index() < self.space.len()).then(|| {
-            let cell = self.space.measure(self.world, self.state, f);
-            self.measured.push((f, cell));
-            Value(cell.code())
+        (f.index() < self.world.num_features()).then(|| {
+            let reading = self.world.read(self.state, f);
+            self.measured.push((f, reading));
+            Value(reading.0)
         })
     }
 }
@@ -626,10 +627,10 @@ impl Predicting {
     /// let p = csql::Predicting::learned(csql::Classify::new(&space), &Default::default());
     /// assert_eq!(p.level(), csql::PredictSensing::Learned);
     /// ```
-    pub fn learned(classify: Classify, settings: &Prediction) -> Predicting {
+    pub fn learned(classify: Classify, settings: &Prediction, actions: usize) -> Predicting {
         Predicting {
             inner: classify,
-            model: TransitionModel::new(Action::ALL.len(), settings.confirmations),
+            model: TransitionModel::new(actions, settings.confirmations),
             memory: None,
             recheck: settings.recheck,
             max_skips: settings.max_skips,
@@ -651,10 +652,15 @@ impl Predicting {
     /// let p = csql::Predicting::motion(csql::Classify::new(&space), &Default::default(), &world);
     /// assert_eq!(p.level(), csql::PredictSensing::Motion);
     /// ```
-    pub fn motion(classify: Classify, settings: &Prediction, world: &GridWorld) -> Predicting {
+    pub fn motion(
+        classify: Classify,
+        settings: &Prediction,
+        world: &GridWorld,
+        space: &FeatureSpace,
+    ) -> Predicting {
         Predicting {
-            memory: Some(Memory::new(world, settings.memory_moves)),
-            ..Predicting::learned(classify, settings)
+            memory: Some(Memory::new(world, space, settings.memory_moves)),
+            ..Predicting::learned(classify, settings, Action::ALL.len())
         }
     }
 
@@ -737,24 +743,23 @@ impl Predicting {
         self.narrow = true;
         self.tree = Some(StateTree::build(
             self.inner.representation(),
-            self.inner.space(),
+            self.inner.prices(),
         ));
     }
 
     /// Classify `s` (charged), less what the memory already holds at the motion level.
-    fn measure(&mut self, world: &GridWorld, s: StateId, table: &mut QTable) -> (RowId, f64) {
+    fn measure<W: World + ?Sized>(&mut self, world: &W, s: StateId, table: &mut QTable) -> (RowId, f64) {
         if let Some(tree) = &self.tree {
             self.scratch.clear();
             let out = tree.tree().classify(Recording {
                 world,
-                space: self.inner.space(),
                 state: s,
                 measured: &mut self.scratch,
             });
             if let Some(class) = out.class {
                 let cost = charge(
                     self.memory.as_mut(),
-                    self.inner.space(),
+                    self.inner.prices(),
                     &self.scratch,
                     out.cost.get(),
                 );
@@ -770,14 +775,14 @@ impl Predicting {
     fn charge(&mut self, full: f64) -> f64 {
         charge(
             self.memory.as_mut(),
-            self.inner.space(),
+            self.inner.prices(),
             self.inner.last_measured(),
             full,
         )
     }
 
     /// Count an unmeasured use of a transition, and whether the oracle finds it wrong.
-    fn unmeasured(&mut self, world: &GridWorld, from: RowId, a: ActionId, s: StateId, row: RowId) {
+    fn unmeasured<W: World + ?Sized>(&mut self, world: &W, from: RowId, a: ActionId, s: StateId, row: RowId) {
         self.current = Some(Unmeasured { s, row, from, a });
         let wrong = Perception::lookup(&mut self.inner, world, s) != Some(row);
         let entry = self.model.entry_mut(from, a);
@@ -794,7 +799,7 @@ impl Predicting {
 impl Perception for Predicting {
     /// Localise: classify with no knowledge of where the robot came from (the memory is
     /// anchored afresh).
-    fn classify(&mut self, world: &GridWorld, s: StateId, table: &mut QTable) -> (RowId, f64) {
+    fn classify<W: World + ?Sized>(&mut self, world: &W, s: StateId, table: &mut QTable) -> (RowId, f64) {
         if let Some(memory) = &mut self.memory {
             memory.clear();
         }
@@ -802,9 +807,9 @@ impl Perception for Predicting {
         self.measure(world, s, table)
     }
 
-    fn classify_next<R: Rng + ?Sized>(
+    fn classify_next<W: World + ?Sized, R: Rng + ?Sized>(
         &mut self,
-        world: &GridWorld,
+        world: &W,
         from: RowId,
         a: ActionId,
         s: StateId,
@@ -862,9 +867,9 @@ impl Perception for Predicting {
 
     /// A refinement of `refined` changes the description of no state outside it: the
     /// next state keeps its description unless that is the one refined.
-    fn classify_again(
+    fn classify_again<W: World + ?Sized>(
         &mut self,
-        world: &GridWorld,
+        world: &W,
         refined: RowId,
         current: RowId,
         s: StateId,
@@ -882,7 +887,7 @@ impl Perception for Predicting {
     /// check that `s` matches it (charged). A state that does not match is a wrong
     /// prediction caught: the transition is distrusted, nothing is refined, and the check
     /// is the cost returned.
-    fn refine(&mut self, world: &GridWorld, row: RowId, s: StateId) -> Option<f64> {
+    fn refine<W: World + ?Sized>(&mut self, world: &W, row: RowId, s: StateId) -> Option<f64> {
         let mut check = 0.0;
         if let Some(u) = self.previous.take().filter(|u| u.s == s && u.row == row) {
             let matches = self.inner.matches(world, s, DescriptionId(row.0));
@@ -906,7 +911,7 @@ impl Perception for Predicting {
         self.inner.rows()
     }
 
-    fn lookup(&mut self, world: &GridWorld, s: StateId) -> Option<RowId> {
+    fn lookup<W: World + ?Sized>(&mut self, world: &W, s: StateId) -> Option<RowId> {
         Perception::lookup(&mut self.inner, world, s)
     }
 }
@@ -914,14 +919,14 @@ impl Perception for Predicting {
 /// A report reads CLASSIFY underneath: prediction changes what is charged while
 /// learning, not the descriptions or what they cost after it.
 impl crate::report::Describes for Predicting {
-    fn described(&self) -> Vec<(RowId, Vec<(mdp::Feature, mdp::Cell)>)> {
+    fn described(&self) -> Vec<(RowId, Vec<(mdp::Feature, Reading)>)> {
         self.inner.described()
     }
-    fn cost_after_learning(&mut self, world: &GridWorld, s: StateId) -> f64 {
+    fn cost_after_learning<W: World + ?Sized>(&mut self, world: &W, s: StateId) -> f64 {
         self.inner.cost_after_learning(world, s)
     }
-    fn table1_costs(&mut self, setup: &crate::Setup) -> (f64, f64) {
-        self.inner.table1_costs(setup)
+    fn table1_costs<W: World + ?Sized>(&mut self, world: &W) -> (f64, f64) {
+        self.inner.table1_costs(world)
     }
 }
 

@@ -22,7 +22,7 @@
 //! [`MC_MIN_ROUNDS`] rounds, at most [`MC_MAX_ROUNDS`]). The
 //! measure is never charged and the learner never sees it.
 
-use mdp::{ActionId, GridWorld, Oracle, SensorNoise, SlipperyGrid, StateId, StochasticMdp};
+use mdp::{ActionId, Oracle, SensorNoise, StateId, StochasticMdp, World};
 use qlearn::{QTable, RowId};
 use rand::Rng;
 use serde::Serialize;
@@ -63,9 +63,9 @@ pub const MC_MAX_ROUNDS: u32 = 4000;
 /// ```
 pub trait Sees {
     /// The row the agent would use in state `s`, or `None` if it would make a new one.
-    fn sees<R: Rng + ?Sized>(
+    fn sees<W: World + ?Sized, R: Rng + ?Sized>(
         &mut self,
-        world: &GridWorld,
+        world: &W,
         s: StateId,
         noise: SensorNoise,
         rng: &mut R,
@@ -85,9 +85,9 @@ pub trait Sees {
 }
 
 impl Sees for crate::FullView {
-    fn sees<R: Rng + ?Sized>(
+    fn sees<W: World + ?Sized, R: Rng + ?Sized>(
         &mut self,
-        world: &GridWorld,
+        world: &W,
         s: StateId,
         _noise: SensorNoise,
         _rng: &mut R,
@@ -97,9 +97,9 @@ impl Sees for crate::FullView {
 }
 
 impl Sees for Classify {
-    fn sees<R: Rng + ?Sized>(
+    fn sees<W: World + ?Sized, R: Rng + ?Sized>(
         &mut self,
-        world: &GridWorld,
+        world: &W,
         s: StateId,
         noise: SensorNoise,
         rng: &mut R,
@@ -109,9 +109,9 @@ impl Sees for Classify {
 }
 
 impl Sees for crate::Predicting {
-    fn sees<R: Rng + ?Sized>(
+    fn sees<W: World + ?Sized, R: Rng + ?Sized>(
         &mut self,
-        world: &GridWorld,
+        world: &W,
         s: StateId,
         noise: SensorNoise,
         rng: &mut R,
@@ -121,9 +121,9 @@ impl Sees for crate::Predicting {
 }
 
 impl Sees for Identified {
-    fn sees<R: Rng + ?Sized>(
+    fn sees<W: World + ?Sized, R: Rng + ?Sized>(
         &mut self,
-        world: &GridWorld,
+        world: &W,
         s: StateId,
         _noise: SensorNoise,
         _rng: &mut R,
@@ -201,25 +201,25 @@ pub struct QualityEstimate {
 
 /// The policy quality of an agent (see the module docs). `truth` is the oracle of the
 /// true model; `rng` is the evaluation's own generator, drawn from only under noise.
-pub(crate) fn policy_quality<P: Sees, R: Rng + ?Sized>(
-    model: &SlipperyGrid<'_>,
+pub(crate) fn policy_quality<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
+    world: &W,
     truth: &Oracle,
     perception: &mut P,
     table: &QTable,
     noise: SensorNoise,
     rng: &mut R,
 ) -> QualityEstimate {
-    let world = model.world();
     let states = world.states();
     let gamma = truth.gamma();
+    let floor = value_floor(world, gamma);
     let act = |row: Option<RowId>| row.map_or(ActionId(0), |r| table.greedy(r));
     if noise.is_zero() && perception.memoryless() {
-        let mut policy = vec![ActionId(0); mdp::Mdp::num_states(world)];
+        let mut policy = vec![ActionId(0); world.num_states()];
         for &s in &states {
             policy[s.index()] = act(perception.sees(world, s, noise, rng));
         }
-        let quality = match mdp::evaluate_policy(model, gamma, &policy) {
-            Ok(v) => ratio_mean(&states, truth, |s| v[s.index()]),
+        let quality = match mdp::evaluate_policy(world, gamma, &policy) {
+            Ok(v) => ratio_mean(&states, truth, floor, |s| v[s.index()]),
             Err(_) => 0.0,
         };
         return QualityEstimate {
@@ -230,13 +230,13 @@ pub(crate) fn policy_quality<P: Sees, R: Rng + ?Sized>(
         };
     }
     if perception.memoryless() {
-        return sampled_policy_quality(model, truth, perception, table, noise, rng);
+        return sampled_policy_quality(world, truth, perception, table, noise, rng);
     }
     // Without slip and noise, an episode is a function of its start: one round is the
     // exact value (up to MC_MAX_MOVES moves, beyond which nothing is left to earn).
-    let deterministic = noise.is_zero() && model.slip().is_zero();
+    let deterministic = noise.is_zero() && is_deterministic(world);
     let mut rounds: Vec<f64> = Vec::new();
-    let mut returns = vec![0.0; mdp::Mdp::num_states(world)];
+    let mut returns = vec![0.0; world.num_states()];
     let mut se = f64::INFINITY;
     while rounds.len() < MC_MAX_ROUNDS as usize {
         for &s in &states {
@@ -247,7 +247,7 @@ pub(crate) fn policy_quality<P: Sees, R: Rng + ?Sized>(
             for _ in 0..MC_MAX_MOVES {
                 let a = act(perception.sees(world, x, noise, rng));
                 perception.moved(a);
-                let step = model.sample(x, a, rng);
+                let step = world.sample(x, a, rng);
                 g += discount * step.reward;
                 discount *= gamma;
                 if step.terminated {
@@ -257,7 +257,7 @@ pub(crate) fn policy_quality<P: Sees, R: Rng + ?Sized>(
             }
             returns[s.index()] = g;
         }
-        rounds.push(ratio_mean(&states, truth, |s| returns[s.index()]));
+        rounds.push(ratio_mean(&states, truth, floor, |s| returns[s.index()]));
         if deterministic {
             return QualityEstimate {
                 quality: rounds[0],
@@ -283,17 +283,21 @@ pub(crate) fn policy_quality<P: Sees, R: Rng + ?Sized>(
 }
 
 /// The quality of a memoryless policy under sensor noise ([`QualityMethod::SampledPolicy`]).
-fn sampled_policy_quality<P: Sees, R: Rng + ?Sized>(
-    model: &SlipperyGrid<'_>,
+fn sampled_policy_quality<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
+    world: &W,
     truth: &Oracle,
     perception: &mut P,
     table: &QTable,
     noise: SensorNoise,
     rng: &mut R,
 ) -> QualityEstimate {
-    let world = model.world();
     let states = world.states();
-    let n = mdp::Mdp::num_states(world);
+    let floor = value_floor(world, truth.gamma());
+    let n = world.num_states();
+    let mut measured = vec![false; n];
+    for &s in &states {
+        measured[s.index()] = true;
+    }
     let actions = table.num_actions();
     let per_batch = POLICY_SAMPLES / POLICY_BATCHES;
     // counts[b][s][a]: how often batch b's classifications of s led to action a.
@@ -312,7 +316,8 @@ fn sampled_policy_quality<P: Sees, R: Rng + ?Sized>(
         let total = (batches.len() * per_batch) as f64;
         let policy: Vec<Vec<f64>> = (0..n)
             .map(|s| {
-                if StateId(s as u32) == world.goal() {
+                if !measured[s] {
+                    // Terminal (or never visited): any action, the first.
                     let mut p = vec![0.0; actions];
                     p[0] = 1.0;
                     return p;
@@ -322,8 +327,8 @@ fn sampled_policy_quality<P: Sees, R: Rng + ?Sized>(
                     .collect()
             })
             .collect();
-        match mdp::evaluate_stochastic_policy(model, truth.gamma(), &policy) {
-            Ok(v) => ratio_mean(&states, truth, |s| v[s.index()]),
+        match mdp::evaluate_stochastic_policy(world, truth.gamma(), &policy) {
+            Ok(v) => ratio_mean(&states, truth, floor, |s| v[s.index()]),
             Err(_) => 0.0,
         }
     };
@@ -349,12 +354,64 @@ fn standard_error(xs: &[f64]) -> f64 {
 }
 
 /// Mean over states with a positive V* of value / V*.
-fn ratio_mean(states: &[StateId], truth: &Oracle, value: impl Fn(StateId) -> f64) -> f64 {
+/// The mean over states of `(value(s) - floor) / (V*(s) - floor)`, over the states
+/// where `V*(s) > floor` (1 if there is none). `floor` is [`value_floor`]: 0 in worlds
+/// without negative rewards (the ratio `value / V*`), so that a policy that earns
+/// nothing scores 0 wherever something can be earned.
+fn ratio_mean(
+    states: &[StateId],
+    truth: &Oracle,
+    floor: f64,
+    value: impl Fn(StateId) -> f64,
+) -> f64 {
     let (sum, n) = states
         .iter()
-        .filter(|&&s| truth.v_star(s) > 0.0)
+        .filter(|&&s| truth.v_star(s) > floor)
         .fold((0.0, 0usize), |(sum, n), &s| {
-            (sum + value(s) / truth.v_star(s), n + 1)
+            (sum + (value(s) - floor) / (truth.v_star(s) - floor), n + 1)
         });
     if n == 0 { 1.0 } else { sum / n as f64 }
+}
+
+/// A lower bound of every discounted return: `min(0, r_min) / (1 - gamma)`, with
+/// `r_min` the smallest reward of any outcome (0 in worlds without negative rewards).
+pub(crate) fn value_floor<W: StochasticMdp + ?Sized>(world: &W, gamma: f64) -> f64 {
+    let r_min = min_reward(world);
+    if r_min >= 0.0 {
+        0.0
+    } else {
+        r_min / (1.0 - gamma)
+    }
+}
+
+/// The smallest reward of any outcome of any non-terminal state (0 if none is smaller).
+pub(crate) fn min_reward<W: StochasticMdp + ?Sized>(world: &W) -> f64 {
+    let mut out = Vec::new();
+    let mut least: f64 = 0.0;
+    for s in (0..world.num_states() as u32).map(StateId) {
+        if world.is_terminal(s) {
+            continue;
+        }
+        for a in (0..world.num_actions() as u32).map(ActionId) {
+            world.outcomes(s, a, &mut out);
+            for (_, step) in &out {
+                least = least.min(step.reward);
+            }
+        }
+    }
+    least
+}
+
+/// Whether every action of every non-terminal state has a single outcome.
+pub(crate) fn is_deterministic<W: StochasticMdp + ?Sized>(world: &W) -> bool {
+    let mut out = Vec::new();
+    (0..world.num_states() as u32)
+        .map(StateId)
+        .filter(|&s| !world.is_terminal(s))
+        .all(|s| {
+            (0..world.num_actions() as u32).map(ActionId).all(|a| {
+                world.outcomes(s, a, &mut out);
+                out.len() == 1
+            })
+        })
 }

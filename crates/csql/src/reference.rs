@@ -15,7 +15,7 @@ use crate::main_loop::{Agent, LoopParams};
 use crate::observe::KeepTrace;
 use crate::perception::{Identified, Perception};
 use crate::representation::Representation;
-use crate::run::{Setup, learn};
+use crate::run::{Scene, Setup, learn};
 use crate::settings::RunSettings;
 use crate::strategy::Never;
 
@@ -103,7 +103,9 @@ fn reference<P: Perception + crate::quality::Sees>(
     cost_per_classification: Option<f64>,
 ) -> Reference {
     let mut agent = Agent::new(perception, Never, table, LoopParams::from(settings));
-    let learned = learn(setup, settings, &mut agent, &mut KeepTrace);
+    let sensed = setup.sensed(settings);
+    let scene = Scene::new(&sensed, &setup.oracle, setup.truth(), setup.map.name());
+    let learned = learn(&scene, settings, &mut agent, &mut KeepTrace);
     Reference {
         converged: learned.first_converged.is_some(),
         trials: learned.trials,
@@ -122,12 +124,12 @@ fn reference<P: Perception + crate::quality::Sees>(
 /// assert!(r.converged && r.cost > 0.0);
 /// ```
 pub fn full_sensing_reference(setup: &Setup, settings: &RunSettings) -> Reference {
-    let cost: Vec<f64> = (0..setup.world.num_states() as u32)
+    let cost: Vec<f64> = (0..mdp::Mdp::num_states(&setup.world) as u32)
         .map(|s| whole_world_cost(&setup.world, &setup.space, StateId(s)))
         .collect();
     let states = setup.world.states();
     let mean = states.iter().map(|s| cost[s.index()]).sum::<f64>() / states.len() as f64;
-    let perception = Identified::new(&setup.world, cost);
+    let perception = Identified::new(&setup.sensed(settings), cost);
     reference(
         setup,
         settings,
@@ -155,6 +157,6 @@ pub fn fixed_representation_reference(
 ) -> Reference {
     let table = QTable::with_rows(setup.world.num_actions(), rep.len())
         .expect("grid worlds have four actions");
-    let perception = Classify::with_representation(&setup.space, rep);
+    let perception = Classify::with_representation(&setup.sensed(settings), rep);
     reference(setup, settings, perception, table, None)
 }

@@ -4,7 +4,7 @@
 
 use std::fmt;
 
-use mdp::{Action, Cell};
+use mdp::{Reading, World};
 use qlearn::QTable;
 use serde::Serialize;
 
@@ -13,7 +13,7 @@ use crate::judge::Verdict;
 use crate::perception::Perception;
 use crate::quality::QualityMethod;
 use crate::representation::DescriptionId;
-use crate::run::{Learned, Setup};
+use crate::run::{Learned, Scene};
 use crate::settings::RunSettings;
 use crate::strategy::StrategyKind;
 use crate::tree::StateTree;
@@ -80,19 +80,25 @@ pub struct TracePoint {
 ///
 /// ```
 /// let r = csql::run(&csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1)).unwrap();
-/// let s = r.states.iter().find(|s| (s.row, s.col) == (0, 1)).unwrap();
-/// assert_eq!((s.greedy_action, s.value), (Some(mdp::Action::Right), Some(1.0)));
+/// let s = r.states.iter().find(|s| (s.row, s.col) == (Some(0), Some(1))).unwrap();
+/// assert_eq!((s.greedy_action.as_deref(), s.value), (Some("right"), Some(1.0)));
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct StateReport {
-    /// Row.
-    pub row: usize,
-    /// Column.
-    pub col: usize,
+    /// The world's label of the state (worlds that are not grids; grids give row and
+    /// column instead).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub label: Option<String>,
+    /// Row (grids).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub row: Option<usize>,
+    /// Column (grids).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub col: Option<usize>,
     /// The label of the state's description, if it has one.
     pub description: Option<u32>,
     /// The greedy action of that description (lowest action id among ties).
-    pub greedy_action: Option<Action>,
+    pub greedy_action: Option<String>,
     /// V of that description.
     pub value: Option<f64>,
     /// The optimal utility (for comparison).
@@ -108,12 +114,17 @@ pub struct StateReport {
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct FeatureReport {
-    /// Offset to the right.
-    pub dx: i32,
-    /// Offset up.
-    pub dy: i32,
-    /// The condition required there (`empty`, `obstacle` or `goal` in JSON).
-    pub value: Cell,
+    /// The feature's name (worlds that are not grids; grids give its offset instead).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub feature: Option<String>,
+    /// Offset to the right (grids).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dx: Option<i32>,
+    /// Offset up (grids).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dy: Option<i32>,
+    /// The reading required, by its name (on grids `empty`, `obstacle` or `goal`).
+    pub value: String,
     /// Its sensing cost.
     pub cost: f64,
 }
@@ -456,18 +467,18 @@ impl fmt::Display for Table1 {
 pub trait Describes {
     /// The descriptions, one per row that has one, in row order: the row and its
     /// features with their values.
-    fn described(&self) -> Vec<(qlearn::RowId, Vec<(mdp::Feature, Cell)>)>;
+    fn described(&self) -> Vec<(qlearn::RowId, Vec<(mdp::Feature, Reading)>)>;
     /// What classifying state `s` costs after learning.
-    fn cost_after_learning(&mut self, world: &mdp::GridWorld, s: mdp::StateId) -> f64;
+    fn cost_after_learning<W: World + ?Sized>(&mut self, world: &W, s: mdp::StateId) -> f64;
     /// Table 1's rows 8 and 5 after learning: the mean cost per state of the cheapest
     /// classifier of the final descriptions, and of measuring a state's whole
     /// description. By default both are the mean of
     /// [`Describes::cost_after_learning`].
-    fn table1_costs(&mut self, setup: &Setup) -> (f64, f64) {
-        let states = setup.world.states();
+    fn table1_costs<W: World + ?Sized>(&mut self, world: &W) -> (f64, f64) {
+        let states = world.states();
         let mean = states
             .iter()
-            .map(|&s| self.cost_after_learning(&setup.world, s))
+            .map(|&s| self.cost_after_learning(world, s))
             .sum::<f64>()
             / states.len() as f64;
         (mean, mean)
@@ -475,49 +486,48 @@ pub trait Describes {
 }
 
 impl Describes for Classify {
-    fn described(&self) -> Vec<(qlearn::RowId, Vec<(mdp::Feature, Cell)>)> {
+    fn described(&self) -> Vec<(qlearn::RowId, Vec<(mdp::Feature, Reading)>)> {
         self.representation()
             .iter()
             .map(|(id, d)| (id.row(), d.features().collect()))
             .collect()
     }
-    fn cost_after_learning(&mut self, world: &mdp::GridWorld, s: mdp::StateId) -> f64 {
+    fn cost_after_learning<W: World + ?Sized>(&mut self, world: &W, s: mdp::StateId) -> f64 {
         self.lookup_cost(world, s)
     }
-    fn table1_costs(&mut self, setup: &Setup) -> (f64, f64) {
-        let states = setup.world.states();
+    fn table1_costs<W: World + ?Sized>(&mut self, world: &W) -> (f64, f64) {
+        let states = world.states();
         let rep = self.representation();
-        let tree = StateTree::build(rep, &setup.space);
+        let tree = StateTree::build(rep, self.prices());
         let costs: Vec<f64> = states
             .iter()
-            .map(|&s| tree.classify(&setup.world, &setup.space, s).1)
+            .map(|&s| tree.classify(world, s).1)
             .collect();
         let tree_cost = costs.iter().sum::<f64>() / states.len() as f64;
-        let labels: Vec<Option<DescriptionId>> = states
-            .iter()
-            .map(|&s| self.lookup(&setup.world, s))
-            .collect();
+        let labels: Vec<Option<DescriptionId>> =
+            states.iter().map(|&s| self.lookup(world, s)).collect();
         let rep = self.representation();
         let plain: f64 = labels
             .iter()
             .flatten()
-            .map(|&l| rep.get(l).cost(&setup.space))
+            .map(|&l| rep.get(l).cost(world))
             .sum();
         (tree_cost, plain / states.len() as f64)
     }
 }
 
-pub(crate) fn report<P: Perception + Describes>(
-    setup: &Setup,
+pub(crate) fn report<W: World + ?Sized, P: Perception + Describes>(
+    scene: &Scene<'_, W>,
     settings: &RunSettings,
     perception: &mut P,
     table: &QTable,
     learned: Learned,
 ) -> RunReport {
-    let states = setup.world.states();
+    let world = scene.world;
+    let states = world.states();
     let rows: Vec<Option<qlearn::RowId>> = states
         .iter()
-        .map(|&s| perception.lookup(&setup.world, s))
+        .map(|&s| perception.lookup(world, s))
         .collect();
     let described = perception.described();
     let converged = learned.first_converged.is_some();
@@ -536,14 +546,14 @@ pub(crate) fn report<P: Perception + Describes>(
         table1.descriptions = Some(n);
         table1.mean_features = Some(mean_features);
         table1.max_features = counts.iter().max().copied();
-        let (tree_cost, description_cost) = perception.table1_costs(setup);
+        let (tree_cost, description_cost) = perception.table1_costs(world);
         table1.tree_cost_per_state = Some(tree_cost);
         table1.description_cost_per_state = Some(description_cost);
     }
     let sensing_cost_per_state = if learned.quality.is_some() {
         states
             .iter()
-            .map(|&s| perception.cost_after_learning(&setup.world, s))
+            .map(|&s| perception.cost_after_learning(world, s))
             .sum::<f64>()
             / states.len() as f64
     } else {
@@ -564,8 +574,8 @@ pub(crate) fn report<P: Perception + Describes>(
     let sufficient_now = last.is_some_and(|t| t.sufficient);
     let consistent_literal = sufficient_now.then(|| {
         Verdict::judge(
-            &setup.world,
-            &setup.oracle,
+            world,
+            scene.oracle,
             table,
             &rows,
             settings.tolerance.get(),
@@ -573,7 +583,7 @@ pub(crate) fn report<P: Perception + Describes>(
         .consistent_literal
     });
     RunReport {
-        map: setup.map.name().to_string(),
+        map: scene.name.to_string(),
         strategy: settings.strategy,
         seed: settings.seed,
         converged,
@@ -586,16 +596,15 @@ pub(crate) fn report<P: Perception + Describes>(
             .iter()
             .zip(&rows)
             .map(|(&s, &row)| {
-                let p = setup.world.pos(s);
+                let p = world.grid().map(|g| g.pos(s));
                 StateReport {
-                    row: p.row,
-                    col: p.col,
+                    label: p.is_none().then(|| world.state_label(s)),
+                    row: p.map(|p| p.row),
+                    col: p.map(|p| p.col),
                     description: row.map(|r| r.0),
-                    greedy_action: row.map(|r| {
-                        Action::from_id(table.greedy(r)).expect("grid worlds have four actions")
-                    }),
+                    greedy_action: row.map(|r| world.action_name(table.greedy(r))),
                     value: row.map(|r| table.v(r)),
-                    v_star: setup.oracle.v_star(s),
+                    v_star: scene.oracle.v_star(s),
                 }
             })
             .collect(),
@@ -606,12 +615,13 @@ pub(crate) fn report<P: Perception + Describes>(
                 features: d
                     .iter()
                     .map(|&(f, v)| {
-                        let o = setup.space.offset(f);
+                        let o = world.local_space().map(|space| space.offset(f));
                         FeatureReport {
-                            dx: o.dx,
-                            dy: o.dy,
-                            value: v,
-                            cost: setup.space.cost(f),
+                            feature: o.is_none().then(|| world.feature_name(f)),
+                            dx: o.map(|o| o.dx),
+                            dy: o.map(|o| o.dy),
+                            value: world.reading_name(f, v),
+                            cost: world.price(f),
                         }
                     })
                     .collect(),

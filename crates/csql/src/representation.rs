@@ -13,7 +13,7 @@
 //! descriptions conflict on some feature, so a state matches at most one.
 
 use cslearn::{AppendAll, ClassId, Example, FeatureId, Library, Update, Value};
-use mdp::{Cell, Feature, FeatureSpace, GridWorld, StateId};
+use mdp::{Feature, Reading, Sensors, StateId};
 use serde::Serialize;
 
 /// The id of a description: its index in the representation, which is also its row in
@@ -55,8 +55,8 @@ pub(crate) fn feature_id(f: Feature) -> FeatureId {
 
 /// A cell as a cslearn value.
 #[inline]
-pub(crate) fn value_of(c: Cell) -> Value {
-    Value(c.code())
+pub(crate) fn value_of(r: Reading) -> Value {
+    Value(r.0)
 }
 
 /// A borrowed view of one description, in grid terms.
@@ -79,12 +79,9 @@ impl<'a> Description<'a> {
     /// let id = rep.push(&[]);
     /// assert_eq!(rep.get(id).features().count(), 0);
     /// ```
-    pub fn features(self) -> impl Iterator<Item = (Feature, Cell)> + 'a {
+    pub fn features(self) -> impl Iterator<Item = (Feature, Reading)> + 'a {
         self.0.pairs().iter().map(|&(f, v)| {
-            (
-                Feature(f.0),
-                Cell::from_code(v.0).expect("descriptions hold cell codes"),
-            )
+(Feature(f.0), Reading(v.0))
         })
     }
 
@@ -118,8 +115,8 @@ impl<'a> Description<'a> {
     /// assert_eq!(rep.get(id).value(mdp::Feature(3)), Some(mdp::Cell::Goal));
     /// assert_eq!(rep.get(id).value(mdp::Feature(0)), None);
     /// ```
-    pub fn value(self, f: Feature) -> Option<Cell> {
-        self.0.get(feature_id(f)).and_then(|v| Cell::from_code(v.0))
+    pub fn value(self, f: Feature) -> Option<Reading> {
+        self.0.get(feature_id(f)).map(|v| Reading(v.0))
     }
 
     /// The first feature in the feature order that the description lacks.
@@ -147,9 +144,8 @@ impl<'a> Description<'a> {
     /// let id = rep.push(&[(Feature(0), Cell::Obstacle)]); // a wall above
     /// assert!(rep.get(id).matches(&world, &space, world.state_at(Pos::new(0, 0)).unwrap()));
     /// ```
-    pub fn matches(self, world: &GridWorld, space: &FeatureSpace, s: StateId) -> bool {
-        self.features()
-            .all(|(f, v)| space.measure(world, s, f) == v)
+    pub fn matches<W: Sensors + ?Sized>(self, world: &W, s: StateId) -> bool {
+        self.features().all(|(f, v)| world.read(s, f) == v)
     }
 
     /// The summed cost of the description's features.
@@ -161,8 +157,8 @@ impl<'a> Description<'a> {
     /// let id = rep.push(&[(Feature(0), Cell::Empty), (Feature(4), Cell::Empty)]);
     /// assert_eq!(rep.get(id).cost(&space), 3.0);
     /// ```
-    pub fn cost(self, space: &FeatureSpace) -> f64 {
-        self.features().map(|(f, _)| space.cost(f)).sum()
+    pub fn cost<W: Sensors + ?Sized>(self, world: &W) -> f64 {
+        self.features().map(|(f, _)| world.price(f)).sum()
     }
 }
 
@@ -188,7 +184,7 @@ impl Representation {
     /// r.push(&[]);
     /// assert_eq!(r.push(&[(mdp::Feature(0), mdp::Cell::Empty)]).0, 1);
     /// ```
-    pub fn push(&mut self, pairs: &[(Feature, Cell)]) -> DescriptionId {
+    pub fn push(&mut self, pairs: &[(Feature, Reading)]) -> DescriptionId {
         let id = DescriptionId(self.library.len() as u32);
         let example = Example::from_pairs(
             pairs.iter().map(|&(f, v)| (feature_id(f), value_of(v))),
@@ -208,7 +204,7 @@ impl Representation {
     /// r.refine(id, mdp::Feature(0), mdp::Cell::Empty);
     /// assert_eq!(r.get(id).len(), 1);
     /// ```
-    pub fn refine(&mut self, id: DescriptionId, f: Feature, v: Cell) {
+    pub fn refine(&mut self, id: DescriptionId, f: Feature, v: Reading) {
         self.library
             .get_mut(id.index())
             .expect("a description of this representation")
@@ -293,14 +289,9 @@ impl Representation {
     /// let id = r.push(&[]);
     /// assert_eq!(r.matching(&world, &space, world.states()[0]), Some(id));
     /// ```
-    pub fn matching(
-        &self,
-        world: &GridWorld,
-        space: &FeatureSpace,
-        s: StateId,
-    ) -> Option<DescriptionId> {
+    pub fn matching<W: Sensors + ?Sized>(&self, world: &W, s: StateId) -> Option<DescriptionId> {
         self.iter()
-            .find(|(_, d)| d.matches(world, space, s))
+            .find(|(_, d)| d.matches(world, s))
             .map(|(id, _)| id)
     }
 }

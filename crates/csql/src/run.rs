@@ -1,8 +1,8 @@
 //! One CS-QL run from settings to the measures of the paper's Table 1.
 
-use mdp::{FeatureSpace, GridWorld, Manhattan, Map, Mdp, Oracle, SlipperyGrid};
+use mdp::{FeatureSpace, GridWorld, Manhattan, Map, Oracle, SensedGrid, SlipperyGrid, World};
 use qlearn::QTable;
-use rand::{RngExt, SeedableRng};
+use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 use crate::classify::Classify;
@@ -105,6 +105,62 @@ impl Setup {
     pub fn truth(&self) -> &Oracle {
         self.stochastic_oracle.as_ref().unwrap_or(&self.oracle)
     }
+
+    /// The grid as a [`World`]: its local sensing and the slip of `settings`.
+    ///
+    /// ```
+    /// use mdp::Sensors;
+    /// let settings = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
+    /// let setup = csql::Setup::new(&settings).unwrap();
+    /// assert_eq!(setup.sensed(&settings).num_features(), setup.space.len());
+    /// ```
+    pub fn sensed(&self, settings: &RunSettings) -> SensedGrid<'_> {
+        SensedGrid::new(&self.world, &self.space, settings.world.slip)
+    }
+}
+
+/// A world a run learns in, with the oracle's truth about it: what the judge, the policy
+/// quality and the report measure against. The learner never sees the oracles.
+///
+/// ```
+/// let settings = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
+/// let setup = csql::Setup::new(&settings).unwrap();
+/// let sensed = setup.sensed(&settings);
+/// let scene = csql::Scene::new(&sensed, &setup.oracle, setup.truth(), setup.map.name());
+/// let report = csql::run_in(&scene, &settings, &mut csql::KeepTrace).unwrap();
+/// assert!(report.converged);
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct Scene<'a, W: ?Sized> {
+    /// The world.
+    pub world: &'a W,
+    /// The oracle of the world's deterministic moves: the paper's verdicts (consistent,
+    /// sufficient, converged) when the world is deterministic.
+    pub oracle: &'a Oracle,
+    /// The oracle of the true model (slip included): the policy quality.
+    pub truth: &'a Oracle,
+    /// The world's name, for the report.
+    pub name: &'a str,
+}
+
+impl<'a, W: World + ?Sized> Scene<'a, W> {
+    /// A world, its oracles and its name.
+    ///
+    /// ```
+    /// let settings = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
+    /// let setup = csql::Setup::new(&settings).unwrap();
+    /// let sensed = setup.sensed(&settings);
+    /// let scene = csql::Scene::new(&sensed, &setup.oracle, setup.truth(), "tan3x3");
+    /// assert_eq!(scene.name, "tan3x3");
+    /// ```
+    pub fn new(world: &'a W, oracle: &'a Oracle, truth: &'a Oracle, name: &'a str) -> Self {
+        Scene {
+            world,
+            oracle,
+            truth,
+            name,
+        }
+    }
 }
 
 impl From<&RunSettings> for LoopParams {
@@ -150,15 +206,15 @@ pub(crate) const QUALITY_GOAL: f64 = 0.95;
 
 /// Run trials until the oracle says converged or the trial cap; the oracle judges the
 /// agent at the end of every trial, through the perception's free view.
-pub(crate) fn learn<P: Perception + Sees, S: Strategy>(
-    setup: &Setup,
+pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
+    scene: &Scene<'_, W>,
     settings: &RunSettings,
     agent: &mut Agent<P, S>,
     observer: &mut dyn Observer,
 ) -> Learned {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
     let mut judge = Judge::default();
-    let starts = setup.world.states();
+    let world = scene.world;
     let mut out = Learned {
         trace: Vec::new(),
         trials: 0,
@@ -169,14 +225,15 @@ pub(crate) fn learn<P: Perception + Sees, S: Strategy>(
         cost: 0.0,
         quality: None,
     };
-    let beyond = settings.beyond_paper();
-    let model = SlipperyGrid::new(&setup.world, settings.world.slip);
+    // The paper's verdicts assume a deterministic world; a world file may be stochastic
+    // whatever the settings say.
+    let beyond = settings.beyond_paper() || !crate::quality::is_deterministic(world);
     // The evaluation's own generator: the run's, 2^192 draws ahead.
     let mut eval_rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
     eval_rng.long_jump();
     for trial in 1..=settings.max_trials.get() {
-        let start = starts[rng.random_range(0..starts.len())];
-        let rec = agent.run_trial(&model, start, trial, &mut rng);
+        let start = world.sample_start(&mut rng);
+        let rec = agent.run_trial(world, start, trial, &mut rng);
         out.moves += rec.moves as u64;
         out.cost += rec.cost;
         let verdict = if beyond {
@@ -186,8 +243,8 @@ pub(crate) fn learn<P: Perception + Sees, S: Strategy>(
             let every = settings.extensions.quality_every;
             if trial % every == 0 || trial == settings.max_trials.get() {
                 let q = policy_quality(
-                    &model,
-                    setup.truth(),
+                    world,
+                    scene.truth,
                     &mut agent.perception,
                     &agent.table,
                     settings.world.sensor_noise,
@@ -211,7 +268,7 @@ pub(crate) fn learn<P: Perception + Sees, S: Strategy>(
             }
             crate::judge::Verdict::default()
         } else {
-            judge.judge(&setup.world, &setup.oracle, agent, settings.tolerance.get())
+            judge.judge(world, scene.oracle, agent, settings.tolerance.get())
         };
         if verdict.sufficient && out.first_sufficient.is_none() {
             out.first_sufficient = Some((trial, out.cost));
@@ -272,6 +329,40 @@ pub fn run_on(setup: &Setup, settings: &RunSettings) -> RunReport {
     run_with_representation(setup, settings).0
 }
 
+/// Run the learner of `settings` in any world: learn, measure against the scene's
+/// oracles, report. Grid-only settings (the motion prior, sensor noise) are refused on a
+/// world that is not a grid.
+///
+/// ```
+/// let settings = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Random, 2);
+/// let setup = csql::Setup::new(&settings).unwrap();
+/// let sensed = setup.sensed(&settings);
+/// let scene = csql::Scene::new(&sensed, &setup.oracle, setup.truth(), setup.map.name());
+/// let report = csql::run_in(&scene, &settings, &mut csql::KeepTrace).unwrap();
+/// assert_eq!(report, csql::run_on(&setup, &settings));
+/// ```
+pub fn run_in<W: World + ?Sized>(
+    scene: &Scene<'_, W>,
+    settings: &RunSettings,
+    observer: &mut dyn Observer,
+) -> Result<RunReport, Error> {
+    settings.validate()?;
+    if scene.world.grid().is_none() {
+        if settings.predict_sensing == PredictSensing::Motion {
+            return Err(Error::GridOnly {
+                what: "predict_sensing = \"motion\" (dead reckoning on a grid)",
+            });
+        }
+        if settings.world.sensing_radius.is_some() {
+            return Err(Error::GridOnly {
+                what: "[world] sensing_radius (offsets around a robot on a grid)",
+            });
+        }
+    }
+    let classify = Classify::new(scene.world);
+    Ok(run_classify(scene, settings, classify, observer).0)
+}
+
 /// Run CS-QL on a prepared world and also return the final representation.
 ///
 /// ```
@@ -285,7 +376,9 @@ pub fn run_with_representation(
     setup: &Setup,
     settings: &RunSettings,
 ) -> (RunReport, Representation) {
-    run_classify(setup, settings, Classify::new(&setup.space), &mut KeepTrace)
+    let sensed = setup.sensed(settings);
+    let scene = Scene::new(&sensed, &setup.oracle, setup.truth(), setup.map.name());
+    run_classify(&scene, settings, Classify::new(&sensed), &mut KeepTrace)
 }
 
 /// Run CS-QL on a prepared world with an [`Observer`] called after every trial: for
@@ -311,7 +404,9 @@ pub fn run_observed(
     settings: &RunSettings,
     observer: &mut dyn Observer,
 ) -> RunReport {
-    run_classify(setup, settings, Classify::new(&setup.space), observer).0
+    let sensed = setup.sensed(settings);
+    let scene = Scene::new(&sensed, &setup.oracle, setup.truth(), setup.map.name());
+    run_classify(&scene, settings, Classify::new(&sensed), observer).0
 }
 
 /// Run CS-QL with a given CLASSIFY (for example with its cache off, or starting from a
@@ -325,11 +420,13 @@ pub fn run_observed(
 /// assert_eq!(csql::run_on_with(&setup, &settings, plain), csql::run_on(&setup, &settings));
 /// ```
 pub fn run_on_with(setup: &Setup, settings: &RunSettings, classify: Classify) -> RunReport {
-    run_classify(setup, settings, classify, &mut KeepTrace).0
+    let sensed = setup.sensed(settings);
+    let scene = Scene::new(&sensed, &setup.oracle, setup.truth(), setup.map.name());
+    run_classify(&scene, settings, classify, &mut KeepTrace).0
 }
 
-fn run_classify(
-    setup: &Setup,
+fn run_classify<W: World + ?Sized>(
+    scene: &Scene<'_, W>,
     settings: &RunSettings,
     classify: Classify,
     observer: &mut dyn Observer,
@@ -346,43 +443,49 @@ fn run_classify(
     let learner = settings.learner;
     let predicting = match (learner, settings.predict_sensing) {
         (LearnerKind::FullSensing, _) => {
-            let perception = FullView::new(&setup.world, &setup.space);
-            let (report, _) = learn_and_report(setup, settings, perception, Never, observer);
+            let perception = FullView::new(scene.world);
+            let (report, _) = learn_and_report(scene, settings, perception, Never, observer);
             return (report, classify.into_representation());
         }
         (LearnerKind::UTree, _) => {
             let mut utree_rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
             utree_rng.jump();
-            let perception = UTree::new(&setup.space, settings.u_tree, settings.gamma.get())
+            let perception = UTree::new(scene.world, settings.u_tree, settings.gamma.get())
                 .with_noise(settings.world.sensor_noise, utree_rng);
-            let (report, _) = learn_and_report(setup, settings, perception, Never, observer);
+            let (report, _) = learn_and_report(scene, settings, perception, Never, observer);
             return (report, classify.into_representation());
         }
         (LearnerKind::CsQl, PredictSensing::Off) if settings.extensions.memory > 0 => {
             let perception = Remembering::new(classify, settings.extensions.memory);
             let strategy = settings.strategy.build(settings.random_moves);
             let (report, perception) =
-                learn_and_report(setup, settings, perception, strategy, observer);
+                learn_and_report(scene, settings, perception, strategy, observer);
             return (report, perception.into_classify().into_representation());
         }
         (LearnerKind::CsQl, PredictSensing::Off) => {
             let strategy = settings.strategy.build(settings.random_moves);
             let (report, perception) =
-                learn_and_report(setup, settings, classify, strategy, observer);
+                learn_and_report(scene, settings, classify, strategy, observer);
             return (report, perception.into_representation());
         }
         (LearnerKind::CsQl, PredictSensing::Learned) => {
-            Predicting::learned(classify, &settings.prediction)
+            Predicting::learned(classify, &settings.prediction, scene.world.num_actions())
         }
         (LearnerKind::CsQl, PredictSensing::Motion) => {
-            Predicting::motion(classify, &settings.prediction, &setup.world)
+            match scene.world.grid().zip(scene.world.local_space()) {
+                Some((grid, space)) => {
+                    Predicting::motion(classify, &settings.prediction, grid, space)
+                }
+                // Refused by run_in before anything runs.
+                None => Predicting::learned(classify, &settings.prediction, scene.world.num_actions()),
+            }
         }
     };
     let strategy = settings.strategy.build(settings.random_moves);
-    let mut agent = new_agent(setup, settings, predicting, strategy);
-    let learned = learn(setup, settings, &mut agent, observer);
+    let mut agent = new_agent(scene.world, settings, predicting, strategy);
+    let learned = learn(scene, settings, &mut agent, observer);
     let mut out = report(
-        setup,
+        scene,
         settings,
         &mut agent.perception,
         &agent.table,
@@ -392,8 +495,8 @@ fn run_classify(
     agent.perception.navigate_with(settings.prediction.verify);
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed ^ NAVIGATION_STREAM);
     let nav = navigate(
-        &setup.world,
-        &setup.oracle,
+        scene.world,
+        scene.oracle,
         &mut agent.perception,
         &mut agent.table,
         settings.prediction.navigation_trials,
@@ -410,17 +513,17 @@ fn run_classify(
 const NAVIGATION_STREAM: u64 = 0x243F_6A88_85A3_08D3;
 
 /// Learn with a perception and a strategy, and report.
-fn learn_and_report<P: Perception + Sees + Describes, S: Strategy>(
-    setup: &Setup,
+fn learn_and_report<W: World + ?Sized, P: Perception + Sees + Describes, S: Strategy>(
+    scene: &Scene<'_, W>,
     settings: &RunSettings,
     perception: P,
     strategy: S,
     observer: &mut dyn Observer,
 ) -> (RunReport, P) {
-    let mut agent = new_agent(setup, settings, perception, strategy);
-    let learned = learn(setup, settings, &mut agent, observer);
+    let mut agent = new_agent(scene.world, settings, perception, strategy);
+    let learned = learn(scene, settings, &mut agent, observer);
     let report = report(
-        setup,
+        scene,
         settings,
         &mut agent.perception,
         &agent.table,
@@ -429,8 +532,8 @@ fn learn_and_report<P: Perception + Sees + Describes, S: Strategy>(
     (report, agent.perception)
 }
 
-fn new_agent<P, S>(
-    setup: &Setup,
+fn new_agent<W: World + ?Sized, P, S>(
+    world: &W,
     settings: &RunSettings,
     perception: P,
     strategy: S,
@@ -438,7 +541,7 @@ fn new_agent<P, S>(
     Agent::new(
         perception,
         strategy,
-        QTable::new(setup.world.num_actions()).expect("grid worlds have four actions"),
+        QTable::new(world.num_actions()).expect("a world has at least one action"),
         LoopParams::from(settings),
     )
     .with_detector(RunDetector::new(

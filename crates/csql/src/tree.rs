@@ -2,7 +2,7 @@
 //! built with cslearn's tree and classifying states of the grid.
 
 use cslearn::{ClassId, Cost, DecisionTree, FeatureId, Labels, Sensor, TreeOptions, Value};
-use mdp::{Cell, Feature, FeatureSpace, GridWorld, StateId};
+use mdp::{Cell, Feature, FeatureSpace, Reading, StateId, World};
 
 use crate::representation::{DescriptionId, Representation};
 
@@ -17,20 +17,17 @@ use crate::representation::{DescriptionId, Representation};
 /// assert_eq!(sensor.measure(FeatureId(0)), Some(Value(mdp::Cell::Obstacle.code())));
 /// ```
 #[derive(Clone, Copy, Debug)]
-pub struct StateSensor<'a> {
+pub struct StateSensor<'a, W: ?Sized> {
     /// The world.
-    pub world: &'a GridWorld,
-    /// Its features.
-    pub space: &'a FeatureSpace,
+    pub world: &'a W,
     /// The state sensed.
     pub state: StateId,
 }
 
-impl Sensor for StateSensor<'_> {
+impl<W: World + ?Sized> Sensor for StateSensor<'_, W> {
     fn measure(&mut self, feature: FeatureId) -> Option<Value> {
         let f = Feature(feature.0);
-        (f.index() < self.space.len())
-            .then(|| Value(self.space.measure(self.world, self.state, f).code()))
+        (f.index() < self.world.num_features()).then(|| Value(self.world.read(self.state, f).0))
     }
 }
 
@@ -44,6 +41,21 @@ impl Labels for GridLabels<'_> {
     }
     fn value(&self, _feature: FeatureId, value: Value) -> String {
         Cell::from_code(value.0).map_or_else(|| value.0.to_string(), |c| c.name().to_string())
+    }
+    fn class(&self, class: ClassId) -> String {
+        format!("d{}", class.0)
+    }
+}
+
+/// Labels in the world's own words, for worlds that are not grids.
+struct WorldLabels<'a, W: ?Sized>(&'a W);
+
+impl<W: World + ?Sized> Labels for WorldLabels<'_, W> {
+    fn feature(&self, feature: FeatureId) -> String {
+        self.0.feature_name(Feature(feature.0))
+    }
+    fn value(&self, feature: FeatureId, value: Value) -> String {
+        self.0.reading_name(Feature(feature.0), Reading(value.0))
     }
     fn class(&self, class: ClassId) -> String {
         format!("d{}", class.0)
@@ -81,13 +93,12 @@ impl StateTree {
     /// rep.push(&[(Feature(0), Cell::Obstacle)]);
     /// assert_eq!(csql::StateTree::build(&rep, &space).tree().depth(), 1);
     /// ```
-    pub fn build(rep: &Representation, space: &FeatureSpace) -> StateTree {
+    pub fn build(rep: &Representation, prices: &[f64]) -> StateTree {
         #[allow(
             clippy::expect_used,
-            reason = "a FeatureSpace validates its costs with the same rule as Cost::new"
+            reason = "a world's prices are finite and at least 0, the rule of Cost::new"
         )]
-        let costs: Vec<Cost> = space
-            .costs()
+        let costs: Vec<Cost> = prices
             .iter()
             .map(|&c| Cost::new(c).expect("feature spaces hold valid costs"))
             .collect();
@@ -109,17 +120,12 @@ impl StateTree {
     /// let below = world.state_at(Pos::new(1, 1)).unwrap();
     /// assert_eq!(tree.classify(&world, &space, below), (Some(open), 1.0));
     /// ```
-    pub fn classify(
+    pub fn classify<W: World + ?Sized>(
         &self,
-        world: &GridWorld,
-        space: &FeatureSpace,
+        world: &W,
         s: StateId,
     ) -> (Option<DescriptionId>, f64) {
-        let out = self.tree.classify(StateSensor {
-            world,
-            space,
-            state: s,
-        });
+        let out = self.tree.classify(StateSensor { world, state: s });
         (out.class.map(|c| DescriptionId(c.0)), out.cost.get())
     }
 
@@ -133,8 +139,11 @@ impl StateTree {
     /// rep.push(&[(Feature(0), Cell::Obstacle)]);
     /// assert!(csql::StateTree::build(&rep, &space).to_dot(&space).contains("(0, 1)"));
     /// ```
-    pub fn to_dot(&self, space: &FeatureSpace) -> String {
-        self.tree.to_dot(&GridLabels(space))
+    pub fn to_dot<W: World + ?Sized>(&self, world: &W) -> String {
+        match world.local_space() {
+            Some(space) => self.tree.to_dot(&GridLabels(space)),
+            None => self.tree.to_dot(&WorldLabels(world)),
+        }
     }
 
     /// The underlying cslearn tree.

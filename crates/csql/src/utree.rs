@@ -40,7 +40,7 @@
 
 use std::collections::VecDeque;
 
-use mdp::{ActionId, Cell, Feature, FeatureSpace, GridWorld, SensorNoise, StateId};
+use mdp::{ActionId, Feature, Reading, SensorNoise, StateId, World};
 use qlearn::{QTable, RowId};
 use rand::Rng;
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -58,21 +58,21 @@ enum Distinction {
 }
 
 /// The previous action's value at a trial's start.
-const NO_ACTION: u8 = 4;
+const NO_ACTION: u32 = u32::MAX;
 
 #[derive(Clone, Debug)]
 enum Node {
     Leaf(RowId),
     Split {
         test: Distinction,
-        children: Vec<(u8, usize)>,
+        children: Vec<(u32, usize)>,
     },
 }
 
 #[derive(Clone, Debug)]
 struct Instance {
     /// The fringe's values, in the leaf's candidate order.
-    values: Vec<u8>,
+    values: Vec<u32>,
     action: ActionId,
     reward: f64,
     next: Option<RowId>,
@@ -94,7 +94,7 @@ struct Leaf {
 #[derive(Clone, Debug)]
 struct Pending {
     row: RowId,
-    values: Vec<u8>,
+    values: Vec<u32>,
 }
 
 /// The U-Tree learner's perception (see the module docs): a tree of distinctions whose
@@ -112,23 +112,24 @@ struct Pending {
 /// ```
 #[derive(Clone, Debug)]
 pub struct UTree {
-    space: FeatureSpace,
+    prices: Vec<f64>,
+    readings: Vec<u32>,
     params: UTreeParams,
     gamma: f64,
     noise: SensorNoise,
     rng: Option<Xoshiro256PlusPlus>,
     nodes: Vec<Node>,
     /// Per node: what the path to it tests, with the values it requires.
-    paths: Vec<Vec<(Distinction, u8)>>,
+    paths: Vec<Vec<(Distinction, u32)>>,
     /// Per row: its leaf.
     leaves: Vec<Leaf>,
     /// The previous action of the state being classified.
-    previous: u8,
+    previous: u32,
     /// The instance of the state classified last, and of the one before.
     current: Option<Pending>,
     last: Option<Pending>,
     /// The previous action as the quality evaluation sees it.
-    seen_previous: u8,
+    seen_previous: u32,
     splits: u32,
 }
 
@@ -141,9 +142,11 @@ impl UTree {
     /// let tree = csql::UTree::new(&space, csql::UTreeParams::default(), 0.9);
     /// assert_eq!(tree.splits(), 0);
     /// ```
-    pub fn new(space: &FeatureSpace, params: UTreeParams, gamma: f64) -> UTree {
+    pub fn new<W: World + ?Sized>(world: &W, params: UTreeParams, gamma: f64) -> UTree {
+        let features = (0..world.num_features() as u32).map(Feature);
         UTree {
-            space: space.clone(),
+            prices: features.clone().map(|f| world.price(f)).collect(),
+            readings: features.map(|f| world.readings(f)).collect(),
             params,
             gamma,
             noise: SensorNoise::default(),
@@ -186,7 +189,7 @@ impl UTree {
     }
 
     /// A new leaf with the given path; its row is added to `table`.
-    fn new_leaf(&mut self, path: Vec<(Distinction, u8)>, table: &mut QTable) -> usize {
+    fn new_leaf(&mut self, path: Vec<(Distinction, u32)>, table: &mut QTable) -> usize {
         let row = table.add_row();
         debug_assert_eq!(row.index(), self.leaves.len());
         self.leaves.push(Leaf {
@@ -205,11 +208,11 @@ impl UTree {
     /// Walk the tree to a leaf through the learner's sensors (charged through `cost`);
     /// `table` is given when unseen values may add leaves, else a value with no branch
     /// gives `None`.
-    fn walk(
+    fn walk<W: World + ?Sized>(
         &mut self,
-        world: &GridWorld,
+        world: &W,
         s: StateId,
-        previous: u8,
+        previous: u32,
         mut table: Option<&mut QTable>,
         cost: &mut f64,
     ) -> Option<RowId> {
@@ -219,10 +222,10 @@ impl UTree {
         }
         let mut at = 0;
         loop {
-            let (space, noise) = (&self.space, self.noise);
+            let (sensors, noise) = ((&self.prices[..], &self.readings[..]), self.noise);
             let mut sensor = self.rng.as_mut().map(|rng| (noise, rng));
             let found = descend(&self.nodes, at, |d| {
-                read(space, world, s, d, previous, sensor.as_mut(), cost)
+                read(sensors, world, s, d, previous, sensor.as_mut(), cost)
             });
             let (node, value) = match found {
                 Ok(row) => return Some(row),
@@ -243,18 +246,18 @@ impl UTree {
     }
 
     /// Record the fringe of the leaf `row` at state `s`, if it collects.
-    fn note(&mut self, world: &GridWorld, s: StateId, row: RowId, cost: &mut f64) {
+    fn note<W: World + ?Sized>(&mut self, world: &W, s: StateId, row: RowId, cost: &mut f64) {
         let leaf = &self.leaves[row.index()];
         if !leaf.open {
             self.last = self.current.take();
             return;
         }
-        let (space, noise, previous) = (&self.space, self.noise, self.previous);
+        let (sensors, noise, previous) = ((&self.prices[..], &self.readings[..]), self.noise, self.previous);
         let mut sensor = self.rng.as_mut().map(|rng| (noise, rng));
         let values = leaf
             .candidates
             .iter()
-            .map(|&d| read(space, world, s, d, previous, sensor.as_mut(), cost))
+            .map(|&d| read(sensors, world, s, d, previous, sensor.as_mut(), cost))
             .collect();
         self.last = self.current.replace(Pending { row, values });
     }
@@ -275,7 +278,7 @@ impl UTree {
         let mut best: Option<(f64, usize)> = None;
         for c in 0..leaf.candidates.len() {
             for a in 0..table.num_actions() as u32 {
-                let mut groups: Vec<(u8, Vec<f64>)> = Vec::new();
+                let mut groups: Vec<(u32, Vec<f64>)> = Vec::new();
                 for (i, r) in leaf.instances.iter().zip(&returns) {
                     if i.action.0 != a {
                         continue;
@@ -315,7 +318,7 @@ impl UTree {
         let leaf = &self.leaves[row.index()];
         let test = leaf.candidates[c];
         let node = leaf.node;
-        let mut counts: Vec<(u8, usize)> = Vec::new();
+        let mut counts: Vec<(u32, usize)> = Vec::new();
         for i in &leaf.instances {
             match counts.iter_mut().find(|(v, _)| *v == i.values[c]) {
                 Some((_, n)) => *n += 1,
@@ -357,10 +360,12 @@ impl UTree {
         }
     }
 
-    fn fringe_of(&self, path: &[(Distinction, u8)]) -> Vec<Distinction> {
+    fn fringe_of(&self, path: &[(Distinction, u32)]) -> Vec<Distinction> {
         let mut candidates: Vec<Distinction> = self
-            .space
-            .features()
+            .prices
+            .iter()
+            .enumerate()
+            .map(|(f, _)| Feature(f as u32))
             .filter(|f| !path.iter().any(|(d, _)| *d == Distinction::Feature(*f)))
             .take(self.params.fringe)
             .map(Distinction::Feature)
@@ -373,20 +378,20 @@ impl UTree {
 
     /// The row of state `s` after the previous action `previous`, free and noiseless
     /// (`None` where classifying would add a leaf).
-    fn peek(&self, world: &GridWorld, s: StateId, previous: u8) -> Option<RowId> {
+    fn peek<W: World + ?Sized>(&self, world: &W, s: StateId, previous: u32) -> Option<RowId> {
         if self.nodes.is_empty() {
             return None;
         }
         let mut cost = 0.0;
         descend(&self.nodes, 0, |d| {
-            read::<Xoshiro256PlusPlus>(&self.space, world, s, d, previous, None, &mut cost)
+            read::<W, Xoshiro256PlusPlus>((&self.prices, &self.readings), world, s, d, previous, None, &mut cost)
         })
         .ok()
     }
 }
 
 impl Perception for UTree {
-    fn classify(&mut self, world: &GridWorld, s: StateId, table: &mut QTable) -> (RowId, f64) {
+    fn classify<W: World + ?Sized>(&mut self, world: &W, s: StateId, table: &mut QTable) -> (RowId, f64) {
         self.previous = NO_ACTION;
         let mut cost = 0.0;
         let row = self
@@ -396,16 +401,16 @@ impl Perception for UTree {
         (row, cost)
     }
 
-    fn classify_next<R: Rng + ?Sized>(
+    fn classify_next<W: World + ?Sized, R: Rng + ?Sized>(
         &mut self,
-        world: &GridWorld,
+        world: &W,
         _from: RowId,
         a: ActionId,
         s: StateId,
         table: &mut QTable,
         _rng: &mut R,
     ) -> (RowId, f64) {
-        self.previous = a.0 as u8;
+        self.previous = a.0;
         let mut cost = 0.0;
         let row = self
             .walk(world, s, self.previous, Some(table), &mut cost)
@@ -414,7 +419,7 @@ impl Perception for UTree {
         (row, cost)
     }
 
-    fn refine(&mut self, _world: &GridWorld, _row: RowId, _s: StateId) -> Option<f64> {
+    fn refine<W: World + ?Sized>(&mut self, _world: &W, _row: RowId, _s: StateId) -> Option<f64> {
         None
     }
 
@@ -459,15 +464,15 @@ impl Perception for UTree {
     }
 
     /// The row of `s` at a trial's start (no previous action).
-    fn lookup(&mut self, world: &GridWorld, s: StateId) -> Option<RowId> {
+    fn lookup<W: World + ?Sized>(&mut self, world: &W, s: StateId) -> Option<RowId> {
         self.peek(world, s, NO_ACTION)
     }
 }
 
 impl crate::quality::Sees for UTree {
-    fn sees<R: Rng + ?Sized>(
+    fn sees<W: World + ?Sized, R: Rng + ?Sized>(
         &mut self,
-        world: &GridWorld,
+        world: &W,
         s: StateId,
         noise: SensorNoise,
         rng: &mut R,
@@ -480,7 +485,7 @@ impl crate::quality::Sees for UTree {
         let mut sensor = Some((noise, rng));
         descend(&self.nodes, 0, |d| {
             read(
-                &self.space,
+                (&self.prices, &self.readings),
                 world,
                 s,
                 d,
@@ -506,13 +511,13 @@ impl crate::quality::Sees for UTree {
         self.seen_previous = NO_ACTION;
     }
     fn moved(&mut self, a: ActionId) {
-        self.seen_previous = a.0 as u8;
+        self.seen_previous = a.0;
     }
 }
 
 impl crate::report::Describes for UTree {
     /// The features of each leaf's path (its previous-action tests are not features).
-    fn described(&self) -> Vec<(RowId, Vec<(Feature, Cell)>)> {
+    fn described(&self) -> Vec<(RowId, Vec<(Feature, Reading)>)> {
         self.leaves
             .iter()
             .enumerate()
@@ -521,7 +526,7 @@ impl crate::report::Describes for UTree {
                     .iter()
                     .filter_map(|&(d, v)| match d {
                         Distinction::Feature(f) => {
-                            Some((f, Cell::from_code(u32::from(v)).unwrap_or(Cell::Obstacle)))
+                            Some((f, Reading(v)))
                         }
                         Distinction::PreviousAction => None,
                     })
@@ -533,12 +538,12 @@ impl crate::report::Describes for UTree {
 
     /// The features on the path of `s` at a trial's start (the fringe is no longer
     /// measured once learning is over).
-    fn cost_after_learning(&mut self, world: &GridWorld, s: StateId) -> f64 {
+    fn cost_after_learning<W: World + ?Sized>(&mut self, world: &W, s: StateId) -> f64 {
         let mut cost = 0.0;
         if !self.nodes.is_empty() {
             // A value with no branch ends the walk where it was read.
             let _ = descend(&self.nodes, 0, |d| {
-                read::<Xoshiro256PlusPlus>(&self.space, world, s, d, NO_ACTION, None, &mut cost)
+                read::<W, Xoshiro256PlusPlus>((&self.prices, &self.readings), world, s, d, NO_ACTION, None, &mut cost)
             });
         }
         cost
@@ -550,8 +555,8 @@ impl crate::report::Describes for UTree {
 fn descend(
     nodes: &[Node],
     mut node: usize,
-    mut read: impl FnMut(Distinction) -> u8,
-) -> Result<RowId, (usize, u8)> {
+    mut read: impl FnMut(Distinction) -> u32,
+) -> Result<RowId, (usize, u32)> {
     loop {
         match &nodes[node] {
             Node::Leaf(row) => return Ok(*row),
@@ -570,25 +575,25 @@ fn descend(
 /// Read a distinction at state `s`: the previous action, or a feature's value through
 /// `sensor` (the noise and the generator its errors come from; exact without), its cost
 /// added to `cost`.
-fn read<R: Rng + ?Sized>(
-    space: &FeatureSpace,
-    world: &GridWorld,
+fn read<W: World + ?Sized, R: Rng + ?Sized>(
+    (prices, readings): (&[f64], &[u32]),
+    world: &W,
     s: StateId,
     d: Distinction,
-    previous: u8,
+    previous: u32,
     sensor: Option<&mut (SensorNoise, &mut R)>,
     cost: &mut f64,
-) -> u8 {
+) -> u32 {
     match d {
         Distinction::PreviousAction => previous,
         Distinction::Feature(f) => {
-            *cost += space.cost(f);
-            let truth = space.measure(world, s, f);
+            *cost += prices[f.index()];
+            let truth = world.read(s, f);
             let seen = match sensor {
-                Some((noise, rng)) => noise.corrupt(truth, &mut **rng),
+                Some((noise, rng)) => noise.corrupt_reading(truth, readings[f.index()], &mut **rng),
                 None => truth,
             };
-            seen.code() as u8
+            seen.0
         }
     }
 }

@@ -212,6 +212,27 @@ impl Oracle {
         })
     }
 
+    /// How many actions the world has.
+    ///
+    /// ```
+    /// let w = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// assert_eq!(mdp::Oracle::for_grid(&w, 0.5).unwrap().num_actions(), 4);
+    /// ```
+    pub fn num_actions(&self) -> usize {
+        self.actions
+    }
+
+    /// The actions, in id order.
+    ///
+    /// ```
+    /// let w = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let o = mdp::Oracle::for_grid(&w, 0.9).unwrap();
+    /// assert_eq!(o.actions().count(), 4);
+    /// ```
+    pub fn actions(&self) -> impl Iterator<Item = ActionId> + use<> {
+        (0..self.actions as u32).map(ActionId)
+    }
+
     /// The discount the oracle was built with.
     ///
     /// ```

@@ -16,6 +16,7 @@ use crate::error::MdpError;
 use crate::geometry::Cell;
 use crate::grid::{Action, GridWorld};
 use crate::process::{ActionId, Mdp, StateId, Step};
+use crate::world::Reading;
 
 fn probability(name: &'static str, value: f64) -> Result<f64, MdpError> {
     if (0.0..=1.0).contains(&value) {
@@ -133,11 +134,35 @@ impl SensorNoise {
     /// assert!((400..600).contains(&wrong));
     /// ```
     pub fn corrupt<R: Rng + ?Sized>(self, truth: Cell, rng: &mut R) -> Cell {
-        if self.is_zero() || rng.random::<f64>() >= self.0 {
+        let read = self.corrupt_reading(Reading::from(truth), Cell::ALL.len() as u32, rng);
+        Cell::try_from(read).unwrap_or(truth)
+    }
+
+    /// What a sensor reports when the true reading is `truth`, one of `0..readings`. With
+    /// noise 0 nothing is drawn; otherwise one uniform `f64`, and, when the measurement
+    /// is wrong, a `random_range(0..readings - 1)` to pick among the other readings in
+    /// ascending order (on a grid's three conditions, exactly [`SensorNoise::corrupt`]).
+    /// A feature with a single reading reads it whatever the noise.
+    ///
+    /// ```
+    /// use mdp::{Reading, SensorNoise};
+    /// use rand::SeedableRng;
+    /// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(7);
+    /// let noise = SensorNoise::new(1.0).unwrap();
+    /// assert!((0..100).all(|_| noise.corrupt_reading(Reading(4), 8, &mut rng) != Reading(4)));
+    /// assert_eq!(noise.corrupt_reading(Reading(0), 1, &mut rng), Reading(0));
+    /// ```
+    pub fn corrupt_reading<R: Rng + ?Sized>(
+        self,
+        truth: Reading,
+        readings: u32,
+        rng: &mut R,
+    ) -> Reading {
+        if self.is_zero() || rng.random::<f64>() >= self.0 || readings < 2 {
             return truth;
         }
-        let mut others = Cell::ALL.iter().copied().filter(|&c| c != truth);
-        let pick = rng.random_range(0..2usize);
+        let mut others = (0..readings).map(Reading).filter(|&r| r != truth);
+        let pick = rng.random_range(0..(readings - 1) as usize);
         others.nth(pick).unwrap_or(truth)
     }
 }
@@ -161,12 +186,34 @@ impl SensorNoise {
     /// assert!(three < 250, "{three}");
     /// ```
     pub fn majority<R: Rng + ?Sized>(self, truth: Cell, reads: u32, rng: &mut R) -> Cell {
+        let read = self.majority_reading(Reading::from(truth), Cell::ALL.len() as u32, reads, rng);
+        Cell::try_from(read).unwrap_or(truth)
+    }
+
+    /// [`SensorNoise::majority`] over the readings `0..readings` of any feature, with the
+    /// draws of [`SensorNoise::corrupt_reading`].
+    ///
+    /// ```
+    /// use mdp::{Reading, SensorNoise};
+    /// use rand::SeedableRng;
+    /// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(3);
+    /// let noise = SensorNoise::new(0.1).unwrap();
+    /// let wrong = (0..1000).filter(|_| noise.majority_reading(Reading(2), 5, 3, &mut rng) != Reading(2)).count();
+    /// assert!(wrong < 100, "{wrong}");
+    /// ```
+    pub fn majority_reading<R: Rng + ?Sized>(
+        self,
+        truth: Reading,
+        readings: u32,
+        reads: u32,
+        rng: &mut R,
+    ) -> Reading {
         if reads <= 1 {
-            return self.corrupt(truth, rng);
+            return self.corrupt_reading(truth, readings, rng);
         }
-        let mut seen: Vec<(Cell, u32)> = Vec::with_capacity(3);
+        let mut seen: Vec<(Reading, u32)> = Vec::with_capacity(3);
         for _ in 0..reads {
-            let v = self.corrupt(truth, rng);
+            let v = self.corrupt_reading(truth, readings, rng);
             match seen.iter_mut().find(|(c, _)| *c == v) {
                 Some((_, n)) => *n += 1,
                 None => seen.push((v, 1)),

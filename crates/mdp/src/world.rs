@@ -77,6 +77,9 @@ pub trait Sensors {
     fn price(&self, f: Feature) -> f64;
     /// What feature `f` reads in state `s`, exactly.
     fn read(&self, s: StateId, f: Feature) -> Reading;
+    /// How many readings feature `f` has: it reads one of `0..readings(f)` (a wrong read
+    /// of a noisy sensor is drawn among the others).
+    fn readings(&self, f: Feature) -> u32;
     /// A short name for feature `f`.
     fn feature_name(&self, f: Feature) -> String;
     /// A short name for reading `v` of feature `f`.
@@ -229,6 +232,10 @@ impl Sensors for SensedGrid<'_> {
     #[inline]
     fn read(&self, s: StateId, f: Feature) -> Reading {
         Reading::from(self.space.measure(self.dynamics.world(), s, f))
+    }
+    #[inline]
+    fn readings(&self, _f: Feature) -> u32 {
+        Cell::ALL.len() as u32
     }
     fn feature_name(&self, f: Feature) -> String {
         let o = self.space.offset(f);

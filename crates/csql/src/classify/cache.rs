@@ -24,7 +24,7 @@
 //! plain procedure measures (`tests/classify.rs` checks it, feature for feature).
 
 use cslearn::{Cost, FeatureId, Library};
-use mdp::{Cell, Feature};
+use mdp::{Feature, Reading};
 
 use crate::representation::DescriptionId;
 
@@ -40,26 +40,91 @@ pub(super) enum Step {
 }
 
 const NONE: u32 = u32::MAX;
-/// Cell codes are 0, 1 and 2: one count per value.
-const VALUES: usize = 3;
+/// Readings kept inline per node: a grid's three cell conditions fit; worlds with more
+/// readings per feature spill the rest to the heap.
+const INLINE: usize = 4;
+
+/// One `u32` per reading code, `FILL` where nothing was written: the first [`INLINE`]
+/// inline, the rest on the heap (a grid's readings never allocate). Iteration is in code
+/// order, so sums over counts add in the same order whatever the storage.
+#[derive(Clone, Debug, PartialEq, Eq)]
+struct Slots<const FILL: u32> {
+    inline: [u32; INLINE],
+    more: Vec<u32>,
+}
+
+impl<const FILL: u32> Slots<FILL> {
+    const EMPTY: Self = Slots {
+        inline: [FILL; INLINE],
+        more: Vec::new(),
+    };
+    #[inline]
+    fn get(&self, code: u32) -> u32 {
+        let c = code as usize;
+        if c < INLINE {
+            self.inline[c]
+        } else {
+            self.more.get(c - INLINE).copied().unwrap_or(FILL)
+        }
+    }
+    #[inline]
+    fn slot(&mut self, code: u32) -> &mut u32 {
+        let c = code as usize;
+        if c < INLINE {
+            &mut self.inline[c]
+        } else {
+            if self.more.len() <= c - INLINE {
+                self.more.resize(c - INLINE + 1, FILL);
+            }
+            &mut self.more[c - INLINE]
+        }
+    }
+    #[inline]
+    fn iter(&self) -> impl Iterator<Item = u32> + '_ {
+        self.inline.iter().chain(self.more.iter()).copied()
+    }
+    /// The codes written, with their values, in code order.
+    #[inline]
+    fn written(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
+        self.iter()
+            .enumerate()
+            .filter(|&(_, v)| v != FILL)
+            .map(|(c, v)| (c as u32, v))
+    }
+    #[inline]
+    fn is_blank(&self) -> bool {
+        self.iter().all(|v| v == FILL)
+    }
+}
+
+impl<const FILL: u32> Default for Slots<FILL> {
+    fn default() -> Self {
+        Self::EMPTY
+    }
+}
+
+/// A node's children, one per reading measured there.
+type Children = Slots<NONE>;
+/// How many candidates require each reading of a feature.
+type Counts = Slots<0>;
 
 /// What a walk down the tree reads at a node, kept apart from what the node's decision
 /// is computed from so that walks touch small, dense records.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 struct Link {
     step: Step,
     /// The decision must be recomputed from the node's candidates and counts before it
     /// is used.
     stale: bool,
-    /// For `Measure`: the child for each cell code, or `NONE`.
-    children: [u32; VALUES],
+    /// For `Measure`: the child for each reading, or `NONE`.
+    children: Children,
 }
 
 impl Link {
     const FRESH: Link = Link {
         step: Step::Create,
         stale: true,
-        children: [NONE; VALUES],
+        children: Children::EMPTY,
     };
 }
 
@@ -70,7 +135,7 @@ struct Node {
     cands: Vec<u32>,
     /// (feature, candidates requiring each value) for every feature some candidate has
     /// and the path has not measured, ascending by feature; no all-zero entry.
-    counts: Vec<(u32, [u32; VALUES])>,
+    counts: Vec<(u32, Counts)>,
 }
 
 impl Node {
@@ -82,16 +147,16 @@ impl Node {
     fn count(&mut self, feature: u32, value: u32, delta: i32) {
         match self.counts.binary_search_by_key(&feature, |e| e.0) {
             Ok(i) => {
-                let c = &mut self.counts[i].1[value as usize];
+                let c = self.counts[i].1.slot(value);
                 *c = c.wrapping_add_signed(delta);
-                if self.counts[i].1 == [0; VALUES] {
+                if self.counts[i].1.is_blank() {
                     self.counts.remove(i);
                 }
             }
             Err(i) => {
                 debug_assert_eq!(delta, 1, "a count below zero");
-                let mut c = [0; VALUES];
-                c[value as usize] = 1;
+                let mut c = Counts::EMPTY;
+                *c.slot(value) = 1;
                 self.counts.insert(i, (feature, c));
             }
         }
@@ -114,7 +179,7 @@ pub(super) struct Cache {
     /// `x log2 x` for every count seen so far, computed as cslearn computes it.
     xlogx: Vec<f64>,
     /// Dense per-feature scratch for building a node's counts.
-    scratch: Vec<[u32; VALUES]>,
+    scratch: Vec<Counts>,
     touched: Vec<u32>,
     marks: Vec<bool>,
     /// Traversal stack: (node, path length above it, edge into it).
@@ -131,8 +196,8 @@ impl Cache {
         &mut self,
         library: &Library,
         costs: &[Cost],
-        path: &mut Vec<(Feature, Cell)>,
-        mut measure: impl FnMut(Feature) -> Cell,
+        path: &mut Vec<(Feature, Reading)>,
+        mut measure: impl FnMut(Feature) -> Reading,
     ) -> Option<DescriptionId> {
         if self.nodes.is_empty() {
             let root = self.alloc();
@@ -152,8 +217,8 @@ impl Cache {
                 Step::Measure(f) => {
                     let v = measure(f);
                     path.push((f, v));
-                    let code = v.code();
-                    let child = self.links[at as usize].children[code as usize];
+                    let code = v.0;
+                    let child = self.links[at as usize].children.get(code);
                     at = if child == NONE {
                         self.grow(at, f.0, code, library, path)
                     } else {
@@ -192,10 +257,9 @@ impl Cache {
                     .binary_search_by_key(&g.0, |p| p.0.0)
                     .ok()
                     .map(|i| pairs[i].1.0);
-                for (code, &child) in link.children.iter().enumerate() {
-                    if child != NONE && wanted.is_none_or(|w| w == code as u32) {
-                        self.stack
-                            .push((child, self.path.len(), (g.0, code as u32)));
+                for (code, child) in link.children.written() {
+                    if wanted.is_none_or(|w| w == code) {
+                        self.stack.push((child, self.path.len(), (g.0, code)));
                     }
                 }
             }
@@ -203,11 +267,17 @@ impl Cache {
     }
 
     /// Description `d` of `library` was just given `feature` = `value`.
-    pub(super) fn on_refine(&mut self, library: &Library, d: DescriptionId, f: Feature, v: Cell) {
+    pub(super) fn on_refine(
+        &mut self,
+        library: &Library,
+        d: DescriptionId,
+        f: Feature,
+        v: Reading,
+    ) {
         if self.nodes.is_empty() {
             return;
         }
-        let (feature, value) = (f.0, v.code());
+        let (feature, value) = (f.0, v.0);
         self.stack.clear();
         self.stack.push((0, 0, (NONE, 0)));
         while let Some((at, depth, edge)) = self.stack.pop() {
@@ -228,11 +298,8 @@ impl Cache {
                     let link = &mut self.links[at as usize];
                     link.stale = true;
                     if let Step::Measure(g) = link.step {
-                        for (code, &child) in link.children.iter().enumerate() {
-                            if child != NONE {
-                                self.stack
-                                    .push((child, self.path.len(), (g.0, code as u32)));
-                            }
+                        for (code, child) in link.children.written() {
+                            self.stack.push((child, self.path.len(), (g.0, code)));
                         }
                     }
                 }
@@ -263,10 +330,8 @@ impl Cache {
             let link = &mut self.links[at as usize];
             link.stale = true;
             if let Step::Measure(g) = link.step {
-                for (code, &child) in link.children.iter().enumerate() {
-                    if child != NONE {
-                        stack.push((child, self.path.len(), (g.0, code as u32)));
-                    }
+                for (code, child) in link.children.written() {
+                    stack.push((child, self.path.len(), (g.0, code)));
                 }
             }
         }
@@ -280,11 +345,9 @@ impl Cache {
         link.stale = false;
         if link.step != step {
             link.step = step;
-            let children = std::mem::replace(&mut link.children, [NONE; VALUES]);
-            for child in children {
-                if child != NONE {
-                    self.release(child);
-                }
+            let children = std::mem::replace(&mut link.children, Children::EMPTY);
+            for (_, child) in children.written() {
+                self.release(child);
             }
         }
     }
@@ -316,12 +379,13 @@ impl Cache {
         let node = &self.nodes[at as usize];
         let xl = &self.xlogx;
         let mut best = cslearn::BestScore::new();
-        for &(feature, counts) in &node.counts {
+        for (feature, counts) in &node.counts {
+            let feature = *feature;
             // Each class (candidate) occurs once, so every within-class term is zero:
             // the gain on the candidates having the feature, times their share, is
             // (g(having) - sum over values of g(count)) / n with g = x log2 x.
             let mut branches = 0.0;
-            for &c in &counts {
+            for c in counts.iter() {
                 if c > 0 {
                     branches += xl[c as usize];
                 }
@@ -344,7 +408,7 @@ impl Cache {
         feature: u32,
         code: u32,
         library: &Library,
-        path: &[(Feature, Cell)],
+        path: &[(Feature, Reading)],
     ) -> u32 {
         let child = self.alloc();
         let examples = library.examples();
@@ -360,13 +424,13 @@ impl Cache {
                 .get(FeatureId(feature))
                 .is_none_or(|v| v.0 == code)
         }));
-        self.links[parent as usize].children[code as usize] = child;
+        *self.links[parent as usize].children.slot(code) = child;
         self.fill_counts(child, library, path);
         child
     }
 
     /// Count, for a node whose candidates are set, the values of every unmeasured feature.
-    fn fill_counts(&mut self, at: u32, library: &Library, path: &[(Feature, Cell)]) {
+    fn fill_counts(&mut self, at: u32, library: &Library, path: &[(Feature, Reading)]) {
         let examples = library.examples();
         for &(f, _) in path {
             self.mark(f.0, true);
@@ -376,15 +440,15 @@ impl Cache {
             for &(f, v) in examples[d as usize].pairs() {
                 let f = f.0 as usize;
                 if f >= self.scratch.len() {
-                    self.scratch.resize(f + 1, [0; VALUES]);
+                    self.scratch.resize(f + 1, Counts::EMPTY);
                 }
                 if self.marks.get(f).copied().unwrap_or(false) {
                     continue;
                 }
-                if self.scratch[f] == [0; VALUES] {
+                if self.scratch[f].is_blank() {
                     self.touched.push(f as u32);
                 }
-                self.scratch[f][v.0 as usize] += 1;
+                *self.scratch[f].slot(v.0) += 1;
             }
         }
         self.touched.sort_unstable();
@@ -424,7 +488,7 @@ impl Cache {
         let mut stack = vec![top];
         while let Some(at) = stack.pop() {
             let link = std::mem::replace(&mut self.links[at as usize], Link::FRESH);
-            stack.extend(link.children.iter().copied().filter(|&c| c != NONE));
+            stack.extend(link.children.written().map(|(_, c)| c));
             let node = &mut self.nodes[at as usize];
             node.cands.clear();
             node.counts.clear();
