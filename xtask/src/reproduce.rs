@@ -725,7 +725,7 @@ fn write_figures(res: &Results, out: &Path) -> Result<Vec<PathBuf>> {
     let (k, runs, _) = &res.runs[0];
     let settings = runs[0].settings.clone();
     let (_, rep) = csql::run_with_representation(&res.setup, &settings);
-    let tree = StateTree::build(&rep, &res.setup.space);
+    let tree = StateTree::build(&rep, res.setup.space.costs());
     let path = out.join(format!("tree_{name}_{k}.svg"));
     crate::files::write_atomic(
         &path,
@@ -741,14 +741,14 @@ fn write_figures(res: &Results, out: &Path) -> Result<Vec<PathBuf>> {
     )?;
     written.push(path);
     let path = out.join(format!("tree_{name}_{k}.dot"));
-    crate::files::write_atomic(&path, tree.to_dot(&res.setup.space))?;
+    crate::files::write_atomic(&path, tree.to_dot(&res.setup.sensed(&settings)))?;
     written.push(path);
     // Figure 5 for tan3x3: descriptions with policy, and tree.
     let mut small = RunSettings::tan1991("tan3x3", res.runs[0].0, res.args.seed);
     small.max_trials = settings.max_trials;
     let setup3 = Setup::new(&small)?;
     let (report3, rep3) = csql::run_with_representation(&setup3, &small);
-    let tree3 = StateTree::build(&rep3, &setup3.space);
+    let tree3 = StateTree::build(&rep3, setup3.space.costs());
     let figure5 = figures::side_by_side(
         &format!(
             "Figure 5 on tan3x3: {} descriptions for {} states (the paper: 7)",
@@ -764,7 +764,7 @@ fn write_figures(res: &Results, out: &Path) -> Result<Vec<PathBuf>> {
     crate::files::write_atomic(&path, figure5)?;
     written.push(path);
     let path = out.join("tree_tan3x3.dot");
-    crate::files::write_atomic(&path, tree3.to_dot(&setup3.space))?;
+    crate::files::write_atomic(&path, tree3.to_dot(&setup3.sensed(&small)))?;
     written.push(path);
     Ok(written)
 }
