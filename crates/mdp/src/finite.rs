@@ -429,6 +429,7 @@ impl FiniteWorld {
     /// ```
     pub fn from_json(text: &str) -> Result<FiniteWorld, WorldError> {
         #[derive(Deserialize)]
+        #[serde(expecting = "a csrl world file (a JSON object)")]
         struct Header {
             format: Option<serde_json::Value>,
             version: Option<serde_json::Value>,
@@ -984,7 +985,13 @@ fn assemble(spec: WorldSpec) -> FiniteWorld {
     }
     first.push(outcomes.len());
     let mut order: Vec<usize> = (0..nf).collect();
-    order.sort_by(|&a, &b| spec.features[a].price.total_cmp(&spec.features[b].price));
+    // Prices are finite, so `partial_cmp` is total; unlike `total_cmp` it ties -0 and 0.
+    order.sort_by(|&a, &b| {
+        spec.features[a]
+            .price
+            .partial_cmp(&spec.features[b].price)
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
     let features = order.iter().map(|&f| spec.features[f].clone()).collect();
     let mut readings = Vec::with_capacity(n * nf);
     for row in &spec.readings {

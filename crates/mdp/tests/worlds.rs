@@ -738,6 +738,34 @@ fn malformed_world_files_are_refused_clearly() {
         err.contains("actions: 65, more than the limit of 64"),
         "{err}"
     );
+    let mut spec: mdp::WorldSpec = serde_json::from_str(WORLD).unwrap();
+    spec.states = mdp::StatesSpec::Count(65_536);
+    spec.features = (0..4_096)
+        .map(|i| mdp::FeatureSpec {
+            name: format!("f{i}"),
+            price: 1.0,
+            readings: vec![],
+        })
+        .collect();
+    let err = FiniteWorld::new(spec.clone()).unwrap_err().to_string();
+    assert!(
+        err.contains(
+            "readings (states times features): 268435456, more than the limit of 16777216"
+        ),
+        "{err}"
+    );
+    spec.features.push(spec.features[0].clone());
+    let err = FiniteWorld::new(spec).unwrap_err().to_string();
+    assert!(
+        err.contains("features: 4097, more than the limit of 4096"),
+        "{err}"
+    );
+    let err = FiniteWorld::from_json("[1]").unwrap_err().to_string();
+    assert!(err.contains("expected a csrl world file"), "{err}");
+    // No prefix of a valid file panics, and each is refused.
+    for end in 0..WORLD.len() {
+        assert!(FiniteWorld::from_json(&WORLD[..end]).is_err());
+    }
     let err = FiniteWorld::from_json("").unwrap_err().to_string();
     assert!(err.contains("line 1, column 0"), "{err}");
 }
