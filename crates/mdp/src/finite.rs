@@ -216,62 +216,62 @@ pub type TransitionSpec = (u32, u32, Vec<OutcomeSpec>);
 
 /// A world file's contents, before validation; [`FiniteWorld::new`] validates it.
 ///
-///  # The world file (format `csrl-world`, version 1)
+/// # The world file (format `csrl-world`, version 1)
 ///
-///  A world file is JSON, the serialisation of a [`WorldSpec`]:
+/// A world file is JSON, the serialisation of a [`WorldSpec`]:
 ///
-///  ```json
-///  {
-///    "format": "csrl-world",
-///    "version": 1,
-///    "name": "two-rooms",
-///    "states": ["hall", "kitchen", "exit"],
-///    "actions": ["stay", "go"],
-///    "start": [[1.0, 0]],
-///    "terminal": [2],
-///    "transitions": [
-///      [0, 0, [[1.0, 0, 0.0, false]]],
-///      [0, 1, [[0.9, 1, 0.0, false], [0.1, 0, 0.0, false]]],
-///      [1, 0, [[1.0, 1, 0.0, false]]],
-///      [1, 1, [[1.0, 2, 1.0, true]]]
-///    ],
-///    "features": [
-///      {"name": "light", "price": 1.0, "readings": ["off", "on"]},
-///      {"name": "smell", "price": 0.5}
-///    ],
-///    "readings": [[0, 0], [1, 1], [1, 0]]
-///  }
-///  ```
+/// ```json
+/// {
+///   "format": "csrl-world",
+///   "version": 1,
+///   "name": "two-rooms",
+///   "states": ["hall", "kitchen", "exit"],
+///   "actions": ["stay", "go"],
+///   "start": [[1.0, 0]],
+///   "terminal": [2],
+///   "transitions": [
+///     [0, 0, [[1.0, 0, 0.0, false]]],
+///     [0, 1, [[0.9, 1, 0.0, false], [0.1, 0, 0.0, false]]],
+///     [1, 0, [[1.0, 1, 0.0, false]]],
+///     [1, 1, [[1.0, 2, 1.0, true]]]
+///   ],
+///   "features": [
+///     {"name": "light", "price": 1.0, "readings": ["off", "on"]},
+///     {"name": "smell", "price": 0.5}
+///   ],
+///   "readings": [[0, 0], [1, 1], [1, 0]]
+/// }
+/// ```
 ///
-///  * `format` is `"csrl-world"` and `version` is `1`; both are checked before anything
-///    else, so a file of another format or version is refused as such.
-///  * `states` is the number of states (labelled `s0`, `s1`, ...) or the list of their
-///    labels. State ids are `0..states`.
-///  * `actions` names the actions; action ids are their positions.
-///  * `start` lists `[probability, state]` pairs: where trials start.
-///  * `terminal` lists the terminal states (in any order; repeats are harmless).
-///  * `transitions` lists `[state, action, outcomes]`, one entry for every action of every
-///    non-terminal state (in any order) and none for terminal states; each outcome is
-///    `[probability, next, reward, terminated]`, and `terminated` must be true exactly
-///    when `next` is terminal. Outcomes are kept in the given order (sampling depends on
-///    it, see [`FiniteWorld`]).
-///  * `features` lists the features with their price and, optionally, names of their
-///    readings (reading `i` is named `readings[i]`; without names a reading is named by
-///    its number, and with names every reading must have one).
-///  * `readings` has one row per state (terminal ones too), one reading per feature in
-///    the order of `features`.
+/// * `format` is `"csrl-world"` and `version` is `1`; both are checked before anything
+///   else, so a file of another format or version is refused as such.
+/// * `states` is the number of states (labelled `s0`, `s1`, ...) or the list of their
+///   labels. State ids are `0..states`.
+/// * `actions` names the actions; action ids are their positions.
+/// * `start` lists `[probability, state]` pairs: where trials start.
+/// * `terminal` lists the terminal states (in any order; repeats are harmless).
+/// * `transitions` lists `[state, action, outcomes]`, one entry for every action of every
+///   non-terminal state (in any order) and none for terminal states; each outcome is
+///   `[probability, next, reward, terminated]`, and `terminated` must be true exactly
+///   when `next` is terminal. Outcomes are kept in the given order (sampling depends on
+///   it, see [`FiniteWorld`]).
+/// * `features` lists the features with their price and, optionally, names of their
+///   readings (reading `i` is named `readings[i]`; without names a reading is named by
+///   its number, and with names every reading must have one).
+/// * `readings` has one row per state (terminal ones too), one reading per feature in
+///   the order of `features`.
 ///
-///  Every probability must be finite and in `[0, 1]`, and every list of probabilities
-///  must sum to 1 within an absolute tolerance of [`PROBABILITY_TOLERANCE`] (1e-9).
-///  Rewards must be finite, prices finite and at least 0. Unknown keys are refused. A
-///  world has at most [`MAX_STATES`] states, [`MAX_ACTIONS`] actions, [`MAX_FEATURES`]
-///  features and [`MAX_READINGS`] readings (states times features); a file has at most
-///  [`crate::MAX_FILE_BYTES`] bytes. Errors say what is wrong and where: the state, the
-///  action, the feature, the index in the list, or the line and column of a JSON error.
+/// Every probability must be finite and in `[0, 1]`, and every list of probabilities
+/// must sum to 1 within an absolute tolerance of [`PROBABILITY_TOLERANCE`] (1e-9).
+/// Rewards must be finite, prices finite and at least 0. Unknown keys are refused. A
+/// world has at most [`MAX_STATES`] states, [`MAX_ACTIONS`] actions, [`MAX_FEATURES`]
+/// features and [`MAX_READINGS`] readings (states times features); a file has at most
+/// [`crate::MAX_FILE_BYTES`] bytes. Errors say what is wrong and where: the state, the
+/// action, the feature, the index in the list, or the line and column of a JSON error.
 ///
-///  Features are stored cheapest first: [`FiniteWorld::new`] sorts them by price, stably
-///  (features of equal price keep the file's order), and permutes the readings with them,
-///  so [`FiniteWorld::to_json`] writes them sorted.
+/// Features are stored cheapest first: [`FiniteWorld::new`] sorts them by price, stably
+/// (features of equal price keep the file's order), and permutes the readings with them,
+/// so [`FiniteWorld::to_json`] writes them sorted.
 ///
 /// ```
 /// let w = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions::default()).unwrap();

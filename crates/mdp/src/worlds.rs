@@ -60,54 +60,54 @@ pub fn builtin_world_names() -> &'static [&'static str] {
 
 /// A built-in world by name, with options.
 ///
-///  # The worlds
+/// # The worlds
 ///
-///  * **FrozenLake** (`SFFF/FHFH/FFFH/HFFG`, and the 8 by 8 map): state `row * ncol +
-///    col` for every cell; holes and the goal are terminal. Actions 0 left, 1 down,
-///    2 right, 3 up; a move off the map stays. Entering the goal pays 1, everything else
-///    0; trials start on `S`.
-///  * **CliffWalking** (4 by 12): state `row * 12 + col`; start (3,0), goal (3,11), the
-///    cliff (3,1) to (3,10). Actions 0 up, 1 right, 2 down, 3 left. Every move pays -1;
-///    a move into the cliff pays -100 and returns to the start without ending the trial;
-///    entering the goal ends it. Cliff cells are states no trial reaches.
-///  * **Taxi** (Taxi-v3): state `((row * 5 + col) * 5 + passenger) * 4 + destination`,
-///    passenger 0 to 3 at stand R, G, Y, B and 4 in the taxi; actions 0 south, 1 north,
-///    2 east, 3 west, 4 pickup, 5 dropoff, east and west blocked by the map's walls.
-///    Every step pays -1; a pickup where the passenger waits takes them in, any other
-///    pickup pays -10; a drop-off at the destination with the passenger aboard pays 20
-///    and ends the trial, at another stand leaves the passenger there (-1), anywhere else
-///    pays -10. States with the passenger at the destination are terminal. Trials start
-///    uniformly over the 300 states with the passenger at a stand other than the
-///    destination.
+/// * **FrozenLake** (`SFFF/FHFH/FFFH/HFFG`, and the 8 by 8 map): state `row * ncol +
+///   col` for every cell; holes and the goal are terminal. Actions 0 left, 1 down,
+///   2 right, 3 up; a move off the map stays. Entering the goal pays 1, everything else
+///   0; trials start on `S`.
+/// * **CliffWalking** (4 by 12): state `row * 12 + col`; start (3,0), goal (3,11), the
+///   cliff (3,1) to (3,10). Actions 0 up, 1 right, 2 down, 3 left. Every move pays -1;
+///   a move into the cliff pays -100 and returns to the start without ending the trial;
+///   entering the goal ends it. Cliff cells are states no trial reaches.
+/// * **Taxi** (Taxi-v3): state `((row * 5 + col) * 5 + passenger) * 4 + destination`,
+///   passenger 0 to 3 at stand R, G, Y, B and 4 in the taxi; actions 0 south, 1 north,
+///   2 east, 3 west, 4 pickup, 5 dropoff, east and west blocked by the map's walls.
+///   Every step pays -1; a pickup where the passenger waits takes them in, any other
+///   pickup pays -10; a drop-off at the destination with the passenger aboard pays 20
+///   and ends the trial, at another stand leaves the passenger there (-1), anywhere else
+///   pays -10. States with the passenger at the destination are terminal. Trials start
+///   uniformly over the 300 states with the passenger at a stand other than the
+///   destination.
 ///
-///  # Slips and slides (FrozenLake and CliffWalking)
+/// # Slips and slides (FrozenLake and CliffWalking)
 ///
-///  With slip `p > 0` a move goes in its intended direction with probability `1 - p` and
-///  in each perpendicular direction with `p / 2` (`p = 2/3` is Gymnasium's slippery lake,
-///  a third each). The outcomes are listed in Gymnasium's order: the direction whose id is
-///  one less (modulo 4), the intended one, the one whose id is one more. With slip 0 the
-///  intended move is the only outcome.
+/// With slip `p > 0` a move goes in its intended direction with probability `1 - p` and
+/// in each perpendicular direction with `p / 2` (`p = 2/3` is Gymnasium's slippery lake,
+/// a third each). The outcomes are listed in Gymnasium's order: the direction whose id is
+/// one less (modulo 4), the intended one, the one whose id is one more. With slip 0 the
+/// intended move is the only outcome.
 ///
-///  With slide `q > 0`, after the one-cell move, unless the cell reached ends the move (a
-///  hole, the cliff or the goal), the agent moves one more cell in the same direction
-///  with probability `q` (clamped at the edges, so at an edge the slide stays). Each
-///  direction's outcome is then split in two, listed as "no slide" (`1 - q`) then "slide"
-///  (`q`), even when both land on the same cell; outcomes are never merged. The reward is
-///  that of the cell finally reached (on CliffWalking a slide still costs -1 a move).
+/// With slide `q > 0`, after the one-cell move, unless the cell reached ends the move (a
+/// hole, the cliff or the goal), the agent moves one more cell in the same direction
+/// with probability `q` (clamped at the edges, so at an edge the slide stays). Each
+/// direction's outcome is then split in two, listed as "no slide" (`1 - q`) then "slide"
+/// (`q`), even when both land on the same cell; outcomes are never merged. The reward is
+/// that of the cell finally reached (on CliffWalking a slide still costs -1 a move).
 ///
-///  # Sensing
+/// # Sensing
 ///
-///  * [`SensingModel::Local`] (FrozenLake and CliffWalking, the default there): the cells
-///    around the agent at every offset of the bordered grid, as [`crate::FeatureSpace::new`]
-///    builds them for a map of that size (`|dx| <= width + 1`, `|dy| <= height + 1`, not
-///    `(0, 0)`; Cartesian, `dx` right and `dy` up), priced by Manhattan distance and ordered
-///    by price then clockwise from straight up ([`crate::Offset::clockwise_cmp`]). Readings:
-///    0 `empty` (frozen or start), 1 `obstacle` (outside the map), 2 `goal`, 3 `hole` or
-///    `cliff`.
-///  * [`SensingModel::Factors`] (the default for Taxi, the only one it has): features
-///    `row` and `col` (and for Taxi `passenger` and `destination`), each reading its value
-///    (passenger readings named R, G, Y, B, taxi; destination readings R, G, Y, B), priced
-///    by [`WorldOptions::factor_costs`] (1 each by default), ties in that order.
+/// * [`SensingModel::Local`] (FrozenLake and CliffWalking, the default there): the cells
+///   around the agent at every offset of the bordered grid, as [`crate::FeatureSpace::new`]
+///   builds them for a map of that size (`|dx| <= width + 1`, `|dy| <= height + 1`, not
+///   `(0, 0)`; Cartesian, `dx` right and `dy` up), priced by Manhattan distance and ordered
+///   by price then clockwise from straight up ([`crate::Offset::clockwise_cmp`]). Readings:
+///   0 `empty` (frozen or start), 1 `obstacle` (outside the map), 2 `goal`, 3 `hole` or
+///   `cliff`.
+/// * [`SensingModel::Factors`] (the default for Taxi, the only one it has): features
+///   `row` and `col` (and for Taxi `passenger` and `destination`), each reading its value
+///   (passenger readings named R, G, Y, B, taxi; destination readings R, G, Y, B), priced
+///   by [`WorldOptions::factor_costs`] (1 each by default), ties in that order.
 ///
 /// # Example
 ///

@@ -868,6 +868,13 @@ fn aliasing_is_found_where_features_cannot_tell_states_apart() {
     );
     assert_eq!(lake.aliased(0.9).unwrap().count, 0);
     assert!(lake.aliased(1.0).is_err());
+    for name in builtin_world_names() {
+        assert_eq!(
+            world(name).aliased(0.9).unwrap(),
+            mdp::Aliasing::default(),
+            "{name}"
+        );
+    }
     // A lake sensed by the column alone aliases every row.
     let spec = {
         let mut s = lake.to_spec();
