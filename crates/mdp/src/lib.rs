@@ -25,6 +25,11 @@
 //!   [`StochasticMdp`] lists outcomes for [`Oracle::solve_stochastic`] and
 //!   [`evaluate_policy`] and samples them with an RNG passed in.
 //! * [`render_text`] and [`render_svg`]: pictures of a map with an [`Overlay`].
+//! * [`World`]: the seam every learner works through (dynamics, priced features, starts).
+//!   [`SensedGrid`] is a grid map with the paper's sensing; [`FiniteWorld`] is an
+//!   explicit finite world read from a JSON world file ([`FiniteWorld::read`]), exported
+//!   from a grid ([`FiniteWorld::from_grid`]) or built in ([`builtin_world`]:
+//!   `frozenlake4x4`, `frozenlake8x8`, `taxi`, `cliffwalking`, as Gymnasium defines them).
 //!
 //! # Example
 //!
@@ -61,6 +66,7 @@
 
 mod builtin;
 mod error;
+mod finite;
 mod format;
 mod geometry;
 mod grid;
@@ -74,9 +80,15 @@ mod spec;
 mod stochastic;
 mod tabular;
 mod world;
+mod worlds;
 
 pub use builtin::{builtin, builtin_names};
 pub use error::{MapError, MdpError, Position};
+pub use finite::{
+    Aliasing, FeatureSpec, FiniteWorld, MAX_ACTIONS, MAX_ALIASED_LISTED, MAX_FEATURES,
+    MAX_READINGS, MAX_STATES, OutcomeSpec, PROBABILITY_TOLERANCE, StatesSpec, TransitionSpec,
+    WORLD_FORMAT, WORLD_VERSION, WorldError, WorldSpec,
+};
 pub use format::MAX_FILE_BYTES;
 pub use geometry::{Cell, Offset, Pos};
 pub use grid::{Action, Blocked, GridOptions, GridWorld};
@@ -92,3 +104,4 @@ pub use stochastic::{
 };
 pub use tabular::{NegativeRewards, TabularMdp};
 pub use world::{Reading, SensedGrid, Sensors, World};
+pub use worlds::{SensingModel, WorldOptions, builtin_world, builtin_world_names};

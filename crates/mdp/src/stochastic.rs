@@ -289,7 +289,7 @@ impl StochasticMdp for GridWorld {
 }
 
 /// The two directions perpendicular to a move, in id order.
-fn perpendicular(a: Action) -> [Action; 2] {
+pub(crate) fn perpendicular(a: Action) -> [Action; 2] {
     match a {
         Action::Up | Action::Down => [Action::Left, Action::Right],
         Action::Left | Action::Right => [Action::Up, Action::Down],
