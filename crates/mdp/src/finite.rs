@@ -345,6 +345,9 @@ pub struct FiniteWorld {
     features: Vec<FeatureSpec>,
     /// `readings[s * nf + f]`.
     readings: Vec<u32>,
+    /// How many readings each feature has: its named readings, or one more than the
+    /// largest it reads in any state.
+    arity: Vec<u32>,
     states: Vec<StateId>,
 }
 
@@ -992,7 +995,7 @@ fn assemble(spec: WorldSpec) -> FiniteWorld {
             .partial_cmp(&spec.features[b].price)
             .unwrap_or(std::cmp::Ordering::Equal)
     });
-    let features = order.iter().map(|&f| spec.features[f].clone()).collect();
+    let features: Vec<FeatureSpec> = order.iter().map(|&f| spec.features[f].clone()).collect();
     let mut readings = Vec::with_capacity(n * nf);
     for row in &spec.readings {
         readings.extend(order.iter().map(|&f| row[f]));
@@ -1003,6 +1006,13 @@ fn assemble(spec: WorldSpec) -> FiniteWorld {
         StatesSpec::Count(_) => None,
         StatesSpec::Labels(l) => Some(l),
     };
+    let arity = (0..nf)
+        .map(|f| {
+            let named = features_named(&features, f);
+            let largest = (0..n).map(|s| readings[s * nf + f]).max().map_or(0, |m| m + 1);
+            named.max(largest)
+        })
+        .collect();
     let mut world = FiniteWorld {
         name: spec.name,
         labels,
@@ -1014,10 +1024,16 @@ fn assemble(spec: WorldSpec) -> FiniteWorld {
         outcomes,
         features,
         readings,
+        arity,
         states: Vec::new(),
     };
     world.states = reachable(&world);
     world
+}
+
+/// How many readings feature `f` names.
+fn features_named(features: &[FeatureSpec], f: usize) -> u32 {
+    features[f].readings.len() as u32
 }
 
 /// The non-terminal states reachable from a start state, in id order.
@@ -1112,6 +1128,9 @@ impl Sensors for FiniteWorld {
     }
     fn read(&self, s: StateId, f: Feature) -> Reading {
         Reading(self.readings[s.index() * self.features.len() + f.index()])
+    }
+    fn readings(&self, f: Feature) -> u32 {
+        self.arity[f.index()]
     }
     fn feature_name(&self, f: Feature) -> String {
         self.features[f.index()].name.clone()
