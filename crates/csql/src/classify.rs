@@ -52,7 +52,8 @@ use crate::representation::{DescriptionId, Representation, feature_id, value_of}
 /// use mdp::{FeatureSpace, GridWorld, Manhattan};
 /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
 /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
-/// let out = csql::Classify::new(&space).classify_state(&world, world.states()[0]);
+/// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+/// let out = csql::Classify::new(&sensed).classify_state(&sensed, world.states()[0]);
 /// assert!(out.created && out.measured.is_empty());
 /// ```
 #[derive(Clone, Debug, PartialEq)]
@@ -75,12 +76,13 @@ pub struct Classification {
 /// use mdp::{FeatureSpace, GridWorld, Manhattan};
 /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
 /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
-/// let mut c = Classify::new(&space);
+/// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+/// let mut c = Classify::new(&sensed);
 /// // The first call on an empty representation creates the empty description, for free.
-/// let first = c.classify_state(&world, world.states()[0]);
+/// let first = c.classify_state(&sensed, world.states()[0]);
 /// assert!(first.created && first.cost == 0.0);
 /// // It matches every state.
-/// let again = c.classify_state(&world, world.states()[5]);
+/// let again = c.classify_state(&sensed, world.states()[5]);
 /// assert_eq!((again.description, again.created), (first.description, false));
 /// ```
 #[derive(Clone, Debug)]
@@ -113,8 +115,10 @@ impl Classify {
     /// CLASSIFY over an empty representation, with the cache on.
     ///
     /// ```
-    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
-    /// assert!(csql::Classify::new(&space).representation().is_empty());
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// assert!(csql::Classify::new(&sensed).representation().is_empty());
     /// ```
     pub fn new<W: Sensors + ?Sized>(world: &W) -> Classify {
         Classify::with_representation(world, Representation::default())
@@ -123,10 +127,12 @@ impl Classify {
     /// CLASSIFY over a given representation (for learning on a fixed one).
     ///
     /// ```
-    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
     /// let mut rep = csql::Representation::default();
     /// rep.push(&[]);
-    /// assert_eq!(csql::Classify::with_representation(&space, rep).representation().len(), 1);
+    /// assert_eq!(csql::Classify::with_representation(&sensed, rep).representation().len(), 1);
     /// ```
     pub fn with_representation<W: Sensors + ?Sized>(world: &W, rep: Representation) -> Classify {
         let features = (0..world.num_features() as u32).map(Feature);
@@ -164,13 +170,14 @@ impl Classify {
     /// use rand::SeedableRng;
     /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
     /// let rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
-    /// let mut c = csql::Classify::new(&space).with_noise(SensorNoise::new(1.0).unwrap(), rng);
+    /// let mut c = csql::Classify::new(&sensed).with_noise(SensorNoise::new(1.0).unwrap(), rng);
     /// let s = world.states()[0];
-    /// let d = c.classify_state(&world, s).description;
-    /// c.add_feature(&world, d, s);
+    /// let d = c.classify_state(&sensed, s).description;
+    /// c.add_feature(&sensed, d, s);
     /// // Every reading is wrong, so the state does not match its own description.
-    /// assert_eq!(c.lookup(&world, s), None);
+    /// assert_eq!(c.lookup(&sensed, s), None);
     /// ```
     pub fn with_noise(mut self, noise: SensorNoise, rng: Xoshiro256PlusPlus) -> Classify {
         self.noise = noise;
@@ -186,19 +193,21 @@ impl Classify {
     /// a distance of one, so that one misread value does not make a new description.
     ///
     /// ```
-    /// use mdp::{Cell, Feature, FeatureSpace, GridWorld, Manhattan, Pos};
+    /// use mdp::{Cell, Feature, FeatureSpace, GridWorld, Manhattan, Pos, Reading, Sensors};
     /// let world = GridWorld::new(&mdp::builtin("tan8x8").unwrap());
     /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
     /// let s = world.state_at(Pos::new(7, 0)).unwrap();
     /// let mut rep = csql::Representation::default();
-    /// let truth: Vec<_> = (0..4).map(|f| (Feature(f), space.measure(&world, s, Feature(f)))).collect();
+    /// let truth: Vec<_> = (0..4).map(|f| (Feature(f), sensed.read(s, Feature(f)))).collect();
     /// let mut wrong = truth.clone();
-    /// wrong[3].1 = if wrong[3].1 == Cell::Empty { Cell::Obstacle } else { Cell::Empty };
+    /// let [empty, wall] = [Cell::Empty, Cell::Obstacle].map(Reading::from);
+    /// wrong[3].1 = if wrong[3].1 == empty { wall } else { empty };
     /// rep.push(&wrong);
-    /// let mut exact = csql::Classify::with_representation(&space, rep.clone());
-    /// assert!(exact.classify_state(&world, s).created);
-    /// let mut near = csql::Classify::with_representation(&space, rep).with_matching(csql::Matching::Nearest);
-    /// assert!(!near.classify_state(&world, s).created);
+    /// let mut exact = csql::Classify::with_representation(&sensed, rep.clone());
+    /// assert!(exact.classify_state(&sensed, s).created);
+    /// let mut near = csql::Classify::with_representation(&sensed, rep).with_matching(csql::Matching::Nearest);
+    /// assert!(!near.classify_state(&sensed, s).created);
     /// ```
     pub fn with_matching(mut self, matching: Matching) -> Classify {
         self.matching = matching;
@@ -214,17 +223,18 @@ impl Classify {
     /// `extensions.confirm_new`). With no description yet, the first one is made at once.
     ///
     /// ```
-    /// use mdp::{Cell, Feature, FeatureSpace, GridWorld, Manhattan};
+    /// use mdp::{Cell, Feature, FeatureSpace, GridWorld, Manhattan, Reading};
     /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
     /// let mut rep = csql::Representation::default();
-    /// rep.push(&[(Feature(0), Cell::Obstacle)]); // a wall above
-    /// let mut c = csql::Classify::with_representation(&space, rep).with_confirmation(2);
+    /// rep.push(&[(Feature(0), Reading::from(Cell::Obstacle))]); // a wall above
+    /// let mut c = csql::Classify::with_representation(&sensed, rep).with_confirmation(2);
     /// let below = world.state_at(mdp::Pos::new(1, 0)).unwrap();
     /// // The first sighting of "no wall above" takes the closest description...
-    /// assert!(!c.classify_state(&world, below).created);
+    /// assert!(!c.classify_state(&sensed, below).created);
     /// // ...the second makes one.
-    /// assert!(c.classify_state(&world, below).created);
+    /// assert!(c.classify_state(&sensed, below).created);
     /// ```
     pub fn with_confirmation(mut self, sightings: u32) -> Classify {
         self.confirm = sightings.max(1);
@@ -239,10 +249,11 @@ impl Classify {
     /// ```
     /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
-    /// let mut c = csql::Classify::new(&space).with_reads(3);
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let mut c = csql::Classify::new(&sensed).with_reads(3);
     /// let s = world.states()[0];
-    /// let d = c.classify_state(&world, s).description;
-    /// assert_eq!(c.add_feature(&world, d, s), Some(3.0)); // a feature of cost 1, read three times
+    /// let d = c.classify_state(&sensed, s).description;
+    /// assert_eq!(c.add_feature(&sensed, d, s), Some(3.0)); // a feature of cost 1, read three times
     /// ```
     pub fn with_reads(mut self, reads: u32) -> Classify {
         self.reads = reads.max(1);
@@ -254,13 +265,15 @@ impl Classify {
     /// neither); ties go to the lowest id. `None` with no description.
     ///
     /// ```
-    /// use mdp::{Cell, Feature, FeatureSpace, Manhattan};
-    /// let space = FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &Manhattan).unwrap();
+    /// use mdp::{Cell, Feature, FeatureSpace, Manhattan, Reading};
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
     /// let mut rep = csql::Representation::default();
-    /// rep.push(&[(Feature(0), Cell::Obstacle), (Feature(1), Cell::Empty)]);
-    /// rep.push(&[(Feature(0), Cell::Empty), (Feature(1), Cell::Empty)]);
-    /// let c = csql::Classify::with_representation(&space, rep);
-    /// let seen = [(Feature(0), Cell::Empty), (Feature(1), Cell::Obstacle)];
+    /// rep.push(&[(Feature(0), Reading::from(Cell::Obstacle)), (Feature(1), Reading::from(Cell::Empty))]);
+    /// rep.push(&[(Feature(0), Reading::from(Cell::Empty)), (Feature(1), Reading::from(Cell::Empty))]);
+    /// let c = csql::Classify::with_representation(&sensed, rep);
+    /// let seen = [(Feature(0), Reading::from(Cell::Empty)), (Feature(1), Reading::from(Cell::Obstacle))];
     /// assert_eq!(c.closest(&seen), Some(csql::DescriptionId(1)));
     /// ```
     pub fn closest(&self, measured: &[(Feature, Reading)]) -> Option<DescriptionId> {
@@ -332,8 +345,10 @@ impl Classify {
     /// Turn the cache off (every call runs the plain procedure) or on.
     ///
     /// ```
-    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
-    /// let c = csql::Classify::new(&space).with_cache(false);
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let c = csql::Classify::new(&sensed).with_cache(false);
     /// ```
     pub fn with_cache(mut self, on: bool) -> Classify {
         self.use_cache = on;
@@ -343,8 +358,10 @@ impl Classify {
     /// The representation.
     ///
     /// ```
-    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
-    /// assert_eq!(csql::Classify::new(&space).representation().len(), 0);
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// assert_eq!(csql::Classify::new(&sensed).representation().len(), 0);
     /// ```
     pub fn representation(&self) -> &Representation {
         &self.rep
@@ -353,8 +370,10 @@ impl Classify {
     /// Give up the representation.
     ///
     /// ```
-    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
-    /// assert!(csql::Classify::new(&space).into_representation().is_empty());
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// assert!(csql::Classify::new(&sensed).into_representation().is_empty());
     /// ```
     pub fn into_representation(self) -> Representation {
         self.rep
@@ -363,8 +382,10 @@ impl Classify {
     /// The feature space.
     ///
     /// ```
-    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
-    /// assert_eq!(csql::Classify::new(&space).space().len(), 80);
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// assert_eq!(csql::Classify::new(&sensed).prices().len(), 80);
     /// ```
     pub fn prices(&self) -> &[f64] {
         &self.prices
@@ -377,9 +398,10 @@ impl Classify {
     /// use mdp::{FeatureSpace, GridWorld, Manhattan};
     /// let world = GridWorld::new(&mdp::builtin("tan8x8").unwrap());
     /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
-    /// let mut c = csql::Classify::new(&space);
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let mut c = csql::Classify::new(&sensed);
     /// let s = world.states()[0];
-    /// assert_eq!(c.classify_state(&world, s).description.0, 0);
+    /// assert_eq!(c.classify_state(&sensed, s).description.0, 0);
     /// ```
     pub fn classify_state<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> Classification {
         let (d, created) = self.classify_quietly(world, s);
@@ -410,16 +432,17 @@ impl Classify {
     /// cached path is tested against.
     ///
     /// ```
-    /// use mdp::{Cell, Feature, FeatureSpace, GridWorld, Manhattan, Pos};
+    /// use mdp::{Cell, Feature, FeatureSpace, GridWorld, Manhattan, Pos, Reading};
     /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
     /// let mut rep = csql::Representation::default();
-    /// rep.push(&[(Feature(0), Cell::Obstacle)]); // a wall above
-    /// let mut c = csql::Classify::with_representation(&space, rep);
+    /// rep.push(&[(Feature(0), Reading::from(Cell::Obstacle))]); // a wall above
+    /// let mut c = csql::Classify::with_representation(&sensed, rep);
     /// let below = world.state_at(Pos::new(1, 0)).unwrap();
-    /// let out = c.classify_plain(&world, below);
+    /// let out = c.classify_plain(&sensed, below);
     /// // It measures "up", finds no wall, and creates a description for it.
-    /// assert_eq!(out.measured, vec![(Feature(0), Cell::Empty)]);
+    /// assert_eq!(out.measured, vec![(Feature(0), Reading::from(Cell::Empty))]);
     /// assert!(out.created && out.cost == 1.0);
     /// ```
     pub fn classify_plain<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> Classification {
@@ -458,14 +481,15 @@ impl Classify {
     /// [`Classify::last_measured`]) its features in order until one differs.
     ///
     /// ```
-    /// use mdp::{Cell, Feature, FeatureSpace, GridWorld, Manhattan, Pos};
+    /// use mdp::{Cell, Feature, FeatureSpace, GridWorld, Manhattan, Pos, Reading};
     /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
     /// let mut rep = csql::Representation::default();
-    /// let wall = rep.push(&[(Feature(0), Cell::Obstacle)]);
-    /// let mut c = csql::Classify::with_representation(&space, rep);
+    /// let wall = rep.push(&[(Feature(0), Reading::from(Cell::Obstacle))]);
+    /// let mut c = csql::Classify::with_representation(&sensed, rep);
     /// let below = world.state_at(Pos::new(1, 0)).unwrap();
-    /// assert!(!c.matches(&world, below, wall));
+    /// assert!(!c.matches(&sensed, below, wall));
     /// assert_eq!(c.last_measured().len(), 1);
     /// ```
     pub fn matches<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId, d: DescriptionId) -> bool {
@@ -488,17 +512,18 @@ impl Classify {
     /// matches one of them (navigation on the reduced map, see [`crate::Predicting`]).
     ///
     /// ```
-    /// use mdp::{Cell, Feature, FeatureSpace, GridWorld, Manhattan, Pos};
+    /// use mdp::{Cell, Feature, FeatureSpace, GridWorld, Manhattan, Pos, Reading};
     /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
     /// let mut rep = csql::Representation::default();
-    /// let wall = rep.push(&[(Feature(0), Cell::Obstacle), (Feature(1), Cell::Empty)]);
-    /// let open = rep.push(&[(Feature(0), Cell::Empty), (Feature(1), Cell::Empty)]);
-    /// let mut c = csql::Classify::with_representation(&space, rep);
+    /// let wall = rep.push(&[(Feature(0), Reading::from(Cell::Obstacle)), (Feature(1), Reading::from(Cell::Empty))]);
+    /// let open = rep.push(&[(Feature(0), Reading::from(Cell::Empty)), (Feature(1), Reading::from(Cell::Empty))]);
+    /// let mut c = csql::Classify::with_representation(&sensed, rep);
     /// let below = world.state_at(Pos::new(1, 0)).unwrap();
     /// // One feature ("up") tells the two apart.
-    /// assert_eq!(c.classify_among(&world, below, &[wall, open]), Some(open));
-    /// assert_eq!(c.last_measured(), [(Feature(0), Cell::Empty)]);
+    /// assert_eq!(c.classify_among(&sensed, below, &[wall, open]), Some(open));
+    /// assert_eq!(c.last_measured(), [(Feature(0), Reading::from(Cell::Empty))]);
     /// ```
     pub fn classify_among<W: Sensors + ?Sized>(
         &mut self,
@@ -556,8 +581,9 @@ impl Classify {
     /// ```
     /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
-    /// let mut c = csql::Classify::new(&space);
-    /// c.classify_state(&world, world.states()[0]);
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let mut c = csql::Classify::new(&sensed);
+    /// c.classify_state(&sensed, world.states()[0]);
     /// assert!(c.last_measured().is_empty()); // the first description is the empty one
     /// ```
     pub fn last_measured(&self) -> &[(Feature, Reading)] {
@@ -570,8 +596,9 @@ impl Classify {
     /// ```
     /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
-    /// let mut c = csql::Classify::new(&space);
-    /// let out = c.classify_state(&world, world.states()[0]);
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let mut c = csql::Classify::new(&sensed);
+    /// let out = c.classify_state(&sensed, world.states()[0]);
     /// assert_eq!(c.last_cost(), out.cost);
     /// ```
     pub fn last_cost(&self) -> f64 {
@@ -647,11 +674,12 @@ impl Classify {
     /// use mdp::{FeatureSpace, GridWorld, Manhattan};
     /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
-    /// let mut c = csql::Classify::new(&space);
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let mut c = csql::Classify::new(&sensed);
     /// let s = world.states()[0];
-    /// assert_eq!(c.lookup(&world, s), None); // nothing yet, and nothing is created
-    /// let d = c.classify_state(&world, s).description;
-    /// assert_eq!(c.lookup(&world, s), Some(d));
+    /// assert_eq!(c.lookup(&sensed, s), None); // nothing yet, and nothing is created
+    /// let d = c.classify_state(&sensed, s).description;
+    /// assert_eq!(c.lookup(&sensed, s), Some(d));
     /// assert_eq!(c.representation().len(), 1);
     /// ```
     pub fn lookup<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> Option<DescriptionId> {
@@ -675,11 +703,12 @@ impl Classify {
     /// use rand::SeedableRng;
     /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
-    /// let mut c = csql::Classify::new(&space);
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let mut c = csql::Classify::new(&sensed);
     /// let s = world.states()[0];
-    /// let d = c.classify_state(&world, s).description;
+    /// let d = c.classify_state(&sensed, s).description;
     /// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(2);
-    /// assert_eq!(c.lookup_noisy(&world, s, SensorNoise::new(0.5).unwrap(), &mut rng), Some(d));
+    /// assert_eq!(c.lookup_noisy(&sensed, s, SensorNoise::new(0.5).unwrap(), &mut rng), Some(d));
     /// ```
     pub fn lookup_noisy<W: Sensors + ?Sized, R: rand::Rng + ?Sized>(
         &mut self,
@@ -738,11 +767,12 @@ impl Classify {
     /// use mdp::{FeatureSpace, GridWorld, Manhattan};
     /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
-    /// let mut c = csql::Classify::new(&space);
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let mut c = csql::Classify::new(&sensed);
     /// let s = world.states()[0];
-    /// let d = c.classify_state(&world, s).description;
-    /// c.add_feature(&world, d, s);
-    /// assert_eq!(c.lookup_cost(&world, s), 1.0);
+    /// let d = c.classify_state(&sensed, s).description;
+    /// c.add_feature(&sensed, d, s);
+    /// assert_eq!(c.lookup_cost(&sensed, s), 1.0);
     /// ```
     pub fn lookup_cost<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> f64 {
         self.cache
@@ -761,10 +791,11 @@ impl Classify {
     /// use mdp::{FeatureSpace, GridWorld, Manhattan};
     /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
-    /// let mut c = csql::Classify::new(&space);
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let mut c = csql::Classify::new(&sensed);
     /// let s = world.states()[0];
-    /// let d = c.classify_state(&world, s).description;
-    /// assert_eq!(c.add_feature(&world, d, s), Some(1.0));
+    /// let d = c.classify_state(&sensed, s).description;
+    /// assert_eq!(c.add_feature(&sensed, d, s), Some(1.0));
     /// assert_eq!(c.representation().get(d).len(), 1);
     /// ```
     pub fn add_feature<W: Sensors + ?Sized>(&mut self, world: &W, d: DescriptionId, s: StateId) -> Option<f64> {

@@ -37,6 +37,19 @@ pub enum Error {
     /// The cost model gave a bad cost.
     #[error(transparent)]
     Cost(#[from] mdp::BadCost),
+    /// A world file or a built-in world could not be read or built.
+    #[error(transparent)]
+    WorldFile(#[from] mdp::WorldError),
+    /// Two settings (or a setting and the world) that mean nothing together.
+    #[error("{first} and {second} cannot be used together: {why}")]
+    Conflict {
+        /// The first setting (or the world).
+        first: String,
+        /// The second setting.
+        second: String,
+        /// Why not.
+        why: &'static str,
+    },
     /// A setting or a measure that only makes sense on a grid map, asked of another world.
     #[error("{what} needs a grid map; this world is not one")]
     GridOnly {

@@ -18,7 +18,7 @@ use crate::error::Error;
 /// assert_eq!(s.world.slip.get(), 0.1);
 /// assert!(!s.world.is_default());
 /// ```
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct WorldExtras {
     /// The probability that a move slips to a perpendicular direction (half each).
@@ -31,16 +31,64 @@ pub struct WorldExtras {
     /// distance; 1 means only the four neighbours). Unbounded when absent.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sensing_radius: Option<u32>,
+    /// The probability that a move carries on one more cell in the same direction,
+    /// unless the first cell ends the trial (built-in worlds beyond grid maps only:
+    /// FrozenLake's "semi-slippery" lake has 0.5).
+    #[serde(skip_serializing_if = "Slip::is_zero")]
+    pub slide: Slip,
+    /// What the agent senses in a built-in world: `local` (the cells around it) or
+    /// `factors` (the world's own state variables); the world's default when absent.
+    /// Grid maps sense locally only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sensing: Option<mdp::SensingModel>,
+    /// The price of each factor, in the world's factor order (`sensing = "factors"`
+    /// only; 1 each when absent).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub factor_costs: Option<Vec<f64>>,
 }
 
 impl WorldExtras {
-    /// Whether the world is the paper's: no slip, no noise, unbounded sensing.
+    /// Whether every setting of the world is at its default.
     ///
     /// ```
     /// assert!(csql::WorldExtras::default().is_default());
     /// ```
     pub fn is_default(&self) -> bool {
         *self == WorldExtras::default()
+    }
+
+    /// Whether the world departs from the paper's assumptions (slip, slide, noise, a
+    /// sensing range), so that runs are judged by the policy quality. The choice of
+    /// sensing model and of prices does not.
+    ///
+    /// ```
+    /// let mut w = csql::WorldExtras::default();
+    /// w.sensing = Some(mdp::SensingModel::Factors);
+    /// assert!(!w.departs_from_the_paper());
+    /// w.slide = mdp::Slip::new(0.5).unwrap();
+    /// assert!(w.departs_from_the_paper());
+    /// ```
+    pub fn departs_from_the_paper(&self) -> bool {
+        !(self.slip.is_zero()
+            && self.slide.is_zero()
+            && self.sensor_noise.is_zero()
+            && self.sensing_radius.is_none())
+    }
+
+    /// The options of a built-in world that these settings give.
+    ///
+    /// ```
+    /// let mut w = csql::WorldExtras::default();
+    /// w.slip = mdp::Slip::new(0.2).unwrap();
+    /// assert_eq!(w.world_options().slip, 0.2);
+    /// ```
+    pub fn world_options(&self) -> mdp::WorldOptions {
+        mdp::WorldOptions {
+            slip: self.slip.get(),
+            slide: self.slide.get(),
+            sensing: self.sensing,
+            factor_costs: self.factor_costs.clone(),
+        }
     }
 }
 

@@ -24,14 +24,16 @@ use crate::perception::Perception;
 ///
 /// ```
 /// use csql::Verdict;
-/// use mdp::{Oracle, StateId, World};
+/// use mdp::{GridWorld, Oracle};
 /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+/// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+/// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
 /// let oracle = Oracle::for_grid(&world, 0.9).unwrap();
 /// let mut table = qlearn::QTable::new(4).unwrap();
 /// let one = table.add_row();
 /// // One row for every state: not consistent.
 /// let rows = vec![Some(one); world.states().len()];
-/// let v = Verdict::judge(&world, &oracle, &table, &rows, 1e-9);
+/// let v = Verdict::judge(&sensed, &oracle, &table, &rows, 1e-9);
 /// assert!(!v.sufficient && !v.converged);
 /// assert_eq!(v.inconsistent, 1);
 /// ```
@@ -54,13 +56,15 @@ impl Verdict {
     ///
     /// ```
     /// use csql::Verdict;
-    /// use mdp::{Oracle, StateId, World};
+    /// use mdp::{GridWorld, Oracle};
     /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
     /// let oracle = Oracle::for_grid(&world, 0.9).unwrap();
     /// let mut table = qlearn::QTable::new(4).unwrap();
     /// // One row per state: sufficient, but nothing learned yet.
     /// let rows: Vec<_> = world.states().iter().map(|_| Some(table.add_row())).collect();
-    /// let v = Verdict::judge(&world, &oracle, &table, &rows, 1e-9);
+    /// let v = Verdict::judge(&sensed, &oracle, &table, &rows, 1e-9);
     /// assert!(v.sufficient && v.consistent_literal && !v.converged);
     /// ```
     pub fn judge<W: World + ?Sized>(
@@ -134,11 +138,12 @@ impl Verdict {
 /// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
 /// let setup = Setup::new(&settings).unwrap();
 /// let table = qlearn::QTable::new(4).unwrap();
-/// let mut agent = Agent::new(Classify::new(&setup.space), Lazy::default(), table, LoopParams::from(&settings));
+/// let world = setup.sensed(&settings);
+/// let mut agent = Agent::new(Classify::new(&world), Lazy::default(), table, LoopParams::from(&settings));
 /// let mut judge = Judge::default();
 /// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
-/// agent.run_trial(&setup.world, setup.world.states()[0], 1, &mut rng);
-/// let v = judge.judge(&setup.world, &setup.oracle, &mut agent, 1e-6);
+/// agent.run_trial(&world, setup.world.states()[0], 1, &mut rng);
+/// let v = judge.judge(&world, &setup.oracle, &mut agent, 1e-6);
 /// assert!(!v.converged);
 /// ```
 #[derive(Clone, Debug, Default)]

@@ -174,6 +174,7 @@ mod quality;
     reason = "grid worlds have four actions, which a table accepts"
 )]
 mod reference;
+mod resolve;
 #[allow(
     clippy::expect_used,
     reason = "internal invariants: grid worlds have four actions, a converged run matches every state"
@@ -224,8 +225,10 @@ pub use report::{
     Table1, Table1Row, TracePoint,
 };
 pub use representation::{Description, DescriptionId, Representation};
+pub use resolve::{Resolved, is_world_name};
 pub use run::{
-    Scene, Setup, run, run_in, run_observed, run_on, run_on_with, run_with_representation,
+    Scene, Setup, run, run_in, run_observed, run_on, run_on_with, run_settings,
+    run_with_representation,
 };
 pub use settings::{MAX_SETTINGS_BYTES, MapSource, NonNegative, RunSettings, TrialCap};
 pub use strategy::{

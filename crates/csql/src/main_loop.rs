@@ -90,14 +90,15 @@ pub struct TrialRecord {
 /// use rand::SeedableRng;
 /// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
 /// let setup = Setup::new(&settings).unwrap();
+/// let world = setup.sensed(&settings);
 /// let mut agent = Agent::new(
-///     Classify::new(&setup.space),
+///     Classify::new(&world),
 ///     Lazy::default(),
 ///     qlearn::QTable::new(4).unwrap(),
 ///     LoopParams::from(&settings),
 /// );
 /// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
-/// let rec = agent.run_trial(&setup.world, setup.world.states()[0], 1, &mut rng);
+/// let rec = agent.run_trial(&world, setup.world.states()[0], 1, &mut rng);
 /// assert!(rec.moves >= 1 && rec.moves <= 100);
 /// assert!(agent.perception.representation().len() >= 1);
 /// ```
@@ -135,8 +136,10 @@ impl<P, S> Agent<P, S> {
     /// ```
     /// use csql::{Agent, Identified, LoopParams, Never, RunSettings, StrategyKind};
     /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
     /// let params = LoopParams::from(&RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1));
-    /// let agent = Agent::new(Identified::new(&world, vec![0.0; 9]), Never, qlearn::QTable::new(4).unwrap(), params);
+    /// let agent = Agent::new(Identified::new(&sensed, vec![0.0; 9]), Never, qlearn::QTable::new(4).unwrap(), params);
     /// assert_eq!(agent.table.rows(), 0);
     /// ```
     pub fn new(perception: P, strategy: S, table: QTable, params: LoopParams) -> Agent<P, S> {
@@ -155,8 +158,10 @@ impl<P, S> Agent<P, S> {
     /// ```
     /// use csql::{Agent, DetectorKind, Identified, LoopParams, Never, RateParams, RunDetector, RunSettings, StrategyKind};
     /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
     /// let params = LoopParams::from(&RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1));
-    /// let agent = Agent::new(Identified::new(&world, vec![0.0; 9]), Never, qlearn::QTable::new(4).unwrap(), params)
+    /// let agent = Agent::new(Identified::new(&sensed, vec![0.0; 9]), Never, qlearn::QTable::new(4).unwrap(), params)
     ///     .with_detector(RunDetector::new(DetectorKind::Statistical, RateParams::default()));
     /// ```
     pub fn with_detector(mut self, detector: RunDetector) -> Agent<P, S> {
@@ -182,15 +187,17 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
     /// use csql::{Agent, Identified, LoopParams, Never, RunSettings, StrategyKind};
     /// use rand::SeedableRng;
     /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
     /// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
     /// let mut agent = Agent::new(
-    ///     Identified::new(&world, vec![1.0; 9]),
+    ///     Identified::new(&sensed, vec![1.0; 9]),
     ///     Never,
     ///     qlearn::QTable::new(4).unwrap(),
     ///     LoopParams::from(&settings),
     /// );
     /// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(3);
-    /// let rec = agent.run_trial(&world, world.states()[2], 1, &mut rng);
+    /// let rec = agent.run_trial(&sensed, world.states()[2], 1, &mut rng);
     /// // Every classification costs 1 here: the start and each move but the last.
     /// assert_eq!(rec.cost, rec.moves as f64 - if rec.reached_goal { 1.0 } else { 0.0 } + 1.0);
     /// ```

@@ -34,12 +34,13 @@ type Step = (u8, u32);
 /// use csql::{Classify, Perception, Remembering};
 /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
 /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap().within(1.0);
-/// let mut p = Remembering::new(Classify::new(&space), 2);
+/// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+/// let mut p = Remembering::new(Classify::new(&sensed), 2);
 /// let mut table = qlearn::QTable::new(4).unwrap();
 /// let s = world.states()[0];
-/// let (row, _) = p.classify(&world, s, &mut table);
+/// let (row, _) = p.classify(&sensed, s, &mut table);
 /// // Four features within reach, then two steps of history, then nothing more.
-/// let refinements = std::iter::from_fn(|| p.refine(&world, row, s)).count();
+/// let refinements = std::iter::from_fn(|| p.refine(&sensed, row, s)).count();
 /// assert_eq!(refinements, 4 + 2);
 /// ```
 #[derive(Clone, Debug)]
@@ -63,8 +64,10 @@ impl Remembering {
     /// CLASSIFY with a memory of at most `limit` steps.
     ///
     /// ```
-    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
-    /// let p = csql::Remembering::new(csql::Classify::new(&space), 1);
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let p = csql::Remembering::new(csql::Classify::new(&sensed), 1);
     /// assert_eq!(csql::Perception::rows(&p), 0);
     /// ```
     pub fn new(inner: Classify, limit: u32) -> Remembering {
@@ -84,8 +87,10 @@ impl Remembering {
     /// CLASSIFY underneath.
     ///
     /// ```
-    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
-    /// let p = csql::Remembering::new(csql::Classify::new(&space), 1);
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let p = csql::Remembering::new(csql::Classify::new(&sensed), 1);
     /// assert!(p.classify_ref().representation().is_empty());
     /// ```
     pub fn classify_ref(&self) -> &Classify {
@@ -95,8 +100,10 @@ impl Remembering {
     /// Give up CLASSIFY.
     ///
     /// ```
-    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
-    /// let p = csql::Remembering::new(csql::Classify::new(&space), 1);
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let p = csql::Remembering::new(csql::Classify::new(&sensed), 1);
     /// assert!(p.into_classify().representation().is_empty());
     /// ```
     pub fn into_classify(self) -> Classify {
@@ -106,8 +113,10 @@ impl Remembering {
     /// Descriptions that use history.
     ///
     /// ```
-    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
-    /// assert_eq!(csql::Remembering::new(csql::Classify::new(&space), 1).remembering(), 0);
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// assert_eq!(csql::Remembering::new(csql::Classify::new(&sensed), 1).remembering(), 0);
     /// ```
     pub fn remembering(&self) -> usize {
         self.depth.iter().filter(|&&d| d > 0).count()

@@ -73,10 +73,11 @@ impl Navigation {
 /// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
 /// let setup = Setup::new(&settings).unwrap();
 /// // An untrained table: every greedy action is "up", so few trials succeed.
-/// let mut p = Identified::new(&setup.world, vec![1.0; 9]);
+/// let world = setup.sensed(&settings);
+/// let mut p = Identified::new(&world, vec![1.0; 9]);
 /// let mut table = qlearn::QTable::new(4).unwrap();
 /// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
-/// let n = csql::navigate(&setup.world, &setup.oracle, &mut p, &mut table, 2, 10, &mut rng);
+/// let n = csql::navigate(&world, &setup.oracle, &mut p, &mut table, 2, 10, &mut rng);
 /// assert_eq!(n.trials, 16);
 /// // One unit per classification: localising, then each state reached but the goal.
 /// assert!(n.cost_per_move() > 1.0 && n.cost <= (n.trials + n.moves) as f64);

@@ -17,9 +17,11 @@ use rand::Rng;
 /// ```
 /// use csql::{Identified, Perception};
 /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
-/// let mut p = Identified::new(&world, vec![5.0; 9]);
+/// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+/// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+/// let mut p = Identified::new(&sensed, vec![5.0; 9]);
 /// let mut table = qlearn::QTable::new(4).unwrap();
-/// let (row, cost) = p.classify(&world, mdp::StateId(0), &mut table);
+/// let (row, cost) = p.classify(&sensed, mdp::StateId(0), &mut table);
 /// assert_eq!((row.0, cost), (0, 5.0));
 /// ```
 pub trait Perception {
@@ -40,11 +42,13 @@ pub trait Perception {
     /// use csql::{Identified, Perception};
     /// use rand::SeedableRng;
     /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
-    /// let mut p = Identified::new(&world, vec![5.0; 9]);
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let mut p = Identified::new(&sensed, vec![5.0; 9]);
     /// let mut table = qlearn::QTable::new(4).unwrap();
     /// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
-    /// let (from, _) = p.classify(&world, mdp::StateId(0), &mut table);
-    /// let (row, cost) = p.classify_next(&world, from, mdp::ActionId(3), mdp::StateId(1), &mut table, &mut rng);
+    /// let (from, _) = p.classify(&sensed, mdp::StateId(0), &mut table);
+    /// let (row, cost) = p.classify_next(&sensed, from, mdp::ActionId(3), mdp::StateId(1), &mut table, &mut rng);
     /// assert_eq!((row.0, cost), (1, 5.0));
     /// ```
     fn classify_next<W: World + ?Sized, R: Rng + ?Sized>(
@@ -65,10 +69,12 @@ pub trait Perception {
     /// ```
     /// use csql::{Identified, Perception};
     /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
-    /// let mut p = Identified::new(&world, vec![5.0; 9]);
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let mut p = Identified::new(&sensed, vec![5.0; 9]);
     /// let mut table = qlearn::QTable::new(4).unwrap();
-    /// let (row, _) = p.classify(&world, mdp::StateId(0), &mut table);
-    /// assert_eq!(p.classify_again(&world, row, row, mdp::StateId(0), &mut table), (row, 5.0));
+    /// let (row, _) = p.classify(&sensed, mdp::StateId(0), &mut table);
+    /// assert_eq!(p.classify_again(&sensed, row, row, mdp::StateId(0), &mut table), (row, 5.0));
     /// ```
     fn classify_again<W: World + ?Sized>(
         &mut self,
@@ -118,7 +124,9 @@ impl Identified {
     ///
     /// ```
     /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
-    /// let p = csql::Identified::new(&world, vec![1.0; 9]);
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let p = csql::Identified::new(&sensed, vec![1.0; 9]);
     /// ```
     pub fn new<W: World + ?Sized>(world: &W, cost: Vec<f64>) -> Identified {
         Identified {
@@ -166,15 +174,16 @@ impl Perception for Identified {
 /// use csql::{FullView, Perception};
 /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
 /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
-/// let mut p = FullView::new(&world, &space);
+/// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+/// let mut p = FullView::new(&sensed);
 /// let mut table = qlearn::QTable::new(4).unwrap();
 /// let s = world.states()[0];
-/// let (row, cost) = p.classify(&world, s, &mut table);
+/// let (row, cost) = p.classify(&sensed, s, &mut table);
 /// assert_eq!((row.0, cost), (0, csql::whole_world_cost(&world, &space, s)));
 /// // Within the four neighbours, the open middle of open8x8 looks the same everywhere.
 /// let open = mdp::GridWorld::new(&mdp::builtin("open8x8").unwrap());
-/// let space = mdp::FeatureSpace::new(open.map(), &mdp::Manhattan).unwrap();
-/// let near = FullView::new(&open, &space.within(1.0));
+/// let space = mdp::FeatureSpace::new(open.map(), &mdp::Manhattan).unwrap().within(1.0);
+/// let near = FullView::new(&mdp::SensedGrid::new(&open, &space, mdp::Slip::default()));
 /// assert!(near.views() < open.states().len());
 /// ```
 #[derive(Clone, Debug)]
@@ -195,7 +204,8 @@ impl FullView {
     /// ```
     /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
-    /// assert_eq!(csql::FullView::new(&world, &space).views(), 8);
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// assert_eq!(csql::FullView::new(&sensed).views(), 8);
     /// ```
     pub fn new<W: World + ?Sized>(world: &W) -> FullView {
         let mut class = vec![None; world.num_states()];
@@ -237,7 +247,8 @@ impl FullView {
     /// ```
     /// let world = mdp::GridWorld::new(&mdp::builtin("tan8x8").unwrap());
     /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
-    /// assert_eq!(csql::FullView::new(&world, &space).views(), 50);
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// assert_eq!(csql::FullView::new(&sensed).views(), 50);
     /// ```
     pub fn views(&self) -> usize {
         self.views.len()

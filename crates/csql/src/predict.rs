@@ -533,8 +533,9 @@ impl Memory {
 /// use rand::SeedableRng;
 /// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
 /// let setup = Setup::new(&settings).unwrap();
+/// let world = setup.sensed(&settings);
 /// let mut agent = Agent::new(
-///     Predicting::learned(Classify::new(&setup.space), &Prediction::default()),
+///     Predicting::learned(Classify::new(&world), &Prediction::default(), 4),
 ///     csql::Lazy::default(),
 ///     qlearn::QTable::new(4).unwrap(),
 ///     LoopParams::from(&settings),
@@ -542,7 +543,7 @@ impl Memory {
 /// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
 /// for trial in 1..=50 {
 ///     let start = setup.world.states()[trial as usize % 8];
-///     agent.run_trial(&setup.world, start, trial, &mut rng);
+///     agent.run_trial(&world, start, trial, &mut rng);
 /// }
 /// assert!(agent.perception.stats().skipped > 0);
 /// ```
@@ -623,8 +624,10 @@ impl Predicting {
     /// The learned level: CLASSIFY and a transition model.
     ///
     /// ```
-    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
-    /// let p = csql::Predicting::learned(csql::Classify::new(&space), &Default::default());
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let p = csql::Predicting::learned(csql::Classify::new(&sensed), &Default::default(), 4);
     /// assert_eq!(p.level(), csql::PredictSensing::Learned);
     /// ```
     pub fn learned(classify: Classify, settings: &Prediction, actions: usize) -> Predicting {
@@ -649,7 +652,8 @@ impl Predicting {
     /// ```
     /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
-    /// let p = csql::Predicting::motion(csql::Classify::new(&space), &Default::default(), &world);
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let p = csql::Predicting::motion(csql::Classify::new(&sensed), &Default::default(), &world, &space);
     /// assert_eq!(p.level(), csql::PredictSensing::Motion);
     /// ```
     pub fn motion(
@@ -667,8 +671,10 @@ impl Predicting {
     /// Which level this is.
     ///
     /// ```
-    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
-    /// let p = csql::Predicting::learned(csql::Classify::new(&space), &Default::default());
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let p = csql::Predicting::learned(csql::Classify::new(&sensed), &Default::default(), 4);
     /// assert_ne!(p.level(), csql::PredictSensing::Off);
     /// ```
     pub fn level(&self) -> PredictSensing {
@@ -681,8 +687,10 @@ impl Predicting {
     /// What prediction has done so far.
     ///
     /// ```
-    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
-    /// let p = csql::Predicting::learned(csql::Classify::new(&space), &Default::default());
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let p = csql::Predicting::learned(csql::Classify::new(&sensed), &Default::default(), 4);
     /// assert_eq!(p.stats().skipped, 0);
     /// ```
     pub fn stats(&self) -> PredictionStats {
@@ -692,8 +700,10 @@ impl Predicting {
     /// The transition model (the reduced map's edges).
     ///
     /// ```
-    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
-    /// let p = csql::Predicting::learned(csql::Classify::new(&space), &Default::default());
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let p = csql::Predicting::learned(csql::Classify::new(&sensed), &Default::default(), 4);
     /// assert_eq!(p.model().conflicts(), 0);
     /// ```
     pub fn model(&self) -> &TransitionModel {
@@ -703,8 +713,10 @@ impl Predicting {
     /// CLASSIFY underneath.
     ///
     /// ```
-    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
-    /// let mut p = csql::Predicting::learned(csql::Classify::new(&space), &Default::default());
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let mut p = csql::Predicting::learned(csql::Classify::new(&sensed), &Default::default(), 4);
     /// assert!(p.classify_mut().representation().is_empty());
     /// ```
     pub fn classify_mut(&mut self) -> &mut Classify {
@@ -714,8 +726,10 @@ impl Predicting {
     /// Give up CLASSIFY.
     ///
     /// ```
-    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
-    /// let p = csql::Predicting::learned(csql::Classify::new(&space), &Default::default());
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let p = csql::Predicting::learned(csql::Classify::new(&sensed), &Default::default(), 4);
     /// assert!(p.into_classify().representation().is_empty());
     /// ```
     pub fn into_classify(self) -> Classify {
@@ -734,8 +748,10 @@ impl Predicting {
     /// full).
     ///
     /// ```
-    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
-    /// let mut p = csql::Predicting::learned(csql::Classify::new(&space), &Default::default());
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let mut p = csql::Predicting::learned(csql::Classify::new(&sensed), &Default::default(), 4);
     /// p.navigate_with(0.05);
     /// ```
     pub fn navigate_with(&mut self, verify: f64) {
@@ -980,13 +996,20 @@ mod tests {
     #[test]
     fn dead_reckoning_moves_unless_blocked_and_forgets_when_unsure() {
         let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
-        let mut m = Memory::new(&world, 1);
-        m.record(Offset::new(1, 0), Cell::Empty);
-        m.record(Offset::new(2, 0), Cell::Obstacle);
-        m.record(Offset::new(0, 1), Cell::Obstacle);
+        let space = FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+        let mut m = Memory::new(&world, &space, 1);
+        m.record(Offset::new(1, 0), Reading::from(Cell::Empty));
+        m.record(Offset::new(2, 0), Reading::from(Cell::Obstacle));
+        m.record(Offset::new(0, 1), Reading::from(Cell::Obstacle));
         m.moved(Offset::new(1, 0));
-        assert_eq!(m.known(Offset::new(1, 0)), Some(Cell::Obstacle));
-        assert_eq!(m.known(Offset::new(-1, 1)), Some(Cell::Obstacle));
+        assert_eq!(
+            m.known(Offset::new(1, 0)),
+            Some(Reading::from(Cell::Obstacle))
+        );
+        assert_eq!(
+            m.known(Offset::new(-1, 1)),
+            Some(Reading::from(Cell::Obstacle))
+        );
         m.moved(Offset::new(1, 0)); // blocked: stays
         assert_eq!(m.pos, (1, 0));
         // Sensed two moves ago: forgotten with a memory of one move.

@@ -57,9 +57,11 @@ pub const MC_MAX_ROUNDS: u32 = 4000;
 /// use csql::{Identified, Sees};
 /// use rand::SeedableRng;
 /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
-/// let mut p = Identified::new(&world, vec![0.0; 9]);
+/// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+/// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+/// let mut p = Identified::new(&sensed, vec![0.0; 9]);
 /// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
-/// assert_eq!(p.sees(&world, mdp::StateId(0), mdp::SensorNoise::default(), &mut rng), None);
+/// assert_eq!(p.sees(&sensed, mdp::StateId(0), mdp::SensorNoise::default(), &mut rng), None);
 /// ```
 pub trait Sees {
     /// The row the agent would use in state `s`, or `None` if it would make a new one.

@@ -110,7 +110,7 @@ pub struct StateReport {
 /// ```
 /// let r = csql::run(&csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1)).unwrap();
 /// let f = r.descriptions.iter().flat_map(|d| &d.features).next().unwrap();
-/// assert_eq!(f.cost, (f.dx.abs() + f.dy.abs()) as f64);
+/// assert_eq!(f.cost, (f.dx.unwrap().abs() + f.dy.unwrap().abs()) as f64);
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct FeatureReport {
@@ -457,12 +457,13 @@ impl fmt::Display for Table1 {
 /// use csql::{Classify, Describes};
 /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
 /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
-/// let mut c = Classify::new(&space);
+/// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+/// let mut c = Classify::new(&sensed);
 /// let s = world.states()[0];
-/// let d = c.classify_state(&world, s).description;
-/// c.add_feature(&world, d, s);
+/// let d = c.classify_state(&sensed, s).description;
+/// c.add_feature(&sensed, d, s);
 /// assert_eq!(c.described().len(), 1);
-/// assert_eq!(c.cost_after_learning(&world, s), 1.0);
+/// assert_eq!(c.cost_after_learning(&sensed, s), 1.0);
 /// ```
 pub trait Describes {
     /// The descriptions, one per row that has one, in row order: the row and its

@@ -62,11 +62,11 @@ pub(crate) fn value_of(r: Reading) -> Value {
 /// A borrowed view of one description, in grid terms.
 ///
 /// ```
-/// use mdp::{Cell, Feature};
+/// use mdp::{Cell, Feature, Reading};
 /// let mut rep = csql::Representation::default();
-/// let id = rep.push(&[(Feature(0), Cell::Empty)]);
+/// let id = rep.push(&[(Feature(0), Reading::from(Cell::Empty))]);
 /// let d = rep.get(id);
-/// assert_eq!(d.features().collect::<Vec<_>>(), vec![(Feature(0), Cell::Empty)]);
+/// assert_eq!(d.features().collect::<Vec<_>>(), vec![(Feature(0), Reading::from(Cell::Empty))]);
 /// ```
 #[derive(Clone, Copy, Debug)]
 pub struct Description<'a>(&'a Example);
@@ -89,7 +89,7 @@ impl<'a> Description<'a> {
     ///
     /// ```
     /// let mut rep = csql::Representation::default();
-    /// let id = rep.push(&[(mdp::Feature(3), mdp::Cell::Goal)]);
+    /// let id = rep.push(&[(mdp::Feature(3), mdp::Reading::from(mdp::Cell::Goal))]);
     /// assert_eq!(rep.get(id).len(), 1);
     /// ```
     pub fn len(self) -> usize {
@@ -111,8 +111,8 @@ impl<'a> Description<'a> {
     ///
     /// ```
     /// let mut rep = csql::Representation::default();
-    /// let id = rep.push(&[(mdp::Feature(3), mdp::Cell::Goal)]);
-    /// assert_eq!(rep.get(id).value(mdp::Feature(3)), Some(mdp::Cell::Goal));
+    /// let id = rep.push(&[(mdp::Feature(3), mdp::Reading::from(mdp::Cell::Goal))]);
+    /// assert_eq!(rep.get(id).value(mdp::Feature(3)), Some(mdp::Reading::from(mdp::Cell::Goal)));
     /// assert_eq!(rep.get(id).value(mdp::Feature(0)), None);
     /// ```
     pub fn value(self, f: Feature) -> Option<Reading> {
@@ -122,9 +122,9 @@ impl<'a> Description<'a> {
     /// The first feature in the feature order that the description lacks.
     ///
     /// ```
-    /// use mdp::{Cell, Feature};
+    /// use mdp::{Cell, Feature, Reading};
     /// let mut rep = csql::Representation::default();
-    /// let id = rep.push(&[(Feature(0), Cell::Empty), (Feature(2), Cell::Empty)]);
+    /// let id = rep.push(&[(Feature(0), Reading::from(Cell::Empty)), (Feature(2), Reading::from(Cell::Empty))]);
     /// assert_eq!(rep.get(id).next_missing(10), Some(Feature(1)));
     /// ```
     pub fn next_missing(self, universe: usize) -> Option<Feature> {
@@ -137,12 +137,13 @@ impl<'a> Description<'a> {
     /// here is free: it is for the oracle and tests, not for the learner.
     ///
     /// ```
-    /// use mdp::{Cell, Feature, FeatureSpace, GridWorld, Manhattan, Pos};
+    /// use mdp::{Cell, Feature, FeatureSpace, GridWorld, Manhattan, Pos, Reading};
     /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
     /// let mut rep = csql::Representation::default();
-    /// let id = rep.push(&[(Feature(0), Cell::Obstacle)]); // a wall above
-    /// assert!(rep.get(id).matches(&world, &space, world.state_at(Pos::new(0, 0)).unwrap()));
+    /// let id = rep.push(&[(Feature(0), Reading::from(Cell::Obstacle))]); // a wall above
+    /// assert!(rep.get(id).matches(&sensed, world.state_at(Pos::new(0, 0)).unwrap()));
     /// ```
     pub fn matches<W: Sensors + ?Sized>(self, world: &W, s: StateId) -> bool {
         self.features().all(|(f, v)| world.read(s, f) == v)
@@ -151,11 +152,13 @@ impl<'a> Description<'a> {
     /// The summed cost of the description's features.
     ///
     /// ```
-    /// use mdp::{Cell, Feature, FeatureSpace, Manhattan};
-    /// let space = FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &Manhattan).unwrap();
+    /// use mdp::{Cell, Feature, FeatureSpace, Manhattan, Reading};
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
     /// let mut rep = csql::Representation::default();
-    /// let id = rep.push(&[(Feature(0), Cell::Empty), (Feature(4), Cell::Empty)]);
-    /// assert_eq!(rep.get(id).cost(&space), 3.0);
+    /// let id = rep.push(&[(Feature(0), Reading::from(Cell::Empty)), (Feature(4), Reading::from(Cell::Empty))]);
+    /// assert_eq!(rep.get(id).cost(&sensed), 3.0);
     /// ```
     pub fn cost<W: Sensors + ?Sized>(self, world: &W) -> f64 {
         self.features().map(|(f, _)| world.price(f)).sum()
@@ -182,7 +185,7 @@ impl Representation {
     /// ```
     /// let mut r = csql::Representation::default();
     /// r.push(&[]);
-    /// assert_eq!(r.push(&[(mdp::Feature(0), mdp::Cell::Empty)]).0, 1);
+    /// assert_eq!(r.push(&[(mdp::Feature(0), mdp::Reading::from(mdp::Cell::Empty))]).0, 1);
     /// ```
     pub fn push(&mut self, pairs: &[(Feature, Reading)]) -> DescriptionId {
         let id = DescriptionId(self.library.len() as u32);
@@ -201,7 +204,7 @@ impl Representation {
     /// ```
     /// let mut r = csql::Representation::default();
     /// let id = r.push(&[]);
-    /// r.refine(id, mdp::Feature(0), mdp::Cell::Empty);
+    /// r.refine(id, mdp::Feature(0), mdp::Reading::from(mdp::Cell::Empty));
     /// assert_eq!(r.get(id).len(), 1);
     /// ```
     pub fn refine(&mut self, id: DescriptionId, f: Feature, v: Reading) {
@@ -285,9 +288,10 @@ impl Representation {
     /// use mdp::{FeatureSpace, GridWorld, Manhattan};
     /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
     /// let mut r = csql::Representation::default();
     /// let id = r.push(&[]);
-    /// assert_eq!(r.matching(&world, &space, world.states()[0]), Some(id));
+    /// assert_eq!(r.matching(&sensed, world.states()[0]), Some(id));
     /// ```
     pub fn matching<W: Sensors + ?Sized>(&self, world: &W, s: StateId) -> Option<DescriptionId> {
         self.iter()

@@ -311,8 +311,26 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
 /// assert_eq!(report.states.len(), 8);
 /// ```
 pub fn run(settings: &RunSettings) -> Result<RunReport, Error> {
-    let setup = Setup::new(settings)?;
-    Ok(run_on(&setup, settings))
+    run_settings(settings, &mut KeepTrace)
+}
+
+/// Run the learner of `settings` in the world its `map` setting names (a grid map, a
+/// built-in world or a world file), with an observer.
+///
+/// ```
+/// let settings = csql::RunSettings::tan1991("frozenlake4x4", csql::StrategyKind::Lazy, 1);
+/// let report = csql::run_settings(&settings, &mut csql::KeepTrace).unwrap();
+/// assert!(report.converged);
+/// assert_eq!(report.map, "frozenlake4x4");
+/// ```
+pub fn run_settings(settings: &RunSettings, observer: &mut dyn Observer) -> Result<RunReport, Error> {
+    match crate::resolve::Resolved::new(settings)? {
+        crate::resolve::Resolved::Grid(setup) => Ok(run_observed(&setup, settings, observer)),
+        crate::resolve::Resolved::Finite { world, oracle } => {
+            let scene = Scene::new(&world, &oracle, &oracle, world.name());
+            run_in(&scene, settings, observer)
+        }
+    }
 }
 
 /// Run CS-QL on a prepared world (the settings' map name is only reported).
@@ -541,7 +559,9 @@ fn new_agent<W: World + ?Sized, P, S>(
     Agent::new(
         perception,
         strategy,
-        QTable::new(world.num_actions()).expect("a world has at least one action"),
+        QTable::new(world.num_actions())
+            .and_then(|t| t.starting_at(crate::quality::value_floor(world, settings.gamma.get())))
+            .expect("a world has at least one action, and a finite floor of its returns"),
         LoopParams::from(settings),
     )
     .with_detector(RunDetector::new(

@@ -459,7 +459,9 @@ impl RunSettings {
     /// assert!(s.beyond_paper());
     /// ```
     pub fn beyond_paper(&self) -> bool {
-        !(self.world.is_default() && self.extensions.is_default() && self.learner.is_cs_ql())
+        !(!self.world.departs_from_the_paper()
+            && self.extensions.is_default()
+            && self.learner.is_cs_ql())
     }
 
     /// Check the settings beyond the paper that have no type of their own (every other

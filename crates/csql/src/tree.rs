@@ -10,10 +10,11 @@ use crate::representation::{DescriptionId, Representation};
 ///
 /// ```
 /// use cslearn::{FeatureId, Sensor, Value};
-/// use mdp::{FeatureSpace, GridWorld, Manhattan, Pos};
+/// use mdp::{FeatureSpace, GridWorld, Manhattan, SensedGrid, Slip};
 /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
 /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
-/// let mut sensor = csql::StateSensor { world: &world, space: &space, state: world.states()[0] };
+/// let sensed = SensedGrid::new(&world, &space, Slip::default());
+/// let mut sensor = csql::StateSensor { world: &sensed, state: world.states()[0] };
 /// assert_eq!(sensor.measure(FeatureId(0)), Some(Value(mdp::Cell::Obstacle.code())));
 /// ```
 #[derive(Clone, Copy, Debug)]
@@ -70,12 +71,13 @@ impl<W: World + ?Sized> Labels for WorldLabels<'_, W> {
 /// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 2);
 /// let setup = Setup::new(&settings).unwrap();
 /// let (report, rep) = csql::run_with_representation(&setup, &settings);
-/// let tree = StateTree::build(&rep, &setup.space);
+/// let world = setup.sensed(&settings);
+/// let tree = StateTree::build(&rep, setup.space.costs());
 /// for s in setup.world.states() {
-///     let (d, _cost) = tree.classify(&setup.world, &setup.space, s);
-///     assert_eq!(d, rep.matching(&setup.world, &setup.space, s));
+///     let (d, _cost) = tree.classify(&world, s);
+///     assert_eq!(d, rep.matching(&world, s));
 /// }
-/// assert!(tree.to_dot(&setup.space).starts_with("digraph"));
+/// assert!(tree.to_dot(&world).starts_with("digraph"));
 /// ```
 #[derive(Clone, Debug)]
 pub struct StateTree {
@@ -86,12 +88,12 @@ impl StateTree {
     /// Build the tree over a representation.
     ///
     /// ```
-    /// use mdp::{Cell, Feature, FeatureSpace, Manhattan};
+    /// use mdp::{Cell, Feature, FeatureSpace, Manhattan, Reading};
     /// let space = FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &Manhattan).unwrap();
     /// let mut rep = csql::Representation::default();
-    /// rep.push(&[(Feature(0), Cell::Empty)]);
-    /// rep.push(&[(Feature(0), Cell::Obstacle)]);
-    /// assert_eq!(csql::StateTree::build(&rep, &space).tree().depth(), 1);
+    /// rep.push(&[(Feature(0), Reading::from(Cell::Empty))]);
+    /// rep.push(&[(Feature(0), Reading::from(Cell::Obstacle))]);
+    /// assert_eq!(csql::StateTree::build(&rep, space.costs()).tree().depth(), 1);
     /// ```
     pub fn build(rep: &Representation, prices: &[f64]) -> StateTree {
         #[allow(
@@ -110,15 +112,16 @@ impl StateTree {
     /// The description the tree gives a state, and the sensing cost of getting there.
     ///
     /// ```
-    /// use mdp::{Cell, Feature, FeatureSpace, GridWorld, Manhattan, Pos};
+    /// use mdp::{Cell, Feature, FeatureSpace, GridWorld, Manhattan, Pos, Reading};
     /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
     /// let mut rep = csql::Representation::default();
-    /// let open = rep.push(&[(Feature(0), Cell::Empty)]);
-    /// rep.push(&[(Feature(0), Cell::Obstacle)]);
-    /// let tree = csql::StateTree::build(&rep, &space);
+    /// let open = rep.push(&[(Feature(0), Reading::from(Cell::Empty))]);
+    /// rep.push(&[(Feature(0), Reading::from(Cell::Obstacle))]);
+    /// let tree = csql::StateTree::build(&rep, space.costs());
     /// let below = world.state_at(Pos::new(1, 1)).unwrap();
-    /// assert_eq!(tree.classify(&world, &space, below), (Some(open), 1.0));
+    /// assert_eq!(tree.classify(&sensed, below), (Some(open), 1.0));
     /// ```
     pub fn classify<W: World + ?Sized>(
         &self,
@@ -132,12 +135,14 @@ impl StateTree {
     /// The tree as Graphviz DOT, with features named by offset `(dx, dy)`.
     ///
     /// ```
-    /// use mdp::{Cell, Feature, FeatureSpace, Manhattan};
-    /// let space = FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &Manhattan).unwrap();
+    /// use mdp::{Cell, Feature, FeatureSpace, Manhattan, Reading};
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
     /// let mut rep = csql::Representation::default();
-    /// rep.push(&[(Feature(0), Cell::Empty)]);
-    /// rep.push(&[(Feature(0), Cell::Obstacle)]);
-    /// assert!(csql::StateTree::build(&rep, &space).to_dot(&space).contains("(0, 1)"));
+    /// rep.push(&[(Feature(0), Reading::from(Cell::Empty))]);
+    /// rep.push(&[(Feature(0), Reading::from(Cell::Obstacle))]);
+    /// assert!(csql::StateTree::build(&rep, space.costs()).to_dot(&sensed).contains("(0, 1)"));
     /// ```
     pub fn to_dot<W: World + ?Sized>(&self, world: &W) -> String {
         match world.local_space() {
@@ -152,7 +157,7 @@ impl StateTree {
     /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
     /// let mut rep = csql::Representation::default();
     /// rep.push(&[]);
-    /// assert_eq!(csql::StateTree::build(&rep, &space).tree().len(), 1);
+    /// assert_eq!(csql::StateTree::build(&rep, space.costs()).tree().len(), 1);
     /// ```
     pub fn tree(&self) -> &DecisionTree {
         &self.tree

@@ -104,9 +104,10 @@ struct Pending {
 /// use csql::{Perception, UTree, UTreeParams};
 /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
 /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
-/// let mut tree = UTree::new(&space, UTreeParams::default(), 0.9);
+/// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+/// let mut tree = UTree::new(&sensed, UTreeParams::default(), 0.9);
 /// let mut table = qlearn::QTable::new(4).unwrap();
-/// let (row, cost) = tree.classify(&world, world.states()[0], &mut table);
+/// let (row, cost) = tree.classify(&sensed, world.states()[0], &mut table);
 /// // One leaf, whose fringe (the four cheapest features) is measured and charged.
 /// assert_eq!((row.0, cost), (0, 4.0));
 /// ```
@@ -138,8 +139,10 @@ impl UTree {
     /// with its parameters and the discount of the returns it compares.
     ///
     /// ```
-    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
-    /// let tree = csql::UTree::new(&space, csql::UTreeParams::default(), 0.9);
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let tree = csql::UTree::new(&sensed, csql::UTreeParams::default(), 0.9);
     /// assert_eq!(tree.splits(), 0);
     /// ```
     pub fn new<W: World + ?Sized>(world: &W, params: UTreeParams, gamma: f64) -> UTree {
@@ -167,10 +170,12 @@ impl UTree {
     ///
     /// ```
     /// use rand::SeedableRng;
-    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
     /// let noise = mdp::SensorNoise::new(0.1).unwrap();
     /// let rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
-    /// let tree = csql::UTree::new(&space, csql::UTreeParams::default(), 0.9).with_noise(noise, rng);
+    /// let tree = csql::UTree::new(&sensed, csql::UTreeParams::default(), 0.9).with_noise(noise, rng);
     /// ```
     pub fn with_noise(mut self, noise: SensorNoise, rng: Xoshiro256PlusPlus) -> UTree {
         self.noise = noise;
@@ -181,8 +186,10 @@ impl UTree {
     /// Splits made so far.
     ///
     /// ```
-    /// let space = mdp::FeatureSpace::new(&mdp::builtin("tan3x3").unwrap(), &mdp::Manhattan).unwrap();
-    /// assert_eq!(csql::UTree::new(&space, Default::default(), 0.9).splits(), 0);
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// assert_eq!(csql::UTree::new(&sensed, Default::default(), 0.9).splits(), 0);
     /// ```
     pub fn splits(&self) -> u32 {
         self.splits

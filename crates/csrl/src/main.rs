@@ -11,6 +11,7 @@
 mod classify;
 mod maps;
 mod run;
+mod worlds;
 
 use std::io::Write;
 use std::process::ExitCode;
@@ -37,6 +38,10 @@ enum Command {
     /// Show or check a map.
     #[command(subcommand)]
     Map(maps::MapCommand),
+    /// Worlds beyond grid maps (FrozenLake, Taxi, CliffWalking, world files), and any
+    /// world as a world file.
+    #[command(subcommand)]
+    World(worlds::WorldCommand),
     /// Run CS-QL (or a baseline, `--learner`) once and report the measures of the paper's Table 1.
     Run(run::RunArgs),
     /// Stream a CSV table through a cost-sensitive learner and report errors and costs.
@@ -50,6 +55,7 @@ fn main() -> ExitCode {
     let result = match &cli.command {
         Command::Maps { json } => maps::list(*json, &mut out),
         Command::Map(cmd) => maps::run(cmd, &mut out),
+        Command::World(cmd) => worlds::run(cmd, &mut out),
         Command::Run(args) => run::run(args, &mut out),
         Command::Classify(args) => classify::run(args, &mut out),
     }

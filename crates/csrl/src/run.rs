@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::{Context, Result};
 use clap::Args;
-use csql::{Flow, Observer, RunReport, RunSettings, Setup, StrategyKind, TracePoint};
+use csql::{Flow, Observer, RunReport, RunSettings, StrategyKind, TracePoint};
 
 use crate::Status;
 
@@ -16,8 +16,12 @@ use crate::Status;
 pub struct RunArgs {
     /// A map: a built-in name, a map file, `random:WxH:DENSITY:SEED`, or `MAP@ROW:COL`
     /// for MAP with its goal moved (default: the config's map, else tan8x8).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "world")]
     map: Option<String>,
+    /// The world: a built-in world (`csrl world list`), a world file (`.json`) or any
+    /// map `--map` takes.
+    #[arg(long)]
+    world: Option<String>,
     /// resetting, lazy, random or eager (default: the config's, else resetting).
     #[arg(long)]
     strategy: Option<StrategyKind>,
@@ -66,7 +70,7 @@ impl RunArgs {
         if let Some(path) = &self.config {
             s.apply_file(path)?;
         }
-        if let Some(m) = &self.map {
+        if let Some(m) = self.map.as_ref().or(self.world.as_ref()) {
             s.map = m.into();
         }
         if let Some(k) = self.strategy {
@@ -146,17 +150,29 @@ fn progress_bar(len: u32) -> indicatif::ProgressBar {
 /// Run `csrl run`.
 pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     let settings = args.settings()?;
-    let setup = Setup::new(&settings)?;
+    let resolved = csql::Resolved::new(&settings)?;
+    if args.svg.is_some() && !matches!(resolved, csql::Resolved::Grid(_)) {
+        return Err(csql::Error::GridOnly {
+            what: "--svg (the policy drawn on a grid map)",
+        }
+        .into());
+    }
     let mut watch = Watch {
         bar: progress_bar(settings.max_trials.get()),
         keep_trace: args.trace,
         stop: ctrl_c_flag(),
         stopped: false,
     };
-    let report = csql::run_observed(&setup, &settings, &mut watch);
+    let report = match &resolved {
+        csql::Resolved::Grid(setup) => csql::run_observed(setup, &settings, &mut watch),
+        csql::Resolved::Finite { world, oracle } => {
+            let scene = csql::Scene::new(world, oracle, oracle, world.name());
+            csql::run_in(&scene, &settings, &mut watch)?
+        }
+    };
     watch.bar.finish_and_clear();
-    if let Some(path) = &args.svg {
-        std::fs::write(path, csql::policy_svg(&setup, &report))
+    if let (Some(path), csql::Resolved::Grid(setup)) = (&args.svg, &resolved) {
+        std::fs::write(path, csql::policy_svg(setup, &report))
             .with_context(|| format!("cannot write {}", path.display()))?;
         crate::note(format_args!(
             "wrote the policy picture to {}",

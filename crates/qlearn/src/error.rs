@@ -46,6 +46,12 @@ pub enum Error {
         /// The rejected value.
         value: u64,
     },
+    /// A starting value for Q that is not a finite number.
+    #[error("Q cannot start at {value}: a finite number is needed")]
+    BadInitialValue {
+        /// The value given.
+        value: f64,
+    },
     /// A table or an MDP with no actions: nothing could ever be selected.
     #[error("a Q table needs at least one action, got {actions}")]
     NoActions {

@@ -143,6 +143,8 @@ pub struct QTable {
     totals: Vec<f64>,
     /// The temperature the cached weights were computed for (NaN before the first use).
     cached_t: f64,
+    /// What every `Q` and `V` starts at (and returns to on [`QTable::reset`]).
+    initial: f64,
 }
 
 impl QTable {
@@ -179,7 +181,31 @@ impl QTable {
             weights: vec![1.0; n],
             totals: vec![actions as f64; rows],
             cached_t: f64::NAN,
+            initial: 0.0,
         })
+    }
+
+    /// The same table with every `Q` and `V` starting at `initial` instead of 0, for rows
+    /// already there, rows added later and after [`QTable::reset`]. Starting at a lower
+    /// bound of the return (`r_min / (1 - gamma)` in a world with negative rewards) keeps
+    /// utilities from decreasing while learning a deterministic world, as they do from 0
+    /// when rewards are never negative (Theorem 1).
+    ///
+    /// ```
+    /// let mut t = qlearn::QTable::with_rows(2, 1).unwrap().starting_at(-10.0).unwrap();
+    /// assert_eq!(t.v(qlearn::RowId(0)), -10.0);
+    /// let r = t.add_row();
+    /// assert_eq!(t.q_row(r), &[-10.0, -10.0]);
+    /// assert!(qlearn::QTable::new(2).unwrap().starting_at(f64::NAN).is_err());
+    /// ```
+    pub fn starting_at(mut self, initial: f64) -> Result<QTable, Error> {
+        if !initial.is_finite() {
+            return Err(Error::BadInitialValue { value: initial });
+        }
+        self.initial = initial;
+        self.q.fill(initial);
+        self.v.fill(initial);
+        Ok(self)
     }
 
     /// Add a row with every `Q` and `V` at 0 and return its id (ids count up from 0).
@@ -200,9 +226,9 @@ impl QTable {
             reason = "2^32 rows of Q-values would need far more memory than any machine has"
         )]
         let id = RowId(u32::try_from(self.v.len()).expect("at most 2^32 rows"));
-        self.q.extend(std::iter::repeat_n(0.0, self.actions));
+        self.q.extend(std::iter::repeat_n(self.initial, self.actions));
         self.weights.extend(std::iter::repeat_n(1.0, self.actions));
-        self.v.push(0.0);
+        self.v.push(self.initial);
         self.totals.push(self.actions as f64);
         id
     }
@@ -308,8 +334,8 @@ impl QTable {
     /// assert_eq!((t.rows(), t.v(RowId(0))), (1, 0.0));
     /// ```
     pub fn reset(&mut self) {
-        self.q.fill(0.0);
-        self.v.fill(0.0);
+        self.q.fill(self.initial);
+        self.v.fill(self.initial);
         // Zero rows have known weights at any temperature, so the cache stays warm.
         self.weights.fill(1.0);
         self.totals.fill(self.actions as f64);

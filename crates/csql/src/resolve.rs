@@ -1,0 +1,109 @@
+//! What a run's settings name: a grid map (the paper's world, sensed around the robot) or
+//! a world beyond grids (a built-in world or a world file), each with the oracle the run
+//! is measured against.
+//!
+//! The setting `map` names either. A built-in world's name (`frozenlake4x4`, `taxi`, ...)
+//! or a path ending in `.json` is a world beyond grids; anything else is resolved as a map
+//! (a built-in map, a map file, `random:...`, `MAP@ROW:COL`). Settings that only make
+//! sense for one kind are refused on the other with a message naming both.
+
+use std::path::Path;
+
+use mdp::{FiniteWorld, Oracle};
+
+use crate::error::Error;
+use crate::run::Setup;
+use crate::settings::RunSettings;
+
+/// A world resolved from settings, ready to run.
+///
+/// ```
+/// let settings = csql::RunSettings::tan1991("frozenlake4x4", csql::StrategyKind::Lazy, 1);
+/// match csql::Resolved::new(&settings).unwrap() {
+///     csql::Resolved::Finite { world, .. } => assert_eq!(world.name(), "frozenlake4x4"),
+///     csql::Resolved::Grid(_) => unreachable!(),
+/// }
+/// let grid = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
+/// assert!(matches!(csql::Resolved::new(&grid).unwrap(), csql::Resolved::Grid(_)));
+/// ```
+#[derive(Clone, Debug)]
+#[allow(clippy::large_enum_variant, reason = "built once per run")]
+pub enum Resolved {
+    /// A grid map with the paper's local sensing.
+    Grid(Setup),
+    /// A world beyond grids, with the oracle of its true model.
+    Finite {
+        /// The world.
+        world: FiniteWorld,
+        /// Its oracle (value iteration on the true model, at the run's discount).
+        oracle: Oracle,
+    },
+}
+
+impl Resolved {
+    /// Resolve the world the settings name and check the settings against it.
+    ///
+    /// ```
+    /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
+    /// s.apply_toml("[world]\nslide = 0.5", "x.toml").unwrap();
+    /// let err = csql::Resolved::new(&s).unwrap_err().to_string();
+    /// assert!(err.contains("slide"), "{err}");
+    /// ```
+    pub fn new(settings: &RunSettings) -> Result<Resolved, Error> {
+        settings.validate()?;
+        let name = settings.map.name();
+        let world = &settings.world;
+        if is_world_name(name) {
+            let world = if mdp::builtin_world_names().contains(&name) {
+                mdp::builtin_world(name, &world.world_options())?
+            } else {
+                if !world.slip.is_zero()
+                    || !world.slide.is_zero()
+                    || world.sensing.is_some()
+                    || world.factor_costs.is_some()
+                {
+                    return Err(Error::Conflict {
+                        first: "a world file".to_string(),
+                        second: "[world] slip, slide, sensing or factor_costs".to_string(),
+                        why: "a world file carries its own dynamics, features and prices",
+                    });
+                }
+                FiniteWorld::read(Path::new(name))?
+            };
+            if settings.world.sensing_radius.is_some() {
+                return Err(Error::GridOnly {
+                    what: "[world] sensing_radius (offsets around a robot on a grid)",
+                });
+            }
+            let oracle = Oracle::solve_stochastic(&world, settings.gamma.get())?;
+            return Ok(Resolved::Finite { world, oracle });
+        }
+        let grid_only = |setting: &str| Error::Conflict {
+            first: format!("the grid map {name}"),
+            second: setting.to_string(),
+            why: "grid maps sense the cells around the robot and move one cell at a time; use a built-in world (csrl world list) for these",
+        };
+        if !world.slide.is_zero() {
+            return Err(grid_only("[world] slide"));
+        }
+        if world.sensing == Some(mdp::SensingModel::Factors) {
+            return Err(grid_only("[world] sensing = \"factors\""));
+        }
+        if world.factor_costs.is_some() {
+            return Err(grid_only("[world] factor_costs"));
+        }
+        Ok(Resolved::Grid(Setup::new(settings)?))
+    }
+}
+
+/// Whether a `map` setting names a world beyond grids: a built-in world, or a file whose
+/// name ends in `.json`.
+///
+/// ```
+/// assert!(csql::is_world_name("taxi"));
+/// assert!(csql::is_world_name("worlds/my.json"));
+/// assert!(!csql::is_world_name("tan8x8"));
+/// ```
+pub fn is_world_name(name: &str) -> bool {
+    mdp::builtin_world_names().contains(&name) || name.ends_with(".json")
+}
