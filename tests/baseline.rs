@@ -16,6 +16,7 @@ fn csql_loop_on_identified_states_is_qlearn() {
         let settings = RunSettings::tan1991(map, StrategyKind::Resetting, seed);
         let setup = Setup::new(&settings).unwrap();
         let world = &setup.world;
+        let sensed = &setup.sensed(&settings);
         let trials = 40;
 
         // qlearn's plain learner.
@@ -29,7 +30,7 @@ fn csql_loop_on_identified_states_is_qlearn() {
 
         // csql's main loop, one row per state, never refining.
         let mut agent = Agent::new(
-            Identified::new(world, vec![0.0; world.num_states()]),
+            Identified::new(sensed, vec![0.0; world.num_states()]),
             Never,
             QTable::new(4).unwrap(),
             LoopParams::from(&settings),
@@ -39,12 +40,12 @@ fn csql_loop_on_identified_states_is_qlearn() {
         let mut ours_moves = Vec::new();
         for trial in 1..=trials as u32 {
             let start = starts[rng.random_range(0..starts.len())];
-            ours_moves.push(agent.run_trial(world, start, trial, &mut rng).moves);
+            ours_moves.push(agent.run_trial(sensed, start, trial, &mut rng).moves);
         }
         assert_eq!(plain_moves, ours_moves, "{map}");
         // Same values for every state (rows are numbered differently).
         for s in world.states() {
-            let (row, _) = agent.perception.classify(world, s, &mut agent.table);
+            let (row, _) = agent.perception.classify(sensed, s, &mut agent.table);
             let table = &agent.table;
             assert_eq!(table.v(row), plain.table().v(RowId(s.0)), "{map} {s}");
             assert_eq!(

@@ -27,15 +27,15 @@ fn classify(c: &mut Criterion) {
     let setup = Setup::new(&settings).unwrap();
     let (_, rep) = csql::run_with_representation(&setup, &settings);
     let states = setup.world.states();
+    let world = setup.sensed(&settings);
     let mut group = c.benchmark_group("classify_all_50_states");
     group.throughput(Throughput::Elements(states.len() as u64));
     for (name, cache) in [("cached", true), ("plain", false)] {
-        let mut classify =
-            Classify::with_representation(&setup.space, rep.clone()).with_cache(cache);
+        let mut classify = Classify::with_representation(&world, rep.clone()).with_cache(cache);
         group.bench_function(name, |b| {
             b.iter(|| {
                 for &s in &states {
-                    black_box(classify.classify_state(&setup.world, s));
+                    black_box(classify.classify_state(&world, s));
                 }
             })
         });

@@ -67,15 +67,16 @@ fn ceiling(
     seed: u64,
 ) -> Result<(f64, f64), Box<dyn std::error::Error>> {
     let world = &setup.world;
+    let sensed = &mdp::SensedGrid::new(world, &setup.space, mdp::Slip::default());
     let noise = SensorNoise::new(noise)?;
-    let mut classify = Classify::with_representation(&setup.space, rep.clone())
+    let mut classify = Classify::with_representation(sensed, rep.clone())
         .with_matching(matching)
         .with_reads(reads);
     let states = world.states();
     // Each description acts as an optimal action of the states it describes.
     let mut action = vec![ActionId(0); rep.len()];
     for &s in &states {
-        if let Some(d) = classify.lookup(world, s) {
+        if let Some(d) = classify.lookup(sensed, s) {
             action[d.index()] = setup.oracle.optimal_actions(s)[0];
         }
     }
@@ -85,9 +86,9 @@ fn ceiling(
     policy[world.goal().index()][0] = 1.0;
     let mut own = 0.0;
     for &s in &states {
-        let truth = classify.lookup(world, s);
+        let truth = classify.lookup(sensed, s);
         for _ in 0..samples {
-            let seen = classify.lookup_noisy(world, s, noise, &mut rng);
+            let seen = classify.lookup_noisy(sensed, s, noise, &mut rng);
             own += f64::from(u8::from(seen == truth));
             let a = seen.map_or(ActionId(0), |d| action[d.index()]);
             policy[s.index()][a.index()] += 1.0 / f64::from(samples);

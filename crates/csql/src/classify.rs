@@ -141,8 +141,10 @@ impl Classify {
             .iter()
             .map(|&c| Cost::new(c).expect("worlds hold valid prices"))
             .collect();
+        let readings: Vec<u32> = features.map(|f| world.readings(f)).collect();
         Classify {
-            readings: features.map(|f| world.readings(f)).collect(),
+            cache: Cache::new(readings.iter().copied().max().unwrap_or(1)),
+            readings,
             prices,
             costs,
             rep,
@@ -150,7 +152,6 @@ impl Classify {
             attention: Attention::new(),
             measured: Vec::new(),
             probe: Vec::new(),
-            cache: Cache::default(),
             use_cache: true,
             noise: SensorNoise::default(),
             noise_rng: Xoshiro256PlusPlus::seed_from_u64(0),
@@ -299,8 +300,12 @@ impl Classify {
     /// What the sensors report for feature `f` of state `s`.
     fn read<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId, f: Feature) -> Reading {
         let truth = world.read(s, f);
-        self.noise
-            .majority_reading(truth, self.readings[f.index()], self.reads, &mut self.noise_rng)
+        self.noise.majority_reading(
+            truth,
+            self.readings[f.index()],
+            self.reads,
+            &mut self.noise_rng,
+        )
     }
 
     /// Nearest matching (see [`Classify::with_matching`]): after the walk found no
@@ -492,7 +497,12 @@ impl Classify {
     /// assert!(!c.matches(&sensed, below, wall));
     /// assert_eq!(c.last_measured().len(), 1);
     /// ```
-    pub fn matches<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId, d: DescriptionId) -> bool {
+    pub fn matches<W: Sensors + ?Sized>(
+        &mut self,
+        world: &W,
+        s: StateId,
+        d: DescriptionId,
+    ) -> bool {
         self.measured.clear();
         let wanted: Vec<(Feature, Reading)> = self.rep.get(d).features().collect();
         for (f, want) in wanted {
@@ -602,7 +612,11 @@ impl Classify {
     /// assert_eq!(c.last_cost(), out.cost);
     /// ```
     pub fn last_cost(&self) -> f64 {
-        let once: f64 = self.measured.iter().map(|&(f, _)| self.prices[f.index()]).sum();
+        let once: f64 = self
+            .measured
+            .iter()
+            .map(|&(f, _)| self.prices[f.index()])
+            .sum();
         once * f64::from(self.reads)
     }
 
@@ -745,7 +759,14 @@ impl Classify {
                 .features()
                 .filter(|&(f, v)| {
                     let x = measured.iter().find(|(m, _)| *m == f).map_or_else(
-                        || noise.majority_reading(world.read(s, f), readings[f.index()], reads, rng),
+                        || {
+                            noise.majority_reading(
+                                world.read(s, f),
+                                readings[f.index()],
+                                reads,
+                                rng,
+                            )
+                        },
                         |p| p.1,
                     );
                     x != v
@@ -798,7 +819,12 @@ impl Classify {
     /// assert_eq!(c.add_feature(&sensed, d, s), Some(1.0));
     /// assert_eq!(c.representation().get(d).len(), 1);
     /// ```
-    pub fn add_feature<W: Sensors + ?Sized>(&mut self, world: &W, d: DescriptionId, s: StateId) -> Option<f64> {
+    pub fn add_feature<W: Sensors + ?Sized>(
+        &mut self,
+        world: &W,
+        d: DescriptionId,
+        s: StateId,
+    ) -> Option<f64> {
         let f = self.rep.get(d).next_missing(self.prices.len())?;
         let v = self.read(world, s, f);
         self.rep.refine(d, f, v);
@@ -808,7 +834,12 @@ impl Classify {
 }
 
 impl Perception for Classify {
-    fn classify<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId, table: &mut QTable) -> (RowId, f64) {
+    fn classify<W: Sensors + ?Sized>(
+        &mut self,
+        world: &W,
+        s: StateId,
+        table: &mut QTable,
+    ) -> (RowId, f64) {
         let (d, created) = self.classify_quietly(world, s);
         if created {
             let row = table.add_row();

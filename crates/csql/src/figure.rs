@@ -332,10 +332,7 @@ pub fn descriptions_svg(report: &RunReport) -> String {
             let _ = write!(
                 s,
                 "<rect x=\"{x}\" y=\"{y}\" width=\"{CELL}\" height=\"{CELL}\" fill=\"{fill}\" stroke=\"#888\" stroke-width=\"0.6\"><title>({}, {}) = {}, cost {}</title></rect>",
-                dx,
-                dy,
-                f.value,
-                f.cost
+                dx, dy, f.value, f.cost
             );
         }
         let (x, y) = cell_at(0, 0);

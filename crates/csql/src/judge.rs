@@ -280,9 +280,9 @@ impl Judge {
                 .all(|&i| oracle.is_optimal(states[i as usize], a))
         });
         let literal = rest.iter().all(|&i| {
-            oracle.actions().all(|a| {
-                oracle.is_optimal(states[i as usize], a) == oracle.is_optimal(first, a)
-            })
+            oracle
+                .actions()
+                .all(|a| oracle.is_optimal(states[i as usize], a) == oracle.is_optimal(first, a))
         });
         let settled = group.iter().all(|&i| {
             let s = states[i as usize];

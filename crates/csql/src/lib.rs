@@ -174,7 +174,6 @@ mod quality;
     reason = "grid worlds have four actions, which a table accepts"
 )]
 mod reference;
-mod resolve;
 #[allow(
     clippy::expect_used,
     reason = "internal invariants: grid worlds have four actions, a converged run matches every state"
@@ -185,6 +184,7 @@ mod report;
     reason = "internal invariants: descriptions hold cell codes and ids index the representation"
 )]
 mod representation;
+mod resolve;
 #[allow(
     clippy::expect_used,
     reason = "internal invariants: grid worlds have four actions"

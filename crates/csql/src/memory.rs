@@ -143,7 +143,12 @@ impl Remembering {
         row
     }
 
-    fn classify_here<W: World + ?Sized>(&mut self, world: &W, s: StateId, table: &mut QTable) -> (RowId, f64) {
+    fn classify_here<W: World + ?Sized>(
+        &mut self,
+        world: &W,
+        s: StateId,
+        table: &mut QTable,
+    ) -> (RowId, f64) {
         let (d, _) = self.inner.classify_quietly(world, s);
         self.current = d.0;
         (self.row(d.0, table), self.inner.last_cost())
@@ -151,7 +156,12 @@ impl Remembering {
 }
 
 impl Perception for Remembering {
-    fn classify<W: World + ?Sized>(&mut self, world: &W, s: StateId, table: &mut QTable) -> (RowId, f64) {
+    fn classify<W: World + ?Sized>(
+        &mut self,
+        world: &W,
+        s: StateId,
+        table: &mut QTable,
+    ) -> (RowId, f64) {
         self.history.clear();
         self.classify_here(world, s, table)
     }

@@ -64,7 +64,9 @@
 //! probability [`Prediction::verify`] (and after `max_skips` unmeasured uses).
 
 use cslearn::{FeatureId, Sensor, Value};
-use mdp::{Action, ActionId, Cell, Feature, FeatureSpace, GridWorld, Offset, Reading, StateId, World};
+use mdp::{
+    Action, ActionId, Cell, Feature, FeatureSpace, GridWorld, Offset, Reading, StateId, World,
+};
 use qlearn::{QTable, RowId};
 use rand::{Rng, RngExt};
 use serde::{Deserialize, Serialize};
@@ -764,7 +766,12 @@ impl Predicting {
     }
 
     /// Classify `s` (charged), less what the memory already holds at the motion level.
-    fn measure<W: World + ?Sized>(&mut self, world: &W, s: StateId, table: &mut QTable) -> (RowId, f64) {
+    fn measure<W: World + ?Sized>(
+        &mut self,
+        world: &W,
+        s: StateId,
+        table: &mut QTable,
+    ) -> (RowId, f64) {
         if let Some(tree) = &self.tree {
             self.scratch.clear();
             let out = tree.tree().classify(Recording {
@@ -798,7 +805,14 @@ impl Predicting {
     }
 
     /// Count an unmeasured use of a transition, and whether the oracle finds it wrong.
-    fn unmeasured<W: World + ?Sized>(&mut self, world: &W, from: RowId, a: ActionId, s: StateId, row: RowId) {
+    fn unmeasured<W: World + ?Sized>(
+        &mut self,
+        world: &W,
+        from: RowId,
+        a: ActionId,
+        s: StateId,
+        row: RowId,
+    ) {
         self.current = Some(Unmeasured { s, row, from, a });
         let wrong = Perception::lookup(&mut self.inner, world, s) != Some(row);
         let entry = self.model.entry_mut(from, a);
@@ -815,7 +829,12 @@ impl Predicting {
 impl Perception for Predicting {
     /// Localise: classify with no knowledge of where the robot came from (the memory is
     /// anchored afresh).
-    fn classify<W: World + ?Sized>(&mut self, world: &W, s: StateId, table: &mut QTable) -> (RowId, f64) {
+    fn classify<W: World + ?Sized>(
+        &mut self,
+        world: &W,
+        s: StateId,
+        table: &mut QTable,
+    ) -> (RowId, f64) {
         if let Some(memory) = &mut self.memory {
             memory.clear();
         }

@@ -500,10 +500,7 @@ impl Describes for Classify {
         let states = world.states();
         let rep = self.representation();
         let tree = StateTree::build(rep, self.prices());
-        let costs: Vec<f64> = states
-            .iter()
-            .map(|&s| tree.classify(world, s).1)
-            .collect();
+        let costs: Vec<f64> = states.iter().map(|&s| tree.classify(world, s).1).collect();
         let tree_cost = costs.iter().sum::<f64>() / states.len() as f64;
         let labels: Vec<Option<DescriptionId>> =
             states.iter().map(|&s| self.lookup(world, s)).collect();
@@ -574,14 +571,8 @@ pub(crate) fn report<W: World + ?Sized, P: Perception + Describes>(
     let last = learned.last;
     let sufficient_now = last.is_some_and(|t| t.sufficient);
     let consistent_literal = sufficient_now.then(|| {
-        Verdict::judge(
-            world,
-            scene.oracle,
-            table,
-            &rows,
-            settings.tolerance.get(),
-        )
-        .consistent_literal
+        Verdict::judge(world, scene.oracle, table, &rows, settings.tolerance.get())
+            .consistent_literal
     });
     RunReport {
         map: scene.name.to_string(),

@@ -80,9 +80,10 @@ impl<'a> Description<'a> {
     /// assert_eq!(rep.get(id).features().count(), 0);
     /// ```
     pub fn features(self) -> impl Iterator<Item = (Feature, Reading)> + 'a {
-        self.0.pairs().iter().map(|&(f, v)| {
-(Feature(f.0), Reading(v.0))
-        })
+        self.0
+            .pairs()
+            .iter()
+            .map(|&(f, v)| (Feature(f.0), Reading(v.0)))
     }
 
     /// The number of features.

@@ -323,7 +323,10 @@ pub fn run(settings: &RunSettings) -> Result<RunReport, Error> {
 /// assert!(report.converged);
 /// assert_eq!(report.map, "frozenlake4x4");
 /// ```
-pub fn run_settings(settings: &RunSettings, observer: &mut dyn Observer) -> Result<RunReport, Error> {
+pub fn run_settings(
+    settings: &RunSettings,
+    observer: &mut dyn Observer,
+) -> Result<RunReport, Error> {
     match crate::resolve::Resolved::new(settings)? {
         crate::resolve::Resolved::Grid(setup) => Ok(run_observed(&setup, settings, observer)),
         crate::resolve::Resolved::Finite { world, oracle } => {
@@ -434,7 +437,7 @@ pub fn run_observed(
 /// use csql::{Classify, RunSettings, Setup, StrategyKind};
 /// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
 /// let setup = Setup::new(&settings).unwrap();
-/// let plain = Classify::new(&setup.space).with_cache(false);
+/// let plain = Classify::new(&setup.sensed(&settings)).with_cache(false);
 /// assert_eq!(csql::run_on_with(&setup, &settings, plain), csql::run_on(&setup, &settings));
 /// ```
 pub fn run_on_with(setup: &Setup, settings: &RunSettings, classify: Classify) -> RunReport {
@@ -495,7 +498,9 @@ fn run_classify<W: World + ?Sized>(
                     Predicting::motion(classify, &settings.prediction, grid, space)
                 }
                 // Refused by run_in before anything runs.
-                None => Predicting::learned(classify, &settings.prediction, scene.world.num_actions()),
+                None => {
+                    Predicting::learned(classify, &settings.prediction, scene.world.num_actions())
+                }
             }
         }
     };

@@ -259,7 +259,11 @@ impl UTree {
             self.last = self.current.take();
             return;
         }
-        let (sensors, noise, previous) = ((&self.prices[..], &self.readings[..]), self.noise, self.previous);
+        let (sensors, noise, previous) = (
+            (&self.prices[..], &self.readings[..]),
+            self.noise,
+            self.previous,
+        );
         let mut sensor = self.rng.as_mut().map(|rng| (noise, rng));
         let values = leaf
             .candidates
@@ -391,14 +395,27 @@ impl UTree {
         }
         let mut cost = 0.0;
         descend(&self.nodes, 0, |d| {
-            read::<W, Xoshiro256PlusPlus>((&self.prices, &self.readings), world, s, d, previous, None, &mut cost)
+            read::<W, Xoshiro256PlusPlus>(
+                (&self.prices, &self.readings),
+                world,
+                s,
+                d,
+                previous,
+                None,
+                &mut cost,
+            )
         })
         .ok()
     }
 }
 
 impl Perception for UTree {
-    fn classify<W: World + ?Sized>(&mut self, world: &W, s: StateId, table: &mut QTable) -> (RowId, f64) {
+    fn classify<W: World + ?Sized>(
+        &mut self,
+        world: &W,
+        s: StateId,
+        table: &mut QTable,
+    ) -> (RowId, f64) {
         self.previous = NO_ACTION;
         let mut cost = 0.0;
         let row = self
@@ -532,9 +549,7 @@ impl crate::report::Describes for UTree {
                 let features = self.paths[l.node]
                     .iter()
                     .filter_map(|&(d, v)| match d {
-                        Distinction::Feature(f) => {
-                            Some((f, Reading(v)))
-                        }
+                        Distinction::Feature(f) => Some((f, Reading(v))),
                         Distinction::PreviousAction => None,
                     })
                     .collect();
@@ -550,7 +565,15 @@ impl crate::report::Describes for UTree {
         if !self.nodes.is_empty() {
             // A value with no branch ends the walk where it was read.
             let _ = descend(&self.nodes, 0, |d| {
-                read::<W, Xoshiro256PlusPlus>((&self.prices, &self.readings), world, s, d, NO_ACTION, None, &mut cost)
+                read::<W, Xoshiro256PlusPlus>(
+                    (&self.prices, &self.readings),
+                    world,
+                    s,
+                    d,
+                    NO_ACTION,
+                    None,
+                    &mut cost,
+                )
             });
         }
         cost

@@ -2,7 +2,7 @@
 //! feature for feature, on representations grown by real learning.
 
 use csql::{Classify, Perception, RunSettings, Setup, StrategyKind};
-use mdp::{FeatureSpace, GridWorld, Manhattan, RandomMap};
+use mdp::{FeatureSpace, GridWorld, Manhattan, RandomMap, SensedGrid, Slip};
 use proptest::prelude::*;
 use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -11,9 +11,10 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 /// step that the cached and plain procedures measure the same features in the same order.
 fn check_same_charges(world: &GridWorld, ops: &[(usize, bool)]) {
     let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
-    let states = world.states();
-    let mut cached = Classify::new(&space);
-    let mut plain = Classify::new(&space).with_cache(false);
+    let world = &SensedGrid::new(world, &space, Slip::default());
+    let states = world.world().states();
+    let mut cached = Classify::new(world);
+    let mut plain = Classify::new(world).with_cache(false);
     for &(i, refine) in ops {
         let s = states[i % states.len()];
         let a = cached.classify_state(world, s);
@@ -61,7 +62,7 @@ fn cached_and_plain_runs_are_identical_on_tan8x8() {
     let slow = csql::run_on_with(
         &setup,
         &settings,
-        Classify::new(&setup.space).with_cache(false),
+        Classify::new(&setup.sensed(&settings)).with_cache(false),
     );
     assert_eq!(fast, slow);
 }
@@ -70,23 +71,24 @@ fn cached_and_plain_runs_are_identical_on_tan8x8() {
 fn the_first_call_creates_the_empty_description_and_refining_splits() {
     let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
-    let mut c = Classify::new(&space);
+    let sensed = SensedGrid::new(&world, &space, Slip::default());
+    let mut c = Classify::new(&sensed);
     let mut table = qlearn::QTable::new(4).unwrap();
     let top_left = world.state_at(mdp::Pos::new(0, 0)).unwrap();
     let below = world.state_at(mdp::Pos::new(1, 0)).unwrap();
-    let (d0, cost) = c.classify(&world, top_left, &mut table);
+    let (d0, cost) = c.classify(&sensed, top_left, &mut table);
     assert_eq!((d0.0, cost, table.rows()), (0, 0.0, 1));
     // Refining adds "up" (the cheapest feature) valued at the top-left state: a wall.
-    assert_eq!(c.refine(&world, d0, top_left), Some(1.0));
+    assert_eq!(c.refine(&sensed, d0, top_left), Some(1.0));
     // The state below has no wall above: "up" is measured and a new description made.
-    let (d1, cost) = c.classify(&world, below, &mut table);
+    let (d1, cost) = c.classify(&sensed, below, &mut table);
     assert_eq!((d1.0, cost, table.rows()), (1, 1.0, 2));
     let r = c.representation();
     assert_eq!(
         r.get(csql::DescriptionId(1)).value(mdp::Feature(0)),
-        Some(mdp::Cell::Empty)
+        Some(mdp::Reading::from(mdp::Cell::Empty))
     );
     // And the top-left state still finds its own description, paying for "up" once.
-    let (again, cost) = c.classify(&world, top_left, &mut table);
+    let (again, cost) = c.classify(&sensed, top_left, &mut table);
     assert_eq!((again, cost), (d0, 1.0));
 }

@@ -11,8 +11,9 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 fn check(map: &str, strategy: StrategyKind, seed: u64, seen: &mut [bool; 3]) {
     let settings = RunSettings::tan1991(map, strategy, seed);
     let setup = Setup::new(&settings).unwrap();
+    let world = setup.sensed(&settings);
     let mut agent = Agent::new(
-        Classify::new(&setup.space),
+        Classify::new(&world),
         strategy.build(settings.random_moves),
         QTable::new(4).unwrap(),
         LoopParams::from(&settings),
@@ -22,19 +23,14 @@ fn check(map: &str, strategy: StrategyKind, seed: u64, seen: &mut [bool; 3]) {
     let states = setup.world.states();
     for trial in 1..=3000 {
         let start = states[rng.random_range(0..states.len())];
-        agent.run_trial(&setup.world, start, trial, &mut rng);
-        let fast = judge.judge(
-            &setup.world,
-            &setup.oracle,
-            &mut agent,
-            settings.tolerance.get(),
-        );
+        agent.run_trial(&world, start, trial, &mut rng);
+        let fast = judge.judge(&world, &setup.oracle, &mut agent, settings.tolerance.get());
         let rows: Vec<_> = states
             .iter()
-            .map(|&s| Perception::lookup(&mut agent.perception, &setup.world, s))
+            .map(|&s| Perception::lookup(&mut agent.perception, &world, s))
             .collect();
         let slow = Verdict::judge(
-            &setup.world,
+            &world,
             &setup.oracle,
             &agent.table,
             &rows,

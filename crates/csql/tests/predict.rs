@@ -177,7 +177,8 @@ fn classify_among_finds_the_true_description_among_candidates() {
     let setup = Setup::new(&settings).unwrap();
     let (report, rep) = csql::run_with_representation(&setup, &settings);
     assert!(report.converged);
-    let mut c = csql::Classify::with_representation(&setup.space, rep.clone());
+    let world = setup.sensed(&settings);
+    let mut c = csql::Classify::with_representation(&world, rep.clone());
     let ids: Vec<csql::DescriptionId> = rep.iter().map(|(id, _)| id).collect();
     let cost = |c: &csql::Classify| -> f64 {
         c.last_measured()
@@ -187,15 +188,15 @@ fn classify_among_finds_the_true_description_among_candidates() {
     };
     let (mut narrowed, mut full, mut calls) = (0.0, 0.0, 0.0);
     for s in setup.world.states() {
-        let truth = c.lookup(&setup.world, s).unwrap();
-        c.classify_state(&setup.world, s);
+        let truth = c.lookup(&world, s).unwrap();
+        c.classify_state(&world, s);
         let whole = cost(&c);
         for window in ids.chunks(3) {
             let mut candidates = window.to_vec();
             if !candidates.contains(&truth) {
                 candidates.push(truth);
             }
-            assert_eq!(c.classify_among(&setup.world, s, &candidates), Some(truth));
+            assert_eq!(c.classify_among(&world, s, &candidates), Some(truth));
             narrowed += cost(&c);
             full += whole;
             calls += 1.0;

@@ -2,7 +2,7 @@
 //! and on random maps, and the measures have the paper's shape.
 
 use csql::{RunReport, RunSettings, Setup, StrategyKind};
-use mdp::{Oracle, Pos};
+use mdp::{ActionId, Oracle, Pos, StochasticMdp, World};
 
 fn run(map: &str, strategy: StrategyKind, seed: u64) -> (Setup, RunReport) {
     let settings = RunSettings::tan1991(map, strategy, seed);
@@ -19,16 +19,16 @@ fn assert_optimal(setup: &Setup, r: &RunReport) {
         r.map, r.strategy, r.seed
     );
     let oracle = Oracle::for_grid(&setup.world, 0.9).unwrap();
+    let world = setup.sensed(&r.settings);
     for s in &r.states {
-        let state = setup.world.state_at(Pos::new(s.row, s.col)).unwrap();
-        let a = s.greedy_action.unwrap();
-        assert!(
-            oracle.is_optimal(state, a.id()),
-            "{} at ({}, {})",
-            r.map,
-            s.row,
-            s.col
-        );
+        let (row, col) = (s.row.unwrap(), s.col.unwrap());
+        let state = setup.world.state_at(Pos::new(row, col)).unwrap();
+        let name = s.greedy_action.as_deref().unwrap();
+        let a = (0..world.num_actions() as u32)
+            .map(ActionId)
+            .find(|&a| world.action_name(a) == name)
+            .unwrap();
+        assert!(oracle.is_optimal(state, a), "{} at ({row}, {col})", r.map);
         assert!((s.value.unwrap() - oracle.v_star(state)).abs() < 1e-6);
     }
     let t = &r.table1;
@@ -38,11 +38,11 @@ fn assert_optimal(setup: &Setup, r: &RunReport) {
     assert_eq!(t.descriptions, Some(r.descriptions.len()));
     // The tree classifies every state to its own description.
     let (_, rep) = csql::run_with_representation(setup, &r.settings);
-    let tree = csql::StateTree::build(&rep, &setup.space);
+    let tree = csql::StateTree::build(&rep, setup.space.costs());
     let mut total = 0.0;
     for s in setup.world.states() {
-        let (d, cost) = tree.classify(&setup.world, &setup.space, s);
-        assert_eq!(d, rep.matching(&setup.world, &setup.space, s));
+        let (d, cost) = tree.classify(&world, s);
+        assert_eq!(d, rep.matching(&world, s));
         total += cost;
     }
     let mean = total / setup.world.states().len() as f64;

@@ -73,7 +73,11 @@ pub(crate) fn resolve(name: &str, config: Option<&PathBuf>) -> Result<FiniteWorl
 pub fn run(cmd: &WorldCommand, out: &mut dyn Write) -> Result<()> {
     match cmd {
         WorldCommand::List { json } => list(*json, out),
-        WorldCommand::Show { world, config, json } => {
+        WorldCommand::Show {
+            world,
+            config,
+            json,
+        } => {
             let w = resolve(world, config.as_ref())?;
             let summary = Summary::new(&w)?;
             if *json {
@@ -83,7 +87,11 @@ pub fn run(cmd: &WorldCommand, out: &mut dyn Write) -> Result<()> {
             }
             Ok(())
         }
-        WorldCommand::Export { world, config, out: path } => {
+        WorldCommand::Export {
+            world,
+            config,
+            out: path,
+        } => {
             let w = resolve(world, config.as_ref())?;
             let text = w.to_json();
             match path {

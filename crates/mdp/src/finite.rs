@@ -1009,7 +1009,10 @@ fn assemble(spec: WorldSpec) -> FiniteWorld {
     let arity = (0..nf)
         .map(|f| {
             let named = features_named(&features, f);
-            let largest = (0..n).map(|s| readings[s * nf + f]).max().map_or(0, |m| m + 1);
+            let largest = (0..n)
+                .map(|s| readings[s * nf + f])
+                .max()
+                .map_or(0, |m| m + 1);
             named.max(largest)
         })
         .collect();

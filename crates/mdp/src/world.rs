@@ -268,8 +268,10 @@ impl World for SensedGrid<'_> {
         states.into_iter().map(|s| (p, s)).collect()
     }
     fn sample_start<R: Rng + ?Sized>(&self, rng: &mut R) -> StateId {
-        let states = self.world().states();
-        states[rng.random_range(0..states.len())]
+        // The states are every id but the goal's, in order: the i-th without a list.
+        let goal = self.world().goal().0;
+        let i = rng.random_range(0..self.num_states() as u32 - 1);
+        StateId(if i < goal { i } else { i + 1 })
     }
     fn state_label(&self, s: StateId) -> String {
         let p = self.world().pos(s);

@@ -226,7 +226,8 @@ impl QTable {
             reason = "2^32 rows of Q-values would need far more memory than any machine has"
         )]
         let id = RowId(u32::try_from(self.v.len()).expect("at most 2^32 rows"));
-        self.q.extend(std::iter::repeat_n(self.initial, self.actions));
+        self.q
+            .extend(std::iter::repeat_n(self.initial, self.actions));
         self.weights.extend(std::iter::repeat_n(1.0, self.actions));
         self.v.push(self.initial);
         self.totals.push(self.actions as f64);

@@ -40,92 +40,30 @@ pub(super) enum Step {
 }
 
 const NONE: u32 = u32::MAX;
-/// Readings kept inline per node: a grid's three cell conditions fit; worlds with more
-/// readings per feature spill the rest to the heap.
-const INLINE: usize = 4;
+/// What a walk down the tree reads at a node is one record of `Cache::table`, kept
+/// apart from what the node's decision is computed from so that walks touch small,
+/// dense records: the decision (`Step`, two words), whether it is stale (must be
+/// recomputed from the node's candidates and counts before it is used), and for a node
+/// that measures, its child for each reading (or `NONE`).
+const STEP_TAG: usize = 0;
+const STEP_ARG: usize = 1;
+const STALE: usize = 2;
+const CHILDREN: usize = 3;
 
-/// One `u32` per reading code, `FILL` where nothing was written: the first [`INLINE`]
-/// inline, the rest on the heap (a grid's readings never allocate). Iteration is in code
-/// order, so sums over counts add in the same order whatever the storage.
-#[derive(Clone, Debug, PartialEq, Eq)]
-struct Slots<const FILL: u32> {
-    inline: [u32; INLINE],
-    more: Vec<u32>,
-}
-
-impl<const FILL: u32> Slots<FILL> {
-    const EMPTY: Self = Slots {
-        inline: [FILL; INLINE],
-        more: Vec::new(),
-    };
-    #[inline]
-    fn get(&self, code: u32) -> u32 {
-        let c = code as usize;
-        if c < INLINE {
-            self.inline[c]
-        } else {
-            self.more.get(c - INLINE).copied().unwrap_or(FILL)
-        }
-    }
-    #[inline]
-    fn slot(&mut self, code: u32) -> &mut u32 {
-        let c = code as usize;
-        if c < INLINE {
-            &mut self.inline[c]
-        } else {
-            if self.more.len() <= c - INLINE {
-                self.more.resize(c - INLINE + 1, FILL);
-            }
-            &mut self.more[c - INLINE]
-        }
-    }
-    #[inline]
-    fn iter(&self) -> impl Iterator<Item = u32> + '_ {
-        self.inline.iter().chain(self.more.iter()).copied()
-    }
-    /// The codes written, with their values, in code order.
-    #[inline]
-    fn written(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
-        self.iter()
-            .enumerate()
-            .filter(|&(_, v)| v != FILL)
-            .map(|(c, v)| (c as u32, v))
-    }
-    #[inline]
-    fn is_blank(&self) -> bool {
-        self.iter().all(|v| v == FILL)
+fn encode(step: Step) -> [u32; 2] {
+    match step {
+        Step::Found(d) => [0, d.0],
+        Step::Create => [1, 0],
+        Step::Measure(f) => [2, f.0],
     }
 }
 
-impl<const FILL: u32> Default for Slots<FILL> {
-    fn default() -> Self {
-        Self::EMPTY
+fn decode(tag: u32, arg: u32) -> Step {
+    match tag {
+        0 => Step::Found(DescriptionId(arg)),
+        2 => Step::Measure(Feature(arg)),
+        _ => Step::Create,
     }
-}
-
-/// A node's children, one per reading measured there.
-type Children = Slots<NONE>;
-/// How many candidates require each reading of a feature.
-type Counts = Slots<0>;
-
-/// What a walk down the tree reads at a node, kept apart from what the node's decision
-/// is computed from so that walks touch small, dense records.
-#[derive(Clone, Debug)]
-struct Link {
-    step: Step,
-    /// The decision must be recomputed from the node's candidates and counts before it
-    /// is used.
-    stale: bool,
-    /// For `Measure`: the child for each reading, or `NONE`.
-    children: Children,
-}
-
-impl Link {
-    const FRESH: Link = Link {
-        step: Step::Create,
-        stale: true,
-        children: Children::EMPTY,
-    };
 }
 
 /// What a node's decision is computed from.
@@ -133,9 +71,11 @@ impl Link {
 struct Node {
     /// Candidate descriptions, ascending.
     cands: Vec<u32>,
-    /// (feature, candidates requiring each value) for every feature some candidate has
-    /// and the path has not measured, ascending by feature; no all-zero entry.
-    counts: Vec<(u32, Counts)>,
+    /// Every feature some candidate has and the path has not measured, ascending.
+    feats: Vec<u32>,
+    /// For each of `feats` in turn, how many candidates require each reading: one block
+    /// of the cache's arity per feature; no all-zero block.
+    vals: Vec<u32>,
 }
 
 impl Node {
@@ -144,20 +84,27 @@ impl Node {
     }
 
     /// Add `delta` (+1 or -1) to the count of `value` for `feature`.
-    fn count(&mut self, feature: u32, value: u32, delta: i32) {
-        match self.counts.binary_search_by_key(&feature, |e| e.0) {
+    fn count(&mut self, arity: usize, feature: u32, value: u32, delta: i32) {
+        debug_assert!(
+            (value as usize) < arity,
+            "a reading beyond its feature's range"
+        );
+        match self.feats.binary_search(&feature) {
             Ok(i) => {
-                let c = self.counts[i].1.slot(value);
+                let block = &mut self.vals[i * arity..(i + 1) * arity];
+                let c = &mut block[value as usize];
                 *c = c.wrapping_add_signed(delta);
-                if self.counts[i].1.is_blank() {
-                    self.counts.remove(i);
+                if block.iter().all(|&c| c == 0) {
+                    self.feats.remove(i);
+                    self.vals.drain(i * arity..(i + 1) * arity);
                 }
             }
             Err(i) => {
                 debug_assert_eq!(delta, 1, "a count below zero");
-                let mut c = Counts::EMPTY;
-                *c.slot(value) = 1;
-                self.counts.insert(i, (feature, c));
+                self.feats.insert(i, feature);
+                let at = i * arity;
+                self.vals
+                    .splice(at..at, (0..arity as u32).map(|v| u32::from(v == value)));
             }
         }
     }
@@ -171,15 +118,21 @@ fn on_path(path: &[(u32, u32)], feature: u32) -> Option<u32> {
 }
 
 /// The cached decision tree of CLASSIFY (see the module docs).
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub(super) struct Cache {
-    links: Vec<Link>,
+    /// How many readings a feature may have (the largest over the world's features):
+    /// the stride of `children`, of a node's counts and of `scratch`.
+    arity: usize,
+    /// One record of `CHILDREN + arity` words per node (see [`STEP_TAG`]).
+    table: Vec<u32>,
     nodes: Vec<Node>,
     free: Vec<u32>,
     /// `x log2 x` for every count seen so far, computed as cslearn computes it.
     xlogx: Vec<f64>,
-    /// Dense per-feature scratch for building a node's counts.
-    scratch: Vec<Counts>,
+    /// Dense per-feature scratch for building a node's counts (`arity` per feature).
+    scratch: Vec<u32>,
+    /// Which features of `scratch` hold counts.
+    live: Vec<bool>,
     touched: Vec<u32>,
     marks: Vec<bool>,
     /// Traversal stack: (node, path length above it, edge into it).
@@ -188,6 +141,80 @@ pub(super) struct Cache {
 }
 
 impl Cache {
+    /// An empty cache for features with at most `arity` readings each (at least 1).
+    pub(super) fn new(arity: u32) -> Cache {
+        Cache {
+            arity: arity.max(1) as usize,
+            table: Vec::new(),
+            nodes: Vec::new(),
+            free: Vec::new(),
+            xlogx: Vec::new(),
+            scratch: Vec::new(),
+            live: Vec::new(),
+            touched: Vec::new(),
+            marks: Vec::new(),
+            stack: Vec::new(),
+            path: Vec::new(),
+        }
+    }
+
+    /// Where node `at`'s record starts in `table`.
+    #[inline]
+    fn rec(&self, at: u32) -> usize {
+        at as usize * (CHILDREN + self.arity)
+    }
+
+    #[inline]
+    fn step(&self, at: u32) -> Step {
+        let r = self.rec(at);
+        decode(self.table[r + STEP_TAG], self.table[r + STEP_ARG])
+    }
+
+    #[inline]
+    fn set_step(&mut self, at: u32, step: Step) {
+        let r = self.rec(at);
+        let [tag, arg] = encode(step);
+        self.table[r + STEP_TAG] = tag;
+        self.table[r + STEP_ARG] = arg;
+    }
+
+    #[inline]
+    fn is_stale(&self, at: u32) -> bool {
+        self.table[self.rec(at) + STALE] != 0
+    }
+
+    #[inline]
+    fn set_stale(&mut self, at: u32, stale: bool) {
+        let r = self.rec(at);
+        self.table[r + STALE] = u32::from(stale);
+    }
+
+    /// The children of node `at`, one per reading.
+    #[inline]
+    fn children_of(&self, at: u32) -> &[u32] {
+        let r = self.rec(at) + CHILDREN;
+        &self.table[r..r + self.arity]
+    }
+
+    /// Mark node `at` stale and, if it measures, push its children with the edges into
+    /// them (those whose reading passes `keep`) on `stack`.
+    fn stale_and_push(
+        &mut self,
+        at: u32,
+        depth: usize,
+        keep: impl Fn(u32) -> bool,
+        stack: &mut Vec<(u32, usize, (u32, u32))>,
+    ) {
+        self.set_stale(at, true);
+        if let Step::Measure(g) = self.step(at) {
+            for (code, &child) in self.children_of(at).iter().enumerate() {
+                if child != NONE && keep(code as u32) {
+                    stack.push((child, depth, (g.0, code as u32)));
+                }
+            }
+        }
+    }
+
     /// Walk the tree for one object: `measure` reads a feature of it (and is the only
     /// place where sensing happens), and `path` receives the features measured with their
     /// values, in order. Returns the description found, or `None` when CLASSIFY would
@@ -208,17 +235,21 @@ impl Cache {
         path.clear();
         let mut at = 0u32;
         loop {
-            if self.links[at as usize].stale {
+            if self.is_stale(at) {
                 self.refresh(at, costs);
             }
-            match self.links[at as usize].step {
+            match self.step(at) {
                 Step::Found(d) => return Some(d),
                 Step::Create => return None,
                 Step::Measure(f) => {
                     let v = measure(f);
                     path.push((f, v));
                     let code = v.0;
-                    let child = self.links[at as usize].children.get(code);
+                    debug_assert!(
+                        (code as usize) < self.arity,
+                        "a reading beyond its feature's range"
+                    );
+                    let child = self.children_of(at)[code as usize];
                     at = if child == NONE {
                         self.grow(at, f.0, code, library, path)
                     } else {
@@ -242,27 +273,31 @@ impl Cache {
             if edge.0 != NONE {
                 self.path.push(edge);
             }
+            let arity = self.arity;
             let node = &mut self.nodes[at as usize];
             debug_assert!(node.cands.last().is_none_or(|&c| c < d.0));
             node.cands.push(d.0);
             for &(f, v) in pairs {
                 if on_path(&self.path, f.0).is_none() {
-                    node.count(f.0, v.0, 1);
+                    node.count(arity, f.0, v.0, 1);
                 }
             }
-            let link = &mut self.links[at as usize];
-            link.stale = true;
-            if let Step::Measure(g) = link.step {
-                let wanted = pairs
+            let wanted = match self.step(at) {
+                Step::Measure(g) => pairs
                     .binary_search_by_key(&g.0, |p| p.0.0)
                     .ok()
-                    .map(|i| pairs[i].1.0);
-                for (code, child) in link.children.written() {
-                    if wanted.is_none_or(|w| w == code) {
-                        self.stack.push((child, self.path.len(), (g.0, code)));
-                    }
-                }
-            }
+                    .map(|i| pairs[i].1.0),
+                _ => None,
+            };
+            let mut stack = std::mem::take(&mut self.stack);
+            let depth = self.path.len();
+            self.stale_and_push(
+                at,
+                depth,
+                |code| wanted.is_none_or(|w| w == code),
+                &mut stack,
+            );
+            self.stack = stack;
         }
     }
 
@@ -294,14 +329,12 @@ impl Cache {
                 // Measured above with another value: `d` no longer belongs here.
                 Some(_) => self.remove_below(at, library, d),
                 None => {
-                    self.nodes[at as usize].count(feature, value, 1);
-                    let link = &mut self.links[at as usize];
-                    link.stale = true;
-                    if let Step::Measure(g) = link.step {
-                        for (code, child) in link.children.written() {
-                            self.stack.push((child, self.path.len(), (g.0, code)));
-                        }
-                    }
+                    let arity = self.arity;
+                    self.nodes[at as usize].count(arity, feature, value, 1);
+                    let mut stack = std::mem::take(&mut self.stack);
+                    let depth = self.path.len();
+                    self.stale_and_push(at, depth, |_| true, &mut stack);
+                    self.stack = stack;
                 }
             }
         }
@@ -317,6 +350,7 @@ impl Cache {
             if edge.0 != NONE {
                 self.path.push(edge);
             }
+            let arity = self.arity;
             let node = &mut self.nodes[at as usize];
             let Ok(i) = node.cands.binary_search(&d.0) else {
                 continue;
@@ -324,16 +358,11 @@ impl Cache {
             node.cands.remove(i);
             for &(f, v) in pairs {
                 if on_path(&self.path, f.0).is_none() {
-                    node.count(f.0, v.0, -1);
+                    node.count(arity, f.0, v.0, -1);
                 }
             }
-            let link = &mut self.links[at as usize];
-            link.stale = true;
-            if let Step::Measure(g) = link.step {
-                for (code, child) in link.children.written() {
-                    stack.push((child, self.path.len(), (g.0, code)));
-                }
-            }
+            let depth = self.path.len();
+            self.stale_and_push(at, depth, |_| true, &mut stack);
         }
         self.path.truncate(base);
     }
@@ -341,13 +370,15 @@ impl Cache {
     /// Recompute a stale decision; drop the subtree if it changed.
     fn refresh(&mut self, at: u32, costs: &[Cost]) {
         let step = self.decide(at, costs);
-        let link = &mut self.links[at as usize];
-        link.stale = false;
-        if link.step != step {
-            link.step = step;
-            let children = std::mem::replace(&mut link.children, Children::EMPTY);
-            for (_, child) in children.written() {
-                self.release(child);
+        self.set_stale(at, false);
+        if self.step(at) != step {
+            self.set_step(at, step);
+            let r = self.rec(at) + CHILDREN;
+            for code in 0..self.arity {
+                let child = std::mem::replace(&mut self.table[r + code], NONE);
+                if child != NONE {
+                    self.release(child);
+                }
             }
         }
     }
@@ -359,7 +390,7 @@ impl Cache {
         let Some(&first) = node.cands.first() else {
             return Step::Create;
         };
-        if node.counts.is_empty() {
+        if node.feats.is_empty() {
             // Every feature of every candidate is measured and matched; candidates are
             // pairwise disjoint, so there is one.
             return Step::Found(DescriptionId(first));
@@ -379,13 +410,12 @@ impl Cache {
         let node = &self.nodes[at as usize];
         let xl = &self.xlogx;
         let mut best = cslearn::BestScore::new();
-        for (feature, counts) in &node.counts {
-            let feature = *feature;
+        for (&feature, counts) in node.feats.iter().zip(node.vals.chunks_exact(self.arity)) {
             // Each class (candidate) occurs once, so every within-class term is zero:
             // the gain on the candidates having the feature, times their share, is
             // (g(having) - sum over values of g(count)) / n with g = x log2 x.
             let mut branches = 0.0;
-            for c in counts.iter() {
+            for &c in counts {
                 if c > 0 {
                     branches += xl[c as usize];
                 }
@@ -424,7 +454,8 @@ impl Cache {
                 .get(FeatureId(feature))
                 .is_none_or(|v| v.0 == code)
         }));
-        *self.links[parent as usize].children.slot(code) = child;
+        let r = self.rec(parent) + CHILDREN;
+        self.table[r + code as usize] = child;
         self.fill_counts(child, library, path);
         child
     }
@@ -435,28 +466,37 @@ impl Cache {
         for &(f, _) in path {
             self.mark(f.0, true);
         }
+        let k = self.arity;
         let node = &self.nodes[at as usize];
         for &d in &node.cands {
             for &(f, v) in examples[d as usize].pairs() {
                 let f = f.0 as usize;
-                if f >= self.scratch.len() {
-                    self.scratch.resize(f + 1, Counts::EMPTY);
+                if f >= self.live.len() {
+                    self.live.resize(f + 1, false);
+                    self.scratch.resize((f + 1) * k, 0);
                 }
                 if self.marks.get(f).copied().unwrap_or(false) {
                     continue;
                 }
-                if self.scratch[f].is_blank() {
+                if !self.live[f] {
+                    self.live[f] = true;
                     self.touched.push(f as u32);
                 }
-                *self.scratch[f].slot(v.0) += 1;
+                debug_assert!((v.0 as usize) < k, "a reading beyond its feature's range");
+                self.scratch[f * k + v.0 as usize] += 1;
             }
         }
         self.touched.sort_unstable();
         let node = &mut self.nodes[at as usize];
-        node.counts.clear();
+        node.feats.clear();
+        node.vals.clear();
         for &f in &self.touched {
-            node.counts
-                .push((f, std::mem::take(&mut self.scratch[f as usize])));
+            let f = f as usize;
+            node.feats.push(f as u32);
+            node.vals
+                .extend_from_slice(&self.scratch[f * k..(f + 1) * k]);
+            self.scratch[f * k..(f + 1) * k].fill(0);
+            self.live[f] = false;
         }
         self.touched.clear();
         for &(f, _) in path {
@@ -477,21 +517,42 @@ impl Cache {
             Some(i) => i,
             None => {
                 self.nodes.push(Node::default());
-                self.links.push(Link::FRESH);
+                self.push_fresh();
                 (self.nodes.len() - 1) as u32
             }
         }
     }
 
+    /// A new record, as [`Cache::fresh`] leaves one.
+    fn push_fresh(&mut self) {
+        let [tag, arg] = encode(Step::Create);
+        self.table.extend([tag, arg, 1]);
+        self.table.extend(std::iter::repeat_n(NONE, self.arity));
+    }
+
+    /// Node `at`'s record as new: decision `Create`, stale, no children.
+    fn fresh(&mut self, at: u32) {
+        let r = self.rec(at);
+        let [tag, arg] = encode(Step::Create);
+        self.table[r + STEP_TAG] = tag;
+        self.table[r + STEP_ARG] = arg;
+        self.table[r + STALE] = 1;
+        self.table[r + CHILDREN..r + CHILDREN + self.arity].fill(NONE);
+    }
+
     /// Return a subtree's nodes to the free list.
     fn release(&mut self, top: u32) {
         let mut stack = vec![top];
+        let k = self.arity;
         while let Some(at) = stack.pop() {
-            let link = std::mem::replace(&mut self.links[at as usize], Link::FRESH);
-            stack.extend(link.children.written().map(|(_, c)| c));
+            let r = self.rec(at);
+            let children = &mut self.table[r + CHILDREN..r + CHILDREN + k];
+            stack.extend(children.iter().copied().filter(|&c| c != NONE));
+            self.fresh(at);
             let node = &mut self.nodes[at as usize];
             node.cands.clear();
-            node.counts.clear();
+            node.feats.clear();
+            node.vals.clear();
             self.free.push(at);
         }
     }
