@@ -47,48 +47,106 @@ pub fn safe_name(name: &str) -> String {
 /// The lock of an output folder: at most one writer at a time. The lock file holds the
 /// writer's process id; a lock left by a process that no longer runs (after `kill -9`)
 /// is taken over with a note. Dropping the value removes the file.
+///
+/// Taking over is atomic, with exactly one winner however many writers start together:
+/// a stale lock is removed only by the holder of `.lock.takeover` (created exclusively),
+/// which reads the lock again under it; the lock itself is only ever created
+/// exclusively. A writer that finds a takeover under way is refused as a busy folder.
 pub struct OutLock {
     path: PathBuf,
+}
+
+/// The guard of a takeover (`.lock.takeover`), removed when dropped.
+struct Takeover {
+    path: PathBuf,
+}
+
+impl Drop for Takeover {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.path);
+    }
+}
+
+/// Create `path` if it does not exist, holding this process's id; `Ok(false)` if it exists.
+fn create_exclusive(path: &Path) -> Result<bool> {
+    match std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(path)
+    {
+        Ok(mut f) => {
+            writeln!(f, "{}", std::process::id())
+                .and_then(|()| f.sync_all())
+                .with_context(|| format!("cannot write {}", path.display()))?;
+            Ok(true)
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => Ok(false),
+        Err(e) => Err(e).with_context(|| format!("cannot create {}", path.display())),
+    }
+}
+
+/// The process id a lock file names (empty while its writer is still writing it).
+fn holder(path: &Path) -> String {
+    std::fs::read_to_string(path)
+        .unwrap_or_default()
+        .trim()
+        .to_string()
 }
 
 impl OutLock {
     /// Lock `dir` (which must exist) or say who holds it.
     pub fn acquire(dir: &Path) -> Result<OutLock> {
         let path = dir.join(".lock");
-        for _ in 0..2 {
-            match std::fs::OpenOptions::new()
-                .write(true)
-                .create_new(true)
-                .open(&path)
-            {
-                Ok(mut f) => {
-                    let _ = writeln!(f, "{}", std::process::id());
-                    return Ok(OutLock { path });
-                }
-                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
-                    let holder = std::fs::read_to_string(&path).unwrap_or_default();
-                    let pid = holder.trim();
-                    if pid_is_gone(pid) {
-                        crate::note(&format!(
-                            "{}: taking over a lock left by process {pid}, which no longer runs",
-                            path.display()
-                        ));
-                        let _ = std::fs::remove_file(&path);
-                        continue;
-                    }
-                    bail!(
-                        "{} is in use by another writer (process {pid}, lock file {}); wait for it, \
-                         use another output folder, or delete the lock file if no such process runs",
-                        dir.display(),
-                        path.display()
-                    );
-                }
-                Err(e) => {
-                    return Err(e).with_context(|| format!("cannot create {}", path.display()));
-                }
-            }
+        let busy = |pid: &str| {
+            anyhow::anyhow!(
+                "{} is in use by another writer (process {pid}, lock file {}); wait for it, \
+                 use another output folder, or delete the lock file if no such process runs",
+                dir.display(),
+                path.display()
+            )
+        };
+        if create_exclusive(&path)? {
+            return Ok(OutLock { path });
         }
-        bail!("{}: cannot take the lock", path.display())
+        let pid = holder(&path);
+        if !pid_is_gone(&pid) {
+            return Err(busy(&pid));
+        }
+        // A stale lock: only the one writer holding the takeover guard may remove it.
+        let guard_path = dir.join(".lock.takeover");
+        if !create_exclusive(&guard_path)? {
+            let other = holder(&guard_path);
+            bail!(
+                "{} is being taken over by another writer (process {other}, {}); wait for \
+                 it, or delete that file if no such process runs",
+                dir.display(),
+                guard_path.display()
+            );
+        }
+        let _guard = Takeover { path: guard_path };
+        // Read again under the guard: another writer may have taken over meanwhile. No
+        // one else removes a stale lock, so the one read here is still there.
+        let now = holder(&path);
+        if now == pid {
+            crate::note(&format!(
+                "{}: taking over a lock left by process {pid}, which no longer runs",
+                path.display()
+            ));
+            match std::fs::remove_file(&path) {
+                Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                    return Err(e)
+                        .with_context(|| format!("cannot remove the stale {}", path.display()));
+                }
+                _ => {}
+            }
+        } else if path.exists() {
+            return Err(busy(&now));
+        }
+        if create_exclusive(&path)? {
+            Ok(OutLock { path })
+        } else {
+            Err(busy(&holder(&path)))
+        }
     }
 }
 
@@ -113,6 +171,25 @@ pub fn distinct<T: PartialEq + std::fmt::Display>(flag: &str, items: &[T]) -> Re
         if items[..i].contains(a) {
             bail!("{flag} names `{a}` twice; name each entry once");
         }
+    }
+    Ok(())
+}
+
+/// Refuse `--maps` that name one world twice, however it is written (`tan3x3` and
+/// `tan3x3@0:2`, `random:+8x+8:0.2:1` and `random:8x8:0.2:1`): maps are compared by their
+/// cells and goal, not by their text. `names[i]` is how `maps[i]` was given.
+pub fn distinct_maps(names: &[String], maps: &[mdp::Map]) -> Result<()> {
+    // The layout holds every cell, the goal among them, row by row.
+    let mut seen: std::collections::BTreeMap<String, usize> = std::collections::BTreeMap::new();
+    for (i, map) in maps.iter().enumerate() {
+        if let Some(&j) = seen.get(&map.layout()) {
+            let (a, b) = (
+                names.get(j).map_or("?", String::as_str),
+                names.get(i).map_or("?", String::as_str),
+            );
+            bail!("--maps names one world twice: `{a}` and `{b}` are the same map; name each once");
+        }
+        seen.insert(map.layout(), i);
     }
     Ok(())
 }
@@ -173,6 +250,64 @@ mod tests {
         assert!(seeds(1, 0).is_err());
         assert!(threads(Some(100_000)).is_err());
         assert_eq!(threads(None).unwrap(), 0);
+    }
+
+    #[test]
+    fn maps_are_compared_as_worlds_not_as_text() {
+        let check = |list: &[&str]| {
+            let names: Vec<String> = list.iter().map(|s| s.to_string()).collect();
+            let maps: Vec<mdp::Map> = list.iter().map(|m| mdp::resolve(m).unwrap()).collect();
+            distinct_maps(&names, &maps).map_err(|e| e.to_string())
+        };
+        let err = check(&["tan3x3", "tan3x3@0:2"]).unwrap_err();
+        assert!(
+            err.contains("`tan3x3` and `tan3x3@0:2` are the same map"),
+            "{err}"
+        );
+        let err = check(&["tan8x8", "random:+8x+8:0.2:1", "random:8x8:0.2:1"]).unwrap_err();
+        assert!(
+            err.contains("`random:+8x+8:0.2:1` and `random:8x8:0.2:1`"),
+            "{err}"
+        );
+        assert!(check(&["tan3x3", "tan8x8", "random:8x8:0.2:1", "random:8x8:0.2:2"]).is_ok());
+    }
+
+    #[test]
+    fn a_stale_lock_is_taken_over_by_exactly_one_of_many_writers() {
+        // Once: two writers both removed the stale lock and both created their own, and
+        // both ran every job. Here 16 threads race for the same stale lock, 40 times.
+        if !Path::new("/proc/self").exists() {
+            return;
+        }
+        for round in 0..40 {
+            let dir = tempfile::tempdir().unwrap();
+            std::fs::write(dir.path().join(".lock"), "4294967295\n").unwrap();
+            let threads = 16;
+            let barrier = std::sync::Barrier::new(threads);
+            let winners = std::sync::atomic::AtomicUsize::new(0);
+            std::thread::scope(|s| {
+                for _ in 0..threads {
+                    s.spawn(|| {
+                        barrier.wait();
+                        let lock = OutLock::acquire(dir.path());
+                        if lock.is_ok() {
+                            winners.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+                        }
+                        // Every writer holds what it got until all have tried.
+                        barrier.wait();
+                        drop(lock);
+                    });
+                }
+            });
+            assert_eq!(
+                winners.load(std::sync::atomic::Ordering::SeqCst),
+                1,
+                "round {round}"
+            );
+            // The guard is gone and the lock with its winner: the folder is free again.
+            let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+            assert!(left.is_empty(), "round {round}: {left:?}");
+        }
     }
 
     #[test]

@@ -45,7 +45,7 @@ enum Command {
         /// The SVG files.
         #[arg(required = true)]
         files: Vec<std::path::PathBuf>,
-        /// Scale factor.
+        /// Scale factor; the image may have at most 100 megapixels.
         #[arg(long, default_value_t = 1.0)]
         scale: f32,
     },

@@ -37,11 +37,34 @@ pub fn check(svg: &str, what: &str) -> Result<(f32, f32)> {
     Ok((w, h))
 }
 
+/// The most pixels a rendered PNG may have (100 megapixels, 400 MB of pixmap): a larger
+/// `--scale` is refused with the size it would make, before anything is allocated.
+pub const MAX_PIXELS: f64 = 100e6;
+
+/// The size in pixels of `width` by `height` scaled by `scale`, refused beyond
+/// [`MAX_PIXELS`] (computed in floating point, so no size overflows).
+fn scaled_size(width: u32, height: u32, scale: f32, what: &str) -> Result<(f64, f64)> {
+    let (w, h) = (
+        (f64::from(width) * f64::from(scale)).ceil(),
+        (f64::from(height) * f64::from(scale)).ceil(),
+    );
+    let pixels = w * h;
+    ensure!(
+        pixels <= MAX_PIXELS,
+        "{what}: --scale {scale} would make a {w:.0} by {h:.0} px image ({pixels:.2e} pixels, \
+         {:.2e} bytes); at most {MAX_PIXELS:.0e} pixels may be rendered",
+        pixels * 4.0
+    );
+    Ok((w, h))
+}
+
 /// Render an SVG document to PNG bytes at `scale` times its size.
 pub fn png(svg: &str, scale: f32, what: &str) -> Result<Vec<u8>> {
     let tree = usvg::Tree::from_str(svg, &options())
         .with_context(|| format!("{what} is not a well-formed SVG document"))?;
-    let size = tree.size().to_int_size().scale_by(scale);
+    let int_size = tree.size().to_int_size();
+    scaled_size(int_size.width(), int_size.height(), scale, what)?;
+    let size = int_size.scale_by(scale);
     let Some(size) = size else {
         bail!("{what}: cannot scale by {scale}");
     };
@@ -71,4 +94,27 @@ pub fn run(files: &[std::path::PathBuf], scale: f32) -> Result<()> {
         crate::emit(&format!("{}\n", Path::new(&out).display()))?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SQUARE: &str = r#"<svg xmlns="http://www.w3.org/2000/svg" width="400" height="300"><rect width="10" height="10"/></svg>"#;
+
+    #[test]
+    fn a_scale_past_the_pixel_cap_is_refused_with_the_estimate() {
+        let err = png(SQUARE, 1e6, "f.svg").unwrap_err().to_string();
+        assert!(err.contains("--scale 1000000"), "{err}");
+        assert!(err.contains("400000000 by 300000000 px"), "{err}");
+        assert!(err.contains("1.20e17 pixels"), "{err}");
+        assert!(err.contains("at most 1e8 pixels"), "{err}");
+        // The largest allowed size is checked without rendering; one step past it is refused.
+        assert!(scaled_size(10_000, 10_000, 1.0, "f").is_ok());
+        assert!(scaled_size(10_000, 10_001, 1.0, "f").is_err());
+        assert!(scaled_size(u32::MAX, u32::MAX, f32::MAX, "f").is_err());
+        // An ordinary scale still renders.
+        let bytes = png(SQUARE, 2.0, "f.svg").unwrap();
+        assert!(bytes.starts_with(b"\x89PNG"));
+    }
 }

@@ -743,7 +743,12 @@ fn write_figures(res: &Results, out: &Path) -> Result<Vec<PathBuf>> {
     let path = out.join(format!("tree_{name}_{k}.dot"));
     crate::files::write_atomic(&path, tree.to_dot(&res.setup.sensed(&settings)))?;
     written.push(path);
-    // Figure 5 for tan3x3: descriptions with policy, and tree.
+    // Figure 5 for tan3x3: descriptions with policy, and tree; only beside the paper's
+    // map (the default) or when tan3x3 is the map asked for, never beside another map.
+    let tan3x3 = mdp::resolve("tan3x3")?;
+    if !(res.args.on_papers_map() || res.setup.map.layout() == tan3x3.layout()) {
+        return Ok(written);
+    }
     let mut small = RunSettings::tan1991("tan3x3", res.runs[0].0, res.args.seed);
     small.max_trials = settings.max_trials;
     let setup3 = Setup::new(&small)?;
@@ -993,5 +998,33 @@ mod tests {
             );
         }
         assert!(!dir.path().join("escaped_eager.svg").exists());
+    }
+
+    #[test]
+    fn figure_5_of_tan3x3_is_written_only_for_the_default_map_or_tan3x3() {
+        // Once: `--map my.toml` also wrote figure5_tan3x3.svg and tree_tan3x3.dot.
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("my.toml");
+        std::fs::write(&file, "name = \"mine\"\nlayout = '''\n...\n..G\n'''\n").unwrap();
+        let names = |map: &str| -> Vec<String> {
+            let mut a = args(1);
+            (a.map, a.runs, a.strategies) = (map.to_string(), 1, vec![StrategyKind::Lazy]);
+            let out = dir.path().join(crate::files::safe_name(map));
+            std::fs::create_dir_all(&out).unwrap();
+            let written = write_figures(&compute(&a).unwrap(), &out).unwrap();
+            written
+                .iter()
+                .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+                .collect()
+        };
+        let mine = names(&file.display().to_string());
+        assert!(!mine.iter().any(|n| n.contains("tan3x3")), "{mine:?}");
+        assert!(mine.contains(&"tree_mine_lazy.dot".to_string()), "{mine:?}");
+        let small = names("tan3x3");
+        assert!(
+            small.contains(&"figure5_tan3x3.svg".to_string()),
+            "{small:?}"
+        );
+        assert!(small.contains(&"tree_tan3x3.dot".to_string()), "{small:?}");
     }
 }

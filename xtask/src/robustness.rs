@@ -35,7 +35,7 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Result, anyhow, bail};
+use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use csql::{DetectorKind, LearnerKind, Matching, RunSettings, Setup, StrategyKind};
 use mdp::{Map, SensorNoise, Slip};
@@ -199,22 +199,52 @@ impl JobLine for JobResult {
     }
 }
 
-/// The jobs in order: (map, condition, learner, run).
-fn jobs(def: &Definition) -> Vec<(usize, Condition, Learner, u64)> {
+/// The (condition, learner) pairs of each map, in job order.
+fn pairs() -> Vec<(Condition, Learner)> {
     let mut out = Vec::new();
-    for m in 0..def.maps.len() {
-        for c in Condition::ALL {
-            for l in Learner::ALL {
-                if c == Condition::Paper && l == Learner::LazyFit {
-                    continue;
-                }
-                for run in 0..def.runs {
-                    out.push((m, c, l, run));
-                }
+    for c in Condition::ALL {
+        for l in Learner::ALL {
+            if c == Condition::Paper && l == Learner::LazyFit {
+                continue;
             }
+            out.push((c, l));
         }
     }
     out
+}
+
+/// The job list in order (map, condition, learner, run), found from a job's number: a
+/// shard never lists the whole of it.
+struct Jobs {
+    pairs: Vec<(Condition, Learner)>,
+    runs: u64,
+    per_map: u64,
+    total: u64,
+}
+
+impl Jobs {
+    fn new(def: &Definition) -> Result<Jobs> {
+        let pairs = pairs();
+        let per_map = (pairs.len() as u64)
+            .checked_mul(def.runs)
+            .context("--runs is more jobs than can be numbered")?;
+        let total = (def.maps.len() as u64)
+            .checked_mul(per_map)
+            .context("--runs times the maps is more jobs than can be numbered")?;
+        Ok(Jobs {
+            pairs,
+            runs: def.runs,
+            per_map,
+            total,
+        })
+    }
+
+    /// Job `id`: (map, condition, learner, run).
+    fn get(&self, id: u64) -> (usize, Condition, Learner, u64) {
+        let (m, rest) = (id / self.per_map, id % self.per_map);
+        let (c, l) = self.pairs[(rest / self.runs) as usize];
+        (m as usize, c, l, rest % self.runs)
+    }
 }
 
 /// The settings of one job.
@@ -284,12 +314,16 @@ pub fn robustness(args: &RobustnessArgs) -> Result<()> {
             .iter()
             .map(|m| mdp::resolve(m))
             .collect::<Result<_, _>>()?;
-        let list = jobs(&def);
-        // Check every job's settings before running any.
-        for &(m, c, l, run) in &list {
-            settings(&def, &args.maps[m], c, l, run)?;
+        crate::files::distinct_maps(&args.maps, &maps)?;
+        let list = Jobs::new(&def)?;
+        // Check every job's settings before running any: the run changes only the seed,
+        // and every seed exists (checked above).
+        for m in &args.maps {
+            for &(c, l) in &list.pairs {
+                settings(&def, m, c, l, 0)?;
+            }
         }
-        let total = list.len() as u64;
+        let total = list.total;
         crate::shard::run_shard(
             &args.out,
             &args.shard,
@@ -297,7 +331,7 @@ pub fn robustness(args: &RobustnessArgs) -> Result<()> {
             total,
             args.threads,
             |id| {
-                let (m, condition, learner, run) = list[id as usize];
+                let (m, condition, learner, run) = list.get(id);
                 let s = settings(&def, &args.maps[m], condition, learner, run)?;
                 let setup = Setup::for_map(maps[m].clone(), &s)?;
                 let report = csql::run_on(&setup, &s);
@@ -767,8 +801,9 @@ mod tests {
     #[test]
     fn every_job_has_valid_settings_that_say_what_the_job_is() {
         let d = def();
-        let list = jobs(&d);
-        assert_eq!(list.len(), 9 * 7 - 1);
+        let jobs = Jobs::new(&d).unwrap();
+        assert_eq!(jobs.total, 9 * 7 - 1);
+        let list: Vec<_> = (0..jobs.total).map(|id| jobs.get(id)).collect();
         for &(m, c, l, run) in &list {
             let s = settings(&d, &d.maps[m], c, l, run).unwrap();
             assert!(s.beyond_paper());
@@ -780,6 +815,65 @@ mod tests {
                 || s.extensions.reads > 1;
             assert_eq!(extended, l == Learner::LazyFit, "{c:?} {l:?}");
         }
+    }
+
+    #[test]
+    fn jobs_are_numbered_in_the_order_of_the_nested_loops() {
+        let d = Definition {
+            maps: vec!["tan3x3".into(), "tan8x8".into()],
+            runs: 3,
+            ..def()
+        };
+        let mut listed = Vec::new();
+        for m in 0..d.maps.len() {
+            for c in Condition::ALL {
+                for l in Learner::ALL {
+                    if c == Condition::Paper && l == Learner::LazyFit {
+                        continue;
+                    }
+                    for run in 0..d.runs {
+                        listed.push((m, c, l, run));
+                    }
+                }
+            }
+        }
+        let jobs = Jobs::new(&d).unwrap();
+        assert_eq!(jobs.total, listed.len() as u64);
+        for (id, job) in listed.iter().enumerate() {
+            assert_eq!(jobs.get(id as u64), *job, "job {id}");
+        }
+        // Too many jobs to number is refused, not wrapped.
+        assert!(
+            Jobs::new(&Definition {
+                runs: u64::MAX,
+                ..d
+            })
+            .is_err()
+        );
+    }
+
+    #[test]
+    fn one_shard_of_a_huge_job_list_runs_its_own_job_only() {
+        // Once: the whole list of 62 * 10^8 jobs was built to run one.
+        let dir = tempfile::tempdir().unwrap();
+        let args = RobustnessArgs {
+            maps: vec!["tan3x3".into()],
+            runs: 100_000_000,
+            seed: 1,
+            max_trials: 20,
+            quality_every: 10,
+            patience: 2,
+            shard: "1/100000000000".into(),
+            threads: Some(1),
+            out: dir.path().to_path_buf(),
+            report: false,
+            bless: false,
+        };
+        robustness(&args).unwrap();
+        let text =
+            std::fs::read_to_string(dir.path().join("shard-1-of-100000000000/results.jsonl"))
+                .unwrap();
+        assert_eq!(text.lines().count(), 1);
     }
 
     #[test]

@@ -7,7 +7,11 @@
 //! `shard-K-of-N/results.jsonl`, flushed at once: a shard that is killed and started
 //! again skips the jobs it already has. A line that is not a result (a last line cut
 //! short by a kill, or a corrupt line) is moved to `results.corrupt.jsonl` beside it,
-//! never deleted, and its job runs again.
+//! never deleted, and its job runs again; so is a result whose job is not in the shard's
+//! job list, or a second result for a job. The lines kept are kept byte for byte.
+//!
+//! A shard's jobs are computed from their numbers (`K - 1`, `K - 1 + N`, ...), never by
+//! listing the whole job list: a shard costs memory in proportion to its own jobs.
 
 use std::collections::BTreeMap;
 use std::io::Write as _;
@@ -45,6 +49,31 @@ pub fn parse_shard(s: &str) -> Result<(u64, u64)> {
     Ok((k, n))
 }
 
+/// The job numbers of shard `k` of `n` (1 <= k <= n) among `total` jobs, in order:
+/// `k - 1`, `k - 1 + n`, ..., computed one by one.
+pub fn shard_jobs(k: u64, n: u64, total: u64) -> impl Iterator<Item = u64> {
+    // A step past `usize::MAX` leaves the first job only, as a step of `n` would.
+    let step = usize::try_from(n).unwrap_or(usize::MAX);
+    (k.saturating_sub(1)..total).step_by(step)
+}
+
+/// The most jobs one shard may run (its job numbers are kept in memory and in its
+/// manifest).
+pub const MAX_SHARD_JOBS: u64 = 10_000_000;
+
+/// Whether job `id` is in shard `k` of `n` among `total` jobs.
+pub fn in_shard(id: u64, k: u64, n: u64, total: u64) -> bool {
+    id < total && n > 0 && id % n == k.wrapping_sub(1)
+}
+
+/// The number of jobs of shard `k` of `n` among `total` jobs.
+pub fn shard_len(k: u64, n: u64, total: u64) -> u64 {
+    match total.checked_sub(k) {
+        Some(rest) if k >= 1 && n > 0 => rest / n + 1,
+        _ => 0,
+    }
+}
+
 /// What a shard is: shards of the same job list must agree on the definition.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Manifest<D> {
@@ -55,12 +84,68 @@ pub struct Manifest<D> {
     pub job_ids: Vec<u64>,
 }
 
+/// One result line as read: where it is, its text byte for byte, and the result.
+pub struct Kept<T> {
+    /// The 1-based line number.
+    pub line: usize,
+    /// The line as read, with its newline: written back unchanged.
+    pub text: String,
+    pub result: T,
+}
+
+/// A line set aside: where it was, its text, and why.
+#[derive(Debug, PartialEq)]
+pub struct SetAside {
+    /// The 1-based line number.
+    pub line: usize,
+    /// The line as read.
+    pub text: String,
+    /// Why it is not kept, said after the place (`not a result line`, ...).
+    pub why: String,
+    /// Whether its job (one of the shard's) must run again.
+    pub runs_again: bool,
+}
+
 /// A shard's results file as read: the good results, and the lines that are not results.
 pub struct ReadResults<T> {
-    pub results: Vec<T>,
-    /// `(line number, text)` of every line that is not a result: a last line cut short by
-    /// a kill (no newline), or a corrupt line anywhere.
-    pub bad: Vec<(usize, String)>,
+    pub results: Vec<Kept<T>>,
+    /// Every line that is not a result: a last line cut short by a kill (no newline), or
+    /// a corrupt line anywhere; after [`ReadResults::set_apart_foreign`], also results of
+    /// jobs not in the shard and second results of a job.
+    pub bad: Vec<SetAside>,
+}
+
+impl<T: JobLine> ReadResults<T> {
+    /// Move to [`bad`](ReadResults::bad) every result whose job is not `belongs` (a
+    /// foreign job id) and every second result of a job; the first stays.
+    pub fn set_apart_foreign(&mut self, belongs: impl Fn(u64) -> bool) {
+        let mut first: BTreeMap<u64, usize> = BTreeMap::new();
+        let mut kept = Vec::with_capacity(self.results.len());
+        for r in std::mem::take(&mut self.results) {
+            let id = r.result.id();
+            let why = if !belongs(id) {
+                Some(format!("job {id} is not in this shard's job list"))
+            } else if let Some(line) = first.get(&id) {
+                Some(format!(
+                    "job {id} again (its first result is on line {line})"
+                ))
+            } else {
+                first.insert(id, r.line);
+                None
+            };
+            match why {
+                Some(why) => self.bad.push(SetAside {
+                    line: r.line,
+                    text: r.text,
+                    why,
+                    runs_again: false,
+                }),
+                None => kept.push(r),
+            }
+        }
+        self.results = kept;
+        self.bad.sort_by_key(|b| b.line);
+    }
 }
 
 /// Read a shard's results, line by line; nothing is changed on disk.
@@ -75,13 +160,26 @@ pub fn read_results<T: DeserializeOwned>(path: &Path) -> Result<ReadResults<T>> 
         Err(e) => return Err(e).with_context(|| format!("cannot read {}", path.display())),
     };
     for (i, line) in text.split_inclusive('\n').enumerate() {
-        let parsed = line
-            .ends_with('\n')
+        let complete = line.ends_with('\n');
+        let parsed = complete
             .then(|| serde_json::from_str::<T>(line).ok())
             .flatten();
         match parsed {
-            Some(r) => out.results.push(r),
-            None => out.bad.push((i + 1, line.to_string())),
+            Some(result) => out.results.push(Kept {
+                line: i + 1,
+                text: line.to_string(),
+                result,
+            }),
+            None => out.bad.push(SetAside {
+                line: i + 1,
+                text: line.to_string(),
+                why: if complete {
+                    "not a result line".to_string()
+                } else {
+                    "not a result line (cut short)".to_string()
+                },
+                runs_again: true,
+            }),
         }
     }
     Ok(out)
@@ -89,8 +187,9 @@ pub fn read_results<T: DeserializeOwned>(path: &Path) -> Result<ReadResults<T>> 
 
 /// Before a shard resumes: move every line of its results file that is not a result
 /// into `results.corrupt.jsonl` beside it (appended, never deleted), say so, and rewrite
-/// the results file with the good lines only. Their jobs then run again.
-pub fn set_aside_bad_lines<T: Serialize>(path: &Path, read: &ReadResults<T>) -> Result<()> {
+/// the results file with the good lines only, byte for byte as they were. Their jobs
+/// then run again.
+pub fn set_aside_bad_lines<T>(path: &Path, read: &ReadResults<T>) -> Result<()> {
     if read.bad.is_empty() {
         return Ok(());
     }
@@ -100,27 +199,28 @@ pub fn set_aside_bad_lines<T: Serialize>(path: &Path, read: &ReadResults<T>) -> 
         .append(true)
         .open(&aside)
         .with_context(|| format!("cannot open {}", aside.display()))?;
-    for (line, text) in &read.bad {
+    for bad in &read.bad {
         crate::note(&format!(
-            "{}:{line}: not a result line{}; set aside in {} and its job will run again",
+            "{}:{}: {}; set aside in {}{}",
             path.display(),
-            if text.ends_with('\n') {
-                ""
+            bad.line,
+            bad.why,
+            aside.display(),
+            if bad.runs_again {
+                " and its job will run again"
             } else {
-                " (cut short)"
-            },
-            aside.display()
+                ""
+            }
         ));
-        kept.write_all(text.as_bytes())?;
-        if !text.ends_with('\n') {
+        kept.write_all(bad.text.as_bytes())?;
+        if !bad.text.ends_with('\n') {
             kept.write_all(b"\n")?;
         }
     }
     kept.sync_all()?;
     let mut good = String::new();
     for r in &read.results {
-        good.push_str(&serde_json::to_string(r)?);
-        good.push('\n');
+        good.push_str(&r.text);
     }
     crate::files::write_atomic(path, good)
 }
@@ -142,7 +242,14 @@ where
     F: Fn(u64) -> Result<T> + Sync,
 {
     let (k, n) = parse_shard(shard)?;
-    let mine: Vec<u64> = (0..total).filter(|id| id % n == k - 1).collect();
+    let count = shard_len(k, n, total);
+    if count > MAX_SHARD_JOBS {
+        bail!(
+            "shard {k}/{n} would run {count} of {total} jobs; a shard runs at most \
+             {MAX_SHARD_JOBS}: cut the job list into more shards (--shard K/N)"
+        );
+    }
+    let mine: Vec<u64> = shard_jobs(k, n, total).collect();
     let dir = out.join(format!("shard-{k}-of-{n}"));
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let _lock = crate::files::OutLock::acquire(&dir)?;
@@ -171,9 +278,11 @@ where
         crate::files::write_atomic(&manifest_path, serde_json::to_string_pretty(&manifest)?)?;
     }
     let results_path = dir.join("results.jsonl");
-    let read = read_results::<T>(&results_path)?;
+    let mut read = read_results::<T>(&results_path)?;
+    read.set_apart_foreign(|id| in_shard(id, k, n, total));
     set_aside_bad_lines(&results_path, &read)?;
-    let done: std::collections::BTreeSet<u64> = read.results.iter().map(JobLine::id).collect();
+    let done: std::collections::BTreeSet<u64> =
+        read.results.iter().map(|r| r.result.id()).collect();
     let todo: Vec<u64> = mine.into_iter().filter(|id| !done.contains(id)).collect();
     crate::note(&format!(
         "shard {k}/{n}: {} jobs of {total}, {} already done, {} to run",
@@ -242,7 +351,9 @@ where
     let dirs = shard_dirs(dirs)?;
     let mut definition: Option<(D, u64)> = None;
     let mut by_id: BTreeMap<u64, T> = BTreeMap::new();
-    for dir in &dirs {
+    // Where each job's result was read: the results file's index in `dirs` and the line.
+    let mut places: BTreeMap<u64, (usize, usize)> = BTreeMap::new();
+    for (d, dir) in dirs.iter().enumerate() {
         let path = dir.join("manifest.json");
         let text = std::fs::read_to_string(&path)
             .with_context(|| format!("cannot read {}", path.display()))?;
@@ -261,7 +372,7 @@ where
         let read = read_results::<T>(&path)?;
         // A corrupt line is never dropped silently: the merge stops and names it. A last
         // line cut short by a kill is a job that did not finish, reported as missing below.
-        if let Some((line, _)) = read.bad.iter().find(|(_, t)| t.ends_with('\n')) {
+        if let Some(SetAside { line, .. }) = read.bad.iter().find(|b| b.text.ends_with('\n')) {
             bail!(
                 "{}:{line}: not a result line; nothing was merged. Run this shard again: \
                  it sets such lines aside in results.corrupt.jsonl and runs their jobs again",
@@ -269,13 +380,24 @@ where
             );
         }
         for r in read.results {
-            let id = r.id();
-            if !m.job_ids.contains(&id) {
-                bail!("{}: job {id} does not belong to this shard", dir.display());
+            let id = r.result.id();
+            if !in_shard(id, m.shard, m.shards, m.total_jobs) {
+                bail!(
+                    "{}:{}: job {id} does not belong to this shard",
+                    path.display(),
+                    r.line
+                );
             }
-            if by_id.insert(id, r).is_some() {
-                bail!("job appears twice (in {} and another shard)", dir.display());
+            if let Some(&(first_dir, first_line)) = places.get(&id) {
+                bail!(
+                    "job {id} appears twice: {}:{first_line} and {}:{}; nothing was merged",
+                    dirs[first_dir].join("results.jsonl").display(),
+                    path.display(),
+                    r.line
+                );
             }
+            places.insert(id, (d, r.line));
+            by_id.insert(id, r.result);
         }
     }
     let Some((definition, total)) = definition else {
@@ -320,14 +442,131 @@ mod tests {
         for bad in ["0/3", "4/3", "x/3", "3", "1/0"] {
             assert!(parse_shard(bad).is_err(), "{bad}");
         }
-        let n = 3;
-        let mut seen = [0; 10];
-        for k in 1..=n {
-            for id in (0..10u64).filter(|id| id % n == k - 1) {
-                seen[id as usize] += 1;
+        for total in [0, 1, 2, 9, 10, 11] {
+            for n in 1..=12 {
+                let mut seen = vec![0; total as usize];
+                for k in 1..=n {
+                    let jobs: Vec<u64> = shard_jobs(k, n, total).collect();
+                    let listed: Vec<u64> = (0..total).filter(|id| id % n == k - 1).collect();
+                    assert_eq!(jobs, listed, "{k}/{n} of {total}");
+                    assert_eq!(shard_len(k, n, total), jobs.len() as u64);
+                    for &id in &jobs {
+                        assert!(in_shard(id, k, n, total));
+                        seen[id as usize] += 1;
+                    }
+                }
+                assert!(seen.iter().all(|&c| c == 1));
             }
         }
-        assert!(seen.iter().all(|&c| c == 1));
+        // A shard of a huge list is found without listing it.
+        let last: Vec<u64> = shard_jobs(u64::MAX, u64::MAX, u64::MAX).collect();
+        assert_eq!(last, [u64::MAX - 1]);
+        assert_eq!(shard_len(u64::MAX, u64::MAX, u64::MAX), 1);
+        assert_eq!(shard_len(1, 100_000_000, 100_000_000), 1);
+        assert_eq!(shard_len(3, 4, 2), 0);
+        assert!(!in_shard(5, 1, 1, 5));
+    }
+
+    #[test]
+    fn a_resume_keeps_the_kept_lines_byte_for_byte() {
+        // Once: the kept lines went through a float parse and back, and 0.30000000000000004
+        // written by another serialiser (or 1e-7 as 1E-7, or 2.50) changed its digits.
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("results.jsonl");
+        let kept = "{\"id\":0,\"value\":0.1000000000000000055511151231257827}\n\
+                    {\"id\": 1, \"value\": 1E-7}\n\
+                    {\"value\":2.50,\"id\":2}\n";
+        std::fs::write(&path, format!("{kept}{{\"id\":3,\"va")).unwrap();
+        let read = read_results::<Line>(&path).unwrap();
+        assert_eq!((read.results.len(), read.bad.len()), (3, 1));
+        set_aside_bad_lines(&path, &read).unwrap();
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), kept);
+    }
+
+    #[test]
+    fn a_foreign_or_repeated_job_is_set_aside_on_resume() {
+        let dir = tempfile::tempdir().unwrap();
+        let runs = std::sync::atomic::AtomicU64::new(0);
+        let job = |id: u64| {
+            runs.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            Ok(Line {
+                id,
+                value: id as f64,
+            })
+        };
+        // Shard 1/2 of 4 jobs holds jobs 0 and 2. Its file also has job 1 (shard 2's), job
+        // 7 (of no shard) and job 0 twice.
+        let shard = dir.path().join("shard-1-of-2");
+        std::fs::create_dir_all(&shard).unwrap();
+        let results = shard.join("results.jsonl");
+        let text = format!(
+            "{}\n{}\n{}\n{}\n",
+            result(0),
+            result(1),
+            result(7),
+            result(0)
+        );
+        std::fs::write(&results, &text).unwrap();
+        run_shard(dir.path(), "1/2", "def".to_string(), 4, Some(1), job).unwrap();
+        // Only job 2 ran: job 0 was done; 1, 7 and the repeat of 0 are set aside.
+        assert_eq!(runs.load(std::sync::atomic::Ordering::Relaxed), 1);
+        let kept = std::fs::read_to_string(&results).unwrap();
+        let ids: Vec<u64> = kept
+            .lines()
+            .map(|l| serde_json::from_str::<Line>(l).unwrap().id)
+            .collect();
+        assert_eq!(ids, [0, 2]);
+        let aside = std::fs::read_to_string(shard.join("results.corrupt.jsonl")).unwrap();
+        assert_eq!(
+            aside,
+            format!("{}\n{}\n{}\n", result(1), result(7), result(0))
+        );
+    }
+
+    #[test]
+    fn a_job_merged_twice_is_named_with_both_places() {
+        let dir = tempfile::tempdir().unwrap();
+        let job = |id: u64| {
+            Ok(Line {
+                id,
+                value: id as f64,
+            })
+        };
+        run_shard(dir.path(), "1/2", "def".to_string(), 4, Some(1), job).unwrap();
+        run_shard(dir.path(), "2/2", "def".to_string(), 4, Some(1), job).unwrap();
+        assert_eq!(
+            collect::<String, Line>(&[dir.path().to_path_buf()])
+                .unwrap()
+                .1
+                .len(),
+            4
+        );
+        // Job 2 (shard 1's) written into shard 2's file as well, as after a lost lock race
+        // between two folders merged together: both places are named.
+        let second = dir.path().join("shard-2-of-2/results.jsonl");
+        let mut text = std::fs::read_to_string(&second).unwrap();
+        text.push_str(&format!("{}\n", result(1)));
+        std::fs::write(&second, text).unwrap();
+        let err = collect::<String, Line>(&[dir.path().to_path_buf()])
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(err.contains("job 1 appears twice"), "{err}");
+        assert!(err.contains("shard-2-of-2/results.jsonl:1 and"), "{err}");
+        assert!(err.contains("shard-2-of-2/results.jsonl:3"), "{err}");
+        // A foreign job in a shard's file is named with its place.
+        let first = dir.path().join("shard-1-of-2/results.jsonl");
+        let mut text = std::fs::read_to_string(&first).unwrap();
+        text.push_str(&format!("{}\n", result(3)));
+        std::fs::write(&first, text).unwrap();
+        let err = collect::<String, Line>(&[dir.path().to_path_buf()])
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(
+            err.contains("shard-1-of-2/results.jsonl:3: job 3 does not belong"),
+            "{err}"
+        );
     }
 
     #[test]
@@ -352,9 +591,10 @@ mod tests {
         let text = format!("{}\n{{not json\n{}\n{}\n", result(0), result(1), result(2));
         std::fs::write(&path, &text).unwrap();
         let read = read_results::<Line>(&path).unwrap();
-        let ids: Vec<u64> = read.results.iter().map(|r| r.id).collect();
+        let ids: Vec<u64> = read.results.iter().map(|r| r.result.id).collect();
         assert_eq!(ids, [0, 1, 2]);
-        assert_eq!(read.bad, [(2, "{not json\n".to_string())]);
+        let bad: Vec<(usize, &str)> = read.bad.iter().map(|b| (b.line, b.text.as_str())).collect();
+        assert_eq!(bad, [(2, "{not json\n")]);
         // Reading changes nothing on disk.
         assert_eq!(std::fs::read_to_string(&path).unwrap(), text);
         set_aside_bad_lines(&path, &read).unwrap();

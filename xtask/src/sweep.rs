@@ -121,6 +121,14 @@ impl JobLine for JobResult {
     }
 }
 
+/// Job `id` of a sweep with `strategies` strategies and `runs` runs per map and strategy:
+/// (map, strategy, run) as indices, in the order map, then strategy, then run.
+fn job_of(id: u64, strategies: u64, runs: u64) -> (u64, u64, u64) {
+    let per_map = strategies * runs;
+    let rest = id % per_map;
+    (id / per_map, rest / runs, rest % runs)
+}
+
 /// `cargo xtask sweep`.
 pub fn sweep(args: &SweepArgs) -> Result<()> {
     if args.runs == 0 || args.strategies.is_empty() {
@@ -134,6 +142,7 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
         .iter()
         .map(|m| mdp::resolve(m))
         .collect::<Result<_, _>>()?;
+    crate::files::distinct_maps(&args.maps, &maps)?;
     let definition = Definition {
         maps: args.maps.clone(),
         strategies: args.strategies.clone(),
@@ -141,15 +150,17 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
         seed: args.seed,
         max_trials: args.max_trials,
     };
-    let mut jobs = Vec::new();
-    for (m, _) in maps.iter().enumerate() {
-        for &strategy in &args.strategies {
-            for run in 0..args.runs {
-                jobs.push((m, strategy, run));
-            }
-        }
-    }
-    let total = jobs.len() as u64;
+    // Jobs in order (map, then strategy, then run), found from their number: never listed.
+    let per_map = (args.strategies.len() as u64)
+        .checked_mul(args.runs)
+        .context("--runs times the strategies is more jobs than can be numbered")?;
+    let total = (maps.len() as u64)
+        .checked_mul(per_map)
+        .context("--runs times the maps and strategies is more jobs than can be numbered")?;
+    let job = |id: u64| {
+        let (m, s, run) = job_of(id, args.strategies.len() as u64, args.runs);
+        (m as usize, args.strategies[s as usize], run)
+    };
     let setups: Vec<Setup> = maps
         .iter()
         .map(|m| {
@@ -165,7 +176,7 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
         total,
         args.threads,
         |id| {
-            let (m, strategy, run) = jobs[id as usize];
+            let (m, strategy, run) = job(id);
             let mut settings = RunSettings::tan1991(&args.maps[m], strategy, args.seed + run);
             settings.max_trials = cap;
             let report = csql::run_on(&setups[m], &settings);
@@ -268,6 +279,59 @@ mod tests {
             table1: Table1Row::default(),
         };
         serde_json::to_string(&r).unwrap()
+    }
+
+    #[test]
+    fn jobs_are_numbered_in_the_order_of_the_nested_loops() {
+        let (maps, strategies, runs) = (3, 4, 5);
+        let mut id = 0;
+        for m in 0..maps {
+            for s in 0..strategies {
+                for run in 0..runs {
+                    assert_eq!(job_of(id, strategies, runs), (m, s, run));
+                    id += 1;
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn one_shard_of_a_huge_sweep_runs_its_own_job_only() {
+        // Once: 4 * 10^8 jobs were listed (gigabytes) to run one.
+        let dir = tempfile::tempdir().unwrap();
+        let args = SweepArgs {
+            maps: vec!["tan3x3".into()],
+            strategies: vec![StrategyKind::Lazy],
+            runs: u64::MAX,
+            seed: 0,
+            max_trials: 50,
+            shard: format!("{}/{}", u64::MAX, u64::MAX),
+            threads: Some(1),
+            out: dir.path().to_path_buf(),
+        };
+        sweep(&args).unwrap();
+        let shard = dir.path().join(format!("shard-{0}-of-{0}", u64::MAX));
+        let text = std::fs::read_to_string(shard.join("results.jsonl")).unwrap();
+        let r: JobResult = serde_json::from_str(text.trim()).unwrap();
+        assert_eq!((r.id, r.seed), (u64::MAX - 1, u64::MAX - 1));
+        // A shard of more jobs than a shard may run is refused before anything runs.
+        let err = sweep(&SweepArgs {
+            shard: "1/1".into(),
+            ..args.clone()
+        })
+        .err()
+        .unwrap()
+        .to_string();
+        assert!(err.contains("at most"), "{err}");
+        // More jobs than can be numbered is refused.
+        let err = sweep(&SweepArgs {
+            strategies: vec![StrategyKind::Lazy, StrategyKind::Eager],
+            ..args
+        })
+        .err()
+        .unwrap()
+        .to_string();
+        assert!(err.contains("more jobs than can be numbered"), "{err}");
     }
 
     #[test]

@@ -23,6 +23,7 @@
 //! the file's metadata says.
 
 use std::cmp::Ordering;
+use std::collections::{BTreeMap, BTreeSet};
 use std::io::Read;
 use std::num::NonZeroU32;
 use std::path::{Path, PathBuf};
@@ -495,8 +496,10 @@ impl Dataset {
             .transpose()?;
         let table = read_table(data, data_path)?;
         let path = || data_path.to_path_buf();
+        // One index of the header, so that reading stays linear in the number of columns.
+        let mut seen: BTreeMap<&str, usize> = BTreeMap::new();
         for (i, name) in table.header.iter().enumerate() {
-            if table.header[..i].contains(name) {
+            if seen.insert(name.as_str(), i).is_some() {
                 return Err(Error::DuplicateColumn {
                     path: path(),
                     column: name.clone(),
@@ -525,6 +528,7 @@ impl Dataset {
             .map(|&c| table.header[c].as_str())
             .collect();
         let costs = read_costs(costs, costs_path, &names, &options.target)?;
+        check_totals(&costs, table.records.len(), costs_path)?;
         let (labels, class_names) = classes(&table, target, condition.as_ref(), data_path)?;
 
         let n_features = feature_columns.len();
@@ -738,16 +742,15 @@ fn encode_column(name: &str, cells: &[&str], binning: Binning) -> (Column, Vec<O
         };
         return (column, values);
     }
-    let mut texts: Vec<String> = present.map(|c| c.to_string()).collect();
-    sort_texts(&mut texts);
-    texts.dedup();
+    let texts = distinct_sorted(present.copied());
+    let index = index_of(&texts);
     let values = cells
         .iter()
         .map(|c| {
             if is_missing(c) {
                 return None;
             }
-            texts.iter().position(|t| t == c).map(|i| Value(i as u32))
+            index.get(c).map(|&i| Value(i))
         })
         .collect();
     let column = Column {
@@ -791,17 +794,73 @@ fn classes(
                 Ok(ClassId(u32::from(holds)))
             })
             .collect::<Result<Vec<_>, Error>>()?;
+        if !labels.contains(&ClassId(1)) {
+            // Every object would be negative: a misspelt or miscased rule, most likely.
+            let values = distinct_sorted(cells.iter().map(|&(_, c)| c));
+            return Err(Error::PositiveIfMatchesNothing {
+                path: path.to_path_buf(),
+                column: target_name.clone(),
+                expr: describe(condition),
+                count: values.len(),
+                values: values.into_iter().take(SHOWN_VALUES).collect(),
+            });
+        }
         let expr = format!("{target_name} {}", describe(condition));
         return Ok((labels, vec![format!("not {expr}"), expr]));
     }
-    let mut names: Vec<String> = cells.iter().map(|&(_, c)| c.to_string()).collect();
-    sort_texts(&mut names);
-    names.dedup();
+    let names = distinct_sorted(cells.iter().map(|&(_, c)| c));
+    let index = index_of(&names);
     let labels = cells
         .iter()
-        .map(|&(_, c)| ClassId(names.iter().position(|n| n == c).unwrap_or(0) as u32))
+        .map(|&(_, c)| ClassId(index.get(c).copied().unwrap_or(0)))
         .collect();
     Ok((labels, names))
+}
+
+/// How many of a column's values an error names (the count says how many there are).
+const SHOWN_VALUES: usize = 5;
+
+/// The distinct texts, in [`sort_texts`] order.
+fn distinct_sorted<'a>(texts: impl Iterator<Item = &'a str>) -> Vec<String> {
+    let distinct: BTreeSet<&str> = texts.collect();
+    let mut texts: Vec<String> = distinct.into_iter().map(str::to_string).collect();
+    sort_texts(&mut texts);
+    texts
+}
+
+/// Each text's position in `texts`, so that a cell finds its value in logarithmic time.
+fn index_of(texts: &[String]) -> BTreeMap<&str, u32> {
+    texts
+        .iter()
+        .enumerate()
+        .map(|(i, t)| (t.as_str(), i as u32))
+        .collect()
+}
+
+/// The largest total cost a data set may lead to: the sum of all prices times the number
+/// of objects. Below it, every total a learner reports over the objects (a stream, a
+/// held-out part, the folds) is a finite number, with room for rounding.
+///
+/// ```
+/// assert_eq!(cslearn::MAX_TOTAL_COST, 1e300);
+/// ```
+pub const MAX_TOTAL_COST: f64 = 1e300;
+
+/// Refuse prices whose total over `objects` objects cannot be represented.
+fn check_totals(costs: &FeatureCosts, objects: usize, path: &Path) -> Result<(), Error> {
+    // Summed without saturation: an infinite sum must show as one.
+    let per_object: f64 = costs.as_slice().iter().map(|c| c.get()).sum();
+    let total = per_object * objects as f64;
+    if total.is_finite() && total <= MAX_TOTAL_COST {
+        Ok(())
+    } else {
+        Err(Error::CostsTooLarge {
+            path: path.to_path_buf(),
+            per_object,
+            objects,
+            max: MAX_TOTAL_COST,
+        })
+    }
 }
 
 fn describe(condition: &Condition) -> String {
@@ -835,12 +894,13 @@ fn read_costs(
     }
     let mut costs: Vec<Option<Cost>> = vec![None; names.len()];
     let path_buf = || -> PathBuf { path.to_path_buf() };
+    let index: BTreeMap<&str, usize> = names.iter().enumerate().map(|(i, &n)| (n, i)).collect();
     for (line, record) in &table.records {
         let (feature, text) = (&record[0], &record[1]);
         if feature == target {
             continue;
         }
-        let Some(f) = names.iter().position(|n| *n == feature) else {
+        let Some(&f) = index.get(feature) else {
             return Err(Error::UnknownCostFeature {
                 path: path_buf(),
                 line: *line,

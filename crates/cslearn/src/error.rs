@@ -144,6 +144,34 @@ pub enum Error {
         /// What is wrong with it.
         reason: &'static str,
     },
+    /// A positive-if expression that no target value satisfies: every object would be
+    /// negative.
+    #[error("{}: the positive-if expression `{expr}` matches no value of column `{column}` (values present: {}{}; {count} value{})", path.display(), values.join(", "), if *count > values.len() { ", ..." } else { "" }, if *count == 1 { "" } else { "s" })]
+    PositiveIfMatchesNothing {
+        /// The data file.
+        path: PathBuf,
+        /// The target column.
+        column: String,
+        /// The expression, normalised (`male` reads `==male`).
+        expr: String,
+        /// The first few distinct target values, in class order.
+        values: Vec<String>,
+        /// How many distinct target values there are.
+        count: usize,
+    },
+    /// Prices whose total over the objects cannot be represented (see
+    /// [`MAX_TOTAL_COST`](crate::MAX_TOTAL_COST)).
+    #[error("{}: the prices sum to {per_object:e} per object, so a total over the {objects} objects cannot be represented (the sum of all prices times the number of objects must be at most {max:e})", path.display())]
+    CostsTooLarge {
+        /// The costs file.
+        path: PathBuf,
+        /// The sum of all prices (infinite if it overflows).
+        per_object: f64,
+        /// The number of objects.
+        objects: usize,
+        /// The limit, [`MAX_TOTAL_COST`](crate::MAX_TOTAL_COST).
+        max: f64,
+    },
     /// The costs file's header is not `feature,cost`.
     #[error("{}: the header must be `feature,cost`, found `{}`", path.display(), found.join(","))]
     CostsHeader {

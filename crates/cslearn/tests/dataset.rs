@@ -187,3 +187,97 @@ fn broken_costs_files_name_file_line_and_feature() {
     let ds = read(data, "feature,cost\na,1\nb,2\nt,100\n", &options).unwrap();
     assert_eq!(ds.costs().total().get(), 3.0);
 }
+
+#[test]
+fn a_positive_if_rule_that_matches_no_value_is_refused_with_the_values_present() {
+    let costs = "feature,cost\na,1\n";
+    let e = err(
+        "a,t\n1,Male\n2,Female\n",
+        costs,
+        &DatasetOptions::new("t").positive_if("male"),
+    );
+    assert!(
+        matches!(e, Error::PositiveIfMatchesNothing { count: 2, .. }),
+        "{e:?}"
+    );
+    assert_eq!(
+        e.to_string(),
+        "d.csv: the positive-if expression `==male` matches no value of column `t` (values present: Female, Male; 2 values)"
+    );
+    let many: String = (0..40).fold("a,t\n".to_string(), |s, i| format!("{s}{i},{i}\n"));
+    let e = err(&many, costs, &DatasetOptions::new("t").positive_if(">100"));
+    assert_eq!(
+        e.to_string(),
+        "d.csv: the positive-if expression `>100` matches no value of column `t` (values present: 0, 1, 2, 3, 4, ...; 40 values)"
+    );
+    // A rule that holds for every object is allowed (all positive is a real answer).
+    let ds = read(
+        "a,t\n1,3\n2,4\n",
+        costs,
+        &DatasetOptions::new("t").positive_if(">0"),
+    )
+    .unwrap();
+    assert_eq!(ds.labels(), &[ClassId(1), ClassId(1)]);
+}
+
+#[test]
+fn prices_whose_totals_cannot_be_represented_are_refused() {
+    let data = "a,b,t\n1,x,0\n2,y,1\n";
+    let e = err(
+        data,
+        "feature,cost\na,1e308\nb,1e308\n",
+        &DatasetOptions::new("t"),
+    );
+    assert!(
+        matches!(e, Error::CostsTooLarge { objects: 2, .. }),
+        "{e:?}"
+    );
+    assert!(
+        e.to_string()
+            .starts_with("c.csv: the prices sum to inf per object"),
+        "{e}"
+    );
+    // Finite per object, not over the objects.
+    let e = err(
+        data,
+        "feature,cost\na,1e300\nb,1e300\n",
+        &DatasetOptions::new("t"),
+    );
+    assert!(matches!(e, Error::CostsTooLarge { .. }), "{e:?}");
+    let max = cslearn::MAX_TOTAL_COST;
+    let ok = format!("feature,cost\na,{}\nb,{}\n", max / 4.0, max / 4.0);
+    let ds = read(data, &ok, &DatasetOptions::new("t")).unwrap();
+    assert!(ds.costs().total().get().is_finite());
+}
+
+#[test]
+fn a_wide_table_reads_and_its_errors_are_found_at_the_far_end() {
+    // 100,000 columns and one row: read through an index of the header and of the costs
+    // (see `examples/wide_csv.rs` for the time against 20,000 columns).
+    let n = 100_000;
+    let names: Vec<String> = (0..n).map(|j| format!("c{j}")).collect();
+    let data = format!("{},t\n{}x\n", names.join(","), "1,".repeat(n));
+    let costs: String = names
+        .iter()
+        .fold("feature,cost\n".to_string(), |s, c| s + c + ",1\n");
+    let ds = read(&data, &costs, &DatasetOptions::new("t")).unwrap();
+    assert_eq!(ds.feature_count(), n);
+    assert_eq!(ds.feature_id("c99999"), Some(FeatureId(99_999)));
+    let dup = data
+        .replacen(",t\n", ",c0,t\n", 1)
+        .replacen("x\n", "1,x\n", 1);
+    let e = err(&dup, &costs, &DatasetOptions::new("t"));
+    assert!(
+        matches!(&e, Error::DuplicateColumn { column, .. } if column == "c0"),
+        "{e:?}"
+    );
+    let e = err(
+        &data,
+        &format!("{costs}nope,1\n"),
+        &DatasetOptions::new("t"),
+    );
+    assert!(
+        matches!(&e, Error::UnknownCostFeature { line, .. } if *line == n as u64 + 2),
+        "{e:?}"
+    );
+}

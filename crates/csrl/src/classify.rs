@@ -200,8 +200,9 @@ fn held_out(args: &ClassifyArgs, data: &Dataset) -> Result<Option<(String, HeldO
                 f > 0.0 && f < 1.0,
                 "--holdout must be a share strictly between 0 and 1, found {f}"
             );
-            let k = ((n as f64 * f).round() as usize).clamp(1, n.saturating_sub(1));
+            // Checked first: with one object there is no share to clamp into.
             anyhow::ensure!(n >= 2, "--holdout needs at least 2 objects, found {n}");
+            let k = ((n as f64 * f).round() as usize).clamp(1, n - 1);
             vec![(order[k..].to_vec(), order[..k].to_vec())]
         }
         (None, Some(k)) => {

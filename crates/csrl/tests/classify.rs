@@ -272,3 +272,124 @@ fn held_out_evaluation_is_reported_beside_the_prequential_one() {
         assert!(stderr(&out).contains(bad[0]), "{}", stderr(&out));
     }
 }
+
+#[test]
+fn a_held_out_share_of_one_object_is_a_clear_error_not_a_panic() {
+    let costs = scratch("costs-one.csv", b"feature,cost\na,1\n");
+    let one = scratch("one-row.csv", b"a,t\n1,x\n");
+    for share in ["0.5", "0.001", "0.999"] {
+        fails_with(
+            &one,
+            &costs,
+            &["--holdout", share],
+            &["--holdout needs at least 2 objects", "found 1"],
+        );
+    }
+}
+
+#[test]
+fn a_positive_if_rule_that_matches_no_value_is_refused_naming_the_values() {
+    let costs = scratch("costs-sex.csv", b"feature,cost\na,1\n");
+    let sex = scratch("sex.csv", b"a,t\n1,Male\n2,Female\n3,Male\n");
+    for (rule, shown) in [("cow", "==cow"), ("male", "==male")] {
+        fails_with(
+            &sex,
+            &costs,
+            &["--positive-if", rule],
+            &[
+                "sex.csv",
+                "matches no value",
+                shown,
+                "Female, Male",
+                "2 values",
+            ],
+        );
+    }
+    let numbers = scratch("numbers.csv", b"a,t\n1,0\n2,1\n3,2\n");
+    fails_with(
+        &numbers,
+        &costs,
+        &["--positive-if", ">5"],
+        &[
+            "numbers.csv",
+            "matches no value",
+            ">5",
+            "0, 1, 2",
+            "3 values",
+        ],
+    );
+    // Many values: a few are named, and the count says how many there are.
+    let mut many = b"a,t\n".to_vec();
+    for i in 0..50 {
+        many.extend(format!("{i},v{i:02}\n").as_bytes());
+    }
+    let many = scratch("many.csv", &many);
+    fails_with(
+        &many,
+        &costs,
+        &["--positive-if", "cow"],
+        &["v00, v01", "50 values"],
+    );
+    // A rule that matches some value still runs.
+    let out = csrl(&[
+        "classify",
+        "--data",
+        &sex,
+        "--costs",
+        &costs,
+        "--target",
+        "t",
+        "--learner",
+        "cs-id3",
+        "--positive-if",
+        "Male",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+}
+
+#[test]
+fn costs_whose_totals_cannot_be_represented_are_refused_up_front() {
+    let data = scratch("big-data.csv", b"a,b,t\n1,x,0\n2,y,1\n3,x,0\n4,y,1\n");
+    let huge = scratch("costs-huge.csv", b"feature,cost\na,1e308\nb,1e308\n");
+    fails_with(
+        &data,
+        &huge,
+        &["--folds", "2"],
+        &["costs-huge.csv", "cannot be represented", "4 objects"],
+    );
+    // Each price and their sum per object are finite, but not the total over the objects.
+    let large = scratch("costs-large.csv", b"feature,cost\na,1e307\nb,1e307\n");
+    fails_with(
+        &data,
+        &large,
+        &[],
+        &["costs-large.csv", "cannot be represented"],
+    );
+    // Large but representable prices still run, and every figure stays finite.
+    let fine = scratch("costs-fine.csv", b"feature,cost\na,1e290\nb,1e290\n");
+    let out = csrl(&[
+        "classify",
+        "--data",
+        &data,
+        "--costs",
+        &fine,
+        "--target",
+        "t",
+        "--learner",
+        "cs-id3",
+        "--folds",
+        "2",
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for key in ["total_cost", "mean_cost", "full_cost"] {
+        assert!(v[key].as_f64().is_some_and(f64::is_finite), "{key}: {v}");
+    }
+    for key in ["mean_cost", "cost_blind_tree_mean_cost"] {
+        assert!(
+            v["held_out"][key].as_f64().is_some_and(f64::is_finite),
+            "{key}: {v}"
+        );
+    }
+}
