@@ -300,6 +300,9 @@ impl Classify {
     /// What the sensors report for feature `f` of state `s`.
     fn read<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId, f: Feature) -> Reading {
         let truth = world.read(s, f);
+        if self.noise.is_zero() {
+            return truth;
+        }
         self.noise.majority_reading(
             truth,
             self.readings[f.index()],
@@ -673,6 +676,14 @@ impl Classify {
     fn walk_cached<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> Option<DescriptionId> {
         let readings = &self.readings;
         let (noise, reads, noise_rng) = (self.noise, self.reads, &mut self.noise_rng);
+        if noise.is_zero() {
+            // Exact sensors read the truth and draw nothing, however many reads.
+            return self
+                .cache
+                .walk(self.rep.library(), &self.costs, &mut self.measured, |f| {
+                    world.read(s, f)
+                });
+        }
         self.cache
             .walk(self.rep.library(), &self.costs, &mut self.measured, |f| {
                 noise.majority_reading(world.read(s, f), readings[f.index()], reads, noise_rng)

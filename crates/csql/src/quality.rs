@@ -213,7 +213,7 @@ pub(crate) fn policy_quality<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
 ) -> QualityEstimate {
     let states = world.states();
     let gamma = truth.gamma();
-    let floor = value_floor(world, gamma);
+    let floor = worst(world, gamma);
     let act = |row: Option<RowId>| row.map_or(ActionId(0), |r| table.greedy(r));
     if noise.is_zero() && perception.memoryless() {
         let mut policy = vec![ActionId(0); world.num_states()];
@@ -221,7 +221,7 @@ pub(crate) fn policy_quality<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
             policy[s.index()] = act(perception.sees(world, s, noise, rng));
         }
         let quality = match mdp::evaluate_policy(world, gamma, &policy) {
-            Ok(v) => ratio_mean(&states, truth, floor, |s| v[s.index()]),
+            Ok(v) => ratio_mean(&states, truth, &floor, |s| v[s.index()]),
             Err(_) => 0.0,
         };
         return QualityEstimate {
@@ -259,7 +259,7 @@ pub(crate) fn policy_quality<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
             }
             returns[s.index()] = g;
         }
-        rounds.push(ratio_mean(&states, truth, floor, |s| returns[s.index()]));
+        rounds.push(ratio_mean(&states, truth, &floor, |s| returns[s.index()]));
         if deterministic {
             return QualityEstimate {
                 quality: rounds[0],
@@ -294,7 +294,7 @@ fn sampled_policy_quality<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
     rng: &mut R,
 ) -> QualityEstimate {
     let states = world.states();
-    let floor = value_floor(world, truth.gamma());
+    let floor = worst(world, truth.gamma());
     let n = world.num_states();
     let mut measured = vec![false; n];
     for &s in &states {
@@ -330,7 +330,7 @@ fn sampled_policy_quality<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
             })
             .collect();
         match mdp::evaluate_stochastic_policy(world, truth.gamma(), &policy) {
-            Ok(v) => ratio_mean(&states, truth, floor, |s| v[s.index()]),
+            Ok(v) => ratio_mean(&states, truth, &floor, |s| v[s.index()]),
             Err(_) => 0.0,
         }
     };
@@ -356,23 +356,35 @@ fn standard_error(xs: &[f64]) -> f64 {
 }
 
 /// Mean over states with a positive V* of value / V*.
-/// The mean over states of `(value(s) - floor) / (V*(s) - floor)`, over the states
-/// where `V*(s) > floor` (1 if there is none). `floor` is [`value_floor`]: 0 in worlds
-/// without negative rewards (the ratio `value / V*`), so that a policy that earns
-/// nothing scores 0 wherever something can be earned.
+/// The mean over states of `(value(s) - W(s)) / (V*(s) - W(s))`, over the states where
+/// `V*(s) > W(s)` (1 if there is none), with `W` the value of the worst policy
+/// ([`worst`]): 0 for the worst policy, 1 for an optimal one. Where no reward is negative
+/// and some policy can avoid every reward (every grid map), `W` is 0 and this is the
+/// ratio `value / V*`.
 fn ratio_mean(
     states: &[StateId],
     truth: &Oracle,
-    floor: f64,
+    worst: &[f64],
     value: impl Fn(StateId) -> f64,
 ) -> f64 {
     let (sum, n) = states
         .iter()
-        .filter(|&&s| truth.v_star(s) > floor)
+        .filter(|&&s| truth.v_star(s) > worst[s.index()])
         .fold((0.0, 0usize), |(sum, n), &s| {
-            (sum + (value(s) - floor) / (truth.v_star(s) - floor), n + 1)
+            let w = worst[s.index()];
+            (sum + (value(s) - w) / (truth.v_star(s) - w), n + 1)
         });
     if n == 0 { 1.0 } else { sum / n as f64 }
+}
+
+/// The value of the worst policy from every state on the true model (0 everywhere on a
+/// grid map, where bumping into a wall forever earns nothing).
+fn worst<W: World + ?Sized>(world: &W, gamma: f64) -> Vec<f64> {
+    if world.grid().is_some() {
+        return vec![0.0; world.num_states()];
+    }
+    // The discount is a validated setting, so value iteration accepts it.
+    mdp::worst_values(world, gamma).unwrap_or_else(|_| vec![0.0; world.num_states()])
 }
 
 /// A lower bound of every discounted return: `min(0, r_min) / (1 - gamma)`, with
@@ -380,10 +392,16 @@ fn ratio_mean(
 pub(crate) fn value_floor<W: StochasticMdp + ?Sized>(world: &W, gamma: f64) -> f64 {
     let r_min = min_reward(world);
     if r_min >= 0.0 {
-        0.0
-    } else {
-        r_min / (1.0 - gamma)
+        return 0.0;
     }
+    let mut floor = r_min / (1.0 - gamma);
+    // Rounding can leave `r_min + gamma * floor` a unit in the last place below `floor`,
+    // which would read as a decrease: step down until the floor holds in floating point
+    // too (then every target `r + gamma V`, V at least the floor, is at least the floor).
+    while r_min + gamma * floor < floor {
+        floor = floor.next_down();
+    }
+    floor
 }
 
 /// The smallest reward of any outcome of any non-terminal state (0 if none is smaller).

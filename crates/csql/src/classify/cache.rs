@@ -179,11 +179,6 @@ impl Cache {
     }
 
     #[inline]
-    fn is_stale(&self, at: u32) -> bool {
-        self.table[self.rec(at) + STALE] != 0
-    }
-
-    #[inline]
     fn set_stale(&mut self, at: u32, stale: bool) {
         let r = self.rec(at);
         self.table[r + STALE] = u32::from(stale);
@@ -234,11 +229,14 @@ impl Cache {
         }
         path.clear();
         let mut at = 0u32;
+        let width = CHILDREN + self.arity;
         loop {
-            if self.is_stale(at) {
+            let r = at as usize * width;
+            if self.table[r + STALE] != 0 {
                 self.refresh(at, costs);
             }
-            match self.step(at) {
+            let record = &self.table[r..r + width];
+            match decode(record[STEP_TAG], record[STEP_ARG]) {
                 Step::Found(d) => return Some(d),
                 Step::Create => return None,
                 Step::Measure(f) => {
@@ -249,7 +247,7 @@ impl Cache {
                         (code as usize) < self.arity,
                         "a reading beyond its feature's range"
                     );
-                    let child = self.children_of(at)[code as usize];
+                    let child = record[CHILDREN + code as usize];
                     at = if child == NONE {
                         self.grow(at, f.0, code, library, path)
                     } else {
