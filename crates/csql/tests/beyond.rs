@@ -22,29 +22,67 @@ fn extensions_at_their_defaults_change_nothing() {
     assert!(!json(&plain).contains("slip"));
 }
 
+/// The report without its echo of the settings: what the run did, and nothing it was told.
+/// A setting that the run ignored leaves this unchanged.
+fn outcome(s: &RunSettings) -> serde_json::Value {
+    let mut v = serde_json::to_value(csql::run(s).unwrap()).unwrap();
+    let echo = v.as_object_mut().unwrap().remove("settings");
+    assert!(echo.is_some(), "the report has no `settings` to leave out");
+    v
+}
+
 #[test]
 fn each_extension_changes_the_run_only_when_on() {
     let base = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 2);
-    let reference = json(&base);
+    // (the extension on, the same settings with it at its default); both judged alike,
+    // so that only the extension itself can tell the two runs apart.
+    let common = "max_trials = 100\n[extensions]\nquality_every = 50";
+    let noisy = "max_trials = 100\n[world]\nsensor_noise = 0.05\n[extensions]\nquality_every = 50";
+    let near = "max_trials = 100\n[world]\nsensing_radius = 1\n[extensions]\nquality_every = 50";
     let tweaks = [
-        "max_trials = 100\n[extensions]\nquality_every = 50\n[world]\nslip = 0.1",
-        "max_trials = 100\n[extensions]\nquality_every = 50\n[world]\nsensor_noise = 0.05",
-        "max_trials = 100\n[extensions]\nquality_every = 50\n[world]\nsensing_radius = 1",
-        "max_trials = 100\n[extensions]\nquality_every = 50\ndetector = \"statistical\"",
-        "max_trials = 100\n[world]\nsensor_noise = 0.05\n[extensions]\nquality_every = 50\nmatching = \"nearest\"",
-        "max_trials = 100\n[world]\nsensor_noise = 0.05\n[extensions]\nquality_every = 50\nconfirm_new = 3",
-        "max_trials = 100\n[extensions]\nquality_every = 50\nreads = 3",
-        "max_trials = 100\n[world]\nsensing_radius = 1\n[extensions]\nquality_every = 50\nmemory = 2",
-        "max_trials = 100\n[extensions]\nquality_every = 50\njudge_by_quality = true",
-        "max_trials = 100\nlearner = \"u-tree\"\n[extensions]\nquality_every = 50",
-        "max_trials = 100\nlearner = \"full-sensing\"\n[extensions]\nquality_every = 50",
+        (
+            "max_trials = 100\n[world]\nslip = 0.1\n[extensions]\nquality_every = 50".to_string(),
+            common.to_string(),
+        ),
+        (noisy.to_string(), common.to_string()),
+        (near.to_string(), common.to_string()),
+        (
+            format!("{common}\ndetector = \"statistical\""),
+            common.to_string(),
+        ),
+        (
+            format!("{noisy}\nmatching = \"nearest\""),
+            noisy.to_string(),
+        ),
+        (format!("{noisy}\nconfirm_new = 3"), noisy.to_string()),
+        (format!("{common}\nreads = 3"), common.to_string()),
+        (format!("{near}\nmemory = 2"), near.to_string()),
+        (
+            "max_trials = 100\n[extensions]\njudge_by_quality = true".to_string(),
+            "max_trials = 100".to_string(),
+        ),
+        (
+            format!("learner = \"u-tree\"\n{common}"),
+            common.to_string(),
+        ),
+        (
+            format!("learner = \"full-sensing\"\n{common}"),
+            common.to_string(),
+        ),
     ];
-    for t in tweaks {
-        let mut s = base.clone();
-        s.apply_toml(t, "t").unwrap();
-        let out = json(&s);
-        assert_ne!(out, reference, "{t}");
-        assert!(out.contains("policy_quality"), "{t}");
+    for (on, off) in &tweaks {
+        let mut with = base.clone();
+        with.apply_toml(on, "on").unwrap();
+        let mut without = base.clone();
+        without.apply_toml(off, "off").unwrap();
+        assert_ne!(with, without, "{on}");
+        let out = outcome(&with);
+        assert_ne!(
+            out,
+            outcome(&without),
+            "{on} changed nothing but the settings"
+        );
+        assert!(out.to_string().contains("policy_quality"), "{on}");
     }
 }
 
