@@ -225,6 +225,7 @@ pub use report::{
     Table1, Table1Row, TracePoint,
 };
 pub use representation::{Description, DescriptionId, Representation};
+pub use quality::value_floor;
 pub use resolve::{Resolved, is_world_name};
 pub use run::{
     Scene, Setup, run, run_in, run_observed, run_on, run_on_with, run_settings,

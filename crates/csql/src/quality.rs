@@ -387,9 +387,18 @@ fn worst<W: World + ?Sized>(world: &W, gamma: f64) -> Vec<f64> {
     mdp::worst_values(world, gamma).unwrap_or_else(|_| vec![0.0; world.num_states()])
 }
 
-/// A lower bound of every discounted return: `min(0, r_min) / (1 - gamma)`, with
-/// `r_min` the smallest reward of any outcome (0 in worlds without negative rewards).
-pub(crate) fn value_floor<W: StochasticMdp + ?Sized>(world: &W, gamma: f64) -> f64 {
+/// A lower bound of every discounted return, where every run starts Q:
+/// `min(0, r_min) / (1 - gamma)`, with `r_min` the smallest reward of any outcome (0 in
+/// worlds without negative rewards), rounded down until `r_min + gamma * floor` is at
+/// least the floor in floating point too (docs/specification.md, 1.11).
+///
+/// ```
+/// let taxi = mdp::builtin_world("taxi", &Default::default()).unwrap();
+/// let f = csql::value_floor(&taxi, 0.9);
+/// assert!(f <= -100.0 && f > -100.0 - 1e-9);
+/// assert!(-10.0 + 0.9 * f >= f);
+/// ```
+pub fn value_floor<W: StochasticMdp + ?Sized>(world: &W, gamma: f64) -> f64 {
     let r_min = min_reward(world);
     if r_min >= 0.0 {
         return 0.0;
