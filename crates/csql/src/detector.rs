@@ -5,6 +5,18 @@
 //! |---|---|---|
 //! | [`AnyDrop`] | V fell by more than the decrease threshold (the paper's rule, Theorem 2) | deterministic worlds |
 //! | [`RateTest`] | V fell noticeably in too many of the description's last updates | slippery or noisy worlds |
+//! | [`ActionDrop`] | V fell, or Q of the action taken fell after that action had been tried in the description before | deterministic worlds with penalties, beta 1 |
+//!
+//! # Why Q of an action may speak for the description
+//!
+//! From the floor of the returns ([`crate::value_floor`]), in a deterministic world whose
+//! descriptions are homomorphic and with beta 1, the target of `Q(x, a)` is `r + gamma
+//! V(y)` with the same `r` and the same next description `y` every time, and `V(y)` never
+//! falls (Theorem 1): so once `(x, a)` has been tried, its Q never falls either, and a fall
+//! proves that `x`'s states disagree on `a`. V alone can miss this: where one state of a
+//! description pays a penalty for an action that others do not (the cliff, an illegal
+//! pick-up), that action's Q falls while V, the maximum, stays, and Boltzmann selection
+//! then stops trying the action in every state of the description.
 //!
 //! In a deterministic world any decrease of V proves an inconsistent description
 //! (Theorem 2). In a slippery world, with beta below 1, the V of a description that is one
@@ -44,6 +56,12 @@ pub trait Detector {
     /// An update changed V of `row`; `dropped` says whether it fell by more than the
     /// decrease threshold. Is the description inconsistent?
     fn inconsistent(&mut self, row: RowId, change: VChange, dropped: bool) -> bool;
+    /// Called before [`Detector::inconsistent`] for the same update: Q of `action` in
+    /// `row` was updated, and `fell` says whether it fell by more than the decrease
+    /// threshold. By default nothing is kept.
+    fn action_updated(&mut self, row: RowId, action: mdp::ActionId, fell: bool) {
+        let _ = (row, action, fell);
+    }
     /// The description of `row` was refined: what was seen no longer describes it.
     fn refined(&mut self, row: RowId);
     /// Every Q and V was reset.
@@ -161,6 +179,50 @@ impl Detector for RateTest {
     }
 }
 
+/// Any fall of V, or a fall of Q for an action the description had tried before (see the
+/// module docs; the setting `detector = "action"`, beta 1 only).
+///
+/// ```
+/// use csql::{ActionDrop, Detector};
+/// use qlearn::{RowId, VChange};
+/// let mut d = ActionDrop::default();
+/// let same = VChange { before: -10.0, after: -10.0 };
+/// // The first try of an action may fall below the floor: no evidence.
+/// d.action_updated(RowId(0), mdp::ActionId(1), true);
+/// assert!(!d.inconsistent(RowId(0), same, false));
+/// // A second fall of the same action in the same description is.
+/// d.action_updated(RowId(0), mdp::ActionId(1), true);
+/// assert!(d.inconsistent(RowId(0), same, false));
+/// ```
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ActionDrop {
+    /// For each row, the actions tried since the last reset (bit `a`; actions past 63
+    /// share bit 63, which only makes the detector slower to speak).
+    tried: Vec<u64>,
+    /// Whether the update being judged lowered the Q of an action tried before.
+    fell: bool,
+}
+
+impl Detector for ActionDrop {
+    fn action_updated(&mut self, row: RowId, action: mdp::ActionId, fell: bool) {
+        let i = row.0 as usize;
+        if self.tried.len() <= i {
+            self.tried.resize(i + 1, 0);
+        }
+        let bit = 1u64 << action.0.min(63);
+        let before = self.tried[i] & bit != 0;
+        self.tried[i] |= bit;
+        self.fell = before && fell;
+    }
+    fn inconsistent(&mut self, _row: RowId, _change: VChange, dropped: bool) -> bool {
+        std::mem::take(&mut self.fell) || dropped
+    }
+    fn refined(&mut self, _row: RowId) {}
+    fn reset(&mut self) {
+        self.tried.clear();
+    }
+}
+
 /// Which detector a run uses (a setting; `"decrease"` is the paper's rule).
 ///
 /// ```
@@ -175,6 +237,8 @@ pub enum DetectorKind {
     Decrease,
     /// [`RateTest`].
     Statistical,
+    /// [`ActionDrop`].
+    Action,
 }
 
 /// The detector of a run, chosen by a setting.
@@ -190,6 +254,8 @@ pub enum RunDetector {
     Decrease(AnyDrop),
     /// The rate test.
     Statistical(RateTest),
+    /// Falls of V or of a tried action's Q.
+    Action(ActionDrop),
 }
 
 impl RunDetector {
@@ -203,6 +269,7 @@ impl RunDetector {
         match kind {
             DetectorKind::Decrease => RunDetector::Decrease(AnyDrop),
             DetectorKind::Statistical => RunDetector::Statistical(RateTest::new(params)),
+            DetectorKind::Action => RunDetector::Action(ActionDrop::default()),
         }
     }
 }
@@ -218,18 +285,26 @@ impl Detector for RunDetector {
         match self {
             RunDetector::Decrease(d) => d.inconsistent(row, change, dropped),
             RunDetector::Statistical(d) => d.inconsistent(row, change, dropped),
+            RunDetector::Action(d) => d.inconsistent(row, change, dropped),
         }
     }
     fn refined(&mut self, row: RowId) {
         match self {
             RunDetector::Decrease(d) => d.refined(row),
             RunDetector::Statistical(d) => d.refined(row),
+            RunDetector::Action(d) => d.refined(row),
+        }
+    }
+    fn action_updated(&mut self, row: RowId, action: mdp::ActionId, fell: bool) {
+        if let RunDetector::Action(d) = self {
+            d.action_updated(row, action, fell);
         }
     }
     fn reset(&mut self) {
         match self {
             RunDetector::Decrease(d) => d.reset(),
             RunDetector::Statistical(d) => d.reset(),
+            RunDetector::Action(d) => d.reset(),
         }
     }
 }

@@ -200,7 +200,9 @@ mod tree;
 mod utree;
 
 pub use classify::{Classification, Classify};
-pub use detector::{AnyDrop, Detector, DetectorKind, RateParams, RateTest, RunDetector};
+pub use detector::{
+    ActionDrop, AnyDrop, Detector, DetectorKind, RateParams, RateTest, RunDetector,
+};
 pub use error::{Error, SettingsProblem};
 pub use extensions::{Extensions, Matching, WorldExtras};
 pub use figure::{descriptions_svg, descriptions_table, policy_svg};
@@ -212,6 +214,7 @@ pub use navigate::{Navigation, navigate};
 pub use observe::{Flow, KeepTrace, Observer};
 pub use perception::{FullView, Identified, Perception};
 pub use predict::{PredictSensing, Predicting, Prediction, PredictionStats, TransitionModel};
+pub use quality::value_floor;
 pub use quality::{
     MC_MAX_MOVES, MC_MAX_ROUNDS, MC_MIN_ROUNDS, POLICY_BATCHES, POLICY_SAMPLES, QualityEstimate,
     QualityMethod, Sees,
@@ -225,7 +228,6 @@ pub use report::{
     Table1, Table1Row, TracePoint,
 };
 pub use representation::{Description, DescriptionId, Representation};
-pub use quality::value_floor;
 pub use resolve::{Resolved, is_world_name};
 pub use run::{
     Scene, Setup, run, run_in, run_observed, run_on, run_on_with, run_settings,

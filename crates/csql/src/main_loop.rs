@@ -254,7 +254,13 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
             };
             // 4./5. Equation 2 for Q(descrip(x), a), then V(descrip(x)).
             let target = next.map_or(Target::Terminal, Target::Bootstrap);
+            let q_before = table.q(row_x, a);
             let change = table.update(row_x, a, step.reward, target, params.beta, params.gamma);
+            detector.action_updated(
+                row_x,
+                a,
+                table.q(row_x, a) < q_before - params.decrease_threshold,
+            );
             journal.updated.push(row_x);
             perception.updated(row_x, a, step.reward, next, table);
             let mut row_y = next;

@@ -213,7 +213,7 @@ pub(crate) fn policy_quality<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
 ) -> QualityEstimate {
     let states = world.states();
     let gamma = truth.gamma();
-    let floor = worst(world, gamma);
+    let floor = value_floor(world, gamma);
     let act = |row: Option<RowId>| row.map_or(ActionId(0), |r| table.greedy(r));
     if noise.is_zero() && perception.memoryless() {
         let mut policy = vec![ActionId(0); world.num_states()];
@@ -221,7 +221,7 @@ pub(crate) fn policy_quality<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
             policy[s.index()] = act(perception.sees(world, s, noise, rng));
         }
         let quality = match mdp::evaluate_policy(world, gamma, &policy) {
-            Ok(v) => ratio_mean(&states, truth, &floor, |s| v[s.index()]),
+            Ok(v) => ratio_mean(&states, truth, floor, |s| v[s.index()]),
             Err(_) => 0.0,
         };
         return QualityEstimate {
@@ -259,7 +259,7 @@ pub(crate) fn policy_quality<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
             }
             returns[s.index()] = g;
         }
-        rounds.push(ratio_mean(&states, truth, &floor, |s| returns[s.index()]));
+        rounds.push(ratio_mean(&states, truth, floor, |s| returns[s.index()]));
         if deterministic {
             return QualityEstimate {
                 quality: rounds[0],
@@ -294,7 +294,7 @@ fn sampled_policy_quality<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
     rng: &mut R,
 ) -> QualityEstimate {
     let states = world.states();
-    let floor = worst(world, truth.gamma());
+    let floor = value_floor(world, truth.gamma());
     let n = world.num_states();
     let mut measured = vec![false; n];
     for &s in &states {
@@ -330,7 +330,7 @@ fn sampled_policy_quality<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
             })
             .collect();
         match mdp::evaluate_stochastic_policy(world, truth.gamma(), &policy) {
-            Ok(v) => ratio_mean(&states, truth, &floor, |s| v[s.index()]),
+            Ok(v) => ratio_mean(&states, truth, floor, |s| v[s.index()]),
             Err(_) => 0.0,
         }
     };
@@ -356,79 +356,72 @@ fn standard_error(xs: &[f64]) -> f64 {
 }
 
 /// Mean over states with a positive V* of value / V*.
-/// The mean over states of `(value(s) - W(s)) / (V*(s) - W(s))`, over the states where
-/// `V*(s) > W(s)` (1 if there is none), with `W` the value of the worst policy
-/// ([`worst`]): 0 for the worst policy, 1 for an optimal one. Where no reward is negative
-/// and some policy can avoid every reward (every grid map), `W` is 0 and this is the
+/// The mean over states of `(value(s) - floor) / (V*(s) - floor)`, over the states where
+/// `V*(s) > floor` (1 if there is none), with `floor` the [`value_floor`]: 1 for an
+/// optimal policy, 0 for one no better than the worst state's best reward forever
+/// (below 0 for a worse one). Where no reward is negative the floor is 0 and this is the
 /// ratio `value / V*`.
 fn ratio_mean(
     states: &[StateId],
     truth: &Oracle,
-    worst: &[f64],
+    floor: f64,
     value: impl Fn(StateId) -> f64,
 ) -> f64 {
     let (sum, n) = states
         .iter()
-        .filter(|&&s| truth.v_star(s) > worst[s.index()])
+        .filter(|&&s| truth.v_star(s) > floor)
         .fold((0.0, 0usize), |(sum, n), &s| {
-            let w = worst[s.index()];
-            (sum + (value(s) - w) / (truth.v_star(s) - w), n + 1)
+            (sum + (value(s) - floor) / (truth.v_star(s) - floor), n + 1)
         });
     if n == 0 { 1.0 } else { sum / n as f64 }
 }
 
-/// The value of the worst policy from every state on the true model (0 everywhere on a
-/// grid map, where bumping into a wall forever earns nothing).
-fn worst<W: World + ?Sized>(world: &W, gamma: f64) -> Vec<f64> {
-    if world.grid().is_some() {
-        return vec![0.0; world.num_states()];
-    }
-    // The discount is a validated setting, so value iteration accepts it.
-    mdp::worst_values(world, gamma).unwrap_or_else(|_| vec![0.0; world.num_states()])
-}
-
-/// A lower bound of every discounted return, where every run starts Q:
-/// `min(0, r_min) / (1 - gamma)`, with `r_min` the smallest reward of any outcome (0 in
-/// worlds without negative rewards), rounded down until `r_min + gamma * floor` is at
-/// least the floor in floating point too (docs/specification.md, 1.11).
+/// Where every run starts Q and V: `min(0, r*) / (1 - gamma)`, with `r*` the least, over
+/// the states a trial may visit, of the best reward an action can surely get there (the
+/// largest over actions of the smallest reward among the action's outcomes): the value of
+/// earning the worst state's best reward forever. Rounded down until
+/// `r* + gamma * floor >= floor` holds in floating point too. 0 in worlds without
+/// negative rewards, and on every grid map (docs/specification.md, 1.11).
+///
+/// From there, in a deterministic world whose descriptions are homomorphic, V never
+/// decreases: an action not yet tried keeps its row at the floor, and once the best one
+/// of a state is tried its target `r + gamma V` is at least the floor. Actions that pay
+/// the step penalty keep the floor exactly (`-1 + 0.9 * -10 = -10`), as untried ones do,
+/// so Boltzmann selection still explores them evenly, as it does in the paper's world.
 ///
 /// ```
 /// let taxi = mdp::builtin_world("taxi", &Default::default()).unwrap();
 /// let f = csql::value_floor(&taxi, 0.9);
-/// assert!(f <= -100.0 && f > -100.0 - 1e-9);
-/// assert!(-10.0 + 0.9 * f >= f);
+/// assert!(f <= -10.0 && f > -10.0 - 1e-9); // -1 per step, forever
+/// assert!(-1.0 + 0.9 * f >= f);
+/// let lake = mdp::builtin_world("frozenlake4x4", &Default::default()).unwrap();
+/// assert_eq!(csql::value_floor(&lake, 0.9), 0.0);
 /// ```
-pub fn value_floor<W: StochasticMdp + ?Sized>(world: &W, gamma: f64) -> f64 {
-    let r_min = min_reward(world);
-    if r_min >= 0.0 {
+pub fn value_floor<W: World + ?Sized>(world: &W, gamma: f64) -> f64 {
+    let mut out = Vec::new();
+    let r_star = world
+        .states()
+        .into_iter()
+        .map(|s| {
+            (0..world.num_actions() as u32)
+                .map(|a| {
+                    world.outcomes(s, ActionId(a), &mut out);
+                    out.iter().map(|o| o.1.reward).fold(f64::INFINITY, f64::min)
+                })
+                .fold(f64::NEG_INFINITY, f64::max)
+        })
+        .fold(0.0, f64::min);
+    if r_star >= 0.0 {
         return 0.0;
     }
-    let mut floor = r_min / (1.0 - gamma);
-    // Rounding can leave `r_min + gamma * floor` a unit in the last place below `floor`,
+    let mut floor = r_star / (1.0 - gamma);
+    // Rounding can leave `r* + gamma * floor` a unit in the last place below `floor`,
     // which would read as a decrease: step down until the floor holds in floating point
-    // too (then every target `r + gamma V`, V at least the floor, is at least the floor).
-    while r_min + gamma * floor < floor {
+    // too (rounding is monotone, so every target of a state's best action then holds it).
+    while r_star + gamma * floor < floor {
         floor = floor.next_down();
     }
     floor
-}
-
-/// The smallest reward of any outcome of any non-terminal state (0 if none is smaller).
-pub(crate) fn min_reward<W: StochasticMdp + ?Sized>(world: &W) -> f64 {
-    let mut out = Vec::new();
-    let mut least: f64 = 0.0;
-    for s in (0..world.num_states() as u32).map(StateId) {
-        if world.is_terminal(s) {
-            continue;
-        }
-        for a in (0..world.num_actions() as u32).map(ActionId) {
-            world.outcomes(s, a, &mut out);
-            for (_, step) in &out {
-                least = least.min(step.reward);
-            }
-        }
-    }
-    least
 }
 
 /// Whether every action of every non-terminal state has a single outcome.

@@ -494,6 +494,15 @@ impl RunSettings {
                 "predict_sensing = off with a learner other than cs-ql",
             );
         }
+        if self.extensions.detector == crate::DetectorKind::Action && self.beta.get() != 1.0 {
+            return refuse(
+                format!(
+                    "extensions.detector = \"action\" with beta = {}",
+                    self.beta.get()
+                ),
+                "beta = 1 with detector = \"action\" (below 1, Q approaches a target from above and falls without proving anything)",
+            );
+        }
         let e = &self.extensions;
         let cs_ql_only = e.detector != crate::DetectorKind::default()
             || e.matching != crate::Matching::Exact

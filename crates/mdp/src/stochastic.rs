@@ -508,35 +508,6 @@ fn iterate_bellman<M: StochasticMdp + ?Sized>(
     }
 }
 
-/// The value of the worst policy from every state: the least expected discounted return
-/// any policy can get (value iteration that takes the worst action; terminal states have
-/// value 0). A lower bound of every policy's value, 0 where some policy can avoid every
-/// reward in a world without negative rewards.
-///
-/// ```
-/// use mdp::{GridWorld, Slip, SlipperyGrid};
-/// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
-/// let w = mdp::worst_values(&SlipperyGrid::new(&world, Slip::default()), 0.9).unwrap();
-/// assert!(w.iter().all(|&x| x == 0.0)); // bumping into a wall forever earns nothing
-/// let lake = mdp::builtin_world("cliffwalking", &Default::default()).unwrap();
-/// let w = mdp::worst_values(&lake, 0.9).unwrap();
-/// assert!((w[36] - (-100.0 / 0.1)).abs() < 1e-6); // the cliff, again and again
-/// ```
-pub fn worst_values<M: StochasticMdp + ?Sized>(mdp: &M, gamma: f64) -> Result<Vec<f64>, MdpError> {
-    if !(0.0..1.0).contains(&gamma) {
-        return Err(MdpError::InvalidDiscount { gamma });
-    }
-    let na = mdp.num_actions();
-    iterate_bellman(mdp, |s, v, out| {
-        (0..na as u32)
-            .map(|a| {
-                mdp.outcomes(s, ActionId(a), out);
-                backup(out, v, gamma)
-            })
-            .fold(f64::INFINITY, f64::min)
-    })
-}
-
 /// The expected reward plus discounted value of a list of outcomes.
 pub(crate) fn backup(outcomes: &[(f64, Step)], v: &[f64], gamma: f64) -> f64 {
     outcomes
