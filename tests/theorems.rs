@@ -162,21 +162,26 @@ fn step(world: &FiniteWorld, s: StateId, a: ActionId) -> Step {
     out[0].1
 }
 
-/// The smallest reward of the world (0 if none is smaller).
-fn min_reward(world: &FiniteWorld) -> f64 {
-    (0..world.num_states() as u32)
-        .map(StateId)
-        .filter(|&s| !world.is_terminal(s))
-        .flat_map(|s| (0..world.num_actions() as u32).map(move |a| (s, ActionId(a))))
-        .map(|(s, a)| step(world, s, a).reward)
+/// The worst state's best reward: the least, over the states a trial may visit, of the
+/// largest reward of an action there (0 if none is smaller).
+fn worst_best_reward(world: &FiniteWorld) -> f64 {
+    world
+        .states()
+        .into_iter()
+        .map(|s| {
+            (0..world.num_actions() as u32)
+                .map(|a| step(world, s, ActionId(a)).reward)
+                .fold(f64::NEG_INFINITY, f64::max)
+        })
         .fold(0.0, f64::min)
 }
 
-/// The floor every run starts Q at: `min(0, r_min) / (1 - gamma)`, rounded down until
-/// the update keeps it in floating point (`csql::value_floor`).
+/// The floor every run starts Q at: `min(0, r*) / (1 - gamma)` with `r*` the worst
+/// state's best reward, rounded down until the update keeps it in floating point
+/// (`csql::value_floor`).
 fn floor(world: &FiniteWorld, gamma: f64) -> f64 {
     let f = csql::value_floor(world, gamma);
-    let exact = min_reward(world).min(0.0) / (1.0 - gamma);
+    let exact = worst_best_reward(world).min(0.0) / (1.0 - gamma);
     assert!(f <= exact && exact - f <= 1e-12 * exact.abs().max(1.0));
     f
 }
@@ -608,13 +613,14 @@ fn decreases_and_convergence_happen() {
 }
 
 /// The floor is what keeps Theorem 1 with negative rewards: the same worlds and moves
-/// from Q = 0 do decrease. (A world with an action whose reward is negative loses value
-/// as soon as a state has tried its actions and found them all below 0.)
+/// from Q = 0 do decrease. (A world where some state's best reward is negative loses
+/// value as soon as that state has tried its actions and found them all below 0; where
+/// every state has an action paying at least 0, the floor is 0.)
 #[test]
 fn from_zero_negative_rewards_decrease() {
     let (mut negative, mut decreased) = (0, 0);
     for c in cases(150, 6) {
-        if min_reward(&c.world) >= 0.0 {
+        if worst_best_reward(&c.world) >= 0.0 {
             continue;
         }
         negative += 1;
@@ -640,12 +646,12 @@ fn from_zero_negative_rewards_decrease() {
         decreased += usize::from(!real(&at_zero).is_empty());
     }
     assert!(
-        negative >= 50,
-        "only {negative} worlds with a negative reward"
+        negative >= 20,
+        "only {negative} worlds where some state's best reward is negative"
     );
     assert!(
-        decreased >= 25,
-        "only {decreased} of {negative} worlds with a negative reward decreased from 0"
+        decreased >= 10,
+        "only {decreased} of {negative} worlds where some state's best reward is negative decreased from 0"
     );
 }
 

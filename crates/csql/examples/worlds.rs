@@ -6,7 +6,9 @@
 //!
 //! `cargo run --release -p csql --example worlds -- [SEEDS] [NAME-PART]`
 //!
-//! Deterministic worlds use the paper's settings; on the slippery and sliding lakes every
+//! Deterministic worlds use the paper's settings, and CS-QL on Taxi and CliffWalking the
+//! detector `action` (specification 1.11); those two are run at the paper's temperature
+//! and at one scaled to their rewards. On the slippery and sliding lakes every
 //! learner has beta 0.02 (a constant step that averages the random outcomes), 20000
 //! trials and a quality evaluation every 100 trials, and CS-QL the statistical detector.
 //!
@@ -25,7 +27,7 @@ struct Config {
 
 fn configs() -> Vec<Config> {
     let mut out = Vec::new();
-    for world in ["frozenlake4x4", "frozenlake8x8", "cliffwalking"] {
+    for world in ["frozenlake4x4", "frozenlake8x8"] {
         for sensing in ["local", "factors"] {
             out.push(Config {
                 world,
@@ -35,12 +37,31 @@ fn configs() -> Vec<Config> {
             });
         }
     }
-    out.push(Config {
-        world: "taxi",
-        sensing: "factors",
-        dynamics: "deterministic",
-        toml: String::new(),
-    });
+    // Rewards of -100 to -1 and -10 to 20: the paper's temperature (0.4, for rewards of
+    // size 1), and one scaled to the world's largest reward (0.4 times it).
+    for (world, sensings, scaled) in [
+        ("cliffwalking", &["local", "factors"][..], 40.0),
+        ("taxi", &["factors"][..], 8.0),
+    ] {
+        for &sensing in sensings {
+            out.push(Config {
+                world,
+                sensing,
+                dynamics: "deterministic, T 0.4",
+                toml: format!("[world]\nsensing = \"{sensing}\""),
+            });
+            out.push(Config {
+                world,
+                sensing,
+                dynamics: if scaled == 8.0 {
+                    "deterministic, T 8"
+                } else {
+                    "deterministic, T 40"
+                },
+                toml: format!("temperature = {scaled}\n[world]\nsensing = \"{sensing}\""),
+            });
+        }
+    }
     for (dynamics, world) in [
         ("slip 2/3", "slip = 0.6666666666666666"),
         ("slide 0.5", "slide = 0.5"),
@@ -109,10 +130,15 @@ fn main() -> Result<(), csql::Error> {
                     let mut s = RunSettings::tan1991(c.world, strategy, seed);
                     s.apply_toml(&c.toml, "worlds example")?;
                     s.learner = learner;
-                    if learner == LearnerKind::CsQl && c.dynamics != "deterministic" {
+                    if learner == LearnerKind::CsQl && !c.dynamics.starts_with("deterministic") {
                         // A single decrease is noise where moves are random: ask the
                         // statistical detector for evidence (specification 6.8).
                         s.extensions.detector = csql::DetectorKind::Statistical;
+                    }
+                    if learner == LearnerKind::CsQl && ["taxi", "cliffwalking"].contains(&c.world) {
+                        // Penalties for one state of a description fall on Q, not V
+                        // (specification 1.11).
+                        s.extensions.detector = csql::DetectorKind::Action;
                     }
                     s.validate()?;
                     Ok(s)
