@@ -87,7 +87,7 @@ impl Setup {
         self.stochastic_oracle.as_ref().unwrap_or(&self.oracle)
     }
 
-    /// The grid as a [`World`]: its local sensing and the slip of `settings`.
+    /// The grid as a [`World`](mdp::World): its local sensing and the slip of `settings`.
     ///
     /// ```
     /// use mdp::Sensors;

@@ -21,7 +21,7 @@ struct Entry {
 }
 
 /// The learned transition model at the level of descriptions: (description, action) ->
-/// next description, with the confidence rule of [`Prediction::confirmations`].
+/// next description, with the confidence rule of [`Prediction::confirmations`](crate::Prediction::confirmations).
 ///
 /// ```
 /// use csql::TransitionModel;
