@@ -221,6 +221,14 @@ pub fn threads(threads: Option<usize>) -> Result<usize> {
     }
 }
 
+/// Build a thread pool of the asked size (0 or none: every core).
+pub fn pool(threads: Option<usize>) -> Result<rayon::ThreadPool> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(self::threads(threads)?)
+        .build()
+        .context("cannot start worker threads")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

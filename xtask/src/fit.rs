@@ -513,7 +513,7 @@ pub fn run(args: &FitArgs) -> Result<()> {
     let search = seeds(SEARCH_BASE, args.search_seeds);
     let select = seeds(SELECT_BASE, args.select_seeds);
     let report = seeds(REPORT_BASE, args.report_seeds);
-    let pool = crate::reproduce::pool(args.threads)?;
+    let pool = crate::files::pool(args.threads)?;
     let started = std::time::Instant::now();
 
     // Phase 1: random layouts.

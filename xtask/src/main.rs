@@ -17,6 +17,7 @@ mod fit;
 
 mod render;
 mod reproduce;
+mod results;
 mod robustness;
 mod sense;
 mod shard;

@@ -8,66 +8,15 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
-use clap::Args;
 use csql::{Reference, RunReport, RunSettings, Setup, StateTree, StrategyKind, Table1Row};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 
 use crate::figures;
-
-use crate::stats::Summary;
-
-/// Arguments of `cargo xtask reproduce`.
-#[derive(Args, Clone, Debug)]
-pub struct ReproduceArgs {
-    /// Runs per strategy (the paper: 5).
-    #[arg(long, default_value_t = 5)]
-    pub runs: u64,
-    /// Base seed: run i uses seed S + i.
-    #[arg(long, default_value_t = 1)]
-    pub seed: u64,
-    /// The map: a built-in name or a map file.
-    #[arg(long, default_value = "tan8x8")]
-    pub map: String,
-    /// Strategies, comma-separated, each named once.
-    #[arg(
-        long,
-        value_delimiter = ',',
-        default_value = "resetting,lazy,random,eager"
-    )]
-    pub strategies: Vec<StrategyKind>,
-    /// Worker threads, at most 256 (default or 0: every core). Results do not depend on it.
-    #[arg(long)]
-    pub threads: Option<usize>,
-    /// Output folder.
-    #[arg(long, default_value = "results")]
-    pub out: PathBuf,
-    /// Recompute the default table and compare it with the committed docs/table1.md,
-    /// failing on any difference; writes nothing.
-    #[arg(long, conflicts_with = "bless")]
-    pub check: bool,
-    /// Also refresh the committed docs/table1.md and docs/figures/ (only with the default
-    /// map, runs, seed and strategies). Without it, nothing outside `--out` is written.
-    #[arg(long)]
-    pub bless: bool,
-}
-
-impl ReproduceArgs {
-    fn is_default(&self) -> bool {
-        self.runs == 5
-            && self.seed == 1
-            && self.map == PAPERS_MAP
-            && self.strategies == StrategyKind::ALL
-    }
-
-    /// The paper's numbers are shown beside ours only on our reconstruction of its map.
-    fn on_papers_map(&self) -> bool {
-        self.map == PAPERS_MAP
-    }
-}
-
-/// The built-in map that stands for the paper's (fitted to its Table 1).
-const PAPERS_MAP: &str = "tan8x8";
+use crate::files::pool;
+pub use crate::results::ReproduceArgs;
+use crate::results::Results;
+use crate::stats::{Summary, rows, summary};
 
 /// The committed copy of the default table.
 const COMMITTED: &str = "docs/table1.md";
@@ -97,16 +46,6 @@ enum Outcome {
     FullSensing(Reference),
 }
 
-/// Everything the table and the figures are made of.
-pub struct Results {
-    pub args: ReproduceArgs,
-    pub setup: Setup,
-    /// Per strategy (in the order asked), its runs and the Q-learning-on-the-final-
-    /// representation reference of each run.
-    pub runs: Vec<(StrategyKind, Vec<RunReport>, Vec<Reference>)>,
-    pub full: Vec<Reference>,
-}
-
 fn progress(len: u64, what: &str) -> ProgressBar {
     let bar = ProgressBar::new(len);
     bar.set_style(
@@ -116,14 +55,6 @@ fn progress(len: u64, what: &str) -> ProgressBar {
     );
     bar.set_message(what.to_string());
     bar
-}
-
-/// Build a thread pool of the asked size (0 or none: every core).
-pub fn pool(threads: Option<usize>) -> Result<rayon::ThreadPool> {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(crate::files::threads(threads)?)
-        .build()
-        .context("cannot start worker threads")
 }
 
 /// Run every job of a reproduction.
@@ -194,34 +125,6 @@ pub fn compute(args: &ReproduceArgs) -> Result<Results> {
         runs,
         full,
     })
-}
-
-/// Table 1's rows as the reproduction prints them: csql's one definition of the rows
-/// (number, label, the paper's value, where ours comes from), with the decimals of a
-/// mean over runs (a mean of counts gets one).
-pub(crate) fn rows() -> impl Iterator<Item = (String, usize, Table1Row)> {
-    Table1Row::ALL.into_iter().map(|row| {
-        let decimals = match row {
-            Table1Row::TrialsToSufficient
-            | Table1Row::Trials
-            | Table1Row::Descriptions
-            | Table1Row::MaxFeatures => 1,
-            _ => row.decimals(),
-        };
-        (format!("{} {}", row.number(), row.label()), decimals, row)
-    })
-}
-
-/// Mean, spread and range of one row over runs (the runs that reached it).
-pub(crate) fn summary<R: std::borrow::Borrow<RunReport>>(
-    runs: &[R],
-    row: Table1Row,
-) -> Option<Summary> {
-    let values: Vec<f64> = runs
-        .iter()
-        .filter_map(|r| row.of(&r.borrow().table1))
-        .collect();
-    Summary::of(&values)
 }
 
 impl Results {
@@ -893,7 +796,7 @@ mod tests {
         let a = ReproduceArgs {
             runs: 1,
             seed: 1,
-            map: PAPERS_MAP.into(),
+            map: crate::results::PAPERS_MAP.into(),
             strategies: vec![StrategyKind::Resetting, StrategyKind::Lazy],
             threads: Some(2),
             out: PathBuf::from("unused"),

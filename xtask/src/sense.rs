@@ -12,8 +12,8 @@ use csql::{PredictSensing, RunReport, StrategyKind};
 use rayon::prelude::*;
 
 use crate::figures;
-use crate::reproduce::{Results, rows, summary};
-use crate::stats::Summary;
+use crate::results::Results;
+use crate::stats::{Summary, rows, summary};
 
 /// The levels beyond the paper, in order.
 const LEVELS: [PredictSensing; 2] = [PredictSensing::Learned, PredictSensing::Motion];
@@ -31,7 +31,7 @@ pub fn write(res: &Results, out: &Path, to_docs: bool) -> Result<Vec<PathBuf>> {
                 .flat_map(move |&k| (0..args.runs).map(move |i| (l, k, i)))
         })
         .collect();
-    let reports: Vec<RunReport> = crate::reproduce::pool(args.threads)?.install(|| {
+    let reports: Vec<RunReport> = crate::files::pool(args.threads)?.install(|| {
         jobs.par_iter()
             .map(|&(level, strategy, i)| {
                 let mut s = csql::RunSettings::tan1991(&args.map, strategy, args.seed + i);

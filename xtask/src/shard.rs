@@ -297,7 +297,7 @@ where
         .with_context(|| format!("cannot open {}", results_path.display()))?;
     let file = Mutex::new(file);
     let bar = ProgressBar::new(todo.len() as u64);
-    crate::reproduce::pool(threads)?.install(|| {
+    crate::files::pool(threads)?.install(|| {
         todo.par_iter().try_for_each(|&id| -> Result<()> {
             let result = run(id)?;
             let line = serde_json::to_string(&result)? + "\n";

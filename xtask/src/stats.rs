@@ -1,5 +1,7 @@
 //! Summary statistics over runs.
 
+use csql::{RunReport, Table1Row};
+
 /// Mean, sample standard deviation, minimum and maximum of some values.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Summary {
@@ -45,6 +47,34 @@ impl Summary {
             d = decimals
         )
     }
+}
+
+/// Table 1's rows as the reproduction prints them: csql's one definition of the rows
+/// (number, label, the paper's value, where ours comes from), with the decimals of a
+/// mean over runs (a mean of counts gets one).
+pub(crate) fn rows() -> impl Iterator<Item = (String, usize, Table1Row)> {
+    Table1Row::ALL.into_iter().map(|row| {
+        let decimals = match row {
+            Table1Row::TrialsToSufficient
+            | Table1Row::Trials
+            | Table1Row::Descriptions
+            | Table1Row::MaxFeatures => 1,
+            _ => row.decimals(),
+        };
+        (format!("{} {}", row.number(), row.label()), decimals, row)
+    })
+}
+
+/// Mean, spread and range of one row over runs (the runs that reached it).
+pub(crate) fn summary<R: std::borrow::Borrow<RunReport>>(
+    runs: &[R],
+    row: Table1Row,
+) -> Option<Summary> {
+    let values: Vec<f64> = runs
+        .iter()
+        .filter_map(|r| row.of(&r.borrow().table1))
+        .collect();
+    Summary::of(&values)
 }
 
 #[cfg(test)]

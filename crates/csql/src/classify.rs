@@ -45,6 +45,8 @@ use self::cache::{Cache, Step};
 use crate::extensions::Matching;
 use crate::perception::Perception;
 use crate::representation::{DescriptionId, Representation, feature_id, value_of};
+use crate::tree::StateTree;
+use crate::view::{Describes, Sees};
 
 /// The result of one classification.
 ///
@@ -869,5 +871,45 @@ impl Perception for Classify {
 
     fn lookup<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> Option<RowId> {
         Classify::lookup(self, world, s).map(DescriptionId::row)
+    }
+}
+
+impl Sees for Classify {
+    fn sees<W: mdp::World + ?Sized, R: rand::Rng + ?Sized>(
+        &mut self,
+        world: &W,
+        s: StateId,
+        noise: SensorNoise,
+        rng: &mut R,
+    ) -> Option<RowId> {
+        self.lookup_noisy(world, s, noise, rng).map(|d| d.row())
+    }
+}
+
+impl Describes for Classify {
+    fn described(&self) -> Vec<(qlearn::RowId, Vec<(mdp::Feature, Reading)>)> {
+        self.representation()
+            .iter()
+            .map(|(id, d)| (id.row(), d.features().collect()))
+            .collect()
+    }
+    fn cost_after_learning<W: mdp::World + ?Sized>(&mut self, world: &W, s: mdp::StateId) -> f64 {
+        self.lookup_cost(world, s)
+    }
+    fn table1_costs<W: mdp::World + ?Sized>(&mut self, world: &W) -> (f64, f64) {
+        let states = world.states();
+        let rep = self.representation();
+        let tree = StateTree::build(rep, self.prices());
+        let costs: Vec<f64> = states.iter().map(|&s| tree.classify(world, s).1).collect();
+        let tree_cost = costs.iter().sum::<f64>() / states.len() as f64;
+        let labels: Vec<Option<DescriptionId>> =
+            states.iter().map(|&s| self.lookup(world, s)).collect();
+        let rep = self.representation();
+        let plain: f64 = labels
+            .iter()
+            .flatten()
+            .map(|&l| rep.get(l).cost(world))
+            .sum();
+        (tree_cost, plain / states.len() as f64)
     }
 }

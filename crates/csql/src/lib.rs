@@ -139,6 +139,7 @@
 #![deny(missing_docs)]
 #![cfg_attr(not(test), warn(clippy::unwrap_used, clippy::expect_used))]
 
+mod audit;
 #[allow(
     clippy::expect_used,
     reason = "internal invariants: feature spaces hold valid costs; a node with counts has a candidate feature"
@@ -148,11 +149,13 @@ mod detector;
 mod error;
 mod extensions;
 mod figure;
+mod grid;
 #[allow(
     clippy::expect_used,
     reason = "internal invariants: every state of a sufficient representation has a row"
 )]
 mod judge;
+mod learn;
 mod learner;
 mod main_loop;
 #[allow(
@@ -191,6 +194,7 @@ mod resolve;
 )]
 mod run;
 mod settings;
+mod setup;
 mod strategy;
 mod tree;
 #[allow(
@@ -198,6 +202,7 @@ mod tree;
     reason = "internal invariant: a walk given a table always ends at a row"
 )]
 mod utree;
+mod view;
 
 pub use classify::{Classification, Classify};
 pub use detector::{
@@ -207,35 +212,39 @@ pub use error::{Error, SettingsProblem};
 pub use extensions::{Extensions, Matching, WorldExtras};
 pub use figure::{descriptions_svg, descriptions_table, policy_svg};
 pub use judge::{Judge, Verdict};
+pub use learn::Scene;
 pub use learner::{LearnerKind, UTreeParams};
 pub use main_loop::{Agent, LoopParams, TrialRecord};
 pub use memory::Remembering;
 pub use navigate::{Navigation, navigate};
-pub use observe::{Flow, KeepTrace, Observer};
+pub use observe::{Flow, KeepTrace, Observer, TracePoint};
 pub use perception::{FullView, Identified, Perception};
-pub use predict::{PredictSensing, Predicting, Prediction, PredictionStats, TransitionModel};
+pub use predict::level::{PredictSensing, Prediction};
+pub use predict::model::TransitionModel;
+pub use predict::{Predicting, PredictionStats};
 pub use quality::value_floor;
 pub use quality::{
     MC_MAX_MOVES, MC_MAX_ROUNDS, MC_MIN_ROUNDS, POLICY_BATCHES, POLICY_SAMPLES, QualityEstimate,
-    QualityMethod, Sees,
+    QualityMethod,
 };
 pub use reference::{
     Reference, cheapest_interior_cost, fixed_representation_reference, full_sensing_reference,
     whole_world_cost,
 };
 pub use report::{
-    Describes, DescriptionReport, FeatureReport, PaperValue, QualityReport, RunReport, StateReport,
-    Table1, Table1Row, TracePoint,
+    DescriptionReport, FeatureReport, PaperValue, QualityReport, RunReport, StateReport, Table1,
+    Table1Row,
 };
 pub use representation::{Description, DescriptionId, Representation};
 pub use resolve::{Resolved, is_world_name};
 pub use run::{
-    Scene, Setup, run, run_in, run_observed, run_on, run_on_with, run_settings,
-    run_with_representation,
+    run, run_in, run_observed, run_on, run_on_with, run_settings, run_with_representation,
 };
 pub use settings::{MAX_SETTINGS_BYTES, MapSource, NonNegative, RunSettings, TrialCap};
+pub use setup::Setup;
 pub use strategy::{
     Eager, Lazy, Never, RandomMoves, Reaction, Resetting, Strategy, StrategyKind, UnknownStrategy,
 };
 pub use tree::{StateSensor, StateTree};
 pub use utree::{UTree, ks_p_value};
+pub use view::{Describes, Sees};

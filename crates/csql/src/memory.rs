@@ -22,8 +22,8 @@ use rand::Rng;
 
 use crate::classify::Classify;
 use crate::perception::Perception;
-use crate::quality::Sees;
 use crate::representation::DescriptionId;
+use crate::view::Sees;
 
 /// One step of history: the action taken and the description of the state it left.
 type Step = (u8, u32);
@@ -240,7 +240,7 @@ impl Sees for Remembering {
     }
 }
 
-impl crate::report::Describes for Remembering {
+impl crate::view::Describes for Remembering {
     /// Each row with its description's features (its history is not a feature).
     fn described(&self) -> Vec<(RowId, Vec<(Feature, Reading)>)> {
         let rep = self.inner.representation();

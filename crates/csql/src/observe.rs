@@ -8,7 +8,34 @@
 //! Observing changes nothing the run computes: a run observed to its end reports exactly
 //! what [`run_on`](crate::run_on) reports, except for the trace when it is not kept.
 
-use crate::report::TracePoint;
+use serde::Serialize;
+
+/// One line of the learning curve: the state of the run at the end of a trial.
+///
+/// ```
+/// let r = csql::run(&csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Eager, 1)).unwrap();
+/// let last = r.trace.last().unwrap();
+/// assert!(last.converged && last.cumulative_cost == r.total_cost);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct TracePoint {
+    /// The trial, from 1.
+    pub trial: u32,
+    /// Moves in this trial.
+    pub moves: u32,
+    /// Sensing cost charged so far in the run.
+    pub cumulative_cost: f64,
+    /// Descriptions at the end of the trial.
+    pub descriptions: usize,
+    /// Decreases seen in this trial.
+    pub decreases: u32,
+    /// Features added in this trial.
+    pub refinements: u32,
+    /// The representation is sufficient.
+    pub sufficient: bool,
+    /// The run has converged.
+    pub converged: bool,
+}
 
 /// What the run does after an observed trial.
 ///

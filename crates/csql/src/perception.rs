@@ -4,9 +4,11 @@
 //! row, which makes the main loop plain Q-learning (the baseline and the paper's
 //! full-sensing reference).
 
-use mdp::{ActionId, Reading, StateId, World};
+use mdp::{ActionId, Reading, SensorNoise, StateId, World};
 use qlearn::{QTable, RowId};
 use rand::Rng;
+
+use crate::view::{Describes, Sees};
 
 /// How states become rows of the Q table, and what that costs.
 ///
@@ -217,9 +219,7 @@ impl FullView {
             // On a grid, every cell of the bordered world (the paper's reference);
             // elsewhere, every feature.
             let features: Vec<mdp::Feature> = match world.grid().zip(world.local_space()) {
-                Some((grid, space)) => {
-                    crate::reference::bordered_features(grid, space, s, 1).collect()
-                }
+                Some((grid, space)) => crate::grid::bordered_features(grid, space, s, 1).collect(),
                 None => every.clone(),
             };
             cost[s.index()] = features.iter().map(|&f| world.price(f)).sum();
@@ -281,7 +281,7 @@ impl Perception for FullView {
     }
 }
 
-impl crate::report::Describes for FullView {
+impl Describes for FullView {
     fn described(&self) -> Vec<(RowId, Vec<(mdp::Feature, Reading)>)> {
         let mut out: Vec<_> = self
             .rows
@@ -294,5 +294,29 @@ impl crate::report::Describes for FullView {
     }
     fn cost_after_learning<W: World + ?Sized>(&mut self, _world: &W, s: StateId) -> f64 {
         self.cost[s.index()]
+    }
+}
+
+impl Sees for FullView {
+    fn sees<W: World + ?Sized, R: Rng + ?Sized>(
+        &mut self,
+        world: &W,
+        s: StateId,
+        _noise: SensorNoise,
+        _rng: &mut R,
+    ) -> Option<RowId> {
+        Perception::lookup(self, world, s)
+    }
+}
+
+impl Sees for Identified {
+    fn sees<W: World + ?Sized, R: Rng + ?Sized>(
+        &mut self,
+        world: &W,
+        s: StateId,
+        _noise: SensorNoise,
+        _rng: &mut R,
+    ) -> Option<RowId> {
+        Perception::lookup(self, world, s)
     }
 }

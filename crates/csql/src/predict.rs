@@ -37,7 +37,9 @@
 //! `max_skips` updates from one run of unmeasured uses (of which some may be wrong).
 //! When that measurement disagrees with the model, the transition is distrusted for
 //! good (until a refinement invalidates it). The oracle counts the wrong predictions
-//! (without charging, never shown to the learner) in [`PredictionStats`];
+//! from outside the learner (without charging, never shown to it) in
+//! [`PredictionStats`]: the run wraps the perception in a measuring wrapper
+//! (`audit.rs`) that looks up the true description of every state reached unmeasured;
 //! `longest_wrong_run <= max_skips` is the bound, checked in this module's tests and on
 //! whole runs in `tests/predict.rs`. A measurement that agrees does not prove a
 //! transition right for all its states: a description whose states lead to different
@@ -63,187 +65,31 @@
 //! measuring only where the model does not trust the transition, or to verify it with
 //! probability [`Prediction::verify`] (and after `max_skips` unmeasured uses).
 
+pub(crate) mod level;
+pub(crate) mod model;
+mod reckoning;
+
 use cslearn::{FeatureId, Sensor, Value};
 use mdp::{
-    Action, ActionId, Cell, Feature, FeatureSpace, GridWorld, Offset, Reading, StateId, World,
+    Action, ActionId, Feature, FeatureSpace, GridWorld, Reading, SensorNoise, StateId, World,
 };
 use qlearn::{QTable, RowId};
 use rand::{Rng, RngExt};
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
+use self::level::{PredictSensing, Prediction};
+use self::model::TransitionModel;
+use self::reckoning::{Memory, charge};
 use crate::classify::Classify;
-use crate::error::Error;
 use crate::perception::Perception;
 use crate::representation::DescriptionId;
 use crate::tree::StateTree;
-
-/// Which knowledge lets the agent skip measurements (the run setting `predict_sensing`).
-///
-/// ```
-/// use csql::PredictSensing;
-/// assert_eq!(PredictSensing::default(), PredictSensing::Off);
-/// assert_eq!(PredictSensing::Motion.name(), "motion");
-/// ```
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum PredictSensing {
-    /// Classify every next state (the paper's procedure; the default).
-    #[default]
-    Off,
-    /// A learned model of (description, action) -> next description.
-    Learned,
-    /// The learned model, and features carried over by dead reckoning.
-    Motion,
-}
-
-impl PredictSensing {
-    /// The three levels, in order.
-    ///
-    /// ```
-    /// assert_eq!(csql::PredictSensing::ALL.len(), 3);
-    /// ```
-    pub const ALL: [PredictSensing; 3] = [
-        PredictSensing::Off,
-        PredictSensing::Learned,
-        PredictSensing::Motion,
-    ];
-
-    /// The setting's value: `off`, `learned` or `motion`.
-    ///
-    /// ```
-    /// assert_eq!(csql::PredictSensing::Learned.name(), "learned");
-    /// ```
-    pub fn name(self) -> &'static str {
-        match self {
-            PredictSensing::Off => "off",
-            PredictSensing::Learned => "learned",
-            PredictSensing::Motion => "motion",
-        }
-    }
-
-    /// Whether this is `off` (for serde's `skip_serializing_if`).
-    ///
-    /// ```
-    /// assert!(csql::PredictSensing::Off.is_off());
-    /// ```
-    pub fn is_off(&self) -> bool {
-        *self == PredictSensing::Off
-    }
-}
-
-impl std::fmt::Display for PredictSensing {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl std::str::FromStr for PredictSensing {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<PredictSensing, Error> {
-        PredictSensing::ALL
-            .into_iter()
-            .find(|l| l.name() == s)
-            .ok_or_else(|| Error::InvalidSetting {
-                value: format!("predict_sensing = {s}"),
-                expected: "one of off, learned, motion",
-            })
-    }
-}
-
-/// The confidence rule, the re-check rates and the evaluation of navigation (the TOML
-/// table `[prediction]`; every key optional). Used only when `predict_sensing` is not
-/// `off`.
-///
-/// ```
-/// let p = csql::Prediction::default();
-/// assert_eq!((p.confirmations, p.max_skips, p.navigation_trials, p.memory_moves), (3, 16, 10, 1));
-/// assert_eq!((p.recheck, p.verify), (0.05, 0.05));
-/// assert!(p.validate().is_ok());
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct Prediction {
-    /// Equal measurements in a row, and none different, before a transition is trusted
-    /// (default 3).
-    pub confirmations: u32,
-    /// Probability of re-checking a trusted transition while learning (default 0.05).
-    pub recheck: f64,
-    /// Most unmeasured uses of one transition in a row: the bound on how long a wrong
-    /// prediction can go unmeasured (default 16).
-    pub max_skips: u32,
-    /// Probability of verifying a trusted transition while navigating (default 0.05).
-    pub verify: f64,
-    /// Evaluation trials of navigation from each non-goal free state (default 10).
-    pub navigation_trials: u32,
-    /// At the motion level, for how many moves a sensed cell is remembered (default 1:
-    /// what was sensed at the previous state).
-    pub memory_moves: u32,
-}
-
-impl Default for Prediction {
-    fn default() -> Prediction {
-        Prediction {
-            confirmations: 3,
-            recheck: 0.05,
-            max_skips: 16,
-            verify: 0.05,
-            navigation_trials: 10,
-            memory_moves: 1,
-        }
-    }
-}
-
-impl Prediction {
-    /// Whether every value is the default (for serde's `skip_serializing_if`).
-    ///
-    /// ```
-    /// assert!(csql::Prediction::default().is_default());
-    /// ```
-    pub fn is_default(&self) -> bool {
-        *self == Prediction::default()
-    }
-
-    /// Check the ranges: probabilities in [0, 1], at least one confirmation, skip,
-    /// evaluation trial and remembered move.
-    ///
-    /// ```
-    /// let p = csql::Prediction { recheck: 1.5, ..Default::default() };
-    /// let err = p.validate().unwrap_err();
-    /// assert!(matches!(err, csql::Error::InvalidSetting { .. }));
-    /// assert!(err.to_string().contains("prediction.recheck"));
-    /// ```
-    pub fn validate(&self) -> Result<(), Error> {
-        let bad = |name: &'static str, value: String, expected: &'static str| {
-            Err(Error::InvalidSetting {
-                value: format!("{name} = {value}"),
-                expected,
-            })
-        };
-        for (name, p) in [
-            ("prediction.recheck", self.recheck),
-            ("prediction.verify", self.verify),
-        ] {
-            if !(0.0..=1.0).contains(&p) {
-                return bad(name, p.to_string(), "a probability in [0, 1]");
-            }
-        }
-        for (name, n) in [
-            ("prediction.confirmations", self.confirmations),
-            ("prediction.max_skips", self.max_skips),
-            ("prediction.navigation_trials", self.navigation_trials),
-            ("prediction.memory_moves", self.memory_moves),
-        ] {
-            if n == 0 {
-                return bad(name, "0".to_string(), "at least 1");
-            }
-        }
-        Ok(())
-    }
-}
+use crate::view::{Describes, Sees};
 
 /// What prediction did in a run (the JSON's `prediction`, present only when
-/// `predict_sensing` is not `off`). The last two figures are the oracle's: it looks up
-/// the true description of every state reached unmeasured, without charging.
+/// `predict_sensing` is not `off`). The last two figures are the oracle's, counted by the
+/// run's measuring, outside the learner: it looks up the true description of every state
+/// reached unmeasured, without charging ([`Predicting::stats`] leaves them 0).
 ///
 /// ```
 /// let s = csql::PredictionStats::default();
@@ -262,267 +108,6 @@ pub struct PredictionStats {
     /// The most wrong predictions of one transition between two of its measurements
     /// (the guarantee: at most `max_skips`).
     pub longest_wrong_run: u32,
-}
-
-/// What the model knows of one (description, action).
-#[derive(Clone, Debug, Default)]
-struct Entry {
-    /// The last next description measured.
-    next: Option<RowId>,
-    /// Every next description measured, in the order first seen.
-    successors: Vec<RowId>,
-    /// Measurements in a row that gave `next`.
-    agree: u32,
-    /// Whether two measurements disagreed since the entry was last invalidated.
-    conflicted: bool,
-    /// Unmeasured uses since the last measurement.
-    unmeasured: u32,
-    /// Wrong unmeasured uses since the last measurement (the oracle's count).
-    wrong: u32,
-}
-
-/// The learned transition model at the level of descriptions: (description, action) ->
-/// next description, with the confidence rule of [`Prediction::confirmations`].
-///
-/// ```
-/// use csql::TransitionModel;
-/// use mdp::ActionId;
-/// use qlearn::RowId;
-/// let mut m = TransitionModel::new(4, 2);
-/// let (d, e) = (RowId(0), RowId(1));
-/// m.observe(d, ActionId(1), e);
-/// assert_eq!(m.trusted(d, ActionId(1)), None); // one measurement is not enough
-/// m.observe(d, ActionId(1), e);
-/// assert_eq!(m.trusted(d, ActionId(1)), Some(e));
-/// m.invalidate(e); // refining e invalidates what leads to it
-/// assert_eq!(m.trusted(d, ActionId(1)), None);
-/// ```
-#[derive(Clone, Debug)]
-pub struct TransitionModel {
-    actions: usize,
-    confirmations: u32,
-    entries: Vec<Entry>,
-}
-
-impl TransitionModel {
-    /// An empty model for `actions` actions that trusts a transition after
-    /// `confirmations` equal measurements.
-    ///
-    /// ```
-    /// let m = csql::TransitionModel::new(4, 3);
-    /// assert_eq!(m.trusted(qlearn::RowId(7), mdp::ActionId(0)), None);
-    /// ```
-    pub fn new(actions: usize, confirmations: u32) -> TransitionModel {
-        TransitionModel {
-            actions,
-            confirmations,
-            entries: Vec::new(),
-        }
-    }
-
-    fn index(&self, from: RowId, a: ActionId) -> usize {
-        from.index() * self.actions + a.index()
-    }
-
-    fn entry(&self, from: RowId, a: ActionId) -> Option<&Entry> {
-        self.entries.get(self.index(from, a))
-    }
-
-    fn entry_mut(&mut self, from: RowId, a: ActionId) -> &mut Entry {
-        let i = self.index(from, a);
-        if i >= self.entries.len() {
-            self.entries.resize(i + 1, Entry::default());
-        }
-        &mut self.entries[i]
-    }
-
-    /// The predicted next description, if the transition is trusted.
-    ///
-    /// ```
-    /// let mut m = csql::TransitionModel::new(4, 1);
-    /// let (d, a) = (qlearn::RowId(0), mdp::ActionId(0));
-    /// m.observe(d, a, qlearn::RowId(2));
-    /// assert_eq!(m.trusted(d, a), Some(qlearn::RowId(2)));
-    /// m.observe(d, a, qlearn::RowId(3)); // disagrees: distrusted for good
-    /// m.observe(d, a, qlearn::RowId(3));
-    /// assert_eq!(m.trusted(d, a), None);
-    /// ```
-    pub fn trusted(&self, from: RowId, a: ActionId) -> Option<RowId> {
-        self.entry(from, a)
-            .filter(|e| !e.conflicted && e.agree >= self.confirmations)
-            .and_then(|e| e.next)
-    }
-
-    /// Record a measured transition; returns whether it agreed with what the model held
-    /// (true for the first measurement).
-    ///
-    /// ```
-    /// let mut m = csql::TransitionModel::new(4, 2);
-    /// let (d, a) = (qlearn::RowId(0), mdp::ActionId(3));
-    /// assert!(m.observe(d, a, qlearn::RowId(1)));
-    /// assert!(!m.observe(d, a, qlearn::RowId(2)));
-    /// ```
-    pub fn observe(&mut self, from: RowId, a: ActionId, to: RowId) -> bool {
-        let e = self.entry_mut(from, a);
-        e.unmeasured = 0;
-        e.wrong = 0;
-        if !e.successors.contains(&to) {
-            e.successors.push(to);
-        }
-        match e.next {
-            Some(n) if n == to => {
-                e.agree = e.agree.saturating_add(1);
-                true
-            }
-            Some(_) => {
-                e.next = Some(to);
-                e.agree = 1;
-                e.conflicted = true;
-                false
-            }
-            None => {
-                e.next = Some(to);
-                e.agree = 1;
-                true
-            }
-        }
-    }
-
-    /// Never trust a transition again until it is invalidated (a prediction of it was
-    /// found wrong).
-    ///
-    /// ```
-    /// let mut m = csql::TransitionModel::new(4, 1);
-    /// let (d, a) = (qlearn::RowId(0), mdp::ActionId(0));
-    /// m.observe(d, a, qlearn::RowId(1));
-    /// m.distrust(d, a);
-    /// assert_eq!(m.trusted(d, a), None);
-    /// ```
-    pub fn distrust(&mut self, from: RowId, a: ActionId) {
-        let e = self.entry_mut(from, a);
-        e.conflicted = true;
-        e.unmeasured = 0;
-        e.wrong = 0;
-    }
-
-    /// Every next description measured for a transition since it was last invalidated,
-    /// in the order first seen: the edges of the reduced map.
-    ///
-    /// ```
-    /// let mut m = csql::TransitionModel::new(4, 1);
-    /// let (d, a) = (qlearn::RowId(0), mdp::ActionId(0));
-    /// m.observe(d, a, qlearn::RowId(4));
-    /// m.observe(d, a, qlearn::RowId(2));
-    /// m.observe(d, a, qlearn::RowId(4));
-    /// assert_eq!(m.successors(d, a), [qlearn::RowId(4), qlearn::RowId(2)]);
-    /// ```
-    pub fn successors(&self, from: RowId, a: ActionId) -> &[RowId] {
-        self.entry(from, a).map_or(&[], |e| &e.successors)
-    }
-
-    /// Forget what a refinement of `row` may have made wrong: the transitions that leave
-    /// it and those that lead to it.
-    ///
-    /// ```
-    /// let mut m = csql::TransitionModel::new(4, 1);
-    /// let a = mdp::ActionId(0);
-    /// m.observe(qlearn::RowId(0), a, qlearn::RowId(1));
-    /// m.observe(qlearn::RowId(2), a, qlearn::RowId(3));
-    /// m.invalidate(qlearn::RowId(0));
-    /// assert_eq!(m.trusted(qlearn::RowId(0), a), None);
-    /// assert_eq!(m.trusted(qlearn::RowId(2), a), Some(qlearn::RowId(3))); // untouched
-    /// ```
-    pub fn invalidate(&mut self, row: RowId) {
-        let actions = self.actions;
-        for (i, e) in self.entries.iter_mut().enumerate() {
-            if i / actions == row.index() || e.next == Some(row) {
-                *e = Entry::default();
-            }
-        }
-    }
-
-    /// How many transitions gave two different answers since they were last invalidated
-    /// (the reduced map is deterministic everywhere else).
-    ///
-    /// ```
-    /// let mut m = csql::TransitionModel::new(4, 1);
-    /// m.observe(qlearn::RowId(0), mdp::ActionId(0), qlearn::RowId(0));
-    /// assert_eq!(m.conflicts(), 0);
-    /// ```
-    pub fn conflicts(&self) -> usize {
-        self.entries.iter().filter(|e| e.conflicted).count()
-    }
-}
-
-/// The cells sensed in the last few moves, placed by dead reckoning.
-#[derive(Clone, Debug)]
-struct Memory {
-    /// Half the width and height of the area a trial can reach, offsets included.
-    half: (i32, i32),
-    offsets: Vec<Offset>,
-    cells: Vec<Option<(Reading, u32)>>,
-    /// The robot's position relative to where the memory was last anchored.
-    pos: (i32, i32),
-    /// Moves since the memory was anchored.
-    now: u32,
-    keep: u32,
-}
-
-impl Memory {
-    fn new(world: &GridWorld, space: &FeatureSpace, keep: u32) -> Memory {
-        // Displacements stay within the map and offsets within its bordered size.
-        let half = (
-            2 * world.map().width() as i32 + 2,
-            2 * world.map().height() as i32 + 2,
-        );
-        let len = ((2 * half.0 + 1) * (2 * half.1 + 1)) as usize;
-        Memory {
-            half,
-            offsets: space.features().map(|f| space.offset(f)).collect(),
-            cells: vec![None; len],
-            pos: (0, 0),
-            now: 0,
-            keep,
-        }
-    }
-
-    fn clear(&mut self) {
-        self.cells.fill(None);
-        self.pos = (0, 0);
-        self.now = 0;
-    }
-
-    fn index(&self, o: Offset) -> Option<usize> {
-        let (x, y) = (self.pos.0 + o.dx, self.pos.1 + o.dy);
-        if x.abs() > self.half.0 || y.abs() > self.half.1 {
-            return None;
-        }
-        Some(((y + self.half.1) * (2 * self.half.0 + 1) + x + self.half.0) as usize)
-    }
-
-    /// The cell at offset `o` from the robot, if sensed recently enough.
-    fn known(&self, o: Offset) -> Option<Reading> {
-        let (cell, when) = self.cells[self.index(o)?]?;
-        (self.now - when <= self.keep).then_some(cell)
-    }
-
-    fn record(&mut self, o: Offset, cell: Reading) {
-        if let Some(i) = self.index(o) {
-            self.cells[i] = Some((cell, self.now));
-        }
-    }
-
-    /// Dead reckoning: the robot moved by `step` unless the cell there is an obstacle. If
-    /// it does not remember that cell it cannot tell, and starts over.
-    fn moved(&mut self, step: Offset) {
-        let ahead = self.known(step);
-        self.now += 1;
-        match ahead {
-            Some(r) if r == Reading::from(Cell::Obstacle) => {}
-            Some(_) => self.pos = (self.pos.0 + step.dx, self.pos.1 + step.dy),
-            None => self.clear(),
-        }
-    }
 }
 
 /// CLASSIFY with a learned transition model (and, at the motion level, a memory placed
@@ -570,31 +155,6 @@ pub struct Predicting {
     stats: PredictionStats,
 }
 
-/// The charge of `measured` (`full` without a memory): what the memory holds is free,
-/// and everything measured or carried is kept for the next state.
-fn charge(
-    memory: Option<&mut Memory>,
-    prices: &[f64],
-    measured: &[(Feature, Reading)],
-    full: f64,
-) -> f64 {
-    let Some(memory) = memory else {
-        return full;
-    };
-    let mut cost = 0.0;
-    for &(f, cell) in measured {
-        let o = memory.offsets[f.index()];
-        match memory.known(o) {
-            Some(remembered) => {
-                debug_assert_eq!(remembered, cell, "dead reckoning placed a cell wrongly");
-            }
-            None => cost += prices[f.index()],
-        }
-        memory.record(o, cell);
-    }
-    cost
-}
-
 /// A state sensed through the decision tree, keeping what was measured.
 struct Recording<'a, W: ?Sized> {
     world: &'a W,
@@ -615,11 +175,15 @@ impl<W: World + ?Sized> Sensor for Recording<'_, W> {
 
 /// A state given a description without measuring it, and the transition that predicted it.
 #[derive(Clone, Copy, Debug)]
-struct Unmeasured {
-    s: StateId,
-    row: RowId,
-    from: RowId,
-    a: ActionId,
+pub(crate) struct Unmeasured {
+    /// The state reached.
+    pub(crate) s: StateId,
+    /// The description it was given.
+    pub(crate) row: RowId,
+    /// The description left.
+    pub(crate) from: RowId,
+    /// The action taken.
+    pub(crate) a: ActionId,
 }
 
 impl Predicting {
@@ -686,7 +250,9 @@ impl Predicting {
         }
     }
 
-    /// What prediction has done so far.
+    /// What prediction has done so far, as the learner knows it: `wrong` and
+    /// `longest_wrong_run` are the oracle's and stay 0 here (a run counts them from
+    /// outside, into its report's `prediction`).
     ///
     /// ```
     /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
@@ -694,6 +260,7 @@ impl Predicting {
     /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
     /// let p = csql::Predicting::learned(csql::Classify::new(&sensed), &Default::default(), 4);
     /// assert_eq!(p.stats().skipped, 0);
+    /// assert_eq!(p.stats().wrong, 0);
     /// ```
     pub fn stats(&self) -> PredictionStats {
         self.stats
@@ -804,25 +371,22 @@ impl Predicting {
         )
     }
 
-    /// Count an unmeasured use of a transition, and whether the oracle finds it wrong.
-    fn unmeasured<W: World + ?Sized>(
-        &mut self,
-        world: &W,
-        from: RowId,
-        a: ActionId,
-        s: StateId,
-        row: RowId,
-    ) {
+    /// Use a transition without measuring: `s` is given `row`, predicted from `from`
+    /// by `a`. Whether the prediction was right is not the learner's to know: the run's
+    /// measuring asks the oracle afterwards ([`Predicting::last_unmeasured`]).
+    fn unmeasured(&mut self, from: RowId, a: ActionId, s: StateId, row: RowId) {
         self.current = Some(Unmeasured { s, row, from, a });
-        let wrong = Perception::lookup(&mut self.inner, world, s) != Some(row);
-        let entry = self.model.entry_mut(from, a);
-        entry.unmeasured += 1;
-        if wrong {
-            entry.wrong += 1;
-            let run = entry.wrong;
-            self.stats.wrong += 1;
-            self.stats.longest_wrong_run = self.stats.longest_wrong_run.max(run);
-        }
+        self.model.used_unmeasured(from, a);
+    }
+
+    /// The unmeasured use of a transition that the last
+    /// [`Perception::classify_next`] made, if it made one, with how many unmeasured uses
+    /// of that transition in a row (this one included) since it was last measured,
+    /// distrusted or invalidated. For the measuring side only: the learner never reads
+    /// it.
+    pub(crate) fn last_unmeasured(&self) -> Option<(Unmeasured, u32)> {
+        let u = self.current?;
+        Some((u, self.model.unmeasured_uses(u.from, u.a)))
     }
 }
 
@@ -864,7 +428,7 @@ impl Perception for Predicting {
         }
         // One draw per use of a trusted (or, navigating, narrowed) transition.
         let draw: f64 = rng.random();
-        let due = self.model.entry_mut(from, a).unmeasured >= self.max_skips;
+        let due = self.model.unmeasured_uses(from, a) >= self.max_skips;
         let verify = due || draw < self.recheck;
         let Some(predicted) = predicted else {
             let mut partial = 0.0;
@@ -879,7 +443,7 @@ impl Perception for Predicting {
                 let full = self.inner.last_cost();
                 partial = self.charge(full);
                 if let Some(d) = found {
-                    self.unmeasured(world, from, a, s, d.row());
+                    self.unmeasured(from, a, s, d.row());
                     return (d.row(), partial);
                 }
             }
@@ -896,7 +460,7 @@ impl Perception for Predicting {
             return (row, cost);
         }
         self.stats.skipped += 1;
-        self.unmeasured(world, from, a, s, predicted);
+        self.unmeasured(from, a, s, predicted);
         (predicted, 0.0)
     }
 
@@ -953,7 +517,7 @@ impl Perception for Predicting {
 
 /// A report reads CLASSIFY underneath: prediction changes what is charged while
 /// learning, not the descriptions or what they cost after it.
-impl crate::report::Describes for Predicting {
+impl Describes for Predicting {
     fn described(&self) -> Vec<(RowId, Vec<(mdp::Feature, Reading)>)> {
         self.inner.described()
     }
@@ -965,100 +529,14 @@ impl crate::report::Describes for Predicting {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_disagreement_distrusts_until_invalidated() {
-        let mut m = TransitionModel::new(4, 2);
-        let (d, a) = (RowId(3), ActionId(2));
-        for _ in 0..5 {
-            m.observe(d, a, RowId(1));
-        }
-        assert_eq!(m.trusted(d, a), Some(RowId(1)));
-        m.observe(d, a, RowId(2));
-        for _ in 0..5 {
-            m.observe(d, a, RowId(2));
-        }
-        assert_eq!(m.trusted(d, a), None);
-        assert_eq!(m.conflicts(), 1);
-        m.invalidate(RowId(2));
-        assert_eq!(m.conflicts(), 0);
-        m.observe(d, a, RowId(2));
-        m.observe(d, a, RowId(2));
-        assert_eq!(m.trusted(d, a), Some(RowId(2)));
-    }
-
-    #[test]
-    fn invalidation_touches_only_the_refined_row() {
-        let mut m = TransitionModel::new(4, 1);
-        for from in 0..5u32 {
-            for a in 0..4u32 {
-                m.observe(RowId(from), ActionId(a), RowId((from + a) % 5));
-            }
-        }
-        m.invalidate(RowId(2));
-        for from in 0..5u32 {
-            for a in 0..4u32 {
-                let to = (from + a) % 5;
-                let kept = from != 2 && to != 2;
-                assert_eq!(
-                    m.trusted(RowId(from), ActionId(a)).is_some(),
-                    kept,
-                    "{from} {a}"
-                );
-            }
-        }
-    }
-
-    #[test]
-    fn dead_reckoning_moves_unless_blocked_and_forgets_when_unsure() {
-        let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
-        let space = FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
-        let mut m = Memory::new(&world, &space, 1);
-        m.record(Offset::new(1, 0), Reading::from(Cell::Empty));
-        m.record(Offset::new(2, 0), Reading::from(Cell::Obstacle));
-        m.record(Offset::new(0, 1), Reading::from(Cell::Obstacle));
-        m.moved(Offset::new(1, 0));
-        assert_eq!(
-            m.known(Offset::new(1, 0)),
-            Some(Reading::from(Cell::Obstacle))
-        );
-        assert_eq!(
-            m.known(Offset::new(-1, 1)),
-            Some(Reading::from(Cell::Obstacle))
-        );
-        m.moved(Offset::new(1, 0)); // blocked: stays
-        assert_eq!(m.pos, (1, 0));
-        // Sensed two moves ago: forgotten with a memory of one move.
-        assert_eq!(m.known(Offset::new(1, 0)), None);
-        m.moved(Offset::new(0, -1)); // unknown: starts over
-        assert_eq!((m.pos, m.known(Offset::new(-1, 1))), ((0, 0), None));
-    }
-
-    #[test]
-    fn settings_are_checked() {
-        for bad in [
-            Prediction {
-                verify: -0.1,
-                ..Default::default()
-            },
-            Prediction {
-                max_skips: 0,
-                ..Default::default()
-            },
-            Prediction {
-                confirmations: 0,
-                ..Default::default()
-            },
-        ] {
-            assert!(bad.validate().is_err());
-        }
-        assert_eq!(
-            "motion".parse::<PredictSensing>().unwrap(),
-            PredictSensing::Motion
-        );
-        assert!("on".parse::<PredictSensing>().is_err());
+impl Sees for Predicting {
+    fn sees<W: World + ?Sized, R: Rng + ?Sized>(
+        &mut self,
+        world: &W,
+        s: StateId,
+        noise: SensorNoise,
+        rng: &mut R,
+    ) -> Option<RowId> {
+        self.classify_mut().sees(world, s, noise, rng)
     }
 }

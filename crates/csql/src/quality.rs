@@ -27,8 +27,7 @@ use qlearn::{QTable, RowId};
 use rand::Rng;
 use serde::Serialize;
 
-use crate::classify::Classify;
-use crate::perception::Identified;
+use crate::view::Sees;
 
 /// Moves an episode of the Monte Carlo estimate may make (gamma^200 is below 1e-9 at the
 /// paper's gamma).
@@ -49,90 +48,6 @@ pub const MC_MIN_ROUNDS: u32 = 30;
 /// assert_eq!(csql::MC_MAX_ROUNDS, 4000);
 /// ```
 pub const MC_MAX_ROUNDS: u32 = 4000;
-
-/// How a state becomes a row when the learned policy acts: the perception's view for the
-/// quality measure, free of charge, through the agent's (possibly noisy) sensors.
-///
-/// ```
-/// use csql::{Identified, Sees};
-/// use rand::SeedableRng;
-/// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
-/// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
-/// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
-/// let mut p = Identified::new(&sensed, vec![0.0; 9]);
-/// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
-/// assert_eq!(p.sees(&sensed, mdp::StateId(0), mdp::SensorNoise::default(), &mut rng), None);
-/// ```
-pub trait Sees {
-    /// The row the agent would use in state `s`, or `None` if it would make a new one.
-    fn sees<W: World + ?Sized, R: Rng + ?Sized>(
-        &mut self,
-        world: &W,
-        s: StateId,
-        noise: SensorNoise,
-        rng: &mut R,
-    ) -> Option<RowId>;
-    /// Whether the row depends on the state alone. A perception with a memory of its own
-    /// moves says `false`; its quality is then estimated by Monte Carlo, through
-    /// [`Sees::begin`] and [`Sees::moved`].
-    fn memoryless(&self) -> bool {
-        true
-    }
-    /// An episode of the evaluation starts: forget the moves of the last one.
-    fn begin(&mut self) {}
-    /// The evaluated policy took action `a` from the state last seen.
-    fn moved(&mut self, a: ActionId) {
-        let _ = a;
-    }
-}
-
-impl Sees for crate::FullView {
-    fn sees<W: World + ?Sized, R: Rng + ?Sized>(
-        &mut self,
-        world: &W,
-        s: StateId,
-        _noise: SensorNoise,
-        _rng: &mut R,
-    ) -> Option<RowId> {
-        crate::Perception::lookup(self, world, s)
-    }
-}
-
-impl Sees for Classify {
-    fn sees<W: World + ?Sized, R: Rng + ?Sized>(
-        &mut self,
-        world: &W,
-        s: StateId,
-        noise: SensorNoise,
-        rng: &mut R,
-    ) -> Option<RowId> {
-        self.lookup_noisy(world, s, noise, rng).map(|d| d.row())
-    }
-}
-
-impl Sees for crate::Predicting {
-    fn sees<W: World + ?Sized, R: Rng + ?Sized>(
-        &mut self,
-        world: &W,
-        s: StateId,
-        noise: SensorNoise,
-        rng: &mut R,
-    ) -> Option<RowId> {
-        self.classify_mut().sees(world, s, noise, rng)
-    }
-}
-
-impl Sees for Identified {
-    fn sees<W: World + ?Sized, R: Rng + ?Sized>(
-        &mut self,
-        world: &W,
-        s: StateId,
-        _noise: SensorNoise,
-        _rng: &mut R,
-    ) -> Option<RowId> {
-        crate::Perception::lookup(self, world, s)
-    }
-}
 
 /// How a quality figure was obtained.
 ///

@@ -11,12 +11,14 @@ use qlearn::QTable;
 use serde::Serialize;
 
 use crate::classify::Classify;
+use crate::grid::bordered_features;
+use crate::learn::{Scene, learn};
 use crate::main_loop::{Agent, LoopParams};
 use crate::observe::KeepTrace;
 use crate::perception::{Identified, Perception};
 use crate::representation::Representation;
-use crate::run::{Scene, Setup, learn};
 use crate::settings::RunSettings;
+use crate::setup::Setup;
 use crate::strategy::Never;
 
 /// What a reference learner needed to converge.
@@ -35,23 +37,6 @@ pub struct Reference {
     pub cost: f64,
     /// The fixed price of one classification, where there is one (mean over states).
     pub cost_per_classification: Option<f64>,
-}
-
-/// The features whose cell, seen from state `s`, lies within `margin` cells of the
-/// interior (0: the interior only; 1: the interior and its boundary).
-pub(crate) fn bordered_features<'a>(
-    world: &'a GridWorld,
-    space: &'a FeatureSpace,
-    s: StateId,
-    margin: i64,
-) -> impl Iterator<Item = mdp::Feature> + 'a {
-    let p = world.pos(s);
-    let (h, w) = (world.map().height() as i64, world.map().width() as i64);
-    space.features().filter(move |&f| {
-        let o = space.offset(f);
-        let (r, c) = (p.row as i64 - o.dy as i64, p.col as i64 + o.dx as i64);
-        (-margin..h + margin).contains(&r) && (-margin..w + margin).contains(&c)
-    })
 }
 
 /// The summed cost of sensing, from state `s`, every cell within `margin` cells of the
@@ -95,7 +80,7 @@ pub fn cheapest_interior_cost(world: &GridWorld, space: &FeatureSpace) -> f64 {
 }
 
 /// Learn on a fixed perception with the run's settings until convergence.
-fn reference<P: Perception + crate::quality::Sees>(
+fn reference<P: Perception + crate::view::Sees>(
     setup: &Setup,
     settings: &RunSettings,
     perception: P,

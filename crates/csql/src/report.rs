@@ -4,19 +4,18 @@
 
 use std::fmt;
 
-use mdp::{Reading, World};
+use mdp::World;
 use qlearn::QTable;
 use serde::Serialize;
 
-use crate::classify::Classify;
 use crate::judge::Verdict;
+use crate::learn::{Learned, Scene};
+use crate::observe::TracePoint;
 use crate::perception::Perception;
 use crate::quality::QualityMethod;
-use crate::representation::DescriptionId;
-use crate::run::{Learned, Scene};
 use crate::settings::RunSettings;
 use crate::strategy::StrategyKind;
-use crate::tree::StateTree;
+use crate::view::Describes;
 
 /// The eight measures of the paper's Table 1 for one run. A figure the run did not reach
 /// is `None` (null in JSON); rows 5 to 8 are measured after convergence only.
@@ -47,33 +46,6 @@ pub struct Table1 {
     /// Row 8, plain form: mean over states of the summed cost of their description's
     /// features.
     pub description_cost_per_state: Option<f64>,
-}
-
-/// One line of the learning curve: the state of the run at the end of a trial.
-///
-/// ```
-/// let r = csql::run(&csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Eager, 1)).unwrap();
-/// let last = r.trace.last().unwrap();
-/// assert!(last.converged && last.cumulative_cost == r.total_cost);
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct TracePoint {
-    /// The trial, from 1.
-    pub trial: u32,
-    /// Moves in this trial.
-    pub moves: u32,
-    /// Sensing cost charged so far in the run.
-    pub cumulative_cost: f64,
-    /// Descriptions at the end of the trial.
-    pub descriptions: usize,
-    /// Decreases seen in this trial.
-    pub decreases: u32,
-    /// Features added in this trial.
-    pub refinements: u32,
-    /// The representation is sufficient.
-    pub sufficient: bool,
-    /// The run has converged.
-    pub converged: bool,
 }
 
 /// A state at the end of the run (row 0 is the top line of the map).
@@ -446,71 +418,6 @@ impl fmt::Display for Table1 {
             writeln!(f, "{name:<left$}  {value:>right$}")?;
         }
         Ok(())
-    }
-}
-
-/// What a run's report reads from a learned perception, free of charge and without
-/// changing it: its descriptions and what classifying a state costs after learning.
-/// [`crate::Classify`] and the baselines' perceptions implement it.
-///
-/// ```
-/// use csql::{Classify, Describes};
-/// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
-/// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
-/// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
-/// let mut c = Classify::new(&sensed);
-/// let s = world.states()[0];
-/// let d = c.classify_state(&sensed, s).description;
-/// c.add_feature(&sensed, d, s);
-/// assert_eq!(c.described().len(), 1);
-/// assert_eq!(c.cost_after_learning(&sensed, s), 1.0);
-/// ```
-pub trait Describes {
-    /// The descriptions, one per row that has one, in row order: the row and its
-    /// features with their values.
-    fn described(&self) -> Vec<(qlearn::RowId, Vec<(mdp::Feature, Reading)>)>;
-    /// What classifying state `s` costs after learning.
-    fn cost_after_learning<W: World + ?Sized>(&mut self, world: &W, s: mdp::StateId) -> f64;
-    /// Table 1's rows 8 and 5 after learning: the mean cost per state of the cheapest
-    /// classifier of the final descriptions, and of measuring a state's whole
-    /// description. By default both are the mean of
-    /// [`Describes::cost_after_learning`].
-    fn table1_costs<W: World + ?Sized>(&mut self, world: &W) -> (f64, f64) {
-        let states = world.states();
-        let mean = states
-            .iter()
-            .map(|&s| self.cost_after_learning(world, s))
-            .sum::<f64>()
-            / states.len() as f64;
-        (mean, mean)
-    }
-}
-
-impl Describes for Classify {
-    fn described(&self) -> Vec<(qlearn::RowId, Vec<(mdp::Feature, Reading)>)> {
-        self.representation()
-            .iter()
-            .map(|(id, d)| (id.row(), d.features().collect()))
-            .collect()
-    }
-    fn cost_after_learning<W: World + ?Sized>(&mut self, world: &W, s: mdp::StateId) -> f64 {
-        self.lookup_cost(world, s)
-    }
-    fn table1_costs<W: World + ?Sized>(&mut self, world: &W) -> (f64, f64) {
-        let states = world.states();
-        let rep = self.representation();
-        let tree = StateTree::build(rep, self.prices());
-        let costs: Vec<f64> = states.iter().map(|&s| tree.classify(world, s).1).collect();
-        let tree_cost = costs.iter().sum::<f64>() / states.len() as f64;
-        let labels: Vec<Option<DescriptionId>> =
-            states.iter().map(|&s| self.lookup(world, s)).collect();
-        let rep = self.representation();
-        let plain: f64 = labels
-            .iter()
-            .flatten()
-            .map(|&l| rep.get(l).cost(world))
-            .sum();
-        (tree_cost, plain / states.len() as f64)
     }
 }
 

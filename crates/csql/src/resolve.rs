@@ -12,8 +12,8 @@ use std::path::Path;
 use mdp::{FiniteWorld, Oracle};
 
 use crate::error::Error;
-use crate::run::Setup;
 use crate::settings::RunSettings;
+use crate::setup::Setup;
 
 /// A world resolved from settings, ready to run.
 ///

@@ -1,306 +1,34 @@
 //! One CS-QL run from settings to the measures of the paper's Table 1.
 
-use mdp::{FeatureSpace, GridWorld, Manhattan, Map, Oracle, SensedGrid, SlipperyGrid, World};
+use mdp::World;
 use qlearn::QTable;
 use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
+use crate::audit::Audited;
 use crate::classify::Classify;
 use crate::detector::RunDetector;
 use crate::error::Error;
-use crate::judge::Judge;
+use crate::learn::{Scene, learn};
 use crate::learner::LearnerKind;
 use crate::main_loop::{Agent, LoopParams};
 use crate::memory::Remembering;
 use crate::navigate::navigate;
-use crate::observe::{Flow, KeepTrace, Observer};
+use crate::observe::{KeepTrace, Observer};
 use crate::perception::FullView;
 use crate::perception::Perception;
-use crate::predict::{PredictSensing, Predicting};
-use crate::quality::{QualityEstimate, Sees, policy_quality};
-use crate::report::Describes;
-use crate::report::{RunReport, TracePoint, report};
+use crate::predict::Predicting;
+use crate::predict::level::PredictSensing;
+use crate::report::{RunReport, report};
 use crate::representation::Representation;
+use crate::resolve::Resolved;
 use crate::settings::RunSettings;
 use crate::strategy::{Never, Strategy};
 use crate::utree::UTree;
+use crate::view::{Describes, Sees};
 
-/// A prepared world: map, grid world, feature space and oracle.
-///
-/// ```
-/// let s = csql::RunSettings::tan1991("tan8x8", csql::StrategyKind::Lazy, 1);
-/// let setup = csql::Setup::new(&s).unwrap();
-/// assert_eq!(setup.world.states().len(), 50);
-/// ```
-#[derive(Clone, Debug)]
-pub struct Setup {
-    /// The map.
-    pub map: Map,
-    /// The grid world.
-    pub world: GridWorld,
-    /// The features and their costs.
-    pub space: FeatureSpace,
-    /// The oracle for the run's gamma.
-    pub oracle: Oracle,
-    /// The oracle of the true model when the world slips (value iteration), else `None`
-    /// ([`Setup::oracle`] is then the truth).
-    pub stochastic_oracle: Option<Oracle>,
-}
-
-impl Setup {
-    /// Load the map of the settings and prepare everything the run needs.
-    ///
-    /// ```
-    /// let s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
-    /// let setup = csql::Setup::new(&s).unwrap();
-    /// assert_eq!(setup.space.len(), 80);
-    /// ```
-    pub fn new(settings: &RunSettings) -> Result<Setup, Error> {
-        let map = settings.map.resolve()?;
-        Setup::for_map(map, settings)
-    }
-
-    /// Prepare a given map.
-    ///
-    /// ```
-    /// let s = csql::RunSettings::tan1991("ignored", csql::StrategyKind::Lazy, 1);
-    /// let map = mdp::Map::from_layout("strip", ".G.").unwrap();
-    /// assert_eq!(csql::Setup::for_map(map, &s).unwrap().world.states().len(), 2);
-    /// ```
-    pub fn for_map(map: Map, settings: &RunSettings) -> Result<Setup, Error> {
-        settings.validate()?;
-        let world = GridWorld::new(&map);
-        let mut space = FeatureSpace::new(&map, &Manhattan)?;
-        if let Some(r) = settings.world.sensing_radius {
-            space = space.within(f64::from(r));
-        }
-        let oracle = Oracle::for_grid(&world, settings.gamma.get())?;
-        let slip = settings.world.slip;
-        let stochastic_oracle = if slip.is_zero() {
-            None
-        } else {
-            Some(Oracle::solve_stochastic(
-                &SlipperyGrid::new(&world, slip),
-                settings.gamma.get(),
-            )?)
-        };
-        Ok(Setup {
-            map,
-            world,
-            space,
-            oracle,
-            stochastic_oracle,
-        })
-    }
-
-    /// The oracle of the true model: V* under the world's slip.
-    ///
-    /// ```
-    /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
-    /// s.world.slip = mdp::Slip::new(0.2).unwrap();
-    /// let setup = csql::Setup::new(&s).unwrap();
-    /// let here = setup.world.states()[0];
-    /// assert!(setup.truth().v_star(here) < setup.oracle.v_star(here));
-    /// ```
-    pub fn truth(&self) -> &Oracle {
-        self.stochastic_oracle.as_ref().unwrap_or(&self.oracle)
-    }
-
-    /// The grid as a [`World`]: its local sensing and the slip of `settings`.
-    ///
-    /// ```
-    /// use mdp::Sensors;
-    /// let settings = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
-    /// let setup = csql::Setup::new(&settings).unwrap();
-    /// assert_eq!(setup.sensed(&settings).num_features(), setup.space.len());
-    /// ```
-    pub fn sensed(&self, settings: &RunSettings) -> SensedGrid<'_> {
-        SensedGrid::new(&self.world, &self.space, settings.world.slip)
-    }
-}
-
-/// A world a run learns in, with the oracle's truth about it: what the judge, the policy
-/// quality and the report measure against. The learner never sees the oracles.
-///
-/// ```
-/// let settings = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
-/// let setup = csql::Setup::new(&settings).unwrap();
-/// let sensed = setup.sensed(&settings);
-/// let scene = csql::Scene::new(&sensed, &setup.oracle, setup.truth(), setup.map.name());
-/// let report = csql::run_in(&scene, &settings, &mut csql::KeepTrace).unwrap();
-/// assert!(report.converged);
-/// ```
-#[derive(Clone, Copy, Debug)]
-pub struct Scene<'a, W: ?Sized> {
-    /// The world.
-    pub world: &'a W,
-    /// The oracle of the world's deterministic moves: the paper's verdicts (consistent,
-    /// sufficient, converged) when the world is deterministic.
-    pub oracle: &'a Oracle,
-    /// The oracle of the true model (slip included): the policy quality.
-    pub truth: &'a Oracle,
-    /// The world's name, for the report.
-    pub name: &'a str,
-}
-
-impl<'a, W: World + ?Sized> Scene<'a, W> {
-    /// A world, its oracles and its name.
-    ///
-    /// ```
-    /// let settings = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
-    /// let setup = csql::Setup::new(&settings).unwrap();
-    /// let sensed = setup.sensed(&settings);
-    /// let scene = csql::Scene::new(&sensed, &setup.oracle, setup.truth(), "tan3x3");
-    /// assert_eq!(scene.name, "tan3x3");
-    /// ```
-    pub fn new(world: &'a W, oracle: &'a Oracle, truth: &'a Oracle, name: &'a str) -> Self {
-        Scene {
-            world,
-            oracle,
-            truth,
-            name,
-        }
-    }
-}
-
-impl From<&RunSettings> for LoopParams {
-    fn from(settings: &RunSettings) -> LoopParams {
-        LoopParams {
-            beta: settings.beta,
-            gamma: settings.gamma,
-            temperature: settings.temperature,
-            max_moves: settings.max_moves.get(),
-            decrease_threshold: settings.decrease_threshold.get(),
-        }
-    }
-}
-
-/// The outcome of a learning loop over trials, before reporting.
-pub(crate) struct Learned {
-    pub trace: Vec<TracePoint>,
-    /// Trials run (the trace's length when it is kept).
-    pub trials: u32,
-    /// The last trial's point, kept or not.
-    pub last: Option<TracePoint>,
-    pub first_sufficient: Option<(u32, f64)>,
-    pub first_converged: Option<(u32, f64)>,
-    pub moves: u64,
-    pub cost: f64,
-    /// Beyond the paper only: the policy quality's evaluations.
-    pub quality: Option<QualityTrack>,
-}
-
-/// The policy quality over a run beyond the paper (specification §6).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct QualityTrack {
-    pub last: QualityEstimate,
-    pub evaluations: u32,
-    /// Trial and cost after which the quality was at least 0.95 at every evaluation since.
-    pub reached: Option<(u32, f64)>,
-    /// Consecutive evaluations at or above 0.95.
-    pub streak: u32,
-}
-
-/// The quality a policy must reach (specification §6).
-pub(crate) const QUALITY_GOAL: f64 = 0.95;
-
-/// Run trials until the oracle says converged or the trial cap; the oracle judges the
-/// agent at the end of every trial, through the perception's free view.
-pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
-    scene: &Scene<'_, W>,
-    settings: &RunSettings,
-    agent: &mut Agent<P, S>,
-    observer: &mut dyn Observer,
-) -> Learned {
-    let mut rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
-    let mut judge = Judge::default();
-    let world = scene.world;
-    let mut out = Learned {
-        trace: Vec::new(),
-        trials: 0,
-        last: None,
-        first_sufficient: None,
-        first_converged: None,
-        moves: 0,
-        cost: 0.0,
-        quality: None,
-    };
-    // The paper's verdicts assume a deterministic world; a world file may be stochastic
-    // whatever the settings say.
-    let beyond = settings.beyond_paper() || !crate::quality::is_deterministic(world);
-    // The evaluation's own generator: the run's, 2^192 draws ahead.
-    let mut eval_rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
-    eval_rng.long_jump();
-    for trial in 1..=settings.max_trials.get() {
-        let start = world.sample_start(&mut rng);
-        let rec = agent.run_trial(world, start, trial, &mut rng);
-        out.moves += rec.moves as u64;
-        out.cost += rec.cost;
-        let verdict = if beyond {
-            // The paper's verdicts assume a deterministic, fully sensable world; beyond
-            // it, the policy quality judges (every `quality_every` trials).
-            agent.take_journal();
-            let every = settings.extensions.quality_every;
-            if trial % every == 0 || trial == settings.max_trials.get() {
-                let q = policy_quality(
-                    world,
-                    scene.truth,
-                    &mut agent.perception,
-                    &agent.table,
-                    settings.world.sensor_noise,
-                    &mut eval_rng,
-                );
-                let track = out.quality.get_or_insert(QualityTrack {
-                    last: q,
-                    evaluations: 0,
-                    reached: None,
-                    streak: 0,
-                });
-                track.last = q;
-                track.evaluations += 1;
-                if q.quality >= QUALITY_GOAL {
-                    track.streak += 1;
-                    track.reached.get_or_insert((trial, out.cost));
-                } else {
-                    track.streak = 0;
-                    track.reached = None;
-                }
-            }
-            crate::judge::Verdict::default()
-        } else {
-            judge.judge(world, scene.oracle, agent, settings.tolerance.get())
-        };
-        if verdict.sufficient && out.first_sufficient.is_none() {
-            out.first_sufficient = Some((trial, out.cost));
-        }
-        if verdict.converged {
-            out.first_converged = Some((trial, out.cost));
-        }
-        let point = TracePoint {
-            trial,
-            moves: rec.moves,
-            cumulative_cost: out.cost,
-            descriptions: agent.perception.rows(),
-            decreases: rec.decreases,
-            refinements: rec.refinements,
-            sufficient: verdict.sufficient,
-            converged: verdict.converged,
-        };
-        out.trials = trial;
-        out.last = Some(point);
-        if observer.keep_trace() {
-            out.trace.push(point);
-        }
-        let flow = observer.trial(&point);
-        let settled = out
-            .quality
-            .is_some_and(|q| q.streak >= settings.extensions.quality_patience);
-        if verdict.converged || settled || flow == Flow::Stop {
-            break;
-        }
-    }
-    out
-}
+/// Kept at this path for `figure.rs`.
+pub(crate) use crate::setup::Setup;
 
 /// Run CS-QL with the given settings: load the map, learn, measure.
 ///
@@ -327,9 +55,9 @@ pub fn run_settings(
     settings: &RunSettings,
     observer: &mut dyn Observer,
 ) -> Result<RunReport, Error> {
-    match crate::resolve::Resolved::new(settings)? {
-        crate::resolve::Resolved::Grid(setup) => Ok(run_observed(&setup, settings, observer)),
-        crate::resolve::Resolved::Finite { world, oracle } => {
+    match Resolved::new(settings)? {
+        Resolved::Grid(setup) => Ok(run_observed(&setup, settings, observer)),
+        Resolved::Finite { world, oracle } => {
             let scene = Scene::new(&world, &oracle, &oracle, world.name());
             run_in(&scene, settings, observer)
         }
@@ -505,7 +233,8 @@ fn run_classify<W: World + ?Sized>(
         }
     };
     let strategy = settings.strategy.build(settings.random_moves);
-    let mut agent = new_agent(scene.world, settings, predicting, strategy);
+    // The oracle counts wrong predictions from outside the learner.
+    let mut agent = new_agent(scene.world, settings, Audited::new(predicting), strategy);
     let learned = learn(scene, settings, &mut agent, observer);
     let mut out = report(
         scene,
@@ -515,7 +244,10 @@ fn run_classify<W: World + ?Sized>(
         learned,
     );
     out.prediction = Some(agent.perception.stats());
-    agent.perception.navigate_with(settings.prediction.verify);
+    agent
+        .perception
+        .inner_mut()
+        .navigate_with(settings.prediction.verify);
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed ^ NAVIGATION_STREAM);
     let nav = navigate(
         scene.world,
@@ -528,7 +260,14 @@ fn run_classify<W: World + ?Sized>(
     );
     out.navigation_cost_per_move = Some(nav.cost_per_move());
     out.navigation_success = Some(nav.success());
-    (out, agent.perception.into_classify().into_representation())
+    (
+        out,
+        agent
+            .perception
+            .into_inner()
+            .into_classify()
+            .into_representation(),
+    )
 }
 
 /// Navigation's generator is seeded with the run's seed exclusive-or this constant, so

@@ -16,7 +16,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, SettingsProblem};
 use crate::extensions::{Extensions, WorldExtras};
 use crate::learner::{LearnerKind, UTreeParams};
-use crate::predict::{PredictSensing, Prediction};
+use crate::predict::level::{PredictSensing, Prediction};
 use crate::strategy::StrategyKind;
 
 /// The map of a run: a name (a built-in, a map file or a map spec such as

@@ -493,7 +493,7 @@ impl Perception for UTree {
     }
 }
 
-impl crate::quality::Sees for UTree {
+impl crate::view::Sees for UTree {
     fn sees<W: World + ?Sized, R: Rng + ?Sized>(
         &mut self,
         world: &W,
@@ -539,7 +539,7 @@ impl crate::quality::Sees for UTree {
     }
 }
 
-impl crate::report::Describes for UTree {
+impl crate::view::Describes for UTree {
     /// The features of each leaf's path (its previous-action tests are not features).
     fn described(&self) -> Vec<(RowId, Vec<(Feature, Reading)>)> {
         self.leaves

@@ -1,0 +1,202 @@
+//! The settings of sensing less: which knowledge lets the agent skip measurements
+//! ([`PredictSensing`], the run setting `predict_sensing`) and the rates and rules of
+//! `[prediction]` ([`Prediction`]). Depends only on the error type, so that the settings
+//! can name them without knowing the perception that uses them.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::Error;
+
+/// Which knowledge lets the agent skip measurements (the run setting `predict_sensing`).
+///
+/// ```
+/// use csql::PredictSensing;
+/// assert_eq!(PredictSensing::default(), PredictSensing::Off);
+/// assert_eq!(PredictSensing::Motion.name(), "motion");
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PredictSensing {
+    /// Classify every next state (the paper's procedure; the default).
+    #[default]
+    Off,
+    /// A learned model of (description, action) -> next description.
+    Learned,
+    /// The learned model, and features carried over by dead reckoning.
+    Motion,
+}
+
+impl PredictSensing {
+    /// The three levels, in order.
+    ///
+    /// ```
+    /// assert_eq!(csql::PredictSensing::ALL.len(), 3);
+    /// ```
+    pub const ALL: [PredictSensing; 3] = [
+        PredictSensing::Off,
+        PredictSensing::Learned,
+        PredictSensing::Motion,
+    ];
+
+    /// The setting's value: `off`, `learned` or `motion`.
+    ///
+    /// ```
+    /// assert_eq!(csql::PredictSensing::Learned.name(), "learned");
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            PredictSensing::Off => "off",
+            PredictSensing::Learned => "learned",
+            PredictSensing::Motion => "motion",
+        }
+    }
+
+    /// Whether this is `off` (for serde's `skip_serializing_if`).
+    ///
+    /// ```
+    /// assert!(csql::PredictSensing::Off.is_off());
+    /// ```
+    pub fn is_off(&self) -> bool {
+        *self == PredictSensing::Off
+    }
+}
+
+impl std::fmt::Display for PredictSensing {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for PredictSensing {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<PredictSensing, Error> {
+        PredictSensing::ALL
+            .into_iter()
+            .find(|l| l.name() == s)
+            .ok_or_else(|| Error::InvalidSetting {
+                value: format!("predict_sensing = {s}"),
+                expected: "one of off, learned, motion",
+            })
+    }
+}
+
+/// The confidence rule, the re-check rates and the evaluation of navigation (the TOML
+/// table `[prediction]`; every key optional). Used only when `predict_sensing` is not
+/// `off`.
+///
+/// ```
+/// let p = csql::Prediction::default();
+/// assert_eq!((p.confirmations, p.max_skips, p.navigation_trials, p.memory_moves), (3, 16, 10, 1));
+/// assert_eq!((p.recheck, p.verify), (0.05, 0.05));
+/// assert!(p.validate().is_ok());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Prediction {
+    /// Equal measurements in a row, and none different, before a transition is trusted
+    /// (default 3).
+    pub confirmations: u32,
+    /// Probability of re-checking a trusted transition while learning (default 0.05).
+    pub recheck: f64,
+    /// Most unmeasured uses of one transition in a row: the bound on how long a wrong
+    /// prediction can go unmeasured (default 16).
+    pub max_skips: u32,
+    /// Probability of verifying a trusted transition while navigating (default 0.05).
+    pub verify: f64,
+    /// Evaluation trials of navigation from each non-goal free state (default 10).
+    pub navigation_trials: u32,
+    /// At the motion level, for how many moves a sensed cell is remembered (default 1:
+    /// what was sensed at the previous state).
+    pub memory_moves: u32,
+}
+
+impl Default for Prediction {
+    fn default() -> Prediction {
+        Prediction {
+            confirmations: 3,
+            recheck: 0.05,
+            max_skips: 16,
+            verify: 0.05,
+            navigation_trials: 10,
+            memory_moves: 1,
+        }
+    }
+}
+
+impl Prediction {
+    /// Whether every value is the default (for serde's `skip_serializing_if`).
+    ///
+    /// ```
+    /// assert!(csql::Prediction::default().is_default());
+    /// ```
+    pub fn is_default(&self) -> bool {
+        *self == Prediction::default()
+    }
+
+    /// Check the ranges: probabilities in [0, 1], at least one confirmation, skip,
+    /// evaluation trial and remembered move.
+    ///
+    /// ```
+    /// let p = csql::Prediction { recheck: 1.5, ..Default::default() };
+    /// let err = p.validate().unwrap_err();
+    /// assert!(matches!(err, csql::Error::InvalidSetting { .. }));
+    /// assert!(err.to_string().contains("prediction.recheck"));
+    /// ```
+    pub fn validate(&self) -> Result<(), Error> {
+        let bad = |name: &'static str, value: String, expected: &'static str| {
+            Err(Error::InvalidSetting {
+                value: format!("{name} = {value}"),
+                expected,
+            })
+        };
+        for (name, p) in [
+            ("prediction.recheck", self.recheck),
+            ("prediction.verify", self.verify),
+        ] {
+            if !(0.0..=1.0).contains(&p) {
+                return bad(name, p.to_string(), "a probability in [0, 1]");
+            }
+        }
+        for (name, n) in [
+            ("prediction.confirmations", self.confirmations),
+            ("prediction.max_skips", self.max_skips),
+            ("prediction.navigation_trials", self.navigation_trials),
+            ("prediction.memory_moves", self.memory_moves),
+        ] {
+            if n == 0 {
+                return bad(name, "0".to_string(), "at least 1");
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn settings_are_checked() {
+        for bad in [
+            Prediction {
+                verify: -0.1,
+                ..Default::default()
+            },
+            Prediction {
+                max_skips: 0,
+                ..Default::default()
+            },
+            Prediction {
+                confirmations: 0,
+                ..Default::default()
+            },
+        ] {
+            assert!(bad.validate().is_err());
+        }
+        assert_eq!(
+            "motion".parse::<PredictSensing>().unwrap(),
+            PredictSensing::Motion
+        );
+        assert!("on".parse::<PredictSensing>().is_err());
+    }
+}

@@ -1,0 +1,271 @@
+//! No module of `xtask` uses a module that uses it back, directly or through others.
+//!
+//! Each file under `src/` is a node (`a/b.rs` is `a::b`); a node
+//! uses another when its code outside comments and `#[cfg(test)]` items names it by a
+//! `crate::...`, `self::...` or `super::...` path, or names an item that `main.rs`
+//! re-exports. Declaring a child module (`mod x;`) is
+//! not a use. The layering this keeps is described in `docs/architecture.md`.
+//!
+//! The same checker is in `crates/csql/tests/layers.rs`.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::Path;
+
+/// The source with line comments (doc comments included) and `#[cfg(test)]` items
+/// removed.
+fn strip(src: &str) -> String {
+    let mut out = String::new();
+    let mut lines = src.lines();
+    while let Some(line) = lines.next() {
+        if line.trim_start().starts_with("#[cfg(test)]") {
+            // Skip the next item: up to its closing brace, or its semicolon.
+            let mut depth = 0i32;
+            let mut opened = false;
+            for l in lines.by_ref() {
+                let code = l.split("//").next().unwrap_or("");
+                depth += code.matches('{').count() as i32 - code.matches('}').count() as i32;
+                opened |= code.contains('{');
+                if (opened && depth <= 0) || (!opened && code.trim_end().ends_with(';')) {
+                    break;
+                }
+            }
+            continue;
+        }
+        out.push_str(line.split("//").next().unwrap_or(""));
+        out.push('\n');
+    }
+    out
+}
+
+fn is_ident(c: char) -> bool {
+    c.is_alphanumeric() || c == '_'
+}
+
+/// The paths that follow `prefix` (`crate::`, `self::`, `super::`), each as its
+/// segments; a group `{a::B, c}` gives one path per item.
+fn paths_after(code: &str, prefix: &str) -> Vec<Vec<String>> {
+    let mut out = Vec::new();
+    let mut rest = code;
+    while let Some(i) = rest.find(prefix) {
+        let before = rest[..i].chars().next_back();
+        rest = &rest[i + prefix.len()..];
+        if before.is_some_and(|c| is_ident(c) || c == ':') {
+            continue;
+        }
+        out.extend(parse_tree(rest));
+    }
+    out
+}
+
+/// The paths of a use tree at the start of `s`: `a::b::C` or `{a::B, c::{D, E}}`.
+fn parse_tree(s: &str) -> Vec<Vec<String>> {
+    let s = s.trim_start();
+    if let Some(group) = s.strip_prefix('{') {
+        let mut depth = 0;
+        let mut items = Vec::new();
+        let mut start = 0;
+        for (i, c) in group.char_indices() {
+            match c {
+                '{' => depth += 1,
+                '}' if depth == 0 => {
+                    items.push(&group[start..i]);
+                    break;
+                }
+                '}' => depth -= 1,
+                ',' if depth == 0 => {
+                    items.push(&group[start..i]);
+                    start = i + 1;
+                }
+                _ => {}
+            }
+        }
+        return items
+            .into_iter()
+            .filter(|i| !i.trim().is_empty())
+            .flat_map(parse_tree)
+            .collect();
+    }
+    let mut segments = Vec::new();
+    let mut rest = s;
+    loop {
+        let end = rest.find(|c: char| !is_ident(c)).unwrap_or(rest.len());
+        if end == 0 {
+            if rest.starts_with('{') {
+                let inner = parse_tree(rest);
+                if inner.is_empty() {
+                    return vec![segments];
+                }
+                return inner
+                    .into_iter()
+                    .map(|tail| segments.iter().cloned().chain(tail).collect())
+                    .collect();
+            }
+            break;
+        }
+        segments.push(rest[..end].to_string());
+        match rest[end..].strip_prefix("::") {
+            Some(r) => rest = r,
+            None => break,
+        }
+    }
+    vec![segments]
+}
+
+/// The module a path from the crate root names: the longest prefix that is a module,
+/// or the module whose item the root re-exports.
+fn resolve(
+    segments: &[String],
+    modules: &BTreeSet<String>,
+    reexports: &BTreeMap<String, String>,
+) -> Option<String> {
+    (1..=segments.len())
+        .rev()
+        .map(|n| segments[..n].join("::"))
+        .find(|m| modules.contains(m))
+        .or_else(|| segments.first().and_then(|s| reexports.get(s).cloned()))
+}
+
+/// Every module file under `src` (the root file excluded) with its source.
+fn sources(src: &Path, root: &str) -> BTreeMap<String, String> {
+    let mut out = BTreeMap::new();
+    let mut stack = vec![src.to_path_buf()];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).expect("a readable source folder") {
+            let path = entry.expect("a readable entry").path();
+            if path.is_dir() {
+                stack.push(path);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                let rel = path.strip_prefix(src).expect("under src");
+                let name = rel
+                    .with_extension("")
+                    .to_string_lossy()
+                    .replace(['/', '\\'], "::");
+                if name != root {
+                    let text = std::fs::read_to_string(&path).expect("a readable file");
+                    out.insert(name, text);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The module graph of the crate whose root file is `src/<root>.rs`.
+fn graph(src: &Path, root: &str) -> BTreeMap<String, BTreeSet<String>> {
+    let files = sources(src, root);
+    let modules: BTreeSet<String> = files.keys().cloned().collect();
+    let root_src = std::fs::read_to_string(src.join(format!("{root}.rs"))).expect("a root");
+    let mut reexports = BTreeMap::new();
+    for path in paths_after(
+        &strip(&root_src).replace("pub use ", "pub use crate::"),
+        "crate::",
+    ) {
+        if let (Some(m), Some(item)) = (resolve(&path, &modules, &BTreeMap::new()), path.last()) {
+            reexports.insert(item.clone(), m);
+        }
+    }
+    let mut out = BTreeMap::new();
+    for (name, text) in &files {
+        let code = strip(text);
+        let here: Vec<String> = name.split("::").map(String::from).collect();
+        let mut uses = BTreeSet::new();
+        let mut absolute = paths_after(&code, "crate::");
+        for p in paths_after(&code, "self::") {
+            absolute.push(here.iter().cloned().chain(p).collect());
+        }
+        for p in paths_after(&code, "super::") {
+            absolute.push(here[..here.len() - 1].iter().cloned().chain(p).collect());
+        }
+        for p in absolute {
+            if let Some(m) = resolve(&p, &modules, &reexports)
+                && &m != name
+            {
+                uses.insert(m);
+            }
+        }
+        out.insert(name.clone(), uses);
+    }
+    out
+}
+
+/// A cycle of the graph, if it has one, as the modules along it (the first repeated).
+fn cycle(graph: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>> {
+    fn visit(
+        node: &str,
+        graph: &BTreeMap<String, BTreeSet<String>>,
+        done: &mut BTreeSet<String>,
+        path: &mut Vec<String>,
+    ) -> Option<Vec<String>> {
+        if let Some(i) = path.iter().position(|p| p == node) {
+            let mut c = path[i..].to_vec();
+            c.push(node.to_string());
+            return Some(c);
+        }
+        if done.contains(node) {
+            return None;
+        }
+        path.push(node.to_string());
+        for next in graph.get(node).into_iter().flatten() {
+            if let Some(c) = visit(next, graph, done, path) {
+                return Some(c);
+            }
+        }
+        path.pop();
+        done.insert(node.to_string());
+        None
+    }
+    let mut done = BTreeSet::new();
+    graph
+        .keys()
+        .find_map(|n| visit(n, graph, &mut done, &mut Vec::new()))
+}
+
+fn show(graph: &BTreeMap<String, BTreeSet<String>>) -> String {
+    graph
+        .iter()
+        .map(|(m, uses)| {
+            format!(
+                "{m} -> {}\n",
+                uses.iter().cloned().collect::<Vec<_>>().join(" ")
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn the_modules_use_each_other_without_cycles() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let g = graph(&src, ROOT);
+    assert!(g.len() > 5, "no modules found:\n{}", show(&g));
+    if let Some(c) = cycle(&g) {
+        panic!(
+            "a cycle of modules: {}\n\nthe graph:\n{}",
+            c.join(" -> "),
+            show(&g)
+        );
+    }
+}
+
+/// The checker sees uses through every kind of path, and finds a cycle when there is one.
+#[test]
+fn the_checker_finds_uses_and_cycles() {
+    let code = strip(
+        "use crate::{a::X, b::{Y, Z}};\nuse crate::c;\nfn f() { crate::d::g(); }\n\
+         // crate::e in a comment\n#[cfg(test)]\nmod tests {\n    use crate::f;\n}\n",
+    );
+    let found: Vec<String> = paths_after(&code, "crate::")
+        .into_iter()
+        .map(|p| p.join("::"))
+        .collect();
+    assert_eq!(found, ["a::X", "b::Y", "b::Z", "c", "d::g"]);
+    let mut g: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for (from, to) in [("a", "b"), ("b", "c"), ("c", "a"), ("c", "d")] {
+        g.entry(from.into()).or_default().insert(to.into());
+    }
+    assert_eq!(cycle(&g).unwrap(), ["a", "b", "c", "a"]);
+    g.get_mut("c").unwrap().remove("a");
+    assert_eq!(cycle(&g), None);
+}
+
+/// The root file of this crate.
+const ROOT: &str = "main";
