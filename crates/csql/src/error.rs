@@ -16,8 +16,8 @@ pub enum Error {
     Settings {
         /// The file (or the name given to the text).
         source_name: String,
-        /// What is wrong with it.
-        #[source]
+        /// What is wrong with it (said in this error's message, not again as its source,
+        /// so that a chain of errors prints it once).
         problem: SettingsProblem,
     },
     /// A setting out of range.
@@ -69,8 +69,8 @@ pub enum Error {
 #[non_exhaustive]
 pub enum SettingsProblem {
     /// It could not be read.
-    #[error("cannot read it")]
-    Read(#[source] std::io::Error),
+    #[error("cannot read it: {0}")]
+    Read(std::io::Error),
     /// It is a directory, a device or a pipe.
     #[error("not a regular file")]
     NotAFile,
@@ -81,9 +81,12 @@ pub enum SettingsProblem {
         limit: u64,
     },
     /// It is not UTF-8 text.
-    #[error("not UTF-8 text")]
-    NotUtf8(#[source] std::string::FromUtf8Error),
+    #[error("not UTF-8 text: {0}")]
+    NotUtf8(std::string::FromUtf8Error),
     /// It is not valid settings TOML (the parser names the key, line and column).
     #[error("{}", .0.to_string().trim())]
-    Parse(#[source] toml::de::Error),
+    Parse(toml::de::Error),
+    /// A table given as something else, or a key in the wrong table.
+    #[error("{0}")]
+    Layout(String),
 }

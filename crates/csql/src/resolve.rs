@@ -75,6 +75,7 @@ impl Resolved {
                     what: "[world] sensing_radius (offsets around a robot on a grid)",
                 });
             }
+            check_with_world(settings, crate::quality::is_deterministic(&world), false)?;
             let oracle = Oracle::solve_stochastic(&world, settings.gamma.get())?;
             return Ok(Resolved::Finite { world, oracle });
         }
@@ -92,8 +93,50 @@ impl Resolved {
         if world.factor_costs.is_some() {
             return Err(grid_only("[world] factor_costs"));
         }
+        check_with_world(settings, true, true)?;
         Ok(Resolved::Grid(Setup::new(settings)?))
     }
+}
+
+/// Settings that mean nothing in the world they are run in, refused once the world is
+/// known: the quality's schedule where the oracle judges (a deterministic world, in the
+/// paper's setting), and a memory of recent steps on a grid sensed without a radius,
+/// where every state is told apart by its surroundings and no description runs out of
+/// features to add.
+///
+/// ```
+/// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
+/// s.extensions.quality_every = 11;
+/// let err = csql::Resolved::new(&s).unwrap_err().to_string();
+/// assert!(err.contains("quality_every"), "{err}");
+/// ```
+pub(crate) fn check_with_world(
+    settings: &RunSettings,
+    deterministic: bool,
+    grid: bool,
+) -> Result<(), Error> {
+    let e = &settings.extensions;
+    let by_quality = settings.beyond_paper() || !deterministic;
+    let defaults = crate::extensions::Extensions::default();
+    if !by_quality
+        && (e.quality_every != defaults.quality_every
+            || e.quality_patience != defaults.quality_patience)
+    {
+        return Err(Error::Conflict {
+            first: "extensions.quality_every or quality_patience".to_string(),
+            second: "a run the oracle judges (a deterministic world, the paper's setting)"
+                .to_string(),
+            why: "the policy quality is evaluated only in runs judged by it (slip, slide, noise, a sensing range, another learner, an extension, or judge_by_quality = true)",
+        });
+    }
+    if grid && e.memory > 0 && settings.world.sensing_radius.is_none() {
+        return Err(Error::Conflict {
+            first: format!("extensions.memory = {}", e.memory),
+            second: "a grid map sensed without [world] sensing_radius".to_string(),
+            why: "memory refines a description whose features have run out, and on a grid every state is told apart by its surroundings unless a radius limits them",
+        });
+    }
+    Ok(())
 }
 
 /// Whether a `map` setting names a world beyond grids: a built-in world, or a file whose

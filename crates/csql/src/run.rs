@@ -108,6 +108,11 @@ pub fn run_in<W: World + ?Sized>(
             });
         }
     }
+    crate::resolve::check_with_world(
+        settings,
+        crate::quality::is_deterministic(scene.world),
+        scene.world.grid().is_some(),
+    )?;
     let classify = Classify::new(scene.world);
     Ok(run_classify(scene, settings, classify, observer).0)
 }

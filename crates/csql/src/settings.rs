@@ -311,6 +311,119 @@ pub struct RunSettings {
 /// ```
 pub const MAX_SETTINGS_BYTES: u64 = 64 << 10;
 
+/// The tables of a settings file and the keys each takes: where a key given in the
+/// wrong place belongs (a test checks every key here is read in its table).
+const TABLES: &[(&str, &[&str])] = &[
+    (
+        "world",
+        &[
+            "slip",
+            "sensor_noise",
+            "sensing_radius",
+            "slide",
+            "sensing",
+            "factor_costs",
+        ],
+    ),
+    (
+        "extensions",
+        &[
+            "detector",
+            "rate",
+            "matching",
+            "confirm_new",
+            "reads",
+            "memory",
+            "judge_by_quality",
+            "quality_every",
+            "quality_patience",
+        ],
+    ),
+    (
+        "prediction",
+        &[
+            "confirmations",
+            "recheck",
+            "max_skips",
+            "verify",
+            "navigation_trials",
+            "memory_moves",
+        ],
+    ),
+    (
+        "u_tree",
+        &[
+            "fringe",
+            "alpha",
+            "window",
+            "test_every",
+            "min_group",
+            "patience",
+        ],
+    ),
+];
+
+/// The keys of the top level that are not tables.
+const TOP: &[&str] = &[
+    "map",
+    "strategy",
+    "beta",
+    "gamma",
+    "temperature",
+    "max_moves",
+    "random_moves",
+    "tolerance",
+    "decrease_threshold",
+    "max_trials",
+    "seed",
+    "predict_sensing",
+    "learner",
+];
+
+/// Tables are tables (`world = [0.3, 0.1]` would set fields by position), and a key in
+/// the wrong place says where it belongs.
+fn check_layout(layout: &toml::Table) -> Result<(), SettingsProblem> {
+    for (key, value) in layout {
+        if let Some((table, _)) = TABLES.iter().find(|(t, _)| t == key) {
+            let Some(inner) = value.as_table() else {
+                return Err(SettingsProblem::Layout(format!(
+                    "`{key}` must be a table: write [{key}] and its settings by name, one per line"
+                )));
+            };
+            for inner_key in inner.keys() {
+                if TOP.contains(&inner_key.as_str()) {
+                    return Err(SettingsProblem::Layout(format!(
+                        "`{inner_key}` is a setting of the top level, not of [{table}]: write it before any table"
+                    )));
+                }
+                if let Some((home, _)) = TABLES
+                    .iter()
+                    .find(|(t, keys)| t != table && keys.contains(&inner_key.as_str()))
+                {
+                    return Err(SettingsProblem::Layout(format!(
+                        "`{inner_key}` is a setting of the [{home}] table, not of [{table}]"
+                    )));
+                }
+            }
+            if *table == "extensions"
+                && let Some(rate) = inner.get("rate")
+                && !rate.is_table()
+            {
+                return Err(SettingsProblem::Layout(
+                    "`rate` in [extensions] must be a table: write [extensions.rate] and its settings by name".to_string(),
+                ));
+            }
+        } else if !TOP.contains(&key.as_str())
+            && let Some((home, _)) = TABLES.iter().find(|(_, keys)| keys.contains(&key.as_str()))
+        {
+            return Err(SettingsProblem::Layout(format!(
+                "`{key}` is a setting of the [{home}] table: write it under [{home}]"
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// The TOML file form: every key optional, each one overriding the preset.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -377,10 +490,17 @@ impl RunSettings {
     /// assert!(s.apply_toml("gamma = 1.0", "my.toml").is_err());
     /// ```
     pub fn apply_toml(&mut self, text: &str, source: &str) -> Result<(), Error> {
-        let f: SettingsFile = toml::from_str(text).map_err(|e| Error::Settings {
+        let fail = |problem: SettingsProblem| Error::Settings {
             source_name: source.to_string(),
-            problem: SettingsProblem::Parse(e),
-        })?;
+            problem,
+        };
+        // The layout first (tables are tables, keys in their tables), with hints the
+        // typed reading below cannot give; then the values, with line and column.
+        let layout: toml::Table =
+            toml::from_str(text).map_err(|e| fail(SettingsProblem::Parse(e)))?;
+        check_layout(&layout).map_err(fail)?;
+        let f: SettingsFile = toml::from_str(text).map_err(|e| fail(SettingsProblem::Parse(e)))?;
+        let strategy_given = f.strategy.is_some();
         macro_rules! take {
             ($($field:ident),*) => { $( if let Some(v) = f.$field { self.$field = v; } )* };
         }
@@ -403,6 +523,15 @@ impl RunSettings {
             learner,
             u_tree
         );
+        if strategy_given && !self.learner.is_cs_ql() {
+            return Err(Error::InvalidSetting {
+                value: format!(
+                    "strategy = {} with learner = {}",
+                    self.strategy, self.learner
+                ),
+                expected: "a strategy only with learner = \"cs-ql\" (the baselines never refine by a strategy)",
+            });
+        }
         self.validate()
     }
 
@@ -466,6 +595,11 @@ impl RunSettings {
         if extensions.detector == crate::DetectorKind::Action {
             extensions.detector = crate::DetectorKind::default();
         }
+        // The quality's schedule is how a run judged by quality is judged, not a reason
+        // to judge it so.
+        let defaults = Extensions::default();
+        extensions.quality_every = defaults.quality_every;
+        extensions.quality_patience = defaults.quality_patience;
         !(!self.world.departs_from_the_paper()
             && extensions.is_default()
             && self.learner.is_cs_ql())
@@ -499,6 +633,43 @@ impl RunSettings {
                     self.predict_sensing, self.learner
                 ),
                 "predict_sensing = off with a learner other than cs-ql",
+            );
+        }
+        if self.extensions.rate != crate::RateParams::default()
+            && self.extensions.detector != crate::DetectorKind::Statistical
+        {
+            return refuse(
+                format!(
+                    "extensions.rate with extensions.detector = \"{}\"",
+                    match self.extensions.detector {
+                        crate::DetectorKind::Decrease => "decrease",
+                        crate::DetectorKind::Statistical => "statistical",
+                        crate::DetectorKind::Action => "action",
+                    }
+                ),
+                "extensions.rate only with detector = \"statistical\" (the rate test is its parameters)",
+            );
+        }
+        if !self.u_tree.is_default() && self.learner != LearnerKind::UTree {
+            return refuse(
+                format!("[u_tree] settings with learner = {}", self.learner),
+                "[u_tree] only with learner = \"u-tree\"",
+            );
+        }
+        if !self.prediction.is_default() && self.predict_sensing.is_off() {
+            return refuse(
+                "[prediction] settings with predict_sensing = off".to_string(),
+                "[prediction] only with predict_sensing = \"learned\" or \"motion\"",
+            );
+        }
+        if self.predict_sensing == PredictSensing::Motion
+            && !(self.world.slip.is_zero()
+                && self.world.slide.is_zero()
+                && self.world.sensor_noise.is_zero())
+        {
+            return refuse(
+                "predict_sensing = \"motion\" with [world] slip, slide or sensor_noise".to_string(),
+                "dead reckoning (motion) only with deterministic moves and exact sensors: it places cells by the moves it believes it made",
             );
         }
         if self.extensions.detector == crate::DetectorKind::Action && self.beta.get() != 1.0 {

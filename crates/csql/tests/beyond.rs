@@ -36,12 +36,12 @@ fn each_extension_changes_the_run_only_when_on() {
     let base = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 2);
     // (the extension on, the same settings with it at its default); both judged alike,
     // so that only the extension itself can tell the two runs apart.
-    let common = "max_trials = 100\n[extensions]\nquality_every = 50";
+    let common = "max_trials = 100\n[extensions]\njudge_by_quality = true\nquality_every = 50";
     let noisy = "max_trials = 100\n[world]\nsensor_noise = 0.05\n[extensions]\nquality_every = 50";
     let near = "max_trials = 100\n[world]\nsensing_radius = 1\n[extensions]\nquality_every = 50";
     let tweaks = [
         (
-            "max_trials = 100\n[world]\nslip = 0.1\n[extensions]\nquality_every = 50".to_string(),
+            "max_trials = 100\n[world]\nslip = 0.1\n[extensions]\njudge_by_quality = true\nquality_every = 50".to_string(),
             common.to_string(),
         ),
         (noisy.to_string(), common.to_string()),
@@ -294,4 +294,49 @@ fn cs_ql_extensions_are_refused_with_another_learner() {
     assert!(e.contains("predict_sensing"), "{e}");
     assert!(s.apply_toml("[u_tree]\nalpha = 1.5", "m").is_err());
     assert!(s.apply_toml("[extensions]\nreads = 0", "m").is_err());
+}
+
+/// A setting that would do nothing, or that would change how a run is judged without
+/// saying so, is refused with a message that names it (and the setting it conflicts with).
+#[test]
+fn settings_that_mean_nothing_are_refused() {
+    let cases = [
+        ("[extensions]\nrate = { window = 10 }", "rate"),
+        ("[extensions]\nquality_every = 11", "quality_every"),
+        ("[extensions]\nmemory = 2", "memory"),
+        ("[u_tree]\nfringe = 3", "u_tree"),
+        ("[prediction]\nmax_skips = 3", "prediction"),
+        ("learner = \"u-tree\"\nstrategy = \"eager\"", "strategy"),
+        ("world = [0.3, 0.1]", "must be a table"),
+        ("slip = 0.1", "[world]"),
+        ("[world]\nbeta = 0.2", "top level"),
+        ("[world]\nreads = 3", "[extensions]"),
+        (
+            "predict_sensing = \"motion\"\n[world]\nslip = 0.1",
+            "motion",
+        ),
+        ("[extensions]\ndetector = \"action\"\n", ""),
+        (
+            "beta = 0.5\n[extensions]\ndetector = \"action\"",
+            "beta = 1",
+        ),
+    ];
+    for (toml, fragment) in cases {
+        let mut s = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
+        let outcome = s
+            .apply_toml(toml, "x.toml")
+            .and_then(|()| csql::run(&s).map(|_| ()));
+        if fragment.is_empty() {
+            assert!(outcome.is_ok(), "{toml:?}: {outcome:?}");
+            continue;
+        }
+        let err = outcome.expect_err(toml).to_string();
+        assert!(err.contains(fragment), "{toml:?}: {err}");
+        // Said once: no part of the message repeats itself.
+        let first = err.lines().next().unwrap_or("");
+        assert_eq!(err.matches(first).count(), 1, "{err}");
+    }
+    // quality_every alone no longer turns a converging run into one judged by quality.
+    let plain = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
+    assert!(!plain.beyond_paper());
 }

@@ -88,6 +88,12 @@ impl RunArgs {
         if let Some(learner) = self.learner {
             s.learner = learner;
         }
+        if self.strategy.is_some() && !s.learner.is_cs_ql() {
+            anyhow::bail!(
+                "--strategy with learner {}: a strategy only chooses how CS-QL refines; the baselines have none",
+                s.learner
+            );
+        }
         s.validate()?;
         Ok(s)
     }
