@@ -37,7 +37,10 @@ fn configs() -> Vec<Config> {
         dynamics: "deterministic",
         toml: String::new(),
     });
-    for (dynamics, world) in [("slip 2/3", "slip = 0.6666666666666666"), ("slide 0.5", "slide = 0.5")] {
+    for (dynamics, world) in [
+        ("slip 2/3", "slip = 0.6666666666666666"),
+        ("slide 0.5", "slide = 0.5"),
+    ] {
         for sensing in ["local", "factors"] {
             out.push(Config {
                 world: "frozenlake4x4",
@@ -132,13 +135,22 @@ fn main() -> Result<(), csql::Error> {
                 reports.len(),
                 mean(&hits.iter().map(|h| f64::from(h.0)).collect::<Vec<_>>()),
                 mean(&hits.iter().map(|h| h.1).collect::<Vec<_>>()),
-                mean(&done.iter().map(|r| r.descriptions.len() as f64).collect::<Vec<_>>()),
+                mean(
+                    &done
+                        .iter()
+                        .map(|r| r.descriptions.len() as f64)
+                        .collect::<Vec<_>>()
+                ),
                 mean(
                     &done
                         .iter()
                         .map(|r| {
                             let n = r.descriptions.len().max(1) as f64;
-                            r.descriptions.iter().map(|d| d.features.len()).sum::<usize>() as f64 / n
+                            r.descriptions
+                                .iter()
+                                .map(|d| d.features.len())
+                                .sum::<usize>() as f64
+                                / n
                         })
                         .collect::<Vec<_>>()
                 ),

@@ -212,6 +212,7 @@ pub use navigate::{Navigation, navigate};
 pub use observe::{Flow, KeepTrace, Observer};
 pub use perception::{FullView, Identified, Perception};
 pub use predict::{PredictSensing, Predicting, Prediction, PredictionStats, TransitionModel};
+pub use quality::value_floor;
 pub use quality::{
     MC_MAX_MOVES, MC_MAX_ROUNDS, MC_MIN_ROUNDS, POLICY_BATCHES, POLICY_SAMPLES, QualityEstimate,
     QualityMethod, Sees,
@@ -225,7 +226,6 @@ pub use report::{
     Table1, Table1Row, TracePoint,
 };
 pub use representation::{Description, DescriptionId, Representation};
-pub use quality::value_floor;
 pub use resolve::{Resolved, is_world_name};
 pub use run::{
     Scene, Setup, run, run_in, run_observed, run_on, run_on_with, run_settings,
