@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::Args;
 use csql::{Flow, Observer, RunReport, RunSettings, StrategyKind, TracePoint};
 
@@ -124,8 +124,9 @@ impl Observer for Watch {
     }
 }
 
-/// A flag that Ctrl-C sets. If a handler cannot be installed (one already is, in tests
-/// for instance), Ctrl-C keeps its default effect.
+/// A flag that Ctrl-C (SIGINT) and SIGTERM set (the `ctrlc` crate's `termination`
+/// feature), so that both stop the run with its report. If a handler cannot be installed
+/// (one already is, in tests for instance), the signals keep their default effect.
 fn ctrl_c_flag() -> Arc<AtomicBool> {
     let flag = Arc::new(AtomicBool::new(false));
     let set = Arc::clone(&flag);
@@ -172,8 +173,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     };
     watch.bar.finish_and_clear();
     if let (Some(path), csql::Resolved::Grid(setup)) = (&args.svg, &resolved) {
-        std::fs::write(path, csql::policy_svg(setup, &report))
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        crate::write_file(path, csql::policy_svg(setup, &report))?;
         crate::note(format_args!(
             "wrote the policy picture to {}",
             path.display()
