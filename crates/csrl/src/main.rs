@@ -101,12 +101,14 @@ fn main() -> ExitCode {
 fn message(e: &anyhow::Error) -> String {
     let mut text = String::new();
     for cause in e.chain() {
+        // Some causes end their text with a newline (TOML's): compare what is said.
         let part = cause.to_string();
+        let part = part.trim_end();
         if text.is_empty() {
-            text = part;
-        } else if !text.contains(&part) {
+            text = part.to_string();
+        } else if !text.contains(part) {
             text.push_str(": ");
-            text.push_str(&part);
+            text.push_str(part);
         }
     }
     text
