@@ -11,6 +11,9 @@
 //!   --seed S                                  the generator's and the stream's seed (1)
 //!   --repeat K                                run the indexed procedure K times per size
 //!                                             and take the median time (default 5)
+//!   --features F                              the number of features (default 30)
+//!   --classes K                               the number of classes (default 2; more
+//!                                             than 2 draws each label uniformly)
 //!   --write DIR                               write each data set as DIR/rows-N.csv and
 //!                                             the prices as DIR/costs.csv, for
 //!                                             `csrl classify`, and exit
@@ -24,6 +27,11 @@
 //! `f02 + f05 + f09 >= 5` (values counted from 0), else `no`; then 5% of the labels are
 //! flipped, so that the library keeps growing with contradictions as real data would. Rows of the same seed share their prefix: the 2,000-row set begins with the
 //! 1,000-row set.
+//!
+//! With `--features F` below 10 the rule reads the first three features (or all of them,
+//! when fewer), `yes` when their sum is at least 5. With `--classes K` above 2 each label is
+//! drawn uniformly from `c0`..`c{K-1}` instead: no structure, and as many classes as the
+//! rows allow (the case of a data set whose target is nearly an identifier).
 //!
 //! # What it prints
 //!
@@ -41,25 +49,35 @@ use cslearn::{Dataset, DatasetOptions, LearnerKind, Procedure, StreamReport};
 use rand::{RngExt, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
-const FEATURES: usize = 30;
-
-/// The data set of `rows` objects and the price list, as CSV text.
-fn generate(rows: usize, seed: u64) -> (String, String) {
+/// The data set of `rows` objects of `features` features and `classes` classes, and the
+/// price list, as CSV text.
+fn generate(rows: usize, features: usize, classes: usize, seed: u64) -> (String, String) {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
     let mut data = String::new();
-    let names: Vec<String> = (0..FEATURES).map(|j| format!("f{j:02}")).collect();
+    let names: Vec<String> = (0..features).map(|j| format!("f{j:02}")).collect();
     writeln!(data, "{},class", names.join(",")).unwrap();
+    let rule: Vec<usize> = if features >= 10 {
+        vec![2, 5, 9]
+    } else {
+        (0..features.min(3)).collect()
+    };
     for _ in 0..rows {
-        let x: Vec<u32> = (0..FEATURES).map(|_| rng.random_range(0..4)).collect();
-        let mut yes = x[2] + x[5] + x[9] >= 5;
-        if rng.random_bool(0.05) {
-            yes = !yes;
-        }
+        let x: Vec<u32> = (0..features).map(|_| rng.random_range(0..4)).collect();
+        let label = if classes > 2 {
+            format!("c{}", rng.random_range(0..classes))
+        } else {
+            let mut yes = rule.iter().map(|&j| x[j]).sum::<u32>() >= 5;
+            if rng.random_bool(0.05) {
+                yes = !yes;
+            }
+            String::from(if yes { "yes" } else { "no" })
+        };
         for &v in &x {
             data.push(char::from(b'a' + v as u8));
             data.push(',');
         }
-        data.push_str(if yes { "yes\n" } else { "no\n" });
+        data.push_str(&label);
+        data.push('\n');
     }
     let mut costs = String::from("feature,cost\n");
     for (j, name) in names.iter().enumerate() {
@@ -118,6 +136,8 @@ struct Options {
     seed: u64,
     repeat: usize,
     write: Option<std::path::PathBuf>,
+    features: usize,
+    classes: usize,
 }
 
 fn options() -> Result<Options, String> {
@@ -129,6 +149,8 @@ fn options() -> Result<Options, String> {
         seed: 1,
         repeat: 5,
         write: None,
+        features: 30,
+        classes: 2,
     };
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
@@ -152,6 +174,8 @@ fn options() -> Result<Options, String> {
             "--reference" => o.reference = value()?.parse().map_err(|e| format!("{e}"))?,
             "--seed" => o.seed = value()?.parse().map_err(|e| format!("{e}"))?,
             "--repeat" => o.repeat = value()?.parse().map_err(|e| format!("{e}"))?,
+            "--features" => o.features = value()?.parse().map_err(|e| format!("{e}"))?,
+            "--classes" => o.classes = value()?.parse().map_err(|e| format!("{e}"))?,
             "--write" => o.write = Some(value()?.into()),
             other => return Err(format!("unknown option {other}")),
         }
@@ -164,15 +188,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Some(dir) = &o.write {
         std::fs::create_dir_all(dir)?;
         for &rows in &o.rows {
-            let (data, costs) = generate(rows, o.seed);
+            let (data, costs) = generate(rows, o.features, o.classes, o.seed);
             std::fs::write(dir.join(format!("rows-{rows}.csv")), data)?;
             std::fs::write(dir.join("costs.csv"), costs)?;
         }
         return Ok(());
     }
     println!(
-        "{} on {} features, seed {}; plain procedure up to {} rows",
-        o.name, FEATURES, o.seed, o.reference
+        "{} on {} features, {} classes, seed {}; plain procedure up to {} rows",
+        o.name, o.features, o.classes, o.seed, o.reference
     );
     println!(
         "| rows | seconds | objects/s | µs/object | peak MiB | plain seconds | plain / indexed | accuracy | cost/object |"
@@ -182,7 +206,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut plain_points = Vec::new();
     let mut clock_kind = "cpu";
     for &rows in &o.rows {
-        let (data, costs) = generate(rows, o.seed);
+        let (data, costs) = generate(rows, o.features, o.classes, o.seed);
         let options = DatasetOptions::new("class");
         let data = Dataset::from_readers(
             data.as_bytes(),

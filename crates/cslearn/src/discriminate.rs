@@ -7,7 +7,7 @@ use rand::seq::SliceRandom;
 use crate::attend::{Attend, Attention};
 use crate::example::Library;
 use crate::sensing::{Probe, Sensor};
-use crate::types::FeatureId;
+use crate::types::{FeatureCosts, FeatureId};
 
 /// Example discrimination, one of the five functions.
 ///
@@ -47,6 +47,23 @@ pub trait Discriminate {
         conflicting: &mut Attention,
         probe: &mut Probe<'_, S>,
     );
+
+    /// The order in which [`discriminate`](Discriminate::discriminate) measures features
+    /// when something conflicts, if that order does not depend on the examples; drawn as
+    /// `discriminate` would draw it (so ask only where it would measure something), and
+    /// `None` (the default) otherwise. A learner that keeps counts per sequence of
+    /// measurements, as the indexed ones do, then discriminates by walking down its index
+    /// instead of filtering the conflicting examples one by one.
+    ///
+    /// ```
+    /// use cslearn::{CheapestFirst, Discriminate, FeatureCosts, FeatureId};
+    /// let costs = FeatureCosts::from_f64(&[5.0, 1.0]).unwrap();
+    /// assert_eq!(CheapestFirst.order(&costs), Some(&[FeatureId(1), FeatureId(0)][..]));
+    /// ```
+    fn order<'a>(&'a mut self, costs: &'a FeatureCosts) -> Option<&'a [FeatureId]> {
+        let _ = costs;
+        None
+    }
 }
 
 /// Measure features in `order`, skipping those the current pass has seen, until nothing
@@ -96,6 +113,10 @@ impl Discriminate for CheapestFirst {
         probe: &mut Probe<'_, S>,
     ) {
         measure_until_apart(probe.costs().order(), library, attend, conflicting, probe);
+    }
+
+    fn order<'a>(&'a mut self, costs: &'a FeatureCosts) -> Option<&'a [FeatureId]> {
+        Some(costs.order())
     }
 }
 
@@ -151,10 +172,30 @@ impl<R: Rng> Discriminate for RandomOrder<R> {
             // Drawing nothing keeps the generator's stream independent of lucky objects.
             return;
         }
-        self.order.clear();
-        self.order
-            .extend((0..probe.costs().len() as u32).map(FeatureId));
-        self.order.shuffle(&mut self.rng);
+        self.draw(probe.costs());
         measure_until_apart(&self.order, library, attend, conflicting, probe);
+    }
+
+    /// A fresh order from the generator, exactly as [`discriminate`](Discriminate::discriminate)
+    /// draws it.
+    ///
+    /// ```
+    /// use cslearn::{Discriminate, FeatureCosts, RandomOrder};
+    /// use rand::SeedableRng;
+    /// let costs = FeatureCosts::from_f64(&[1.0, 1.0, 1.0]).unwrap();
+    /// let mut order = RandomOrder::new(rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(7));
+    /// assert_eq!(order.order(&costs).unwrap().len(), 3);
+    /// ```
+    fn order<'a>(&'a mut self, costs: &'a FeatureCosts) -> Option<&'a [FeatureId]> {
+        self.draw(costs);
+        Some(&self.order)
+    }
+}
+
+impl<R: Rng> RandomOrder<R> {
+    fn draw(&mut self, costs: &FeatureCosts) {
+        self.order.clear();
+        self.order.extend((0..costs.len() as u32).map(FeatureId));
+        self.order.shuffle(&mut self.rng);
     }
 }

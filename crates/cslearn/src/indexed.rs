@@ -261,6 +261,23 @@ impl<D: Discriminate> IndexedLearner<D> {
         self.tree.len()
     }
 
+    /// How many times the index has looked at an example so far (an example counted into
+    /// a node, or checked against a node's measurement): a measure of its work that does
+    /// not depend on the machine. Per object it grows with the depth of what was learned
+    /// and the examples a node gains, not with the size of the library.
+    ///
+    /// ```
+    /// use cslearn::{ClassId, FeatureCosts, Value};
+    /// let mut learner = cslearn::cs_id3_indexed(FeatureCosts::from_f64(&[1.0]).unwrap());
+    /// assert_eq!(learner.examples_visited(), 0);
+    /// learner.learn(&[Some(Value(0))][..], ClassId(0));
+    /// learner.learn(&[Some(Value(1))][..], ClassId(1)); // the root counts the first
+    /// assert!(learner.examples_visited() >= 1);
+    /// ```
+    pub fn examples_visited(&self) -> u64 {
+        self.tree.visited
+    }
+
     /// The cycle for one object, step for step the plain learner's (`learner.rs`) with
     /// attending, selection and prediction answered by the tree.
     fn run<T: Sensor>(&mut self, sensor: T, label: Option<ClassId>) -> Option<ClassId> {
@@ -288,8 +305,14 @@ impl<D: Discriminate> IndexedLearner<D> {
         };
         let correct = predicted == Some(label);
         if !correct {
-            let at = pass.tree.members(attended);
-            discriminate_apart(library, at, label, conflicting, discriminate, &mut probe);
+            pass.tree.discriminate(
+                library,
+                attended,
+                label,
+                conflicting,
+                discriminate,
+                &mut probe,
+            );
         }
         // Step 4, as `AppendAll` does it: every example is kept.
         let index = library.push(probe.ledger().to_example(label));
@@ -300,8 +323,14 @@ impl<D: Discriminate> IndexedLearner<D> {
                 probe.ledger_mut().start_pass();
                 let (again, attended) = pass.predict(library, &mut probe);
                 if again != Some(label) {
-                    let at = pass.tree.members(attended);
-                    discriminate_apart(library, at, label, conflicting, discriminate, &mut probe);
+                    pass.tree.discriminate(
+                        library,
+                        attended,
+                        label,
+                        conflicting,
+                        discriminate,
+                        &mut probe,
+                    );
                 }
                 let refined = probe.ledger().to_example(label);
                 if refined != library[index] {
@@ -317,25 +346,6 @@ impl<D: Discriminate> IndexedLearner<D> {
         }
         predicted
     }
-}
-
-/// Figure 2, step 3, over the examples attended at the moment of prediction: the
-/// conflicting ones are those of another class than `label`.
-fn discriminate_apart<D: Discriminate, T: Sensor>(
-    library: &Library,
-    attended: &[usize],
-    label: ClassId,
-    conflicting: &mut Attention,
-    discriminate: &mut D,
-    probe: &mut Probe<'_, T>,
-) {
-    conflicting.attend_only(
-        attended
-            .iter()
-            .copied()
-            .filter(|&i| library[i].class() != label),
-    );
-    discriminate.discriminate(library, &ObservationAttending, conflicting, probe);
 }
 
 /// What the tree needs for one pass over an object.
@@ -420,6 +430,8 @@ struct Tree {
     /// The nodes visited since the last example was added: the only ones that can have
     /// counted it, and so the ones to correct when the learner refines it.
     touched: Vec<NodeId>,
+    /// Examples looked at so far, one count per example per node that looked at it.
+    visited: u64,
 }
 
 impl Tree {
@@ -427,6 +439,7 @@ impl Tree {
         Tree {
             nodes: vec![Node::default()],
             touched: Vec::new(),
+            visited: 0,
         }
     }
 
@@ -434,8 +447,61 @@ impl Tree {
         self.nodes.len()
     }
 
-    fn members(&self, node: Option<NodeId>) -> &[usize] {
-        node.map_or(&[], |n| self.nodes[n].members.as_slice())
+    /// How many examples at `node` are of another class than `label`.
+    fn conflicts(&self, node: NodeId, label: ClassId) -> u32 {
+        let counts = &self.nodes[node].counts;
+        let own = counts
+            .totals()
+            .binary_search_by_key(&label, |t| t.0)
+            .map_or(0, |k| counts.totals()[k].1);
+        counts.len() - own
+    }
+
+    /// Figure 2, step 3, from the examples attended at the moment of prediction, those of
+    /// `node` (none for `None`): the conflicting ones are those of another class than
+    /// `label`. Where the discrimination's order does not depend on the examples, the
+    /// conflicting examples after each measurement are those of the child reached by it,
+    /// so the walk down the index measures what filtering them would, without looking at
+    /// them; otherwise they are filtered one by one.
+    fn discriminate<D: Discriminate, T: Sensor>(
+        &mut self,
+        library: &Library,
+        node: Option<NodeId>,
+        label: ClassId,
+        conflicting: &mut Attention,
+        discriminate: &mut D,
+        probe: &mut Probe<'_, T>,
+    ) {
+        let Some(mut node) = node else {
+            // Nothing conflicts: nothing is measured, nothing is drawn.
+            conflicting.attend_only(std::iter::empty());
+            return discriminate.discriminate(library, &ObservationAttending, conflicting, probe);
+        };
+        if self.conflicts(node, label) == 0 {
+            conflicting.attend_only(std::iter::empty());
+            return discriminate.discriminate(library, &ObservationAttending, conflicting, probe);
+        }
+        let Some(order) = discriminate.order(probe.costs()) else {
+            let members = &self.nodes[node].members;
+            self.visited += members.len() as u64;
+            conflicting.attend_only(
+                members
+                    .iter()
+                    .copied()
+                    .filter(|&i| library[i].class() != label),
+            );
+            return discriminate.discriminate(library, &ObservationAttending, conflicting, probe);
+        };
+        for &feature in order {
+            if self.conflicts(node, label) == 0 {
+                return;
+            }
+            if probe.ledger().consulted(feature) {
+                continue;
+            }
+            let value = probe.measure(feature);
+            node = self.child(node, feature, value, library);
+        }
     }
 
     fn forget_decisions(&mut self) {
@@ -466,6 +532,7 @@ impl Tree {
     fn root(&mut self, library: &Library) -> NodeId {
         let root = &mut self.nodes[ROOT];
         if root.synced < library.len() {
+            self.visited += (library.len() - root.synced) as u64;
             for i in root.synced..library.len() {
                 root.members.push(i);
                 root.counts.add(&library[i]);
@@ -533,6 +600,7 @@ impl Tree {
         let parent = &self.nodes[node];
         let new = &parent.members[parent.members.partition_point(|&i| i < child.synced)..];
         let before = child.members.len();
+        self.visited += new.len() as u64;
         for &i in new {
             if value.is_none() || library[i].get(feature) == value {
                 child.members.push(i);

@@ -1,6 +1,39 @@
 //! Cost-sensitive learning: classify objects while paying as little as possible for the
 //! measurements, and learn from each object as it comes.
 //!
+//! # Quick start
+//!
+//! Add to `Cargo.toml` (the `rand` and `rand_xoshiro` versions are the ones this
+//! workspace's examples and tests use; `rand` is needed for the cost-blind ID3 baseline's
+//! seeded generator):
+//!
+//! ```toml
+//! [dependencies]
+//! cslearn = "0.1.0"
+//! rand = { version = "0.10.0", default-features = false, features = ["std"] }
+//! rand_xoshiro = "0.8.0"
+//! ```
+//!
+//! Then learn from objects one at a time, paying for each measurement:
+//!
+//! ```
+//! use cslearn::{ClassId, FeatureCosts, Value};
+//! // Two features: a cheap one (price 1) and an expensive one (price 10).
+//! let mut learner = cslearn::cs_id3_indexed(FeatureCosts::from_f64(&[1.0, 10.0]).unwrap());
+//! let objects = [
+//!     ([Some(Value(0)), Some(Value(7))], ClassId(0)),
+//!     ([Some(Value(1)), Some(Value(7))], ClassId(1)),
+//! ];
+//! for _ in 0..3 {
+//!     for (object, class) in &objects {
+//!         learner.learn(&object[..], *class);
+//!     }
+//! }
+//! let answer = learner.classify(&[Some(Value(1)), Some(Value(7))][..]);
+//! assert_eq!(answer.class, Some(ClassId(1)));
+//! assert_eq!(answer.cost.get(), 1.0); // only the cheap feature was needed
+//! ```
+//!
 //! This crate implements the cost-sensitive learning framework of Tan (AAAI-91, section
 //! "Cost-Sensitive Learning", Figure 2) and its instantiations CS-ID3 and CS-IBL. It
 //! stands alone: a user with a table of objects and a price for each measurement can

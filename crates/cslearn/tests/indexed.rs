@@ -195,3 +195,30 @@ proptest! {
         prop_assert_eq!(counts.len() as usize, examples.len());
     }
 }
+
+/// Few features, many rows, classes the features cannot tell apart: every prediction is
+/// wrong at a node holding a share of the whole library. The index's work per object
+/// (examples looked at, a count that does not depend on the machine) must not grow with
+/// the library as discrimination filtering those conflicting examples made it do
+/// (per-object work ~ rows^1 there; the bound here is rows^0.5).
+#[test]
+fn indexed_work_per_object_grows_slower_than_the_square_root_of_the_rows() {
+    let per_object = |rows: usize| {
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(5);
+        let costs = FeatureCosts::from_f64(&[1.0, 2.0, 3.0]).unwrap();
+        let mut learner = cslearn::cs_id3_indexed(costs);
+        for _ in 0..rows {
+            let row: Row = (0..3)
+                .map(|_| Some(Value(rng.random_range(0..4))))
+                .collect();
+            learner.learn(&row[..], ClassId(rng.random_range(0..10)));
+        }
+        learner.examples_visited() as f64 / rows as f64
+    };
+    let (small, large) = (per_object(4_000), per_object(64_000));
+    // 16 times the rows: at most 4 times the work per object.
+    assert!(
+        large / small <= 4.0,
+        "work per object {small:.1} at 4,000 rows, {large:.1} at 64,000"
+    );
+}

@@ -227,9 +227,10 @@ fn features_text(report: &RunReport, label: u32) -> String {
         .join(", ")
 }
 
-/// Every description of a run as a Markdown table: its label, the states (row, column)
-/// it describes, its number of features, their summed cost and the features themselves
-/// as `(dx, dy) value`, `dx` to the right and `dy` up from the robot.
+/// Every description of a run as a Markdown table: its label, the states it describes
+/// (`(row, column)` on a grid, the world's state labels elsewhere), its number of
+/// features, their summed cost and the readings it requires (on a grid `(dx, dy) value`,
+/// `dx` to the right and `dy` up from the robot; elsewhere `feature reading`).
 ///
 /// ```
 /// use csql::{RunSettings, StrategyKind};
@@ -240,8 +241,21 @@ fn features_text(report: &RunReport, label: u32) -> String {
 /// ```
 pub fn descriptions_table(report: &RunReport) -> String {
     use std::fmt::Write as _;
+    // Grid states have a row and column; the states of other worlds have labels.
+    let grid = report.states.iter().all(|st| st.label.is_none());
+    let (how, states) = if grid {
+        (
+            "Offsets `(dx, dy)` are measured from the robot, `dx` to the right and `dy` up; a description matches a state when every listed cell has the listed value.",
+            "states (row, col)",
+        )
+    } else {
+        (
+            "A description matches a state when every listed feature has the listed reading.",
+            "states",
+        )
+    };
     let mut s = format!(
-        "# Descriptions: {}, {} strategy, seed {}\n\nOffsets `(dx, dy)` are measured from the robot, `dx` to the right and `dy` up; a description matches a state when every listed cell has the listed value.\n\n| description | states (row, col) | features | cost | features |\n|---|---|---|---|---|\n",
+        "# Descriptions: {}, {} strategy, seed {}\n\n{how}\n\n| description | {states} | features | cost | readings required |\n|---|---|---|---|---|\n",
         report.map, report.strategy, report.seed
     );
     for d in &report.descriptions {

@@ -80,6 +80,10 @@ pub struct ClassifyArgs {
     /// Print one JSON object instead of a table.
     #[arg(long)]
     json: bool,
+    /// CS-ID3 only: write the decision tree grown (I^2/C, observation semantics) from the
+    /// library the prequential pass learned, as Graphviz DOT (`dot -Tsvg FILE.dot`).
+    #[arg(long, value_name = "FILE.dot")]
+    dot: Option<PathBuf>,
 }
 
 /// Accuracy and cost per object on one test part (or summed over folds).
@@ -254,6 +258,22 @@ fn held_out(args: &ClassifyArgs, data: &Dataset) -> Result<Option<(String, HeldO
     Ok(Some((scheme, total)))
 }
 
+/// The decision tree grown from the library CS-ID3 learns in the prequential pass (the
+/// same seeded order as `cslearn::stream_dataset`, so the same library).
+fn cs_id3_tree(data: &Dataset, seed: u64) -> cslearn::DecisionTree {
+    use rand::SeedableRng;
+    let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(seed);
+    let mut learner = cslearn::cs_id3_indexed(data.costs().clone());
+    for i in data.shuffled(&mut rng) {
+        learner.learn(data.object(i), data.labels()[i]);
+    }
+    cslearn::DecisionTree::build(
+        learner.library(),
+        data.costs(),
+        cslearn::TreeOptions::observations(),
+    )
+}
+
 /// Run `csrl classify`.
 pub fn run(args: &ClassifyArgs, out: &mut dyn Write) -> Result<()> {
     let mut options = DatasetOptions::new(args.target.as_str());
@@ -269,6 +289,10 @@ pub fn run(args: &ClassifyArgs, out: &mut dyn Write) -> Result<()> {
         ),
         Learner::Id3 => (LearnerKind::Id3, "id3"),
     };
+    anyhow::ensure!(
+        args.dot.is_none() || args.learner == Learner::CsId3,
+        "--dot draws CS-ID3's decision tree: it needs --learner cs-id3"
+    );
     // A sign of life on long streams: a bar on a terminal's stderr, nothing otherwise.
     let bar = indicatif::ProgressBar::with_draw_target(
         Some(data.len() as u64),
@@ -278,6 +302,13 @@ pub fn run(args: &ClassifyArgs, out: &mut dyn Write) -> Result<()> {
         bar.set_position(done as u64);
     });
     bar.finish_and_clear();
+    if let Some(path) = &args.dot {
+        crate::write_file(path, cs_id3_tree(&data, args.seed).to_dot(&data))?;
+        crate::note(format_args!(
+            "wrote the CS-ID3 decision tree to {}",
+            path.display()
+        ));
+    }
     let held = held_out(args, &data)?;
     if args.json {
         let mut json = serde_json::json!({

@@ -2,11 +2,20 @@
 //!
 //! Run `csrl --help` for the commands. Results go to stdout, errors and notes to stderr.
 //!
-//! Exit codes: 0 success (also when a reader of stdout stops early, as `head` does);
-//! 1 a failure, said on stderr as `error: ...`; 2 a usage error (clap's); 3 `run
-//! --require-convergence` on a run that did not converge; 130 a run stopped by Ctrl-C,
-//! after printing what it reached. No input makes it panic, and a full or closed stderr
-//! loses the message but not the exit code.
+//! Exit codes, one per kind of ending, the same in every command:
+//!
+//! | code | meaning |
+//! |---:|---|
+//! | 0 | success (also when a reader of stdout stops early, as `head` does) |
+//! | 1 | an input that cannot be read or is not valid (a file, a map, a world, settings, data), said on stderr as `error: ...` |
+//! | 2 | a usage error (clap's: an unknown flag, a missing or malformed argument) |
+//! | 3 | `run --require-convergence` on a run that did not converge |
+//! | 4 | an output file that cannot be written (`--svg`, `world export --out`): a missing folder and a read-only one alike |
+//! | 130 | a run stopped by Ctrl-C or SIGTERM, after printing what it reached |
+//!
+//! No input makes it panic, and a full or closed stderr loses the message but not the
+//! exit code. A message says each thing once: a cause already said by the message it
+//! explains is not repeated.
 
 mod classify;
 mod maps;
@@ -21,7 +30,16 @@ use clap::{Parser, Subcommand};
 /// Cost-sensitive reinforcement learning (Tan, AAAI-91): grid maps, CS-QL runs and
 /// cost-sensitive classification.
 #[derive(Parser)]
-#[command(name = "csrl", version, about, long_about = None)]
+#[command(
+    name = "csrl",
+    version,
+    about,
+    long_about = None,
+    after_help = "Exit codes: 0 success; 1 an input that cannot be read or is not valid; \
+2 a usage error; 3 `run --require-convergence` on a run that did not converge; \
+4 an output file that cannot be written; 130 a run stopped by Ctrl-C or SIGTERM \
+(after its report)."
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -70,11 +88,59 @@ fn main() -> ExitCode {
                 ExitCode::from(status.code)
             }
             None => {
-                note(format_args!("error: {e:#}"));
-                ExitCode::FAILURE
+                note(format_args!("error: {}", message(&e)));
+                let cannot_write = e.chain().any(|c| c.downcast_ref::<CannotWrite>().is_some());
+                ExitCode::from(if cannot_write { 4 } else { 1 })
             }
         },
     }
+}
+
+/// The error and its causes, each said once: a cause whose text the message so far
+/// already holds (a wrapper that printed its source itself) is left out.
+fn message(e: &anyhow::Error) -> String {
+    let mut text = String::new();
+    for cause in e.chain() {
+        // Some causes end their text with a newline (TOML's): compare what is said.
+        let part = cause.to_string();
+        let part = part.trim_end();
+        if text.is_empty() {
+            text = part.to_string();
+        } else if !text.contains(part) {
+            text.push_str(": ");
+            text.push_str(part);
+        }
+    }
+    text
+}
+
+/// An output file that cannot be written (exit code 4).
+#[derive(Debug)]
+pub(crate) struct CannotWrite {
+    path: std::path::PathBuf,
+    source: std::io::Error,
+}
+
+impl std::fmt::Display for CannotWrite {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "cannot write {}", self.path.display())
+    }
+}
+
+impl std::error::Error for CannotWrite {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&self.source)
+    }
+}
+
+/// Write `contents` to `path`; a failure is a [`CannotWrite`].
+pub(crate) fn write_file(path: &std::path::Path, contents: impl AsRef<[u8]>) -> anyhow::Result<()> {
+    std::fs::write(path, contents).map_err(|source| {
+        anyhow::Error::new(CannotWrite {
+            path: path.to_path_buf(),
+            source,
+        })
+    })
 }
 
 /// Write a line to stderr. Unlike `eprintln!`, a full or closed stderr is no panic: the
@@ -101,7 +167,7 @@ impl Status {
         }
     }
 
-    /// A run stopped by Ctrl-C.
+    /// A run stopped by Ctrl-C or SIGTERM.
     pub(crate) fn interrupted(trials: u32) -> Status {
         Status {
             code: 130,

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::Args;
 use csql::{Flow, Observer, RunReport, RunSettings, StrategyKind, TracePoint};
 
@@ -130,8 +130,9 @@ impl Observer for Watch {
     }
 }
 
-/// A flag that Ctrl-C sets. If a handler cannot be installed (one already is, in tests
-/// for instance), Ctrl-C keeps its default effect.
+/// A flag that Ctrl-C (SIGINT) and SIGTERM set (the `ctrlc` crate's `termination`
+/// feature), so that both stop the run with its report. If a handler cannot be installed
+/// (one already is, in tests for instance), the signals keep their default effect.
 fn ctrl_c_flag() -> Arc<AtomicBool> {
     let flag = Arc::new(AtomicBool::new(false));
     let set = Arc::clone(&flag);
@@ -178,17 +179,31 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     };
     watch.bar.finish_and_clear();
     if let (Some(path), csql::Resolved::Grid(setup)) = (&args.svg, &resolved) {
-        std::fs::write(path, csql::policy_svg(setup, &report))
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        crate::write_file(path, csql::policy_svg(setup, &report))?;
         crate::note(format_args!(
             "wrote the policy picture to {}",
             path.display()
+        ));
+        // The picture's legend points to "the table beside this figure".
+        let table = path.with_extension("md");
+        crate::write_file(&table, csql::descriptions_table(&report))?;
+        crate::note(format_args!(
+            "wrote the descriptions table beside it to {}",
+            table.display()
         ));
     }
     if args.json {
         writeln!(out, "{}", serde_json::to_string(&report)?)?;
     } else {
         print_report(&report, out)?;
+        let map = match &resolved {
+            csql::Resolved::Grid(setup) => Some(&setup.map),
+            csql::Resolved::Finite { .. } => None,
+        };
+        writeln!(out)?;
+        print_policy(&report, map, out)?;
+        writeln!(out)?;
+        write!(out, "{}", csql::descriptions_table(&report))?;
     }
     if watch.stopped {
         return Err(Status::interrupted(report.trials).into());
@@ -201,6 +216,44 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     };
     if args.require_convergence && !settled {
         return Err(Status::not_converged(report.trials).into());
+    }
+    Ok(())
+}
+
+/// The learned policy: on a grid map, the greedy action of each state's description as an
+/// arrow on the map; in any other world, a table of state -> greedy action and
+/// description.
+fn print_policy(r: &RunReport, map: Option<&mdp::Map>, out: &mut dyn Write) -> std::io::Result<()> {
+    if let Some(map) = map {
+        let mut overlay = mdp::Overlay::default();
+        for st in &r.states {
+            let action = st
+                .greedy_action
+                .as_deref()
+                .and_then(|name| mdp::Action::ALL.into_iter().find(|a| a.name() == name));
+            if let (Some(row), Some(col), Some(action)) = (st.row, st.col, action) {
+                overlay.arrow(mdp::Pos::new(row, col), action);
+            }
+        }
+        writeln!(
+            out,
+            "Learned policy (the greedy action of each state's description):"
+        )?;
+        return write!(out, "{}", mdp::render_text(map, &overlay));
+    }
+    writeln!(out, "Learned policy:")?;
+    writeln!(out)?;
+    writeln!(out, "| state | greedy action | description |")?;
+    writeln!(out, "|---|---|---|")?;
+    for st in &r.states {
+        writeln!(
+            out,
+            "| {} | {} | {} |",
+            st.label.as_deref().unwrap_or("?"),
+            st.greedy_action.as_deref().unwrap_or("none"),
+            st.description
+                .map_or("none".to_string(), |d| format!("d{d}"))
+        )?;
     }
     Ok(())
 }

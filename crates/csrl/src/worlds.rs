@@ -3,7 +3,7 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::Subcommand;
 use mdp::{ActionId, Feature, FiniteWorld, Oracle, Sensors, StateId, StochasticMdp, World};
 use serde::Serialize;
@@ -96,8 +96,7 @@ pub fn run(cmd: &WorldCommand, out: &mut dyn Write) -> Result<()> {
             let text = w.to_json();
             match path {
                 Some(path) => {
-                    std::fs::write(path, &text)
-                        .with_context(|| format!("cannot write {}", path.display()))?;
+                    crate::write_file(path, &text)?;
                     crate::note(format_args!("wrote {} to {}", w.name(), path.display()));
                 }
                 None => write!(out, "{text}")?,

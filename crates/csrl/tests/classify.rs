@@ -393,3 +393,25 @@ fn costs_whose_totals_cannot_be_represented_are_refused_up_front() {
         );
     }
 }
+
+/// `--dot FILE` writes CS-ID3's decision tree as Graphviz DOT, with the data's feature
+/// and class names; other learners are refused.
+#[test]
+fn dot_writes_the_cs_id3_tree() {
+    let dir = tempfile::tempdir().unwrap();
+    let dot = dir.path().join("tree.dot");
+    let dot = dot.to_str().unwrap();
+    let out = on_heart(&["--learner", "cs-id3", "--dot", dot]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = std::fs::read_to_string(dot).unwrap();
+    assert!(text.starts_with("digraph"), "{text}");
+    assert!(text.contains("cost"), "{text}");
+    assert!(stderr(&out).contains("tree.dot"), "{}", stderr(&out));
+    let out = on_heart(&["--learner", "id3", "--dot", dot]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr(&out).contains("--learner cs-id3"),
+        "{}",
+        stderr(&out)
+    );
+}

@@ -144,6 +144,8 @@ fn the_run_table_lines_up() {
     let widths: Vec<usize> = text
         .lines()
         .skip_while(|l| !l.starts_with("Table 1 row"))
+        // The policy and the descriptions follow after a blank line.
+        .take_while(|l| !l.is_empty())
         .map(|l| l.chars().count())
         .collect();
     assert!(widths.len() == 10, "{text}");

@@ -194,3 +194,62 @@ fn a_reader_that_stops_early_is_no_error() {
     assert_eq!(out.status.code(), Some(0), "{err}");
     assert!(!err.contains("panicked"), "{err}");
 }
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// The text output shows the learned policy (arrows on the map) and the descriptions
+/// table after Table 1; the table's columns each have their own name.
+#[test]
+fn text_output_shows_the_policy_on_the_map_and_the_descriptions() {
+    let out = csrl(&["run", "--map", "tan3x3"]);
+    assert!(out.status.success());
+    let text = stdout(&out);
+    let policy = text.find("Learned policy").expect("a policy");
+    assert!(text.find("# Descriptions").expect("descriptions") > policy);
+    // The map with arrows: its first line is the wall, then rows with arrows.
+    let map: Vec<&str> = text[policy..].lines().skip(1).take(5).collect();
+    assert_eq!(map[0], "#####", "{text}");
+    assert!(
+        map[1..4].iter().any(|l| l.contains(['>', '<', '^', 'v'])),
+        "{text}"
+    );
+    assert!(
+        text.contains("| description | states (row, col) | features | cost | readings required |"),
+        "{text}"
+    );
+}
+
+/// In a world that is not a grid, the policy is a table of state -> action, and the
+/// descriptions table names its states column for what it holds (labels).
+#[test]
+fn text_output_of_another_world_has_a_policy_table() {
+    let out = csrl(&["run", "--world", "frozenlake4x4", "--max-trials", "50"]);
+    assert!(out.status.success());
+    let text = stdout(&out);
+    assert!(
+        text.contains("| state | greedy action | description |"),
+        "{text}"
+    );
+    assert!(
+        text.contains("| description | states | features | cost | readings required |"),
+        "{text}"
+    );
+    assert!(!text.contains("(row, col)"), "{text}");
+}
+
+/// `--svg FILE` also writes the descriptions table its legend points to, as `FILE.md`,
+/// and says so on stderr.
+#[test]
+fn svg_writes_the_descriptions_table_beside_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let svg = dir.path().join("policy.svg");
+    let out = csrl(&["run", "--map", "tan3x3", "--svg", svg.to_str().unwrap()]);
+    assert!(out.status.success());
+    let table = std::fs::read_to_string(dir.path().join("policy.md")).expect("the table");
+    assert!(table.starts_with("# Descriptions: tan3x3"), "{table}");
+    assert!(stdout(&out).contains(&table));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("policy.md"), "{err}");
+}

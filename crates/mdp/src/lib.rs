@@ -1,5 +1,28 @@
 //! Deterministic finite MDPs and grid worlds, with a priced sensing model and an oracle.
 //!
+//! # Quick start
+//!
+//! Add to `Cargo.toml` (the `rand` and `rand_xoshiro` versions are the ones this
+//! workspace's examples and tests use):
+//!
+//! ```toml
+//! [dependencies]
+//! mdp = "0.1.0"
+//! rand = { version = "0.10.0", default-features = false, features = ["std"] }
+//! rand_xoshiro = "0.8.0"
+//! ```
+//!
+//! Then walk a built-in grid world and read what the robot senses:
+//!
+//! ```
+//! use mdp::Mdp;
+//! let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+//! let s = world.state_at(mdp::Pos::new(0, 1)).unwrap();
+//! let step = world.step(s, mdp::Action::Right.id());
+//! assert!(step.terminated); // the goal is one move to the right
+//! assert_eq!(step.reward, 1.0);
+//! ```
+//!
 //! This crate is the environment side of cost-sensitive reinforcement learning (Tan,
 //! AAAI-91, section "Experiments in a Navigation Domain"). It knows nothing of learning:
 //!

@@ -2,6 +2,80 @@
 //! learning (Tan, "Cost-Sensitive Reinforcement Learning for Adaptive Classification and
 //! Control", AAAI-91).
 //!
+//! # Quick start
+//!
+//! Add to `Cargo.toml` (the `rand` and `rand_xoshiro` versions are the ones this
+//! workspace's examples and tests use; `mdp` is needed for [`mdp::ActionId`] and for
+//! [`QLearner`] over an [`mdp::Mdp`]):
+//!
+//! ```toml
+//! [dependencies]
+//! qlearn = "0.1.0"
+//! mdp = "0.1.0"
+//! rand = { version = "0.10.0", default-features = false, features = ["std"] }
+//! rand_xoshiro = "0.8.0"
+//! ```
+//!
+//! [`QTable`] works with any environment, including a stochastic or an external one
+//! driven by a Gymnasium-style `reset`/`step` loop: one row per observation, Boltzmann
+//! selection, and [`QTable::update`] with [`Target::Terminal`] on `terminated` (nothing
+//! follows) and [`Target::Bootstrap`] otherwise (also on `truncated`: the state reached
+//! still has a future).
+//!
+//! ```
+//! use mdp::ActionId;
+//! use qlearn::{Params, QTable, RowId, Target};
+//! use rand::{RngExt, SeedableRng};
+//!
+//! /// A slippery corridor of 5 cells: action 1 moves right, action 0 left, and one move in
+//! /// five slips the other way. Reaching the right end pays 1 and ends the episode.
+//! struct Corridor<R> {
+//!     at: usize,
+//!     rng: R,
+//! }
+//!
+//! impl<R: rand::Rng> Corridor<R> {
+//!     fn reset(&mut self) -> usize {
+//!         self.at = 0;
+//!         self.at
+//!     }
+//!     /// (observation, reward, terminated, truncated) as in Gymnasium.
+//!     fn step(&mut self, action: ActionId) -> (usize, f64, bool, bool) {
+//!         let right = (action.index() == 1) != self.rng.random_bool(0.2);
+//!         self.at = if right { self.at + 1 } else { self.at.saturating_sub(1) };
+//!         let done = self.at == 4;
+//!         (self.at, if done { 1.0 } else { 0.0 }, done, false)
+//!     }
+//! }
+//!
+//! let params = Params::tan1991();
+//! // The paper's beta of 1 keeps only the last outcome; a smaller one averages the slips.
+//! let beta = qlearn::LearningRate::new(0.1).unwrap();
+//! let mut table = QTable::with_rows(2, 5).unwrap(); // 2 actions, 5 observations
+//! let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(7);
+//! let mut env = Corridor { at: 0, rng: rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(8) };
+//! for _episode in 0..500 {
+//!     let mut obs = env.reset();
+//!     for _ in 0..100 {
+//!         let action = table.boltzmann(RowId(obs as u32), params.temperature, &mut rng);
+//!         let (next, reward, terminated, truncated) = env.step(action);
+//!         let target = if terminated {
+//!             Target::Terminal
+//!         } else {
+//!             Target::Bootstrap(RowId(next as u32))
+//!         };
+//!         let row = RowId(obs as u32);
+//!         table.update(row, action, reward, target, beta, params.discount);
+//!         obs = next;
+//!         if terminated || truncated {
+//!             break;
+//!         }
+//!     }
+//! }
+//! // Moving right is the greedy choice everywhere along the corridor.
+//! assert!((0..4).all(|s| table.greedy(RowId(s)).index() == 1));
+//! ```
+//!
 //! The crate has three parts, kept apart so that each can be used alone:
 //!
 //! * Parameters ([`LearningRate`] beta, [`Discount`] gamma, [`Temperature`] T,

@@ -1,0 +1,106 @@
+//! One exit code per kind of ending, across commands; each message says a thing once;
+//! SIGTERM stops a run as Ctrl-C does.
+
+use std::process::{Command, Output, Stdio};
+
+fn csrl(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_csrl"))
+        .args(args)
+        .output()
+        .expect("run csrl")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// A missing folder and a folder that is a file are both "cannot write": exit code 4,
+/// for `run --svg` and `world export --out` alike.
+#[test]
+fn every_output_that_cannot_be_written_exits_4() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("a-file");
+    std::fs::write(&file, "x").unwrap();
+    let missing = dir.path().join("no-such-folder").join("out");
+    let under_file = file.join("out");
+    for target in [&missing, &under_file] {
+        let svg = target.with_extension("svg");
+        let json = target.with_extension("json");
+        let svg = svg.to_str().unwrap();
+        let json = json.to_str().unwrap();
+        for args in [
+            vec!["run", "--map", "tan3x3", "--max-trials", "2", "--svg", svg],
+            vec!["world", "export", "frozenlake4x4", "--out", json],
+        ] {
+            let out = csrl(&args);
+            assert_eq!(out.status.code(), Some(4), "{args:?}: {}", stderr(&out));
+            assert!(stderr(&out).contains("cannot write"), "{}", stderr(&out));
+        }
+    }
+}
+
+/// A bad input is 1 whatever the command; a usage error 2.
+#[test]
+fn a_bad_input_exits_1_and_a_usage_error_2() {
+    for args in [
+        vec!["run", "--map", "no-such-map"],
+        vec!["map", "show", "no-such-map"],
+        vec!["world", "show", "no-such-world"],
+    ] {
+        let out = csrl(&args);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {}", stderr(&out));
+    }
+    assert_eq!(csrl(&["run", "--no-such-flag"]).status.code(), Some(2));
+}
+
+/// "not a regular file: not a regular file" was printed for a directory given as the
+/// settings file: a cause already said is not said again.
+#[test]
+fn a_message_says_a_thing_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path().to_str().unwrap();
+    for args in [
+        vec!["run", "--config", dir],
+        vec!["run", "--map", dir],
+        vec!["world", "show", dir],
+    ] {
+        let out = csrl(&args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+        assert_eq!(
+            err.matches("not a regular file").count(),
+            1,
+            "{args:?}: {err}"
+        );
+    }
+}
+
+/// SIGTERM, as Ctrl-C: the run stops, prints the report it reached, and exits 130.
+#[cfg(unix)]
+#[test]
+fn sigterm_stops_a_run_with_its_report() {
+    let child = Command::new(env!("CARGO_BIN_EXE_csrl"))
+        .args([
+            "run",
+            "--map",
+            "random:48x48:0.2:1",
+            "--max-trials",
+            "1000000",
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Time for the handler to be installed and the run to start.
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let kill = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let out = child.wait_with_output().unwrap();
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(130), "{err}");
+    assert!(err.contains("interrupted after"), "{err}");
+    assert!(!out.stdout.is_empty(), "no report: {err}");
+}
