@@ -591,7 +591,7 @@ impl RunSettings {
     pub fn beyond_paper(&self) -> bool {
         // The action detector only sees more of what the paper's rule sees, in the
         // paper's deterministic world: the oracle still judges.
-        let mut extensions = self.extensions.clone();
+        let mut extensions = self.extensions;
         if extensions.detector == crate::DetectorKind::Action {
             extensions.detector = crate::DetectorKind::default();
         }
