@@ -43,7 +43,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail, ensure};
 use clap::Args;
-use csql::{RunSettings, Setup, StrategyKind};
+use csql::{RunSettings, Setup, StrategyKind, Table1Row};
 use indicatif::{ProgressBar, ProgressStyle};
 use mdp::Map;
 use rand::seq::SliceRandom;
@@ -54,8 +54,62 @@ use serde::{Deserialize, Serialize};
 
 use crate::stats::Summary;
 
-/// The Table 1 rows the score compares (1-based, as in the paper).
-pub const FIT_ROWS: [usize; 6] = [1, 2, 3, 4, 6, 7];
+/// The Table 1 rows the score compares (the paper's rows 1 to 4, 6 and 7), in the order
+/// of a [`Fitted`] table.
+pub const FIT_ROWS: [Table1Row; 6] = [
+    Table1Row::CostToSufficient,
+    Table1Row::TrialsToSufficient,
+    Table1Row::CostToConverge,
+    Table1Row::Trials,
+    Table1Row::MeanFeatures,
+    Table1Row::MaxFeatures,
+];
+
+/// One value per fitted row ([`FIT_ROWS`]), reached by the row. Serialised as the array of
+/// the values in [`FIT_ROWS`] order: the form of the evaluations file.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(transparent)]
+pub struct Fitted<T>([T; 6]);
+
+impl<T> Fitted<T> {
+    /// The value of each fitted row.
+    pub fn from_fn(f: impl FnMut(Table1Row) -> T) -> Fitted<T> {
+        Fitted(FIT_ROWS.map(f))
+    }
+
+    /// The value of each fitted row, or `None` if some row has none.
+    pub fn try_from_fn(f: impl FnMut(Table1Row) -> Option<T>) -> Option<Fitted<T>> {
+        let values: Vec<T> = FIT_ROWS.into_iter().map(f).collect::<Option<_>>()?;
+        values.try_into().ok().map(Fitted)
+    }
+
+    /// The value of `row`, if it is fitted.
+    pub fn get(&self, row: Table1Row) -> Option<&T> {
+        let i = FIT_ROWS.iter().position(|&r| r == row)?;
+        Some(&self.0[i])
+    }
+
+    /// The value of `row` to change, if it is fitted.
+    pub fn get_mut(&mut self, row: Table1Row) -> Option<&mut T> {
+        let i = FIT_ROWS.iter().position(|&r| r == row)?;
+        Some(&mut self.0[i])
+    }
+
+    /// Each fitted row with its value, in [`FIT_ROWS`] order.
+    pub fn iter(&self) -> impl Iterator<Item = (Table1Row, &T)> {
+        FIT_ROWS.into_iter().zip(&self.0)
+    }
+
+    /// Each fitted row with its value to change, in [`FIT_ROWS`] order.
+    pub fn iter_mut(&mut self) -> impl Iterator<Item = (Table1Row, &mut T)> {
+        FIT_ROWS.into_iter().zip(&mut self.0)
+    }
+}
+
+/// The fitted row printed as `number` in the paper, if any (`None` for row 5, 8 and 8').
+fn fitted_row(number: &str) -> Option<Table1Row> {
+    FIT_ROWS.into_iter().find(|r| r.number() == number)
+}
 
 /// First seed of each seed set. Disjoint from each other and from the seeds 1 to 99
 /// that `cargo xtask reproduce` uses.
@@ -120,23 +174,17 @@ pub struct FitArgs {
     pub out: PathBuf,
 }
 
-/// A target table: per fitted row (in [`FIT_ROWS`] order), one value per strategy
-/// (resetting, lazy, random, eager).
+/// A target table: per fitted row, one value per strategy (resetting, lazy, random,
+/// eager).
 #[derive(Clone, Debug, PartialEq)]
-pub struct Target(pub [[f64; 4]; 6]);
+pub struct Target(pub Fitted<[f64; 4]>);
 
 impl Target {
     /// The paper's Table 1.
     pub fn paper() -> Target {
-        let mut t = [[0.0; 4]; 6];
-        for (i, row) in FIT_ROWS.iter().enumerate() {
-            for (j, k) in StrategyKind::ALL.iter().enumerate() {
-                t[i][j] = csql::Table1Row::ALL[row - 1]
-                    .paper(*k)
-                    .map_or(f64::NAN, |p| p.value());
-            }
-        }
-        Target(t)
+        Target(Fitted::from_fn(|row| {
+            StrategyKind::ALL.map(|k| row.paper(k).map_or(f64::NAN, |p| p.value()))
+        }))
     }
 
     /// Parse a target CSV (see [`FitArgs::target`]).
@@ -153,7 +201,7 @@ impl Target {
             header == ["row", "resetting", "lazy", "random", "eager"],
             "{source}:1: the header must be `row,resetting,lazy,random,eager`"
         );
-        let mut rows: [Option<[f64; 4]>; 6] = [None; 6];
+        let mut rows: Fitted<Option<[f64; 4]>> = Fitted::from_fn(|_| None);
         for (i, line) in lines {
             let cells: Vec<&str> = line.split(',').map(str::trim).collect();
             ensure!(
@@ -165,7 +213,7 @@ impl Target {
             let row: usize = cells[0].parse().with_context(|| {
                 format!("{source}:{}: `{}` is not a row number", i + 1, cells[0])
             })?;
-            let Some(slot) = FIT_ROWS.iter().position(|&r| r == row) else {
+            let Some(slot) = fitted_row(&row.to_string()).and_then(|r| rows.get_mut(r)) else {
                 continue;
             };
             let mut values = [0.0; 4];
@@ -181,18 +229,17 @@ impl Target {
                 values[j] = v;
             }
             ensure!(
-                rows[slot].is_none(),
+                slot.is_none(),
                 "{source}:{}: row {row} appears twice",
                 i + 1
             );
-            rows[slot] = Some(values);
+            *slot = Some(values);
         }
-        let mut t = [[0.0; 4]; 6];
-        for (slot, row) in rows.iter().enumerate() {
-            t[slot] =
-                row.with_context(|| format!("{source}: row {} is missing", FIT_ROWS[slot]))?;
+        for (row, values) in rows.iter() {
+            values.with_context(|| format!("{source}: row {} is missing", row.number()))?;
         }
-        Ok(Target(t))
+        let t = Fitted::try_from_fn(|row| rows.get(row).copied().flatten());
+        Ok(Target(t.context("every fitted row is there")?))
     }
 }
 
@@ -203,7 +250,7 @@ struct Evaluation {
     strategy: StrategyKind,
     seed: u64,
     max_trials: u32,
-    rows: [Option<f64>; 6],
+    rows: Fitted<Option<f64>>,
 }
 
 /// The key of a run in the cache.
@@ -324,7 +371,7 @@ impl FitArgs {
 
 /// The evaluations made so far, backed by an append-only file.
 struct Cache {
-    runs: BTreeMap<Key, [Option<f64>; 6]>,
+    runs: BTreeMap<Key, Fitted<Option<f64>>>,
     file: std::fs::File,
     max_trials: u32,
 }
@@ -412,13 +459,13 @@ impl Cache {
     }
 
     /// Per fitted row and strategy, the mean over `seeds`; `None` if some run missed it.
-    fn means(&self, l: &Layout, seeds: &[u64]) -> Option<[[f64; 4]; 6]> {
-        let mut m = [[0.0; 4]; 6];
+    fn means(&self, l: &Layout, seeds: &[u64]) -> Option<Fitted<[f64; 4]>> {
+        let mut m = Fitted::from_fn(|_| [0.0; 4]);
         for (j, &k) in StrategyKind::ALL.iter().enumerate() {
             for &s in seeds {
                 let rows = self.runs.get(&(l.key(), k, s))?;
-                for (i, v) in rows.iter().enumerate() {
-                    m[i][j] += (*v)? / seeds.len() as f64;
+                for ((_, mean), (_, v)) in m.iter_mut().zip(rows.iter()) {
+                    mean[j] += (*v)? / seeds.len() as f64;
                 }
             }
         }
@@ -436,9 +483,9 @@ impl Cache {
 /// ```text
 /// score = sqrt(mean over the 24 cells of ln(ours / target)^2)
 /// ```
-pub fn score(means: &[[f64; 4]; 6], target: &Target) -> f64 {
+pub fn score(means: &Fitted<[f64; 4]>, target: &Target) -> f64 {
     let mut sum = 0.0;
-    for (ours, theirs) in means.iter().zip(&target.0) {
+    for ((_, ours), (_, theirs)) in means.iter().zip(target.0.iter()) {
         for (a, b) in ours.iter().zip(theirs) {
             sum += (a / b).ln().powi(2);
         }
@@ -457,14 +504,7 @@ fn evaluate(l: &Layout, strategy: StrategyKind, seed: u64, max_trials: u32) -> R
         strategy,
         seed,
         max_trials,
-        rows: [
-            t.cost_to_sufficient,
-            t.trials_to_sufficient.map(f64::from),
-            t.cost_to_converge,
-            t.trials_to_converge.map(f64::from),
-            t.mean_features,
-            t.max_features.map(|x| x as f64),
-        ],
+        rows: Fitted::from_fn(|row| row.of(&t)),
     })
 }
 
@@ -633,11 +673,11 @@ pub fn run(args: &FitArgs) -> Result<()> {
             s,
             "Means on the report seeds against the target:\n\n| row | resetting | lazy | random | eager |\n|---|---|---|---|---|"
         );
-        for (i, row) in FIT_ROWS.iter().enumerate() {
+        for ((row, ours), (_, theirs)) in m.iter().zip(target.0.iter()) {
             let cells: Vec<String> = (0..4)
-                .map(|j| format!("{:.1} ({})", m[i][j], target.0[i][j]))
+                .map(|j| format!("{:.1} ({})", ours[j], theirs[j]))
                 .collect();
-            let _ = writeln!(s, "| {row} | {} |", cells.join(" | "));
+            let _ = writeln!(s, "| {} | {} |", row.number(), cells.join(" | "));
         }
         s.push('\n');
     }
@@ -739,21 +779,26 @@ mod tests {
         let t = Target::paper();
         assert_eq!(score(&t.0, &t), 0.0);
         let mut off = t.0;
-        for row in &mut off {
+        for (_, row) in off.iter_mut() {
             for v in row.iter_mut() {
                 *v *= std::f64::consts::E;
             }
         }
         assert!((score(&off, &t) - 1.0).abs() < 1e-12);
-        assert_eq!(t.0[0], [467768.0, 62984.0, 37550.0, 27184.0]);
-        assert_eq!(t.0[5], [9.2, 10.6, 12.3, 16.8]);
+        let paper = |row| t.0.get(row).copied();
+        assert_eq!(
+            paper(Table1Row::CostToSufficient),
+            Some([467768.0, 62984.0, 37550.0, 27184.0])
+        );
+        assert_eq!(paper(Table1Row::MaxFeatures), Some([9.2, 10.6, 12.3, 16.8]));
+        assert_eq!(paper(Table1Row::Descriptions), None);
     }
 
     #[test]
     fn target_csv_round_trip_and_errors() {
         let csv = "row,resetting,lazy,random,eager\n1,1,2,3,4\n2,1,2,3,4\n3,1,2,3,4\n4,1,2,3,4\n5,50,50,50,50\n6,1,2,3,4\n7,1,2,3,5\n";
         let t = Target::parse_csv(csv, "t.csv").unwrap();
-        assert_eq!(t.0[5], [1.0, 2.0, 3.0, 5.0]);
+        assert_eq!(t.0.get(Table1Row::MaxFeatures), Some(&[1.0, 2.0, 3.0, 5.0]));
         let missing = csv.replace("7,1,2,3,5\n", "");
         let e = Target::parse_csv(&missing, "t.csv").unwrap_err();
         assert!(e.to_string().contains("row 7 is missing"), "{e}");
@@ -761,6 +806,19 @@ mod tests {
         let e = Target::parse_csv(&bad, "t.csv").unwrap_err();
         assert!(e.to_string().contains("t.csv:3"), "{e}");
         assert!(Target::parse_csv("row,a\n", "t.csv").is_err());
+    }
+
+    #[test]
+    fn evaluations_files_keep_their_form() {
+        // A line as the evaluations file has held it since the first search: the fitted
+        // rows as an array in the paper's order.
+        let line = r#"{"layout":"..G","strategy":"lazy","seed":101,"max_trials":6000,"rows":[120.0,3.0,150.0,5.0,1.5,null]}"#;
+        let e: Evaluation = serde_json::from_str(line).unwrap();
+        assert_eq!(e.rows.get(Table1Row::CostToSufficient), Some(&Some(120.0)));
+        assert_eq!(e.rows.get(Table1Row::Trials), Some(&Some(5.0)));
+        assert_eq!(e.rows.get(Table1Row::MeanFeatures), Some(&Some(1.5)));
+        assert_eq!(e.rows.get(Table1Row::MaxFeatures), Some(&None));
+        assert_eq!(serde_json::to_string(&e).unwrap(), line);
     }
 
     #[test]

@@ -132,9 +132,9 @@ impl Results {
         self.runs.iter().find(|r| r.0 == k)
     }
 
-    fn mean(&self, k: StrategyKind, row: usize) -> Option<f64> {
+    fn mean(&self, k: StrategyKind, row: Table1Row) -> Option<f64> {
         self.strategy(k)
-            .and_then(|r| summary(&r.1, Table1Row::ALL[row]))
+            .and_then(|r| summary(&r.1, row))
             .map(|s| s.mean)
     }
 
@@ -324,12 +324,13 @@ impl Results {
         if !self.args.on_papers_map() {
             return None;
         }
-        let mut means = [[0.0; 4]; 6];
-        for (i, row) in crate::fit::FIT_ROWS.iter().enumerate() {
+        let means = crate::fit::Fitted::try_from_fn(|row| {
+            let mut means = [0.0; 4];
             for (j, k) in StrategyKind::ALL.iter().enumerate() {
-                means[i][j] = self.mean(*k, row - 1)?;
+                means[j] = self.mean(*k, row)?;
             }
-        }
+            Some(means)
+        })?;
         Some(crate::fit::score(&means, &crate::fit::Target::paper()))
     }
 
@@ -376,9 +377,9 @@ impl Results {
         );
         if have(Resetting) && have(Lazy) && have(Random) {
             let (r, l, x) = (
-                self.mean(Resetting, 2),
-                self.mean(Lazy, 2),
-                self.mean(Random, 2),
+                self.mean(Resetting, Table1Row::CostToConverge),
+                self.mean(Lazy, Table1Row::CostToConverge),
+                self.mean(Random, Table1Row::CostToConverge),
             );
             if let (Some(r), Some(l), Some(x)) = (r, l, x) {
                 let _ = writeln!(
@@ -394,7 +395,7 @@ impl Results {
         let features: Vec<(StrategyKind, f64)> = self
             .runs
             .iter()
-            .filter_map(|(k, _, _)| self.mean(*k, 5).map(|m| (*k, m)))
+            .filter_map(|(k, _, _)| self.mean(*k, Table1Row::MeanFeatures).map(|m| (*k, m)))
             .collect();
         let list = features
             .iter()
@@ -430,12 +431,12 @@ impl Results {
         if have(Eager) {
             for k in [Lazy, Random] {
                 if let (Some(kc), Some(ec), Some(kt), Some(et), Some(kd), Some(ed)) = (
-                    self.mean(k, 2),
-                    self.mean(Eager, 2),
-                    self.mean(k, 7),
-                    self.mean(Eager, 7),
-                    self.mean(k, 8),
-                    self.mean(Eager, 8),
+                    self.mean(k, Table1Row::CostToConverge),
+                    self.mean(Eager, Table1Row::CostToConverge),
+                    self.mean(k, Table1Row::TreeCostPerState),
+                    self.mean(Eager, Table1Row::TreeCostPerState),
+                    self.mean(k, Table1Row::DescriptionCostPerState),
+                    self.mean(Eager, Table1Row::DescriptionCostPerState),
                 ) {
                     let _ = writeln!(
                         s,
@@ -451,7 +452,8 @@ impl Results {
             .filter_map(|(k, _, _)| {
                 Some(format!(
                     "{k} {:.0}%",
-                    100.0 * self.mean(*k, 0)? / self.mean(*k, 2)?
+                    100.0 * self.mean(*k, Table1Row::CostToSufficient)?
+                        / self.mean(*k, Table1Row::CostToConverge)?
                 ))
             })
             .collect();
@@ -465,7 +467,12 @@ impl Results {
         let worst8 = self
             .runs
             .iter()
-            .filter_map(|(k, _, _)| Some(self.mean(*k, 7)?.max(self.mean(*k, 8)?)))
+            .filter_map(|(k, _, _)| {
+                Some(
+                    self.mean(*k, Table1Row::TreeCostPerState)?
+                        .max(self.mean(*k, Table1Row::DescriptionCostPerState)?),
+                )
+            })
             .fold(0.0, f64::max);
         let _ = writeln!(
             s,
@@ -475,12 +482,18 @@ impl Results {
         // The break-even remark.
         if have(Resetting) {
             for k in [Lazy, Random] {
-                let (Some(rc), Some(kc)) = (self.mean(Resetting, 2), self.mean(k, 2)) else {
+                let (Some(rc), Some(kc)) = (
+                    self.mean(Resetting, Table1Row::CostToConverge),
+                    self.mean(k, Table1Row::CostToConverge),
+                ) else {
                     continue;
                 };
                 let extra = rc - kc;
                 let mut parts = Vec::new();
-                for (row, what) in [(7, "decision tree"), (8, "description features")] {
+                for (row, what) in [
+                    (Table1Row::TreeCostPerState, "decision tree"),
+                    (Table1Row::DescriptionCostPerState, "description features"),
+                ] {
                     let (Some(rs), Some(ks)) = (self.mean(Resetting, row), self.mean(k, row))
                     else {
                         continue;
@@ -503,10 +516,10 @@ impl Results {
                 );
             }
             if let (Some(r2), Some(r4), Some(r1), Some(r3)) = (
-                self.mean(Resetting, 1),
-                self.mean(Resetting, 3),
-                self.mean(Resetting, 0),
-                self.mean(Resetting, 2),
+                self.mean(Resetting, Table1Row::TrialsToSufficient),
+                self.mean(Resetting, Table1Row::Trials),
+                self.mean(Resetting, Table1Row::CostToSufficient),
+                self.mean(Resetting, Table1Row::CostToConverge),
             ) {
                 let fixed = self.strategy(Resetting).map(|r| &r.2).expect("have");
                 let ft = Summary::of(
@@ -518,7 +531,13 @@ impl Results {
                 let fc = Summary::of(&fixed.iter().map(|r| r.cost).collect::<Vec<_>>());
                 let extra: Vec<String> = [Lazy, Random]
                     .into_iter()
-                    .filter_map(|k| Some(format!("{k} {:.0}", self.mean(k, 3)? - self.mean(k, 1)?)))
+                    .filter_map(|k| {
+                        Some(format!(
+                            "{k} {:.0}",
+                            self.mean(k, Table1Row::Trials)?
+                                - self.mean(k, Table1Row::TrialsToSufficient)?
+                        ))
+                    })
                     .collect();
                 let _ = writeln!(
                     s,
@@ -545,7 +564,7 @@ impl Results {
     fn row7(&self, s: &mut String) {
         let mut parts = Vec::new();
         for (k, runs, _) in &self.runs {
-            let Some(ours) = self.mean(*k, 6) else {
+            let Some(ours) = self.mean(*k, Table1Row::MaxFeatures) else {
                 continue;
             };
             let paper = Table1Row::MaxFeatures.paper(*k).map(|p| p.value());

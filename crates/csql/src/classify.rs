@@ -38,13 +38,14 @@ mod cache;
 use cslearn::{Attend, Attention, Cost, FeatureId, InfoCost, MissingRule, RuleAttending};
 use mdp::{Feature, Reading, SensorNoise, Sensors, StateId};
 use qlearn::{QTable, RowId};
-use rand::SeedableRng;
+use rand::Rng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 use self::cache::{Cache, Step};
 use crate::extensions::Matching;
 use crate::perception::Perception;
 use crate::representation::{DescriptionId, Representation, feature_id, value_of};
+use crate::sensor::Sensor;
 use crate::tree::StateTree;
 use crate::view::{Describes, Sees};
 
@@ -90,7 +91,6 @@ pub struct Classification {
 #[derive(Clone, Debug)]
 pub struct Classify {
     prices: Vec<f64>,
-    readings: Vec<u32>,
     costs: Vec<Cost>,
     rep: Representation,
     select: InfoCost,
@@ -100,16 +100,13 @@ pub struct Classify {
     probe: Vec<(Feature, Reading)>,
     cache: Cache,
     use_cache: bool,
-    /// The sensors' error rate and the generator their errors are drawn from (never
-    /// drawn from when the rate is 0).
-    noise: SensorNoise,
-    noise_rng: Xoshiro256PlusPlus,
+    /// What the learner's sensors make of the world's readings, and how many reads each
+    /// measurement is charged for.
+    sensor: Sensor,
     matching: Matching,
     /// Sightings of a measurement before it makes a new description (1: at once, the
     /// paper's CLASSIFY), and the unmatched measurements seen so far.
     confirm: u32,
-    /// Reads of each measured feature (majority), each charged.
-    reads: u32,
     sightings: std::collections::BTreeMap<Vec<(Feature, Reading)>, u32>,
 }
 
@@ -143,10 +140,9 @@ impl Classify {
             .iter()
             .map(|&c| Cost::new(c).expect("worlds hold valid prices"))
             .collect();
-        let readings: Vec<u32> = features.map(|f| world.readings(f)).collect();
+        let most = features.map(|f| world.readings(f)).max().unwrap_or(1);
         Classify {
-            cache: Cache::new(readings.iter().copied().max().unwrap_or(1)),
-            readings,
+            cache: Cache::new(most),
             prices,
             costs,
             rep,
@@ -155,11 +151,9 @@ impl Classify {
             measured: Vec::new(),
             probe: Vec::new(),
             use_cache: true,
-            noise: SensorNoise::default(),
-            noise_rng: Xoshiro256PlusPlus::seed_from_u64(0),
+            sensor: Sensor::exact(),
             matching: Matching::Exact,
             confirm: 1,
-            reads: 1,
             sightings: std::collections::BTreeMap::new(),
         }
     }
@@ -182,10 +176,39 @@ impl Classify {
     /// // Every reading is wrong, so the state does not match its own description.
     /// assert_eq!(c.lookup(&sensed, s), None);
     /// ```
-    pub fn with_noise(mut self, noise: SensorNoise, rng: Xoshiro256PlusPlus) -> Classify {
-        self.noise = noise;
-        self.noise_rng = rng;
+    pub fn with_noise(self, noise: SensorNoise, rng: Xoshiro256PlusPlus) -> Classify {
+        let reads = self.sensor.reads();
+        self.with_sensor(Sensor::noisy(noise, rng).with_reads(reads))
+    }
+
+    /// Read every measurement through `sensor` (exact by default): what
+    /// [`Classify::with_noise`] and [`Classify::with_reads`] set.
+    ///
+    /// ```
+    /// use rand::SeedableRng;
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
+    /// let sensor = csql::Sensor::noisy(mdp::SensorNoise::new(0.1).unwrap(), rng).with_reads(3);
+    /// let c = csql::Classify::new(&sensed).with_sensor(sensor);
+    /// assert_eq!(c.sensor().reads(), 3);
+    /// ```
+    pub fn with_sensor(mut self, sensor: Sensor) -> Classify {
+        self.sensor = sensor;
         self
+    }
+
+    /// The learner's sensors.
+    ///
+    /// ```
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// assert!(csql::Classify::new(&sensed).sensor().is_exact());
+    /// ```
+    pub fn sensor(&self) -> &Sensor {
+        &self.sensor
     }
 
     /// How descriptions are matched. With [`Matching::Nearest`], when no description
@@ -259,7 +282,7 @@ impl Classify {
     /// assert_eq!(c.add_feature(&sensed, d, s), Some(3.0)); // a feature of cost 1, read three times
     /// ```
     pub fn with_reads(mut self, reads: u32) -> Classify {
-        self.reads = reads.max(1);
+        self.sensor = self.sensor.with_reads(reads);
         self
     }
 
@@ -299,20 +322,6 @@ impl Classify {
         best.map(|(_, id)| id)
     }
 
-    /// What the sensors report for feature `f` of state `s`.
-    fn read<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId, f: Feature) -> Reading {
-        let truth = world.read(s, f);
-        if self.noise.is_zero() {
-            return truth;
-        }
-        self.noise.majority_reading(
-            truth,
-            self.readings[f.index()],
-            self.reads,
-            &mut self.noise_rng,
-        )
-    }
-
     /// Nearest matching (see [`Classify::with_matching`]): after the walk found no
     /// description, the first one at distance one from the state, if any.
     fn nearest<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> Option<DescriptionId> {
@@ -331,7 +340,7 @@ impl Classify {
                 .filter(|f| !self.measured.iter().any(|(m, _)| m == f))
                 .collect();
             for f in missing {
-                let v = self.read(world, s, f);
+                let v = self.sensor.read(world, s, f);
                 self.measured.push((f, v));
                 if self.mismatches(self.rep.get(id)) > 1 {
                     break;
@@ -477,7 +486,7 @@ impl Classify {
 
     /// Measure feature `f` on state `s` (charged) and drop the candidates it rules out.
     fn measure_and_attend<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId, f: Feature) {
-        let v = self.read(world, s, f);
+        let v = self.sensor.read(world, s, f);
         self.measured.push((f, v));
         RuleAttending.attend(
             self.rep.library(),
@@ -511,7 +520,7 @@ impl Classify {
         self.measured.clear();
         let wanted: Vec<(Feature, Reading)> = self.rep.get(d).features().collect();
         for (f, want) in wanted {
-            let v = self.read(world, s, f);
+            let v = self.sensor.read(world, s, f);
             self.measured.push((f, v));
             if v != want {
                 return false;
@@ -617,12 +626,7 @@ impl Classify {
     /// assert_eq!(c.last_cost(), out.cost);
     /// ```
     pub fn last_cost(&self) -> f64 {
-        let once: f64 = self
-            .measured
-            .iter()
-            .map(|&(f, _)| self.prices[f.index()])
-            .sum();
-        once * f64::from(self.reads)
+        charge(&self.prices, &self.measured, &self.sensor)
     }
 
     /// Step 2 and 3 for the current attended candidates and measured features.
@@ -676,20 +680,8 @@ impl Classify {
     /// The cached path: walk the decision tree of the procedure, growing it where no
     /// classification has been before.
     fn walk_cached<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> Option<DescriptionId> {
-        let readings = &self.readings;
-        let (noise, reads, noise_rng) = (self.noise, self.reads, &mut self.noise_rng);
-        if noise.is_zero() {
-            // Exact sensors read the truth and draw nothing, however many reads.
-            return self
-                .cache
-                .walk(self.rep.library(), &self.costs, &mut self.measured, |f| {
-                    world.read(s, f)
-                });
-        }
-        self.cache
-            .walk(self.rep.library(), &self.costs, &mut self.measured, |f| {
-                noise.majority_reading(world.read(s, f), readings[f.index()], reads, noise_rng)
-            })
+        let tree = (&mut self.cache, &self.rep, &self.costs[..]);
+        walk(tree, &mut self.measured, world, s, &mut self.sensor)
     }
 
     /// The description state `s` belongs to, found without charging and without adding a
@@ -711,10 +703,14 @@ impl Classify {
     /// ```
     pub fn lookup<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> Option<DescriptionId> {
         if self.use_cache {
-            self.cache
-                .walk(self.rep.library(), &self.costs, &mut self.probe, |f| {
-                    world.read(s, f)
-                })
+            let tree = (&mut self.cache, &self.rep, &self.costs[..]);
+            walk(
+                tree,
+                &mut self.probe,
+                world,
+                s,
+                &mut Sensor::<Exact>::exact(),
+            )
         } else {
             self.rep.matching(world, s)
         }
@@ -744,12 +740,10 @@ impl Classify {
         noise: SensorNoise,
         rng: &mut R,
     ) -> Option<DescriptionId> {
-        let (readings, reads) = (&self.readings, self.reads);
-        let found = self
-            .cache
-            .walk(self.rep.library(), &self.costs, &mut self.probe, |f| {
-                noise.majority_reading(world.read(s, f), readings[f.index()], reads, rng)
-            });
+        // The learner's number of reads, with the evaluation's noise and generator.
+        let mut sensor = Sensor::noisy(noise, rng).with_reads(self.sensor.reads());
+        let tree = (&mut self.cache, &self.rep, &self.costs[..]);
+        let found = walk(tree, &mut self.probe, world, s, &mut sensor);
         if found.is_some() {
             return found;
         }
@@ -771,17 +765,10 @@ impl Classify {
             let wrong = d
                 .features()
                 .filter(|&(f, v)| {
-                    let x = measured.iter().find(|(m, _)| *m == f).map_or_else(
-                        || {
-                            noise.majority_reading(
-                                world.read(s, f),
-                                readings[f.index()],
-                                reads,
-                                rng,
-                            )
-                        },
-                        |p| p.1,
-                    );
+                    let x = measured
+                        .iter()
+                        .find(|(m, _)| *m == f)
+                        .map_or_else(|| sensor.read(world, s, f), |p| p.1);
                     x != v
                 })
                 .count();
@@ -809,13 +796,15 @@ impl Classify {
     /// assert_eq!(c.lookup_cost(&sensed, s), 1.0);
     /// ```
     pub fn lookup_cost<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> f64 {
-        self.cache
-            .walk(self.rep.library(), &self.costs, &mut self.probe, |f| {
-                world.read(s, f)
-            });
-        let prices = &self.prices;
-        let once: f64 = self.probe.iter().map(|&(f, _)| prices[f.index()]).sum();
-        once * f64::from(self.reads)
+        let tree = (&mut self.cache, &self.rep, &self.costs[..]);
+        walk(
+            tree,
+            &mut self.probe,
+            world,
+            s,
+            &mut Sensor::<Exact>::exact(),
+        );
+        charge(&self.prices, &self.probe, &self.sensor)
     }
 
     /// Add the next cheapest feature a description lacks, valued at state `s`; returns the
@@ -839,11 +828,38 @@ impl Classify {
         s: StateId,
     ) -> Option<f64> {
         let f = self.rep.get(d).next_missing(self.prices.len())?;
-        let v = self.read(world, s, f);
+        let v = self.sensor.read(world, s, f);
         self.rep.refine(d, f, v);
         self.cache.on_refine(self.rep.library(), d, f, v);
-        Some(self.prices[f.index()] * f64::from(self.reads))
+        Some(self.prices[f.index()] * f64::from(self.sensor.reads()))
     }
+}
+
+/// The generator type of a sensor that is exact by construction (it is never drawn
+/// from).
+type Exact = Xoshiro256PlusPlus;
+
+/// Walk CLASSIFY's cached tree for state `s`, reading through `sensor`, the features read
+/// in `out`. Exact sensors hand the walk the world's own reading, so the hot path pays
+/// nothing per read for them.
+fn walk<W: Sensors + ?Sized, G: Rng>(
+    (cache, rep, costs): (&mut Cache, &Representation, &[Cost]),
+    out: &mut Vec<(Feature, Reading)>,
+    world: &W,
+    s: StateId,
+    sensor: &mut Sensor<G>,
+) -> Option<DescriptionId> {
+    match sensor {
+        Sensor::Exact { .. } => cache.walk(rep.library(), costs, out, |f| world.read(s, f)),
+        noisy => cache.walk(rep.library(), costs, out, |f| noisy.read(world, s, f)),
+    }
+}
+
+/// What measuring `measured` through `sensor` charges: each feature's price, once per
+/// read.
+fn charge<G>(prices: &[f64], measured: &[(Feature, Reading)], sensor: &Sensor<G>) -> f64 {
+    let once: f64 = measured.iter().map(|&(f, _)| prices[f.index()]).sum();
+    once * f64::from(sensor.reads())
 }
 
 impl Perception for Classify {

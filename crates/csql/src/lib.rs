@@ -42,6 +42,7 @@
 //! | [`PredictSensing`], [`Prediction`], [`Predicting`], [`TransitionModel`] | sensing less (off by default): a learned model of the next description, and dead reckoning |
 //! | [`navigate`], [`Navigation`] | following the learned policy on the reduced map after learning |
 //! | [`WorldExtras`], [`Extensions`], [`Detector`], [`QualityReport`] | beyond the paper's assumptions (off by default): slip, sensor noise, a sensing range, a statistical detector, nearest matching, the policy quality |
+//! | [`Sensor`] | what a learner's sensors make of the world's exact reading: exact, or noisy with their own generator, read once or more (each read charged) |
 //! | [`Remembering`], [`Classify::with_confirmation`], [`Classify::with_reads`] | remedies beyond the paper (off by default): a memory of recent steps, confirmed new descriptions, repeated reads |
 //! | [`LearnerKind`], [`UTree`], [`FullView`], [`Describes`] | the baselines: a U-Tree-like statistical splitter and full sensing, reported as CS-QL is |
 //!
@@ -193,6 +194,7 @@ mod resolve;
     reason = "internal invariants: grid worlds have four actions"
 )]
 mod run;
+mod sensor;
 mod settings;
 mod setup;
 mod strategy;
@@ -240,6 +242,7 @@ pub use resolve::{Resolved, is_world_name};
 pub use run::{
     run, run_in, run_observed, run_on, run_on_with, run_settings, run_with_representation,
 };
+pub use sensor::Sensor;
 pub use settings::{MAX_SETTINGS_BYTES, MapSource, NonNegative, RunSettings, TrialCap};
 pub use setup::Setup;
 pub use strategy::{

@@ -47,6 +47,7 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 
 use crate::learner::UTreeParams;
 use crate::perception::Perception;
+use crate::sensor::Sensor;
 
 /// What a node tests.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -114,11 +115,10 @@ struct Pending {
 #[derive(Clone, Debug)]
 pub struct UTree {
     prices: Vec<f64>,
-    readings: Vec<u32>,
     params: UTreeParams,
     gamma: f64,
-    noise: SensorNoise,
-    rng: Option<Xoshiro256PlusPlus>,
+    /// What the learner's sensors make of the world's readings.
+    sensor: Sensor,
     nodes: Vec<Node>,
     /// Per node: what the path to it tests, with the values it requires.
     paths: Vec<Vec<(Distinction, u32)>>,
@@ -148,12 +148,10 @@ impl UTree {
     pub fn new<W: World + ?Sized>(world: &W, params: UTreeParams, gamma: f64) -> UTree {
         let features = (0..world.num_features() as u32).map(Feature);
         UTree {
-            prices: features.clone().map(|f| world.price(f)).collect(),
-            readings: features.map(|f| world.readings(f)).collect(),
+            prices: features.map(|f| world.price(f)).collect(),
             params,
             gamma,
-            noise: SensorNoise::default(),
-            rng: None,
+            sensor: Sensor::exact(),
             nodes: Vec::new(),
             paths: Vec::new(),
             leaves: Vec::new(),
@@ -178,8 +176,7 @@ impl UTree {
     /// let tree = csql::UTree::new(&sensed, csql::UTreeParams::default(), 0.9).with_noise(noise, rng);
     /// ```
     pub fn with_noise(mut self, noise: SensorNoise, rng: Xoshiro256PlusPlus) -> UTree {
-        self.noise = noise;
-        self.rng = Some(rng);
+        self.sensor = Sensor::noisy(noise, rng);
         self
     }
 
@@ -229,10 +226,9 @@ impl UTree {
         }
         let mut at = 0;
         loop {
-            let (sensors, noise) = ((&self.prices[..], &self.readings[..]), self.noise);
-            let mut sensor = self.rng.as_mut().map(|rng| (noise, rng));
+            let (prices, sensor) = (&self.prices[..], &mut self.sensor);
             let found = descend(&self.nodes, at, |d| {
-                read(sensors, world, s, d, previous, sensor.as_mut(), cost)
+                read(prices, world, s, d, previous, sensor, cost)
             });
             let (node, value) = match found {
                 Ok(row) => return Some(row),
@@ -259,16 +255,11 @@ impl UTree {
             self.last = self.current.take();
             return;
         }
-        let (sensors, noise, previous) = (
-            (&self.prices[..], &self.readings[..]),
-            self.noise,
-            self.previous,
-        );
-        let mut sensor = self.rng.as_mut().map(|rng| (noise, rng));
+        let (prices, sensor, previous) = (&self.prices[..], &mut self.sensor, self.previous);
         let values = leaf
             .candidates
             .iter()
-            .map(|&d| read(sensors, world, s, d, previous, sensor.as_mut(), cost))
+            .map(|&d| read(prices, world, s, d, previous, sensor, cost))
             .collect();
         self.last = self.current.replace(Pending { row, values });
     }
@@ -393,17 +384,9 @@ impl UTree {
         if self.nodes.is_empty() {
             return None;
         }
-        let mut cost = 0.0;
+        let (mut cost, mut exact) = (0.0, Sensor::<Xoshiro256PlusPlus>::exact());
         descend(&self.nodes, 0, |d| {
-            read::<W, Xoshiro256PlusPlus>(
-                (&self.prices, &self.readings),
-                world,
-                s,
-                d,
-                previous,
-                None,
-                &mut cost,
-            )
+            read(&self.prices, world, s, d, previous, &mut exact, &mut cost)
         })
         .ok()
     }
@@ -504,19 +487,11 @@ impl crate::view::Sees for UTree {
         if self.nodes.is_empty() {
             return None;
         }
-        // The evaluation's own noise; the charge is not counted.
+        // The evaluation's own noise and generator; the charge is not counted.
         let (previous, mut cost) = (self.seen_previous, 0.0);
-        let mut sensor = Some((noise, rng));
+        let mut sensor = Sensor::noisy(noise, rng);
         descend(&self.nodes, 0, |d| {
-            read(
-                (&self.prices, &self.readings),
-                world,
-                s,
-                d,
-                previous,
-                sensor.as_mut(),
-                &mut cost,
-            )
+            read(&self.prices, world, s, d, previous, &mut sensor, &mut cost)
         })
         .ok()
     }
@@ -564,16 +539,9 @@ impl crate::view::Describes for UTree {
         let mut cost = 0.0;
         if !self.nodes.is_empty() {
             // A value with no branch ends the walk where it was read.
+            let mut exact = Sensor::<Xoshiro256PlusPlus>::exact();
             let _ = descend(&self.nodes, 0, |d| {
-                read::<W, Xoshiro256PlusPlus>(
-                    (&self.prices, &self.readings),
-                    world,
-                    s,
-                    d,
-                    NO_ACTION,
-                    None,
-                    &mut cost,
-                )
+                read(&self.prices, world, s, d, NO_ACTION, &mut exact, &mut cost)
             });
         }
         cost
@@ -603,27 +571,21 @@ fn descend(
 }
 
 /// Read a distinction at state `s`: the previous action, or a feature's value through
-/// `sensor` (the noise and the generator its errors come from; exact without), its cost
-/// added to `cost`.
-fn read<W: World + ?Sized, R: Rng + ?Sized>(
-    (prices, readings): (&[f64], &[u32]),
+/// `sensor`, its cost added to `cost`.
+fn read<W: World + ?Sized, G: Rng>(
+    prices: &[f64],
     world: &W,
     s: StateId,
     d: Distinction,
     previous: u32,
-    sensor: Option<&mut (SensorNoise, &mut R)>,
+    sensor: &mut Sensor<G>,
     cost: &mut f64,
 ) -> u32 {
     match d {
         Distinction::PreviousAction => previous,
         Distinction::Feature(f) => {
-            *cost += prices[f.index()];
-            let truth = world.read(s, f);
-            let seen = match sensor {
-                Some((noise, rng)) => noise.corrupt_reading(truth, readings[f.index()], &mut **rng),
-                None => truth,
-            };
-            seen.0
+            *cost += prices[f.index()] * f64::from(sensor.reads());
+            sensor.read(world, s, f).0
         }
     }
 }
