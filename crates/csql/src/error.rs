@@ -50,6 +50,18 @@ pub enum Error {
         /// Why not.
         why: &'static str,
     },
+    /// A run whose memory would exceed a documented bound, refused before it starts.
+    #[error("{what} would keep {needed} values, over the limit of {limit}: {hint}")]
+    TooLarge {
+        /// What would be kept.
+        what: String,
+        /// How many values it would keep.
+        needed: u64,
+        /// The most allowed.
+        limit: u64,
+        /// What to do instead.
+        hint: &'static str,
+    },
     /// A setting or a measure that only makes sense on a grid map, asked of another world.
     #[error("{what} needs a grid map; this world is not one")]
     GridOnly {

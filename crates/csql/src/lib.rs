@@ -220,7 +220,7 @@ pub use main_loop::{Agent, LoopParams, TrialRecord};
 pub use memory::Remembering;
 pub use navigate::{Navigation, navigate};
 pub use observe::{Flow, KeepTrace, Observer, TracePoint};
-pub use perception::{FullView, Identified, Perception};
+pub use perception::{FULL_VIEW_LIMIT, FullView, Identified, Perception};
 pub use predict::level::{PredictSensing, Prediction};
 pub use predict::model::TransitionModel;
 pub use predict::{Predicting, PredictionStats};

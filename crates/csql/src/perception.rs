@@ -159,6 +159,14 @@ impl Perception for Identified {
     }
 }
 
+/// The most readings [`FullView`] may keep (about 1.6 GB); a run that would need more is
+/// refused before it starts, with the estimate.
+///
+/// ```
+/// assert_eq!(csql::FULL_VIEW_LIMIT, 100_000_000);
+/// ```
+pub const FULL_VIEW_LIMIT: u64 = 100_000_000;
+
 /// Full sensing: every feature of the feature space whose cell lies in the bordered
 /// world is measured at every classification and charged
 /// ([`crate::whole_world_cost`]); states that look the same from where they stand share a
@@ -240,6 +248,31 @@ impl FullView {
             views,
             cost,
         }
+    }
+
+    /// How many readings full sensing of `world` keeps to tell its states' views apart
+    /// (each state's whole view, twice: once as a view, once as its index key), for the
+    /// bound [`FULL_VIEW_LIMIT`] that runs check before building one.
+    ///
+    /// ```
+    /// use mdp::{FeatureSpace, GridWorld, Manhattan, SensedGrid, Slip};
+    /// let world = GridWorld::new(&mdp::builtin("tan8x8").unwrap());
+    /// let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    /// let sensed = SensedGrid::new(&world, &space, Slip::default());
+    /// // 50 states, each seeing the 99 other cells of the bordered 10 x 10 world.
+    /// assert_eq!(csql::FullView::readings_needed(&sensed), 2 * 50 * 99);
+    /// ```
+    pub fn readings_needed<W: World + ?Sized>(world: &W) -> u64 {
+        let every = world.num_features() as u64;
+        let per_state = match world.grid() {
+            // The cells of the bordered world other than the robot's, within its range.
+            Some(grid) => {
+                let m = grid.map();
+                ((m.width() as u64 + 2) * (m.height() as u64 + 2) - 1).min(every)
+            }
+            None => every,
+        };
+        2 * world.states().len() as u64 * per_state
     }
 
     /// How many different views the world's states show.

@@ -76,6 +76,7 @@ impl Resolved {
                 });
             }
             check_with_world(settings, crate::quality::is_deterministic(&world), false)?;
+            check_size(settings, &world)?;
             let oracle = Oracle::solve_stochastic(&world, settings.gamma.get())?;
             return Ok(Resolved::Finite { world, oracle });
         }
@@ -94,7 +95,9 @@ impl Resolved {
             return Err(grid_only("[world] factor_costs"));
         }
         check_with_world(settings, true, true)?;
-        Ok(Resolved::Grid(Setup::new(settings)?))
+        let setup = Setup::new(settings)?;
+        check_size(settings, &setup.sensed(settings))?;
+        Ok(Resolved::Grid(setup))
     }
 }
 
@@ -149,4 +152,36 @@ pub(crate) fn check_with_world(
 /// ```
 pub fn is_world_name(name: &str) -> bool {
     mdp::builtin_world_names().contains(&name) || name.ends_with(".json")
+}
+
+/// Runs whose memory would exceed a documented bound, refused before they start with
+/// the estimate: full sensing keeps every state's whole view ([`crate::FullView`]).
+///
+/// ```
+/// let s = csql::RunSettings::tan1991("random:256x256:0.2:1", csql::StrategyKind::Lazy, 1);
+/// let mut s = s;
+/// s.learner = csql::LearnerKind::FullSensing;
+/// let err = csql::Resolved::new(&s).unwrap_err().to_string();
+/// assert!(err.contains("over the limit"), "{err}");
+/// ```
+pub(crate) fn check_size<W: mdp::World + ?Sized>(
+    settings: &RunSettings,
+    world: &W,
+) -> Result<(), Error> {
+    if settings.learner == crate::LearnerKind::FullSensing {
+        let needed = crate::FullView::readings_needed(world);
+        if needed > crate::FULL_VIEW_LIMIT {
+            return Err(Error::TooLarge {
+                what: format!(
+                    "full sensing of {} ({} states, each with its whole view)",
+                    settings.map,
+                    world.states().len()
+                ),
+                needed,
+                limit: crate::FULL_VIEW_LIMIT,
+                hint: "run it on a smaller world, or with a sensing radius",
+            });
+        }
+    }
+    Ok(())
 }

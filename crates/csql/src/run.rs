@@ -113,6 +113,7 @@ pub fn run_in<W: World + ?Sized>(
         crate::quality::is_deterministic(scene.world),
         scene.world.grid().is_some(),
     )?;
+    crate::resolve::check_size(settings, scene.world)?;
     let classify = Classify::new(scene.world);
     Ok(run_classify(scene, settings, classify, observer).0)
 }

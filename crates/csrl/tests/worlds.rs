@@ -241,3 +241,21 @@ fn malformed_world_files_are_refused_with_where() {
         &["no-such-world.json"],
     );
 }
+
+/// Full sensing keeps every state's whole view: a world where that would not fit in
+/// memory is refused before anything is built, with the estimate.
+#[test]
+fn full_sensing_of_a_huge_world_is_refused_up_front() {
+    refused(
+        &[
+            "run",
+            "--map",
+            "random:256x256:0.2:1",
+            "--learner",
+            "full-sensing",
+            "--max-trials",
+            "2",
+        ],
+        &["full sensing", "over the limit", "6961158540"],
+    );
+}
