@@ -84,7 +84,20 @@ pub(crate) struct Learned {
     pub cost: f64,
     /// Beyond the paper only: the policy quality's evaluations.
     pub quality: Option<QualityTrack>,
+    /// Whether the run ended because its representation passed `max_rows` rows.
+    pub capped: bool,
 }
+
+/// The most rows (descriptions, leaves, views or remembered histories) a run's
+/// representation may reach, and the default of the setting `max_rows`: a run whose
+/// descriptions keep multiplying (plain CS-QL under sensor noise makes a new one for
+/// every misreading) ends at the trial where it passes `max_rows`, and its report says
+/// so (`stopped`), so that memory stays bounded.
+///
+/// ```
+/// assert_eq!(csql::MAX_ROWS, 100_000);
+/// ```
+pub const MAX_ROWS: usize = 100_000;
 
 /// The policy quality over a run beyond the paper (specification §6).
 #[derive(Clone, Copy, Debug)]
@@ -120,6 +133,7 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
         moves: 0,
         cost: 0.0,
         quality: None,
+        capped: false,
     };
     // The paper's verdicts assume a deterministic world; a world file may be stochastic
     // whatever the settings say.
@@ -191,7 +205,8 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
         let settled = out
             .quality
             .is_some_and(|q| q.streak >= settings.extensions.quality_patience);
-        if verdict.converged || settled || flow == Flow::Stop {
+        out.capped = agent.perception.rows() > settings.max_rows;
+        if verdict.converged || settled || flow == Flow::Stop || out.capped {
             break;
         }
     }

@@ -168,6 +168,10 @@ pub struct RunReport {
     /// the policy quality and what it took (specification §6). Absent from the paper's runs.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub quality: Option<QualityReport>,
+    /// Why the run ended early, when it did for a reason of its own: its representation
+    /// passed the setting `max_rows` (at most [`crate::MAX_ROWS`]). Absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stopped: Option<String>,
 }
 
 /// The measures of a run beyond the paper's setting (specification §6).
@@ -548,5 +552,11 @@ pub(crate) fn report<W: World + ?Sized, P: Perception + Describes>(
         navigation_success: None,
         prediction: None,
         quality,
+        stopped: learned.capped.then(|| {
+            format!(
+                "the representation passed max_rows = {} rows at trial {}",
+                settings.max_rows, learned.trials
+            )
+        }),
     }
 }

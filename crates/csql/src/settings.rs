@@ -302,6 +302,13 @@ pub struct RunSettings {
     /// The U-Tree learner's parameters (TOML table `[u_tree]`; omitted when default).
     #[serde(default, skip_serializing_if = "UTreeParams::is_default")]
     pub u_tree: UTreeParams,
+    /// The most rows the representation may reach before the run ends, saying so (at
+    /// least 1, at most and by default [`crate::MAX_ROWS`]; omitted when default).
+    #[serde(
+        default = "default_max_rows",
+        skip_serializing_if = "is_default_max_rows"
+    )]
+    pub max_rows: usize,
 }
 
 /// The most bytes a settings file may have (64 KiB; the longest useful one is under 1 KiB).
@@ -378,6 +385,7 @@ const TOP: &[&str] = &[
     "seed",
     "predict_sensing",
     "learner",
+    "max_rows",
 ];
 
 /// Tables are tables (`world = [0.3, 0.1]` would set fields by position), and a key in
@@ -424,6 +432,14 @@ fn check_layout(layout: &toml::Table) -> Result<(), SettingsProblem> {
     Ok(())
 }
 
+fn default_max_rows() -> usize {
+    crate::MAX_ROWS
+}
+
+fn is_default_max_rows(n: &usize) -> bool {
+    *n == crate::MAX_ROWS
+}
+
 /// The TOML file form: every key optional, each one overriding the preset.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -445,6 +461,7 @@ struct SettingsFile {
     extensions: Option<Extensions>,
     learner: Option<LearnerKind>,
     u_tree: Option<UTreeParams>,
+    max_rows: Option<usize>,
 }
 
 impl RunSettings {
@@ -475,6 +492,7 @@ impl RunSettings {
             extensions: Extensions::default(),
             learner: LearnerKind::CsQl,
             u_tree: UTreeParams::default(),
+            max_rows: crate::MAX_ROWS,
         }
     }
 
@@ -521,7 +539,8 @@ impl RunSettings {
             world,
             extensions,
             learner,
-            u_tree
+            u_tree,
+            max_rows
         );
         if strategy_given && !self.learner.is_cs_ql() {
             return Err(Error::InvalidSetting {
@@ -633,6 +652,12 @@ impl RunSettings {
                     self.predict_sensing, self.learner
                 ),
                 "predict_sensing = off with a learner other than cs-ql",
+            );
+        }
+        if !(1..=crate::MAX_ROWS).contains(&self.max_rows) {
+            return refuse(
+                format!("max_rows = {}", self.max_rows),
+                "max_rows from 1 to 100000 (csql::MAX_ROWS)",
             );
         }
         if self.extensions.rate != crate::RateParams::default()

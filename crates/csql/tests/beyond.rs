@@ -340,3 +340,26 @@ fn settings_that_mean_nothing_are_refused() {
     let plain = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
     assert!(!plain.beyond_paper());
 }
+
+/// A run whose descriptions keep multiplying (plain CS-QL under sensor noise) stays
+/// bounded: it ends at the trial where its representation passes `max_rows`, and says so.
+#[test]
+fn a_run_ends_when_its_descriptions_pass_the_cap() {
+    let mut s = RunSettings::tan1991("tan8x8", StrategyKind::Eager, 1);
+    s.apply_toml(
+        "max_rows = 300\nmax_trials = 5000\n[world]\nsensor_noise = 0.05",
+        "cap.toml",
+    )
+    .unwrap();
+    let r = csql::run(&s).unwrap();
+    let why = r.stopped.as_deref().expect("the cap ended the run");
+    assert!(why.contains("max_rows = 300"), "{why}");
+    assert!(r.trials < 5000, "{}", r.trials);
+    let rows = r.trace.last().map(|t| t.descriptions).unwrap();
+    assert!((301..400).contains(&rows), "{rows}");
+    // Without noise nothing multiplies: the paper's run never meets the cap.
+    let plain = csql::run(&RunSettings::tan1991("tan8x8", StrategyKind::Eager, 1)).unwrap();
+    assert!(plain.stopped.is_none() && plain.converged);
+    let mut zero = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
+    assert!(zero.apply_toml("max_rows = 0", "zero.toml").is_err());
+}

@@ -300,6 +300,9 @@ fn print_report(r: &RunReport, out: &mut dyn Write) -> std::io::Result<()> {
             r.total_cost
         )?,
     }
+    if let Some(why) = &r.stopped {
+        writeln!(out, "Stopped early: {why}")?;
+    }
     if let Some(q) = &r.quality {
         writeln!(
             out,
