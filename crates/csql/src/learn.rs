@@ -88,17 +88,6 @@ pub(crate) struct Learned {
     pub capped: bool,
 }
 
-/// The most rows (descriptions, leaves, views or remembered histories) a run's
-/// representation may reach, and the default of the setting `max_rows`: a run whose
-/// descriptions keep multiplying (plain CS-QL under sensor noise makes a new one for
-/// every misreading) ends at the trial where it passes `max_rows`, and its report says
-/// so (`stopped`), so that memory stays bounded.
-///
-/// ```
-/// assert_eq!(csql::MAX_ROWS, 100_000);
-/// ```
-pub const MAX_ROWS: usize = 100_000;
-
 /// The policy quality over a run beyond the paper (specification §6).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct QualityTrack {

@@ -214,7 +214,7 @@ pub use error::{Error, SettingsProblem};
 pub use extensions::{Extensions, Matching, WorldExtras};
 pub use figure::{descriptions_svg, descriptions_table, policy_svg};
 pub use judge::{Judge, Verdict};
-pub use learn::{MAX_ROWS, Scene};
+pub use learn::Scene;
 pub use learner::{LearnerKind, UTreeParams};
 pub use main_loop::{Agent, LoopParams, TrialRecord};
 pub use memory::Remembering;
@@ -243,7 +243,7 @@ pub use run::{
     run, run_in, run_observed, run_on, run_on_with, run_settings, run_with_representation,
 };
 pub use sensor::Sensor;
-pub use settings::{MAX_SETTINGS_BYTES, MapSource, NonNegative, RunSettings, TrialCap};
+pub use settings::{MAX_ROWS, MAX_SETTINGS_BYTES, MapSource, NonNegative, RunSettings, TrialCap};
 pub use setup::Setup;
 pub use strategy::{
     Eager, Lazy, Never, RandomMoves, Reaction, Resetting, Strategy, StrategyKind, UnknownStrategy,

@@ -138,6 +138,10 @@ pub struct RunReport {
     pub moves: u64,
     /// Sensing cost charged in the whole run.
     pub total_cost: f64,
+    /// The policy quality at the end of the run (specification 6.2), in every run: the
+    /// last evaluation of a run judged by quality; otherwise evaluated once after the last
+    /// trial, exactly (a deterministic world without noise: 1 for an optimal policy).
+    pub policy_quality: f64,
     /// The measures of Table 1.
     pub table1: Table1,
     /// Whether the final representation is consistent in the literal reading too (equal
@@ -441,7 +445,7 @@ impl fmt::Display for Table1 {
     }
 }
 
-pub(crate) fn report<W: World + ?Sized, P: Perception + Describes>(
+pub(crate) fn report<W: World + ?Sized, P: Perception + Describes + crate::view::Sees>(
     scene: &Scene<'_, W>,
     settings: &RunSettings,
     perception: &mut P,
@@ -495,6 +499,24 @@ pub(crate) fn report<W: World + ?Sized, P: Perception + Describes>(
         descriptions: described.len(),
         mean_features,
     });
+    let policy_quality = match &learned.quality {
+        Some(q) => q.last.quality,
+        // Exact where the world is deterministic and the sensors too: nothing is drawn.
+        None => {
+            let mut rng = <rand_xoshiro::Xoshiro256PlusPlus as rand::SeedableRng>::seed_from_u64(
+                settings.seed,
+            );
+            crate::quality::policy_quality(
+                world,
+                scene.truth,
+                perception,
+                table,
+                settings.world.sensor_noise,
+                &mut rng,
+            )
+            .quality
+        }
+    };
     let last = learned.last;
     let sufficient_now = last.is_some_and(|t| t.sufficient);
     let consistent_literal = sufficient_now.then(|| {
@@ -509,6 +531,7 @@ pub(crate) fn report<W: World + ?Sized, P: Perception + Describes>(
         trials: learned.trials,
         moves: learned.moves,
         total_cost: learned.cost,
+        policy_quality,
         table1,
         consistent_literal,
         states: states

@@ -303,7 +303,7 @@ pub struct RunSettings {
     #[serde(default, skip_serializing_if = "UTreeParams::is_default")]
     pub u_tree: UTreeParams,
     /// The most rows the representation may reach before the run ends, saying so (at
-    /// least 1, at most and by default [`crate::MAX_ROWS`]; omitted when default).
+    /// least 1, at most and by default [`MAX_ROWS`]; omitted when default).
     #[serde(
         default = "default_max_rows",
         skip_serializing_if = "is_default_max_rows"
@@ -432,12 +432,23 @@ fn check_layout(layout: &toml::Table) -> Result<(), SettingsProblem> {
     Ok(())
 }
 
+/// The most rows (descriptions, leaves, views or remembered histories) a run's
+/// representation may reach, and the default of the setting `max_rows`: a run whose
+/// descriptions keep multiplying (plain CS-QL under sensor noise makes a new one for
+/// every misreading) ends at the trial where it passes `max_rows`, and its report says
+/// so (`stopped`), so that memory stays bounded.
+///
+/// ```
+/// assert_eq!(csql::MAX_ROWS, 100_000);
+/// ```
+pub const MAX_ROWS: usize = 100_000;
+
 fn default_max_rows() -> usize {
-    crate::MAX_ROWS
+    MAX_ROWS
 }
 
 fn is_default_max_rows(n: &usize) -> bool {
-    *n == crate::MAX_ROWS
+    *n == MAX_ROWS
 }
 
 /// The TOML file form: every key optional, each one overriding the preset.
@@ -492,7 +503,7 @@ impl RunSettings {
             extensions: Extensions::default(),
             learner: LearnerKind::CsQl,
             u_tree: UTreeParams::default(),
-            max_rows: crate::MAX_ROWS,
+            max_rows: MAX_ROWS,
         }
     }
 
@@ -654,7 +665,7 @@ impl RunSettings {
                 "predict_sensing = off with a learner other than cs-ql",
             );
         }
-        if !(1..=crate::MAX_ROWS).contains(&self.max_rows) {
+        if !(1..=MAX_ROWS).contains(&self.max_rows) {
             return refuse(
                 format!("max_rows = {}", self.max_rows),
                 "max_rows from 1 to 100000 (csql::MAX_ROWS)",

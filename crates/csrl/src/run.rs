@@ -288,7 +288,7 @@ fn print_report(r: &RunReport, out: &mut dyn Write) -> std::io::Result<()> {
         )?,
         None => writeln!(
             out,
-            "{who}, seed {}: {} after {} trials ({} moves, sensing cost {:.0})",
+            "{who}, seed {}: {} after {} trials ({} moves, sensing cost {:.0}); policy quality {:.3}",
             r.seed,
             if r.converged {
                 "converged"
@@ -297,7 +297,8 @@ fn print_report(r: &RunReport, out: &mut dyn Write) -> std::io::Result<()> {
             },
             r.trials,
             r.moves,
-            r.total_cost
+            r.total_cost,
+            r.policy_quality
         )?,
     }
     if let Some(why) = &r.stopped {
