@@ -81,11 +81,34 @@ pub fn png(svg: &str, scale: f32, what: &str) -> Result<Vec<u8>> {
         .with_context(|| format!("{what}: cannot encode PNG"))
 }
 
+/// The largest SVG `png` reads (16 MiB; the project's figures are under 1 MiB).
+pub const MAX_SVG_BYTES: u64 = 16 << 20;
+
+/// Read an SVG file: a regular file of at most [`MAX_SVG_BYTES`], as UTF-8 text.
+fn read_svg(f: &Path) -> Result<String> {
+    use std::io::Read;
+    let meta = std::fs::metadata(f).with_context(|| format!("cannot read {}", f.display()))?;
+    ensure!(
+        meta.is_file(),
+        "{}: not a regular file (an SVG file is needed)",
+        f.display()
+    );
+    let mut bytes = Vec::new();
+    std::fs::File::open(f)
+        .and_then(|file| file.take(MAX_SVG_BYTES + 1).read_to_end(&mut bytes))
+        .with_context(|| format!("cannot read {}", f.display()))?;
+    ensure!(
+        bytes.len() as u64 <= MAX_SVG_BYTES,
+        "{}: longer than the {MAX_SVG_BYTES} bytes an SVG file may have here",
+        f.display()
+    );
+    String::from_utf8(bytes).with_context(|| format!("{}: not UTF-8 text", f.display()))
+}
+
 /// `cargo xtask png FILE.svg...`: write `FILE.png` beside each.
 pub fn run(files: &[std::path::PathBuf], scale: f32) -> Result<()> {
     for f in files {
-        let svg =
-            std::fs::read_to_string(f).with_context(|| format!("cannot read {}", f.display()))?;
+        let svg = read_svg(f)?;
         let what = f.display().to_string();
         check(&svg, &what)?;
         let out = f.with_extension("png");
@@ -98,6 +121,24 @@ pub fn run(files: &[std::path::PathBuf], scale: f32) -> Result<()> {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn only_regular_svg_files_of_a_bounded_size_are_read() {
+        let dir = std::env::temp_dir().join(format!("xtask-png-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let err = format!("{:#}", super::read_svg(&dir).unwrap_err());
+        assert!(err.contains("not a regular file"), "{err}");
+        let big = dir.join("big.svg");
+        let file = std::fs::File::create(&big).unwrap();
+        file.set_len(super::MAX_SVG_BYTES + 1).unwrap();
+        let err = format!("{:#}", super::read_svg(&big).unwrap_err());
+        assert!(err.contains("longer than"), "{err}");
+        let bad = dir.join("bad.svg");
+        std::fs::write(&bad, [0xff, 0xfe, b'<']).unwrap();
+        let err = format!("{:#}", super::read_svg(&bad).unwrap_err());
+        assert!(err.contains("not UTF-8"), "{err}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
     use super::*;
 
     const SQUARE: &str = r#"<svg xmlns="http://www.w3.org/2000/svg" width="400" height="300"><rect width="10" height="10"/></svg>"#;
