@@ -703,14 +703,7 @@ impl Classify {
     /// ```
     pub fn lookup<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> Option<DescriptionId> {
         if self.use_cache {
-            let tree = (&mut self.cache, &self.rep, &self.costs[..]);
-            walk(
-                tree,
-                &mut self.probe,
-                world,
-                s,
-                &mut Sensor::<Exact>::exact(),
-            )
+            self.walk_free(world, s)
         } else {
             self.rep.matching(world, s)
         }
@@ -796,6 +789,12 @@ impl Classify {
     /// assert_eq!(c.lookup_cost(&sensed, s), 1.0);
     /// ```
     pub fn lookup_cost<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> f64 {
+        self.walk_free(world, s);
+        charge(&self.prices, &self.probe, &self.sensor)
+    }
+
+    /// The cached walk for `s` read exactly and for free into `probe`: the oracle's view.
+    fn walk_free<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> Option<DescriptionId> {
         let tree = (&mut self.cache, &self.rep, &self.costs[..]);
         walk(
             tree,
@@ -803,8 +802,7 @@ impl Classify {
             world,
             s,
             &mut Sensor::<Exact>::exact(),
-        );
-        charge(&self.prices, &self.probe, &self.sensor)
+        )
     }
 
     /// Add the next cheapest feature a description lacks, valued at state `s`; returns the
