@@ -335,9 +335,7 @@ pub fn robustness(args: &RobustnessArgs) -> Result<()> {
                 let s = settings(&def, &args.maps[m], condition, learner, run)?;
                 let setup = Setup::for_map(maps[m].clone(), &s)?;
                 let report = csql::run_on(&setup, &s);
-                let q = report
-                    .quality
-                    .ok_or_else(|| anyhow!("job {id}: a run judged by quality reports it"))?;
+                let q = &report.quality;
                 Ok(JobResult {
                     id,
                     map: args.maps[m].clone(),
@@ -353,7 +351,7 @@ pub fn robustness(args: &RobustnessArgs) -> Result<()> {
                         .to_string(),
                     trials_to_quality: q.trials_to_quality,
                     cost_to_quality: q.cost_to_quality,
-                    sensing_cost_per_state: q.sensing_cost_per_state,
+                    sensing_cost_per_state: q.learner_cost_per_state,
                     descriptions: q.descriptions,
                     mean_features: q.mean_features,
                 })

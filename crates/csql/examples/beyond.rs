@@ -57,24 +57,24 @@ fn main() -> Result<(), csql::Error> {
             let mut s = RunSettings::tan1991(map, StrategyKind::Lazy, seed);
             s.apply_toml(toml, name)?;
             let r = csql::run(&s)?;
-            let (ok, c, t, q, f, d) = match &r.quality {
-                Some(q) => (
+            let q = &r.quality;
+            let (ok, c, t, f, d) = match r.judged_by {
+                csql::Judging::Quality => (
                     q.trials_to_quality.is_some(),
                     q.cost_to_quality.unwrap_or(r.total_cost),
                     q.trials_to_quality.unwrap_or(r.trials),
-                    q.policy_quality,
                     q.mean_features,
                     q.descriptions as f64,
                 ),
-                None => (
+                csql::Judging::Oracle => (
                     r.converged,
                     r.table1.cost_to_converge.unwrap_or(r.total_cost),
                     r.table1.trials_to_converge.unwrap_or(r.trials),
-                    1.0,
                     r.table1.mean_features.unwrap_or(f64::NAN),
                     r.table1.descriptions.map_or(f64::NAN, |d| d as f64),
                 ),
             };
+            let q = q.policy_quality;
             reached += u32::from(ok);
             feats += f;
             descs += d;

@@ -3,12 +3,15 @@
 //! Nothing here is charged and nothing here reaches the learner: it only decides when a
 //! run has found a sufficient representation and when it has converged.
 
-use mdp::{Oracle, StateId, World};
+use mdp::{ActionId, Oracle, SensorNoise, StateId, World};
 use qlearn::{QTable, RowId};
+use rand::SeedableRng;
+use rand_xoshiro::Xoshiro256PlusPlus;
 use serde::Serialize;
 
 use crate::main_loop::Agent;
 use crate::perception::Perception;
+use crate::view::Sees;
 
 /// What the oracle sees at one moment.
 ///
@@ -74,10 +77,43 @@ impl Verdict {
         rows: &[Option<RowId>],
         tolerance: f64,
     ) -> Verdict {
-        let states = world.states();
-        let unmatched = rows.iter().filter(|m| m.is_none()).count();
+        let situations: Vec<(StateId, Option<RowId>)> = world
+            .states()
+            .into_iter()
+            .zip(rows.iter().copied())
+            .collect();
+        Verdict::of_situations(oracle, table, &situations, tolerance)
+    }
+
+    /// Judge the situations a learner can act in: each is a state and the row the
+    /// learner uses there (`None`: it would make a new one). A perception without a memory
+    /// has one situation per state; one that remembers its last move (U-Tree) has one per
+    /// state and way of arriving there, so that a state may have several rows, each of
+    /// which must be consistent and converged for it.
+    ///
+    /// ```
+    /// use csql::Verdict;
+    /// use mdp::{GridWorld, Oracle, StateId};
+    /// let world = GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let oracle = Oracle::for_grid(&world, 0.9).unwrap();
+    /// let mut table = qlearn::QTable::new(4).unwrap();
+    /// let (a, b) = (table.add_row(), table.add_row());
+    /// let s = world.states()[0];
+    /// // One state in two rows: each row is consistent on its own.
+    /// let v = Verdict::of_situations(&oracle, &table, &[(s, Some(a)), (s, Some(b))], 1e-9);
+    /// assert!(v.sufficient && !v.converged);
+    /// // A situation without a row is not sufficient.
+    /// assert!(!Verdict::of_situations(&oracle, &table, &[(s, None)], 1e-9).sufficient);
+    /// ```
+    pub fn of_situations(
+        oracle: &Oracle,
+        table: &QTable,
+        situations: &[(StateId, Option<RowId>)],
+        tolerance: f64,
+    ) -> Verdict {
+        let unmatched = situations.iter().filter(|(_, m)| m.is_none()).count();
         let mut members: Vec<Vec<StateId>> = vec![Vec::new(); table.rows()];
-        for (&s, m) in states.iter().zip(rows) {
+        for &(s, m) in situations {
             if let Some(r) = m {
                 members[r.index()].push(s);
             }
@@ -103,8 +139,8 @@ impl Verdict {
         }
         let sufficient = unmatched == 0 && inconsistent == 0;
         let converged = sufficient
-            && states.iter().zip(rows).all(|(&s, m)| {
-                let row = m.expect("sufficient: every state has a row");
+            && situations.iter().all(|&(s, m)| {
+                let row = m.expect("sufficient: every situation has a row");
                 (table.v(row) - oracle.v_star(s)).abs() <= tolerance
                     && table.greedy_actions(row).all(|a| oracle.is_optimal(s, a))
             });
@@ -116,6 +152,49 @@ impl Verdict {
             converged,
         }
     }
+}
+
+/// The situations a learned perception acts in, through its free view ([`Sees`], noise
+/// off): for a perception without a memory, every measured state at a trial's start; for
+/// one with a memory of its last move, every state a trial may start in (arrived at by
+/// no move) and every state an action leads to from a non-terminal state (arrived at by
+/// that action, where the world is deterministic).
+pub(crate) fn situations<W: World + ?Sized, P: Sees>(
+    world: &W,
+    perception: &mut P,
+) -> Vec<(StateId, Option<RowId>)> {
+    // Nothing is drawn without noise; the generator only fills the signature.
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(0);
+    let noise = SensorNoise::default();
+    let mut out = Vec::new();
+    if perception.memoryless() {
+        for s in world.states() {
+            perception.begin();
+            out.push((s, perception.sees(world, s, noise, &mut rng)));
+        }
+        return out;
+    }
+    for (_, s) in world.start_distribution() {
+        perception.begin();
+        out.push((s, perception.sees(world, s, noise, &mut rng)));
+    }
+    let mut outcomes = Vec::new();
+    for x in world.states() {
+        for a in (0..world.num_actions() as u32).map(ActionId) {
+            world.outcomes(x, a, &mut outcomes);
+            for &(_, step) in &outcomes {
+                if !step.terminated {
+                    perception.begin();
+                    perception.moved(a);
+                    out.push((
+                        step.next,
+                        perception.sees(world, step.next, noise, &mut rng),
+                    ));
+                }
+            }
+        }
+    }
+    out
 }
 
 /// The oracle's judge of one agent through its run, at the end of every trial.

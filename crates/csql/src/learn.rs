@@ -5,8 +5,9 @@
 use mdp::{Oracle, World};
 use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
+use serde::Serialize;
 
-use crate::judge::Judge;
+use crate::judge::{Judge, Verdict, situations};
 use crate::main_loop::{Agent, LoopParams};
 use crate::observe::{Flow, Observer, TracePoint};
 use crate::perception::Perception;
@@ -71,8 +72,50 @@ impl From<&RunSettings> for LoopParams {
     }
 }
 
+/// Who decides when a run has learned.
+///
+/// ```
+/// assert_eq!(serde_json::to_string(&csql::Judging::Oracle).unwrap(), "\"oracle\"");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Judging {
+    /// The oracle's verdicts (sufficient, converged) at the end of every trial, whatever
+    /// the learner: the world is deterministic, the sensors exact, and nothing beyond the
+    /// paper asks for the quality.
+    Oracle,
+    /// The policy quality (specification §6): a run has learned once the quality has
+    /// stayed at or above 0.95 for `quality_patience` evaluations.
+    Quality,
+}
+
+impl Judging {
+    /// How a run of `settings` in `world` is judged: by the quality where the paper's
+    /// verdicts do not apply (slip, slide, sensor noise, a sensing range, an extension,
+    /// `judge_by_quality`, or a world file with stochastic moves), by the oracle otherwise.
+    ///
+    /// ```
+    /// use csql::{Judging, LearnerKind, RunSettings, StrategyKind};
+    /// let lake = mdp::builtin_world("frozenlake4x4", &Default::default()).unwrap();
+    /// let mut s = RunSettings::tan1991("frozenlake4x4", StrategyKind::Lazy, 1);
+    /// assert_eq!(Judging::of(&s, &lake), Judging::Oracle);
+    /// s.learner = LearnerKind::UTree; // the baselines are judged as CS-QL is
+    /// assert_eq!(Judging::of(&s, &lake), Judging::Oracle);
+    /// s.extensions.judge_by_quality = true;
+    /// assert_eq!(Judging::of(&s, &lake), Judging::Quality);
+    /// ```
+    pub fn of<W: World + ?Sized>(settings: &RunSettings, world: &W) -> Judging {
+        if settings.beyond_paper() || !crate::quality::is_deterministic(world) {
+            Judging::Quality
+        } else {
+            Judging::Oracle
+        }
+    }
+}
+
 /// The outcome of a learning loop over trials, before reporting.
 pub(crate) struct Learned {
+    pub judging: Judging,
     pub trace: Vec<TracePoint>,
     /// Trials run (the trace's length when it is kept).
     pub trials: u32,
@@ -82,28 +125,49 @@ pub(crate) struct Learned {
     pub first_converged: Option<(u32, f64)>,
     pub moves: u64,
     pub cost: f64,
-    /// Beyond the paper only: the policy quality's evaluations.
-    pub quality: Option<QualityTrack>,
+    /// The policy quality's evaluations (in every run).
+    pub quality: QualityTrack,
     /// Whether the run ended because its representation passed `max_rows` rows.
     pub capped: bool,
 }
 
-/// The policy quality over a run beyond the paper (specification §6).
+/// The policy quality over a run (specification §6).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct QualityTrack {
-    pub last: QualityEstimate,
+    /// The last evaluation (`None` before the first).
+    pub last: Option<QualityEstimate>,
     pub evaluations: u32,
     /// Trial and cost after which the quality was at least 0.95 at every evaluation since.
     pub reached: Option<(u32, f64)>,
     /// Consecutive evaluations at or above 0.95.
     pub streak: u32,
+    /// The trial of the last evaluation (0 before the first).
+    pub at: u32,
+}
+
+impl QualityTrack {
+    /// Count an evaluation made after `trial`, with `cost` charged so far.
+    fn add(&mut self, q: QualityEstimate, trial: u32, cost: f64) {
+        self.last = Some(q);
+        self.at = trial;
+        self.evaluations += 1;
+        if q.quality >= QUALITY_GOAL {
+            self.streak += 1;
+            self.reached.get_or_insert((trial, cost));
+        } else {
+            self.streak = 0;
+            self.reached = None;
+        }
+    }
 }
 
 /// The quality a policy must reach (specification §6).
 pub(crate) const QUALITY_GOAL: f64 = 0.95;
 
-/// Run trials until the oracle says converged or the trial cap; the oracle judges the
-/// agent at the end of every trial, through the perception's free view.
+/// Run trials until the run has learned (the oracle says converged, or the quality has
+/// stayed at its goal: [`Judging`]) or the trial cap. The oracle judges the agent at the
+/// end of every trial through the perception's free view; the policy quality is
+/// evaluated every `quality_every` trials and at the last one, in every run.
 pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
     scene: &Scene<'_, W>,
     settings: &RunSettings,
@@ -113,7 +177,9 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
     let mut judge = Judge::default();
     let world = scene.world;
+    let judging = Judging::of(settings, world);
     let mut out = Learned {
+        judging,
         trace: Vec::new(),
         trials: 0,
         last: None,
@@ -121,59 +187,57 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
         first_converged: None,
         moves: 0,
         cost: 0.0,
-        quality: None,
+        quality: QualityTrack {
+            last: None,
+            evaluations: 0,
+            reached: None,
+            streak: 0,
+            at: 0,
+        },
         capped: false,
     };
-    // The paper's verdicts assume a deterministic world; a world file may be stochastic
-    // whatever the settings say.
-    let beyond = settings.beyond_paper() || !crate::quality::is_deterministic(world);
     // The evaluation's own generator: the run's, 2^192 draws ahead.
     let mut eval_rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
     eval_rng.long_jump();
-    for trial in 1..=settings.max_trials.get() {
+    let tolerance = settings.tolerance.get();
+    let cap = settings.max_trials.get();
+    for trial in 1..=cap {
         let start = world.sample_start(&mut rng);
         let rec = agent.run_trial(world, start, trial, &mut rng);
         out.moves += rec.moves as u64;
         out.cost += rec.cost;
-        let verdict = if beyond {
-            // The paper's verdicts assume a deterministic, fully sensable world; beyond
-            // it, the policy quality judges (every `quality_every` trials).
-            agent.take_journal();
-            let every = settings.extensions.quality_every;
-            if trial % every == 0 || trial == settings.max_trials.get() {
-                let q = policy_quality(
-                    world,
-                    scene.truth,
-                    &mut agent.perception,
-                    &agent.table,
-                    settings.world.sensor_noise,
-                    &mut eval_rng,
-                );
-                let track = out.quality.get_or_insert(QualityTrack {
-                    last: q,
-                    evaluations: 0,
-                    reached: None,
-                    streak: 0,
-                });
-                track.last = q;
-                track.evaluations += 1;
-                if q.quality >= QUALITY_GOAL {
-                    track.streak += 1;
-                    track.reached.get_or_insert((trial, out.cost));
-                } else {
-                    track.streak = 0;
-                    track.reached = None;
-                }
+        let verdict = match judging {
+            // The paper's verdicts assume a deterministic, fully sensable world.
+            Judging::Quality => {
+                agent.take_journal();
+                Verdict::default()
             }
-            crate::judge::Verdict::default()
-        } else {
-            judge.judge(world, scene.oracle, agent, settings.tolerance.get())
+            Judging::Oracle if agent.perception.keeps_rows() => {
+                judge.judge(world, scene.oracle, agent, tolerance)
+            }
+            Judging::Oracle => {
+                agent.take_journal();
+                let now = situations(world, &mut agent.perception);
+                Verdict::of_situations(scene.oracle, &agent.table, &now, tolerance)
+            }
         };
         if verdict.sufficient && out.first_sufficient.is_none() {
             out.first_sufficient = Some((trial, out.cost));
         }
         if verdict.converged {
             out.first_converged = Some((trial, out.cost));
+        }
+        // The quality: on its schedule, and at the last trial of a run the oracle ends.
+        if trial % settings.extensions.quality_every == 0 || trial == cap || verdict.converged {
+            let q = policy_quality(
+                world,
+                scene.truth,
+                &mut agent.perception,
+                &agent.table,
+                settings.world.sensor_noise,
+                &mut eval_rng,
+            );
+            out.quality.add(q, trial, out.cost);
         }
         let point = TracePoint {
             trial,
@@ -191,13 +255,25 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
             out.trace.push(point);
         }
         let flow = observer.trial(&point);
-        let settled = out
-            .quality
-            .is_some_and(|q| q.streak >= settings.extensions.quality_patience);
+        let settled = judging == Judging::Quality
+            && out.quality.streak >= settings.extensions.quality_patience;
         out.capped = agent.perception.rows() > settings.max_rows;
         if verdict.converged || settled || flow == Flow::Stop || out.capped {
             break;
         }
+    }
+    // A run stopped off the schedule (by its observer, or at `max_rows`) is evaluated
+    // where it stopped, so that its quality is that of its final policy.
+    if out.quality.at != out.trials {
+        let q = policy_quality(
+            world,
+            scene.truth,
+            &mut agent.perception,
+            &agent.table,
+            settings.world.sensor_noise,
+            &mut eval_rng,
+        );
+        out.quality.add(q, out.trials, out.cost);
     }
     out
 }

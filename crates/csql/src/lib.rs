@@ -214,7 +214,7 @@ pub use error::{Error, SettingsProblem};
 pub use extensions::{Extensions, Matching, WorldExtras};
 pub use figure::{descriptions_svg, descriptions_table, policy_svg};
 pub use judge::{Judge, Verdict};
-pub use learn::Scene;
+pub use learn::{Judging, Scene};
 pub use learner::{LearnerKind, UTreeParams};
 pub use main_loop::{Agent, LoopParams, TrialRecord};
 pub use memory::Remembering;

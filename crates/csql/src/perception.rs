@@ -14,7 +14,9 @@ use crate::view::{Describes, Sees};
 ///
 /// The contract the oracle relies on to judge incrementally ([`crate::Judge`]): the row
 /// of a state changes only when that row is refined, or when a state that had no row
-/// gets one because rows were added. Rows are never removed.
+/// gets one because rows were added. Rows are never removed. A perception that
+/// restructures itself in other ways says so ([`Perception::keeps_rows`]) and is judged
+/// from scratch at every trial instead.
 ///
 /// ```
 /// use csql::{Identified, Perception};
@@ -111,6 +113,11 @@ pub trait Perception {
     /// row (`None` if classifying it would add one). This is the view the oracle judges
     /// the perception through; the learner never uses it.
     fn lookup<W: World + ?Sized>(&mut self, world: &W, s: StateId) -> Option<RowId>;
+    /// Whether the perception keeps the contract above (true by default). U-Tree, whose
+    /// splits move states between rows without a refinement, says false.
+    fn keeps_rows(&self) -> bool {
+        true
+    }
 }
 
 /// Every state identified by its own row, at a fixed price per classification (for

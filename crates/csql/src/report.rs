@@ -9,7 +9,7 @@ use qlearn::QTable;
 use serde::Serialize;
 
 use crate::judge::Verdict;
-use crate::learn::{Learned, Scene};
+use crate::learn::{Judging, Learned, Scene};
 use crate::observe::TracePoint;
 use crate::perception::Perception;
 use crate::quality::QualityMethod;
@@ -130,7 +130,8 @@ pub struct RunReport {
     pub strategy: StrategyKind,
     /// The seed.
     pub seed: u64,
-    /// Whether the run converged before the trial cap.
+    /// Whether the oracle judged the run converged before the trial cap (never in a run
+    /// judged by the policy quality).
     pub converged: bool,
     /// Trials run.
     pub trials: u32,
@@ -138,10 +139,13 @@ pub struct RunReport {
     pub moves: u64,
     /// Sensing cost charged in the whole run.
     pub total_cost: f64,
-    /// The policy quality at the end of the run (specification 6.2), in every run: the
-    /// last evaluation of a run judged by quality; otherwise evaluated once after the last
-    /// trial, exactly (a deterministic world without noise: 1 for an optimal policy).
+    /// The policy quality at the end of the run (specification 6.2), in every run: exact
+    /// in a deterministic world with exact sensors (1 for an optimal policy). The same as
+    /// `quality.policy_quality`.
     pub policy_quality: f64,
+    /// Who decided when the run had learned: the oracle (`converged`) or the policy
+    /// quality (`quality.trials_to_quality`).
+    pub judged_by: Judging,
     /// The measures of Table 1.
     pub table1: Table1,
     /// Whether the final representation is consistent in the literal reading too (equal
@@ -168,22 +172,25 @@ pub struct RunReport {
     /// `off`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub prediction: Option<crate::predict::PredictionStats>,
-    /// Beyond the paper's setting only (slip, noise, a sensing range or an extension on):
-    /// the policy quality and what it took (specification §6). Absent from the paper's runs.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub quality: Option<QualityReport>,
+    /// The policy quality and what it took (specification §6), in every run, whoever
+    /// judged it: the measures every learner is compared on.
+    pub quality: QualityReport,
     /// Why the run ended early, when it did for a reason of its own: its representation
     /// passed the setting `max_rows` (at most [`crate::MAX_ROWS`]). Absent otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stopped: Option<String>,
 }
 
-/// The measures of a run beyond the paper's setting (specification §6).
+/// The policy quality of a run and what it took (specification §6), in every run.
 ///
 /// ```
 /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
+/// let paper = csql::run(&s).unwrap();
+/// assert_eq!(paper.judged_by, csql::Judging::Oracle);
+/// assert_eq!(paper.quality.policy_quality, 1.0); // converged: optimal
+/// assert!(paper.quality.trials_to_quality.unwrap() <= paper.trials);
 /// s.world.slip = mdp::Slip::new(0.1).unwrap();
-/// let q = csql::run(&s).unwrap().quality.unwrap();
+/// let q = csql::run(&s).unwrap().quality;
 /// assert_eq!(q.method, csql::QualityMethod::Exact);
 /// assert!(q.policy_quality > 0.0 && q.policy_quality <= 1.0 + 1e-9);
 /// ```
@@ -195,14 +202,17 @@ pub struct QualityReport {
     pub method: QualityMethod,
     /// The Monte Carlo standard error (0 when exact).
     pub standard_error: f64,
-    /// Evaluations made (every `quality_every` trials).
+    /// Evaluations made (every `quality_every` trials, and at the run's last trial).
     pub evaluations: u32,
     /// Trials until the quality first reached 0.95 and stayed there (`None`: not reached).
     pub trials_to_quality: Option<u32>,
     /// Sensing cost charged until then.
     pub cost_to_quality: Option<f64>,
-    /// Mean over states of what classifying the state costs at the end (noise-free).
-    pub sensing_cost_per_state: f64,
+    /// Mean over states of what the learner's own classification of the state costs at
+    /// the end, noise-free (CLASSIFY's walk for CS-QL, the tree's for U-Tree, every
+    /// feature for full sensing); Table 1's rows 8 and 8' are the costs of a decision
+    /// tree built after learning and of the descriptions' own features.
+    pub learner_cost_per_state: f64,
     /// Descriptions at the end.
     pub descriptions: usize,
     /// Mean features per description at the end.
@@ -460,7 +470,7 @@ pub(crate) fn report<W: World + ?Sized, P: Perception + Describes + crate::view:
         .collect();
     let described = perception.described();
     let converged = learned.first_converged.is_some();
-    let reached = learned.quality.and_then(|q| q.reached);
+    let reached = learned.quality.reached;
     let mut table1 = Table1 {
         cost_to_sufficient: learned.first_sufficient.map(|x| x.1),
         trials_to_sufficient: learned.first_sufficient.map(|x| x.0),
@@ -479,43 +489,25 @@ pub(crate) fn report<W: World + ?Sized, P: Perception + Describes + crate::view:
         table1.tree_cost_per_state = Some(tree_cost);
         table1.description_cost_per_state = Some(description_cost);
     }
-    let sensing_cost_per_state = if learned.quality.is_some() {
-        states
-            .iter()
-            .map(|&s| perception.cost_after_learning(world, s))
-            .sum::<f64>()
-            / states.len() as f64
-    } else {
-        0.0
-    };
-    let quality = learned.quality.map(|q| QualityReport {
-        policy_quality: q.last.quality,
-        method: q.last.method,
-        standard_error: q.last.standard_error,
-        evaluations: q.evaluations,
-        trials_to_quality: q.reached.map(|r| r.0),
-        cost_to_quality: q.reached.map(|r| r.1),
-        sensing_cost_per_state,
+    let learner_cost_per_state = states
+        .iter()
+        .map(|&s| perception.cost_after_learning(world, s))
+        .sum::<f64>()
+        / states.len() as f64;
+    let track = learned.quality;
+    let last_quality = track
+        .last
+        .expect("learning evaluates the quality at its last trial");
+    let quality = QualityReport {
+        policy_quality: last_quality.quality,
+        method: last_quality.method,
+        standard_error: last_quality.standard_error,
+        evaluations: track.evaluations,
+        trials_to_quality: track.reached.map(|r| r.0),
+        cost_to_quality: track.reached.map(|r| r.1),
+        learner_cost_per_state,
         descriptions: described.len(),
         mean_features,
-    });
-    let policy_quality = match &learned.quality {
-        Some(q) => q.last.quality,
-        // Exact where the world is deterministic and the sensors too: nothing is drawn.
-        None => {
-            let mut rng = <rand_xoshiro::Xoshiro256PlusPlus as rand::SeedableRng>::seed_from_u64(
-                settings.seed,
-            );
-            crate::quality::policy_quality(
-                world,
-                scene.truth,
-                perception,
-                table,
-                settings.world.sensor_noise,
-                &mut rng,
-            )
-            .quality
-        }
     };
     let last = learned.last;
     let sufficient_now = last.is_some_and(|t| t.sufficient);
@@ -531,7 +523,8 @@ pub(crate) fn report<W: World + ?Sized, P: Perception + Describes + crate::view:
         trials: learned.trials,
         moves: learned.moves,
         total_cost: learned.cost,
-        policy_quality,
+        policy_quality: quality.policy_quality,
+        judged_by: learned.judging,
         table1,
         consistent_literal,
         states: states

@@ -102,16 +102,20 @@ impl Resolved {
 }
 
 /// Settings that mean nothing in the world they are run in, refused once the world is
-/// known: the quality's schedule where the oracle judges (a deterministic world, in the
-/// paper's setting), and a memory of recent steps on a grid sensed without a radius,
-/// where every state is told apart by its surroundings and no description runs out of
-/// features to add.
+/// known: how long the quality must hold where the oracle judges (a deterministic world,
+/// in the paper's setting: the oracle's convergence ends such a run, and the quality is
+/// only measured, on its schedule `quality_every`), and a memory of recent steps on a grid
+/// sensed without a radius, where every state is told apart by its surroundings and no
+/// description runs out of features to add.
 ///
 /// ```
 /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
-/// s.extensions.quality_every = 11;
+/// s.extensions.quality_patience = 3;
 /// let err = csql::Resolved::new(&s).unwrap_err().to_string();
-/// assert!(err.contains("quality_every"), "{err}");
+/// assert!(err.contains("quality_patience"), "{err}");
+/// s.extensions.quality_patience = 20;
+/// s.extensions.quality_every = 11; // the quality is measured in every run
+/// assert!(csql::Resolved::new(&s).is_ok());
 /// ```
 pub(crate) fn check_with_world(
     settings: &RunSettings,
@@ -121,15 +125,12 @@ pub(crate) fn check_with_world(
     let e = &settings.extensions;
     let by_quality = settings.beyond_paper() || !deterministic;
     let defaults = crate::extensions::Extensions::default();
-    if !by_quality
-        && (e.quality_every != defaults.quality_every
-            || e.quality_patience != defaults.quality_patience)
-    {
+    if !by_quality && e.quality_patience != defaults.quality_patience {
         return Err(Error::Conflict {
-            first: "extensions.quality_every or quality_patience".to_string(),
+            first: "extensions.quality_patience".to_string(),
             second: "a run the oracle judges (a deterministic world, the paper's setting)"
                 .to_string(),
-            why: "the policy quality is evaluated only in runs judged by it (slip, slide, noise, a sensing range, another learner, an extension, or judge_by_quality = true)",
+            why: "the oracle's convergence ends such a run; the quality is measured there, every quality_every trials, but judges only runs beyond the paper (slip, slide, noise, a sensing range, an extension, or judge_by_quality = true)",
         });
     }
     if grid && e.memory > 0 && settings.world.sensing_radius.is_none() {

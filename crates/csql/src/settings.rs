@@ -607,13 +607,15 @@ impl RunSettings {
     }
 
     /// Whether the run leaves the paper's setting: a world with slip, slide, noise or a
-    /// sensing range, another learner, or an extension on (other than the `action`
-    /// detector, which works in the paper's world). Such a run measures the policy quality
-    /// (`docs/specification.md`, section 6) and ends by it; the paper's runs keep the
-    /// paper's convergence.
+    /// sensing range, or an extension on (other than the `action` detector, which works
+    /// in the paper's world). Such a run ends by the policy quality
+    /// (`docs/specification.md`, section 6); the paper's runs, whatever their learner,
+    /// keep the paper's convergence ([`crate::Judging`]).
     ///
     /// ```
     /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
+    /// assert!(!s.beyond_paper());
+    /// s.learner = csql::LearnerKind::FullSensing;
     /// assert!(!s.beyond_paper());
     /// s.world.slip = mdp::Slip::new(0.1).unwrap();
     /// assert!(s.beyond_paper());
@@ -630,9 +632,7 @@ impl RunSettings {
         let defaults = Extensions::default();
         extensions.quality_every = defaults.quality_every;
         extensions.quality_patience = defaults.quality_patience;
-        !(!self.world.departs_from_the_paper()
-            && extensions.is_default()
-            && self.learner.is_cs_ql())
+        self.world.departs_from_the_paper() || !extensions.is_default()
     }
 
     /// Check the settings beyond the paper that have no type of their own (every other

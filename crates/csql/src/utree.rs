@@ -470,6 +470,11 @@ impl Perception for UTree {
         self.leaves.len()
     }
 
+    /// A split moves the states of a leaf to its new children without a refinement.
+    fn keeps_rows(&self) -> bool {
+        false
+    }
+
     /// The row of `s` at a trial's start (no previous action).
     fn lookup<W: World + ?Sized>(&mut self, world: &W, s: StateId) -> Option<RowId> {
         self.peek(world, s, NO_ACTION)

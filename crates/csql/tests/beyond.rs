@@ -18,7 +18,7 @@ fn extensions_at_their_defaults_change_nothing() {
         )
         .unwrap();
     assert_eq!(json(&plain), json(&explicit));
-    assert!(!json(&plain).contains("\"quality\""));
+    assert!(json(&plain).contains("\"judged_by\":\"oracle\""));
     assert!(!json(&plain).contains("slip"));
 }
 
@@ -95,7 +95,7 @@ fn runs_beyond_the_paper_are_pure_functions_of_their_settings() {
     )
     .unwrap();
     assert_eq!(json(&s), json(&s));
-    let q = csql::run(&s).unwrap().quality.unwrap();
+    let q = csql::run(&s).unwrap().quality;
     // Under noise a memoryless policy is evaluated exactly from its sampled action
     // probabilities.
     assert_eq!(q.method, csql::QualityMethod::SampledPolicy);
@@ -112,7 +112,7 @@ fn slip_with_the_statistical_detector_reaches_quality() {
     .unwrap();
     assert_eq!(s.extensions.detector, DetectorKind::Statistical);
     let r = csql::run(&s).unwrap();
-    let q = r.quality.unwrap();
+    let q = r.quality;
     assert!(q.trials_to_quality.is_some(), "{q:?}");
     assert!(q.policy_quality >= 0.95);
     // The run ended by the rule of the specification's section 6, well before its cap.
@@ -130,8 +130,8 @@ fn nearest_matching_makes_fewer_descriptions_under_noise() {
         .unwrap();
     let mut near = exact.clone();
     near.extensions.matching = Matching::Nearest;
-    let a = csql::run(&exact).unwrap().quality.unwrap();
-    let b = csql::run(&near).unwrap().quality.unwrap();
+    let a = csql::run(&exact).unwrap().quality;
+    let b = csql::run(&near).unwrap().quality;
     assert!(
         b.descriptions < a.descriptions,
         "{} vs {}",
@@ -179,7 +179,7 @@ fn new_settings_at_their_defaults_change_nothing() {
         "judge_by_quality",
         "u_tree",
     ] {
-        assert!(!out.contains(name), "{name}");
+        assert!(!out.contains(&format!("\"{name}\"")), "{name}");
     }
 }
 
@@ -194,8 +194,8 @@ fn reading_three_times_without_noise_learns_the_same_at_three_times_the_cost() {
     assert_eq!(a.trials, b.trials);
     assert_eq!(a.descriptions, b.descriptions);
     assert_eq!(b.total_cost, 3.0 * a.total_cost);
-    let (qa, qb) = (a.quality.unwrap(), b.quality.unwrap());
-    assert_eq!(qb.sensing_cost_per_state, 3.0 * qa.sensing_cost_per_state);
+    let (qa, qb) = (a.quality, b.quality);
+    assert_eq!(qb.learner_cost_per_state, 3.0 * qa.learner_cost_per_state);
     assert_eq!(
         qb.cost_to_quality.unwrap(),
         3.0 * qa.cost_to_quality.unwrap()
@@ -213,8 +213,8 @@ fn confirming_new_descriptions_keeps_misreadings_out() {
         .unwrap();
     let mut confirmed = plain.clone();
     confirmed.extensions.confirm_new = 3;
-    let a = csql::run(&plain).unwrap().quality.unwrap();
-    let b = csql::run(&confirmed).unwrap().quality.unwrap();
+    let a = csql::run(&plain).unwrap().quality;
+    let b = csql::run(&confirmed).unwrap().quality;
     assert!(
         2 * b.descriptions < a.descriptions,
         "{} vs {}",
@@ -234,8 +234,8 @@ fn memory_tells_apart_what_a_radius_of_one_cannot() {
         .unwrap();
     let mut remembering = plain.clone();
     remembering.extensions.memory = 1;
-    let a = csql::run(&plain).unwrap().quality.unwrap();
-    let b = csql::run(&remembering).unwrap().quality.unwrap();
+    let a = csql::run(&plain).unwrap().quality;
+    let b = csql::run(&remembering).unwrap().quality;
     // Four neighbours give at most 3^4 views; a step of history gives more rows, and a
     // better policy.
     assert!(a.descriptions <= 81);
@@ -257,9 +257,20 @@ fn the_baselines_learn_the_paper_world() {
         s.learner = learner;
         s.max_trials = csql::TrialCap::new(2000).unwrap();
         let r = csql::run(&s).unwrap();
-        let q = r.quality.unwrap();
-        assert!(q.policy_quality >= 0.95, "{learner}: {q:?}");
-        assert!(q.trials_to_quality.is_some(), "{learner}");
+        // Judged as CS-QL is: by the oracle, which ends the run at convergence.
+        assert_eq!(r.judged_by, csql::Judging::Oracle);
+        assert!(
+            r.converged,
+            "{learner}: not converged in {} trials",
+            r.trials
+        );
+        assert_eq!(r.table1.trials_to_converge, Some(r.trials));
+        let q = r.quality;
+        assert_eq!(q.policy_quality, 1.0, "{learner}: {q:?}");
+        assert!(
+            q.trials_to_quality.is_some_and(|t| t <= r.trials),
+            "{learner}"
+        );
         if learner == csql::LearnerKind::FullSensing {
             // One row per state, charged the whole view.
             assert_eq!(q.descriptions, 50);
@@ -271,7 +282,7 @@ fn the_baselines_learn_the_paper_world() {
                 .map(|&x| csql::whole_world_cost(&setup.world, &setup.space, x))
                 .sum::<f64>()
                 / 50.0;
-            assert_eq!(q.sensing_cost_per_state, whole);
+            assert_eq!(q.learner_cost_per_state, whole);
         }
     }
 }
@@ -302,7 +313,9 @@ fn cs_ql_extensions_are_refused_with_another_learner() {
 fn settings_that_mean_nothing_are_refused() {
     let cases = [
         ("[extensions]\nrate = { window = 10 }", "rate"),
-        ("[extensions]\nquality_every = 11", "quality_every"),
+        ("[extensions]\nquality_patience = 3", "quality_patience"),
+        // The quality is measured in every run, on this schedule.
+        ("[extensions]\nquality_every = 11", ""),
         ("[extensions]\nmemory = 2", "memory"),
         ("[u_tree]\nfringe = 3", "u_tree"),
         ("[prediction]\nmax_skips = 3", "prediction"),
@@ -362,4 +375,43 @@ fn a_run_ends_when_its_descriptions_pass_the_cap() {
     assert!(plain.stopped.is_none() && plain.converged);
     let mut zero = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
     assert!(zero.apply_toml("max_rows = 0", "zero.toml").is_err());
+}
+
+/// Every learner is judged the same way and reported on the same measures: the oracle's
+/// convergence in a deterministic world (which ends the run), and the policy quality with
+/// the trials and cost until it reached 0.95 and stayed there, so that runs of different
+/// learners compare line by line. Asking for the quality instead judges all of them by it.
+#[test]
+fn every_learner_is_judged_alike() {
+    for (world, toml) in [
+        ("tan3x3", ""),
+        ("frozenlake4x4", "[world]\nsensing = \"local\""),
+        ("frozenlake4x4", "[world]\nsensing = \"factors\""),
+    ] {
+        for learner in csql::LearnerKind::ALL {
+            let mut s = RunSettings::tan1991(world, StrategyKind::Lazy, 4);
+            s.apply_toml(toml, "t").unwrap();
+            s.learner = learner;
+            let r = csql::run(&s).unwrap();
+            let what = format!("{learner} on {world} {toml:?}");
+            assert_eq!(r.judged_by, csql::Judging::Oracle, "{what}");
+            assert!(r.converged, "{what}");
+            // Converged by the oracle: the policy is optimal, exactly.
+            assert_eq!(r.policy_quality, 1.0, "{what}");
+            let (t, c) = (r.quality.trials_to_quality, r.quality.cost_to_quality);
+            assert!(t.is_some_and(|t| t <= r.trials), "{what}: {t:?}");
+            assert!(c.is_some_and(|c| c <= r.total_cost), "{what}: {c:?}");
+            assert!(r.quality.evaluations >= 1, "{what}");
+            // The same settings judged by the quality: no oracle's verdict, a run that
+            // ends once the quality has held.
+            s.extensions.judge_by_quality = true;
+            let q = csql::run(&s).unwrap();
+            assert_eq!(q.judged_by, csql::Judging::Quality, "{what}");
+            assert!(
+                !q.converged && q.table1.trials_to_converge.is_none(),
+                "{what}"
+            );
+            assert!(q.quality.trials_to_quality.is_some(), "{what}");
+        }
+    }
 }

@@ -30,19 +30,49 @@ fn run_hash(map: &str, strategy: StrategyKind, seed: u64) -> (u64, usize) {
     (fnv1a(json.as_bytes()), json.len())
 }
 
-/// The report's JSON as it was pinned: everything but the final `policy_quality`, which
-/// was added to every report after the pins were taken (it measures the learned policy,
-/// it does not change it) and is checked on its own where it is known.
+/// The report's JSON as it was pinned: everything but the measures added to every report
+/// after the pins were taken (they measure the learned policy, they do not change it):
+/// the final `policy_quality` (checked on its own where it is known), `judged_by`, and,
+/// in a run the oracle judges, the `quality` block; in a run judged by the quality, that
+/// block's cost per state kept its old name, `sensing_cost_per_state`.
 fn pinned_json(report: &csql::RunReport) -> String {
     let json = serde_json::to_string(report).unwrap();
-    // The field is a number written right after `total_cost`; cut `,"policy_quality":x`.
-    let key = ",\"policy_quality\":";
-    let at = json.find(key).expect("every report has a policy_quality");
-    let end = json[at + key.len()..]
-        .find(',')
-        .map(|i| at + key.len() + i)
-        .expect("more fields follow");
-    format!("{}{}", &json[..at], &json[end..])
+    let json = cut(&json, ",\"policy_quality\":");
+    let json = cut(&json, ",\"judged_by\":");
+    match report.judged_by {
+        csql::Judging::Oracle => cut(&json, ",\"quality\":"),
+        csql::Judging::Quality => json.replacen(
+            "\"learner_cost_per_state\":",
+            "\"sensing_cost_per_state\":",
+            1,
+        ),
+    }
+}
+
+/// `json` without the top-level field that starts with `key` (`,"name":`): a number, a
+/// string or an object without strings that hold braces.
+fn cut(json: &str, key: &str) -> String {
+    let at = json
+        .find(key)
+        .unwrap_or_else(|| panic!("every report has {key}"));
+    let value = &json[at + key.len()..];
+    let len = if value.starts_with('{') {
+        let mut depth = 0;
+        value
+            .char_indices()
+            .find_map(|(i, c)| {
+                match c {
+                    '{' => depth += 1,
+                    '}' => depth -= 1,
+                    _ => {}
+                }
+                (depth == 0).then_some(i + 1)
+            })
+            .expect("a closed object")
+    } else {
+        value.find([',', '}']).expect("more follows")
+    };
+    format!("{}{}", &json[..at], &json[at + key.len() + len..])
 }
 
 /// (map, strategy, seed, hash of the full JSON report, its length). The first four are
@@ -297,9 +327,13 @@ const BEYOND: &[(&str, StrategyKind, u64, &str, u64, usize)] = &[
         "tan8x8",
         StrategyKind::Lazy,
         5,
+        // Judged by the policy quality until U-Tree was judged as CS-QL is, by the
+        // oracle in a deterministic world; the old pin (0xd3f34186b35bca99, 61834) is
+        // still what the run gives with `judge_by_quality = true` (less that setting's
+        // echo), and this run is the first 178 trials of that one, where it converges.
         "learner = \"u-tree\"\nmax_trials = 300",
-        0xd3f34186b35bca99,
-        61834,
+        0xdc4d907857ca4e76,
+        44827,
     ),
     (
         "dyna9x6",
@@ -318,9 +352,7 @@ fn runs_beyond_the_paper_are_pinned() {
         let mut settings = RunSettings::tan1991(map, strategy, seed);
         settings.apply_toml(toml, "pin").unwrap();
         let report = csql::run(&settings).unwrap();
-        if let Some(q) = &report.quality {
-            assert_eq!(report.policy_quality, q.policy_quality);
-        }
+        assert_eq!(report.policy_quality, report.quality.policy_quality);
         let json = pinned_json(&report);
         let got = (fnv1a(json.as_bytes()), json.len());
         println!("    {map} {strategy:?} {seed}: {:#018x}, {}", got.0, got.1);

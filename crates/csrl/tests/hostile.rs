@@ -108,15 +108,51 @@ fn non_convergence_has_its_exit_code_on_request() {
     assert!(stderr(&out).contains("did not converge"));
     let out = csrl(&["run", "--map", "tan3x3", "--require-convergence"]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
-    // A baseline is judged by the policy quality: reaching it and keeping it counts.
+    // A baseline is judged as CS-QL is: by the oracle here, and it prints the same
+    // lines, to compare line by line.
     let base = ["run", "--map", "tan3x3", "--learner", "full-sensing"];
     let out = csrl(&[&base[..], &["--require-convergence"]].concat());
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     let out = csrl(&[&base[..], &["--max-trials", "1", "--require-convergence"]].concat());
     assert_eq!(out.status.code(), Some(3), "{}", stderr(&out));
     let text = String::from_utf8_lossy(&csrl(&base).stdout).into_owned();
+    let cs_ql = String::from_utf8_lossy(&csrl(&["run", "--map", "tan3x3"]).stdout).into_owned();
     assert!(text.starts_with("Full sensing on tan3x3"), "{text}");
-    assert!(text.contains("policy quality"), "{text}");
+    for t in [&text, &cs_ql] {
+        let lines: Vec<&str> = t.lines().take(3).collect();
+        assert!(
+            lines[0].contains("converged (the oracle's verdict) after"),
+            "{t}"
+        );
+        assert!(
+            lines[1].starts_with("Policy quality 1.000 (exact), at least 0.95 from trial"),
+            "{t}"
+        );
+        assert!(
+            lines[2].starts_with("After learning: 8 descriptions"),
+            "{t}"
+        );
+    }
+    // Beyond the paper the quality judges, and keeping 0.95 is what counts.
+    let slip = std::env::temp_dir().join(format!("csrl-slip-{}.toml", std::process::id()));
+    std::fs::write(&slip, "beta = 0.2\n[world]\nslip = 0.1\n").unwrap();
+    let out = csrl(
+        &[
+            &base[..],
+            &["--config", slip.to_str().unwrap(), "--require-convergence"],
+        ]
+        .concat(),
+    );
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    std::fs::remove_file(&slip).ok();
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(
+        text.lines()
+            .next()
+            .unwrap()
+            .contains("judged by the policy quality"),
+        "{text}"
+    );
 }
 
 #[test]
