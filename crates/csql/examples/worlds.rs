@@ -3,7 +3,8 @@
 //! many seeds the oracle judged converged (in a deterministic world; such a run ends
 //! there) and how many reached policy quality 0.95 and kept it, at what sensing cost and
 //! after how many trials, and what was learned (descriptions, features per description,
-//! what the learner's own classification costs per state after learning). Prints a
+//! what a state costs after learning classified by a decision tree over the final
+//! descriptions, Table 1's row 8, and by the learner's own classification). Prints a
 //! Markdown table.
 //!
 //! `cargo run --release -p csql --example worlds -- [SEEDS] [NAME-PART]`
@@ -140,9 +141,9 @@ fn main() -> Result<(), csql::Error> {
     let seeds: u64 = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(5);
     let only = args.get(2).cloned();
     println!(
-        "| world | sensing | dynamics | learner | converged | trials | sensing cost until then | quality 0.95 kept | trials | sensing cost until then | descriptions | features each | own classification cost per state |"
+        "| world | sensing | dynamics | learner | converged | trials | sensing cost until then | quality 0.95 kept | trials | sensing cost until then | descriptions | features each | per state, decision tree | per state, own classification |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for c in configs() {
         let name = format!("{} {} {}", c.world, c.sensing, c.dynamics);
         if only.as_ref().is_some_and(|o| !name.contains(o.as_str())) {
@@ -184,7 +185,7 @@ fn main() -> Result<(), csql::Error> {
                 .filter(|r| converged(r).is_some() || kept_quality(r).is_some())
                 .collect();
             println!(
-                "| {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
                 c.world,
                 c.sensing,
                 c.dynamics,
@@ -213,6 +214,12 @@ fn main() -> Result<(), csql::Error> {
                                 .sum::<usize>() as f64
                                 / n
                         })
+                        .collect::<Vec<_>>()
+                ),
+                mean(
+                    &done
+                        .iter()
+                        .filter_map(|r| r.table1.tree_cost_per_state)
                         .collect::<Vec<_>>()
                 ),
                 mean(

@@ -519,6 +519,24 @@ impl RunSettings {
     /// assert!(s.apply_toml("gamma = 1.0", "my.toml").is_err());
     /// ```
     pub fn apply_toml(&mut self, text: &str, source: &str) -> Result<(), Error> {
+        self.merge_toml(text, source)?;
+        self.validate()
+    }
+
+    /// Override fields from TOML text as [`RunSettings::apply_toml`] does, without the
+    /// checks that span several settings ([`RunSettings::validate`]): for a caller that
+    /// overrides more before it validates, such as a command line whose `--learner`
+    /// makes the file's `[u_tree]` table mean something.
+    ///
+    /// ```
+    /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
+    /// s.merge_toml("[u_tree]\nfringe = 3", "my.toml").unwrap();
+    /// assert!(s.validate().is_err()); // [u_tree] with cs-ql
+    /// s.learner = csql::LearnerKind::UTree;
+    /// assert!(s.validate().is_ok());
+    /// assert!(s.merge_toml("temprature = 0.2", "my.toml").is_err());
+    /// ```
+    pub fn merge_toml(&mut self, text: &str, source: &str) -> Result<(), Error> {
         let fail = |problem: SettingsProblem| Error::Settings {
             source_name: source.to_string(),
             problem,
@@ -562,7 +580,7 @@ impl RunSettings {
                 expected: "a strategy only with learner = \"cs-ql\" (the baselines never refine by a strategy)",
             });
         }
-        self.validate()
+        Ok(())
     }
 
     /// Override fields from a TOML file. Only a regular file of at most
@@ -574,6 +592,18 @@ impl RunSettings {
     /// assert!(s.apply_file(std::path::Path::new("/no/such.toml")).is_err());
     /// ```
     pub fn apply_file(&mut self, path: &Path) -> Result<(), Error> {
+        self.merge_file(path)?;
+        self.validate()
+    }
+
+    /// Override fields from a TOML file as [`RunSettings::apply_file`] does, without the
+    /// checks that span several settings (see [`RunSettings::merge_toml`]).
+    ///
+    /// ```
+    /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
+    /// assert!(s.merge_file(std::path::Path::new("/no/such.toml")).is_err());
+    /// ```
+    pub fn merge_file(&mut self, path: &Path) -> Result<(), Error> {
         let source = path.display().to_string();
         let fail = |problem: SettingsProblem| Error::Settings {
             source_name: source.clone(),
@@ -603,7 +633,7 @@ impl RunSettings {
             }));
         }
         let text = String::from_utf8(bytes).map_err(|e| fail(SettingsProblem::NotUtf8(e)))?;
-        self.apply_toml(&text, &source)
+        self.merge_toml(&text, &source)
     }
 
     /// Whether the run leaves the paper's setting: a world with slip, slide, noise or a

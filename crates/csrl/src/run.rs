@@ -69,8 +69,11 @@ pub struct RunArgs {
 impl RunArgs {
     fn settings(&self) -> Result<RunSettings> {
         let mut s = RunSettings::tan1991("tan8x8", StrategyKind::Resetting, 1);
+        // The file's settings, then the flags over them; the settings are checked
+        // together once all are in (a `--learner u-tree` gives a file's `[u_tree]` its
+        // meaning).
         if let Some(path) = &self.config {
-            s.apply_file(path)?;
+            s.merge_file(path)?;
         }
         if let Some(m) = self.map.as_ref().or(self.world.as_ref()) {
             s.map = m.into();

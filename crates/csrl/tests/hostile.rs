@@ -276,3 +276,34 @@ fn pipes_and_devices_are_refused_where_files_are_needed() {
         );
     }
 }
+
+/// The flags are applied over the file before the settings are checked together: a
+/// file's `[u_tree]` table means something once `--learner u-tree` is given, and is
+/// refused, naming it, without.
+#[test]
+fn flags_complete_a_settings_file_before_it_is_checked() {
+    let path = std::env::temp_dir().join(format!("csrl-utree-{}.toml", std::process::id()));
+    std::fs::write(&path, "max_trials = 50\n[u_tree]\nalpha = 0.05\n").unwrap();
+    let file = path.to_str().unwrap();
+    let with = csrl(&[
+        "run",
+        "--map",
+        "tan3x3",
+        "--learner",
+        "u-tree",
+        "--config",
+        file,
+        "--json",
+    ]);
+    let without = csrl(&["run", "--map", "tan3x3", "--config", file]);
+    std::fs::remove_file(&path).ok();
+    assert_eq!(with.status.code(), Some(0), "{}", stderr(&with));
+    let v: serde_json::Value = serde_json::from_slice(&with.stdout).unwrap();
+    assert_eq!(v["settings"]["u_tree"]["alpha"], 0.05);
+    assert_eq!(without.status.code(), Some(1), "{}", stderr(&without));
+    assert!(
+        stderr(&without).contains("[u_tree]"),
+        "{}",
+        stderr(&without)
+    );
+}
