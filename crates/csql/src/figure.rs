@@ -35,9 +35,9 @@ pub fn policy_svg(setup: &Setup, report: &RunReport) -> String {
     );
     let _ = write!(
         s,
-        r#"<text x="{LEFT}" y="22" font-size="17">{}: greedy policy and descriptions</text><text x="{LEFT}" y="41" font-size="13">{} strategy, seed {}, {} descriptions{}</text>"#,
+        r#"<text x="{LEFT}" y="22" font-size="17">{}: greedy policy and descriptions</text><text x="{LEFT}" y="41" font-size="13">{}, seed {}, {} descriptions{}</text>"#,
         escape(&report.map),
-        report.strategy,
+        report.learned_by(),
         report.seed,
         report.descriptions.len(),
         if report.converged {
@@ -255,8 +255,10 @@ pub fn descriptions_table(report: &RunReport) -> String {
         )
     };
     let mut s = format!(
-        "# Descriptions: {}, {} strategy, seed {}\n\n{how}\n\n| description | {states} | features | cost | readings required |\n|---|---|---|---|---|\n",
-        report.map, report.strategy, report.seed
+        "# Descriptions: {}, {}, seed {}\n\n{how}\n\n| description | {states} | features | cost | readings required |\n|---|---|---|---|---|\n",
+        report.map,
+        report.learned_by(),
+        report.seed
     );
     for d in &report.descriptions {
         let states: Vec<String> = report
@@ -312,10 +314,13 @@ pub fn descriptions_svg(report: &RunReport) -> String {
     );
     let _ = write!(
         s,
-        r#"<text x="8" y="20" font-size="14">{}: the {} descriptions of the {} strategy, seed {}</text><text x="8" y="36" font-size="11">dN: K = description N, with K features; black dot: the robot; white: empty; dark grey: obstacle; light grey: goal; blank: not sensed</text>"#,
+        r#"<text x="8" y="20" font-size="14">{}: the {} descriptions of {}, seed {}</text><text x="8" y="36" font-size="11">dN: K = description N, with K features; black dot: the robot; white: empty; dark grey: obstacle; light grey: goal; blank: not sensed</text>"#,
         report.map,
         report.descriptions.len(),
-        report.strategy,
+        match report.settings.learner {
+            crate::LearnerKind::CsQl => format!("the {}", report.learned_by()),
+            _ => report.learned_by(),
+        },
         report.seed
     );
     for (i, d) in report.descriptions.iter().enumerate() {

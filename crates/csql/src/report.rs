@@ -181,6 +181,24 @@ pub struct RunReport {
     pub stopped: Option<String>,
 }
 
+impl RunReport {
+    /// Who learned, for titles: CS-QL's strategy, or the baseline.
+    ///
+    /// ```
+    /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Eager, 1);
+    /// assert_eq!(csql::run(&s).unwrap().learned_by(), "eager strategy");
+    /// s.learner = csql::LearnerKind::UTree;
+    /// assert_eq!(csql::run(&s).unwrap().learned_by(), "U-Tree");
+    /// ```
+    pub fn learned_by(&self) -> String {
+        match self.settings.learner {
+            crate::LearnerKind::CsQl => format!("{} strategy", self.strategy),
+            crate::LearnerKind::UTree => "U-Tree".to_string(),
+            crate::LearnerKind::FullSensing => "full sensing".to_string(),
+        }
+    }
+}
+
 /// The policy quality of a run and what it took (specification §6), in every run.
 ///
 /// ```
