@@ -371,3 +371,82 @@ impl Judge {
         [same_v && shared_action, literal, settled]
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use mdp::StochasticMdp;
+
+    /// A perception whose row is the last move (row 0 before any), as a tree split on
+    /// the previous action everywhere would be.
+    #[derive(Default)]
+    struct LastMove {
+        previous: Option<ActionId>,
+        memoryless: bool,
+    }
+
+    impl Sees for LastMove {
+        fn sees<W: World + ?Sized, R: rand::Rng + ?Sized>(
+            &mut self,
+            _world: &W,
+            _s: StateId,
+            _noise: SensorNoise,
+            _rng: &mut R,
+        ) -> Option<RowId> {
+            Some(RowId(self.previous.map_or(0, |a| a.0 + 1)))
+        }
+        fn memoryless(&self) -> bool {
+            self.memoryless
+        }
+        fn begin(&mut self) {
+            self.previous = None;
+        }
+        fn moved(&mut self, a: ActionId) {
+            self.previous = Some(a);
+        }
+    }
+
+    #[test]
+    fn situations_are_the_states_and_how_they_were_reached() {
+        let grid = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+        let space = mdp::FeatureSpace::new(grid.map(), &mdp::Manhattan).unwrap();
+        let world = mdp::SensedGrid::new(&grid, &space, mdp::Slip::default());
+        let states = world.states();
+        // Without a memory: one situation per state, seen with no move.
+        let mut plain = LastMove {
+            memoryless: true,
+            ..LastMove::default()
+        };
+        let got = situations(&world, &mut plain);
+        assert_eq!(got.len(), states.len());
+        assert!(got.iter().all(|&(_, r)| r == Some(RowId(0))));
+        // With one: every start with no move, and every state an action leads to (the
+        // goal aside) with that action.
+        let mut memory = LastMove::default();
+        let got = situations(&world, &mut memory);
+        let mut want: Vec<(StateId, Option<RowId>)> = world
+            .start_distribution()
+            .into_iter()
+            .map(|(_, s)| (s, Some(RowId(0))))
+            .collect();
+        for &x in &states {
+            for a in 0..4 {
+                let step = world.sample(x, ActionId(a), &mut Xoshiro256PlusPlus::seed_from_u64(0));
+                if !step.terminated {
+                    want.push((step.next, Some(RowId(a + 1))));
+                }
+            }
+        }
+        assert_eq!(got, want);
+        assert!(got.len() > states.len());
+        // Each state must be right in each of its rows: a table that is right only for
+        // row 0 is not converged over the situations.
+        let oracle = mdp::Oracle::for_grid(&grid, 0.9).unwrap();
+        let mut table = QTable::new(4).unwrap();
+        for _ in 0..5 {
+            table.add_row();
+        }
+        let v = Verdict::of_situations(&oracle, &table, &got, 1e-9);
+        assert!(!v.sufficient, "one row holds states of different values");
+    }
+}
