@@ -319,6 +319,12 @@ impl Judge {
         }
     }
 
+    /// The row of each of the world's states (in the order of `World::states`) as of the
+    /// last judgement; empty before the first.
+    pub(crate) fn rows(&self) -> &[Option<RowId>] {
+        &self.row_of
+    }
+
     /// Give state `i` its row (or none).
     fn place(&mut self, i: u32, row: Option<RowId>) {
         self.row_of[i as usize] = row;

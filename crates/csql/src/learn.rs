@@ -11,7 +11,7 @@ use crate::judge::{Judge, Verdict, situations};
 use crate::main_loop::{Agent, LoopParams};
 use crate::observe::{Flow, Observer, TracePoint};
 use crate::perception::Perception;
-use crate::quality::{QualityEstimate, policy_quality};
+use crate::quality::{QualityEstimate, QualityMeter};
 use crate::settings::RunSettings;
 use crate::strategy::Strategy;
 use crate::view::Sees;
@@ -199,6 +199,7 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
     // The evaluation's own generator: the run's, 2^192 draws ahead.
     let mut eval_rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
     eval_rng.long_jump();
+    let mut meter = QualityMeter::default();
     let tolerance = settings.tolerance.get();
     let cap = settings.max_trials.get();
     for trial in 1..=cap {
@@ -229,12 +230,16 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
         }
         // The quality: on its schedule, and at the last trial of a run the oracle ends.
         if trial % settings.extensions.quality_every == 0 || trial == cap || verdict.converged {
-            let q = policy_quality(
+            // The incremental judge has just looked up every state's row.
+            let rows =
+                (judging == Judging::Oracle && agent.perception.keeps_rows()).then(|| judge.rows());
+            let q = meter.evaluate(
                 world,
                 scene.truth,
                 &mut agent.perception,
                 &agent.table,
                 settings.world.sensor_noise,
+                rows,
                 &mut eval_rng,
             );
             out.quality.add(q, trial, out.cost);
@@ -265,12 +270,13 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
     // A run stopped off the schedule (by its observer, or at `max_rows`) is evaluated
     // where it stopped, so that its quality is that of its final policy.
     if out.quality.at != out.trials {
-        let q = policy_quality(
+        let q = meter.evaluate(
             world,
             scene.truth,
             &mut agent.perception,
             &agent.table,
             settings.world.sensor_noise,
+            None,
             &mut eval_rng,
         );
         out.quality.add(q, out.trials, out.cost);

@@ -116,11 +116,79 @@ pub struct QualityEstimate {
     pub episodes: u64,
 }
 
-/// The policy quality of an agent (see the module docs). `truth` is the oracle of the
-/// true model; `rng` is the evaluation's own generator, drawn from only under noise.
-pub(crate) fn policy_quality<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
+/// The policy quality of an agent over a run (see the module docs), with what one
+/// evaluation can hand the next: the floor of the world's returns, computed once, and the
+/// last exact evaluation, which is reused, bit for bit, while the policy is the same.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct QualityMeter {
+    floor: Option<f64>,
+    /// The last memoryless, noise-free policy evaluated, and its quality.
+    last: Option<(Vec<ActionId>, f64)>,
+}
+
+impl QualityMeter {
+    /// One evaluation of the policy quality. `truth` is the oracle of the true model;
+    /// `rng` is the evaluation's own generator, drawn from only under noise. `rows`, when
+    /// given, are the rows of `world.states()` as the oracle's judge found them at the end
+    /// of this trial (the perception's free view of each state, for a perception without
+    /// a memory): the same rows [`Sees::sees`] would give, without walking to them again.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn evaluate<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
+        &mut self,
+        world: &W,
+        truth: &Oracle,
+        perception: &mut P,
+        table: &QTable,
+        noise: SensorNoise,
+        rows: Option<&[Option<RowId>]>,
+        rng: &mut R,
+    ) -> QualityEstimate {
+        let gamma = truth.gamma();
+        let floor = *self.floor.get_or_insert_with(|| value_floor(world, gamma));
+        if !(noise.is_zero() && perception.memoryless()) {
+            return policy_quality(world, truth, floor, perception, table, noise, rng);
+        }
+        let states = world.states();
+        let act = |row: Option<RowId>| row.map_or(ActionId(0), |r| table.greedy(r));
+        let mut policy = vec![ActionId(0); world.num_states()];
+        match rows {
+            Some(rows) => {
+                for (&s, &row) in states.iter().zip(rows) {
+                    policy[s.index()] = act(row);
+                }
+            }
+            None => {
+                for &s in &states {
+                    policy[s.index()] = act(perception.sees(world, s, noise, rng));
+                }
+            }
+        }
+        let quality = match &self.last {
+            Some((last, q)) if *last == policy => *q,
+            _ => {
+                let q = match mdp::evaluate_policy(world, gamma, &policy) {
+                    Ok(v) => ratio_mean(&states, truth, floor, |s| v[s.index()]),
+                    Err(_) => 0.0,
+                };
+                self.last = Some((policy, q));
+                q
+            }
+        };
+        QualityEstimate {
+            quality,
+            method: QualityMethod::Exact,
+            standard_error: 0.0,
+            episodes: 0,
+        }
+    }
+}
+
+/// The policy quality of a perception with a memory, or under sensor noise (see the
+/// module docs); `floor` is the world's [`value_floor`].
+fn policy_quality<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
     world: &W,
     truth: &Oracle,
+    floor: f64,
     perception: &mut P,
     table: &QTable,
     noise: SensorNoise,
@@ -128,26 +196,9 @@ pub(crate) fn policy_quality<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
 ) -> QualityEstimate {
     let states = world.states();
     let gamma = truth.gamma();
-    let floor = value_floor(world, gamma);
     let act = |row: Option<RowId>| row.map_or(ActionId(0), |r| table.greedy(r));
-    if noise.is_zero() && perception.memoryless() {
-        let mut policy = vec![ActionId(0); world.num_states()];
-        for &s in &states {
-            policy[s.index()] = act(perception.sees(world, s, noise, rng));
-        }
-        let quality = match mdp::evaluate_policy(world, gamma, &policy) {
-            Ok(v) => ratio_mean(&states, truth, floor, |s| v[s.index()]),
-            Err(_) => 0.0,
-        };
-        return QualityEstimate {
-            quality,
-            method: QualityMethod::Exact,
-            standard_error: 0.0,
-            episodes: 0,
-        };
-    }
     if perception.memoryless() {
-        return sampled_policy_quality(world, truth, perception, table, noise, rng);
+        return sampled_policy_quality(world, truth, floor, perception, table, noise, rng);
     }
     // Without slip and noise, an episode is a function of its start: one round is the
     // exact value (up to MC_MAX_MOVES moves, beyond which nothing is left to earn).
@@ -203,13 +254,13 @@ pub(crate) fn policy_quality<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
 fn sampled_policy_quality<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
     world: &W,
     truth: &Oracle,
+    floor: f64,
     perception: &mut P,
     table: &QTable,
     noise: SensorNoise,
     rng: &mut R,
 ) -> QualityEstimate {
     let states = world.states();
-    let floor = value_floor(world, truth.gamma());
     let n = world.num_states();
     let mut measured = vec![false; n];
     for &s in &states {
