@@ -199,7 +199,9 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
     // The evaluation's own generator: the run's, 2^192 draws ahead.
     let mut eval_rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
     eval_rng.long_jump();
-    let mut meter = QualityMeter::default();
+    // Runs the oracle judges measure the quality as something new, at the speed of the
+    // judge; runs judged by the quality keep the sweep their figures were made with.
+    let mut meter = QualityMeter::new(judging == Judging::Oracle);
     let tolerance = settings.tolerance.get();
     let cap = settings.max_trials.get();
     for trial in 1..=cap {

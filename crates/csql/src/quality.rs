@@ -121,12 +121,24 @@ pub struct QualityEstimate {
 /// last exact evaluation, which is reused, bit for bit, while the policy is the same.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct QualityMeter {
+    /// Value a deterministic policy by following its paths ([`mdp::follow_policy`]),
+    /// linear in the states, where it has no loop; otherwise by sweeping its Bellman
+    /// equation.
+    follow: bool,
     floor: Option<f64>,
     /// The last memoryless, noise-free policy evaluated, and its quality.
     last: Option<(Vec<ActionId>, f64)>,
 }
 
 impl QualityMeter {
+    /// A meter that follows deterministic policies' paths (`follow`) or sweeps.
+    pub(crate) fn new(follow: bool) -> QualityMeter {
+        QualityMeter {
+            follow,
+            ..QualityMeter::default()
+        }
+    }
+
     /// One evaluation of the policy quality. `truth` is the oracle of the true model;
     /// `rng` is the evaluation's own generator, drawn from only under noise. `rows`, when
     /// given, are the rows of `world.states()` as the oracle's judge found them at the end
@@ -166,7 +178,16 @@ impl QualityMeter {
         let quality = match &self.last {
             Some((last, q)) if *last == policy => *q,
             _ => {
-                let q = match mdp::evaluate_policy(world, gamma, &policy) {
+                let followed = if self.follow {
+                    mdp::follow_policy(world, gamma, &policy).ok().flatten()
+                } else {
+                    None
+                };
+                let values = match followed {
+                    Some(v) => Ok(v),
+                    None => mdp::evaluate_policy(world, gamma, &policy),
+                };
+                let q = match values {
                     Ok(v) => ratio_mean(&states, truth, floor, |s| v[s.index()]),
                     Err(_) => 0.0,
                 };

@@ -124,6 +124,7 @@ pub use sensing::{BadCost, CostModel, Feature, FeatureSpace, Manhattan};
 pub use spec::{MAX_GOAL_MOVES, resolve};
 pub use stochastic::{
     SensorNoise, Slip, SlipperyGrid, StochasticMdp, evaluate_policy, evaluate_stochastic_policy,
+    follow_policy,
 };
 pub use tabular::{NegativeRewards, TabularMdp};
 pub use world::{Reading, SensedGrid, Sensors, World};

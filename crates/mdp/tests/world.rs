@@ -240,3 +240,47 @@ proptest! {
         }
     }
 }
+
+proptest::proptest! {
+    /// Following a deterministic policy's paths gives what sweeping its Bellman equation
+    /// gives, bit for bit, on random maps and random policies (whose paths end within a
+    /// few dozen moves or loop).
+    #[test]
+    fn following_a_policy_agrees_with_sweeping_it(
+        size in 3usize..9,
+        seed in 0u64..1000,
+        actions in proptest::collection::vec(0u32..4, 81),
+    ) {
+        let map = mdp::resolve(&format!("random:{size}x{size}:0.2:{seed}")).unwrap();
+        let world = mdp::GridWorld::new(&map);
+        let n = mdp::StochasticMdp::num_states(&world);
+        let policy: Vec<mdp::ActionId> = (0..n).map(|s| mdp::ActionId(actions[s % 81])).collect();
+        let swept = mdp::evaluate_policy(&world, 0.9, &policy).unwrap();
+        // On a grid map no move but the goal's earns a reward: every loop is worth 0,
+        // and following always answers.
+        let followed = mdp::follow_policy(&world, 0.9, &policy).unwrap();
+        proptest::prop_assert_eq!(followed, Some(swept));
+        // The optimal policy always reaches the goal: never a loop.
+        let oracle = mdp::Oracle::for_grid(&world, 0.9).unwrap();
+        let best: Vec<_> = (0..n as u32)
+            .map(|s| oracle.optimal_actions(mdp::StateId(s)).first().copied().unwrap_or(mdp::ActionId(0)))
+            .collect();
+        let followed = mdp::follow_policy(&world, 0.9, &best).unwrap();
+        proptest::prop_assert_eq!(followed, Some(mdp::evaluate_policy(&world, 0.9, &best).unwrap()));
+    }
+}
+
+/// A loop that pays (Taxi's -1 a move, forever against a wall) is left to the sweep.
+#[test]
+fn following_leaves_a_paying_loop_to_the_sweep() {
+    let taxi = mdp::builtin_world("taxi", &Default::default()).unwrap();
+    let n = mdp::StochasticMdp::num_states(&taxi);
+    let south = vec![mdp::ActionId(0); n];
+    assert_eq!(mdp::follow_policy(&taxi, 0.9, &south).unwrap(), None);
+    assert!(
+        mdp::evaluate_policy(&taxi, 0.9, &south)
+            .unwrap()
+            .iter()
+            .all(|v| *v <= 0.0)
+    );
+}
