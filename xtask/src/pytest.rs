@@ -91,8 +91,21 @@ pub fn test(args: &TestArgs) -> Result<()> {
             venv.display()
         );
     }
+    // The environment's programs (maturin, for pip's build) come first on PATH, as
+    // activating the environment would put them.
+    let bin = venv.join("bin");
+    let mut paths = vec![bin.clone()];
+    paths.extend(std::env::split_paths(
+        &std::env::var_os("PATH").unwrap_or_default(),
+    ));
+    let path = std::env::join_paths(paths).context("a folder of PATH holds a ':'")?;
+    let in_venv = |program: &Path| {
+        let mut c = Command::new(program);
+        c.env("PATH", &path).env("VIRTUAL_ENV", &venv);
+        c
+    };
     let pip = |extra: &[&str]| {
-        let mut c = Command::new(&python);
+        let mut c = in_venv(&python);
         c.args([
             "-m",
             "pip",
@@ -117,13 +130,13 @@ pub fn test(args: &TestArgs) -> Result<()> {
         .current_dir(&root))?;
     let cli = target.join("release").join("csrl");
 
-    run(Command::new(&python)
+    run(in_venv(&python)
         .args(["-m", "pytest", "-W", "error", "-q", "tests"])
         .args(&args.pytest)
         .env("CSRL_CLI", &cli)
         .current_dir(root.join("crates/csrl-py")))?;
     // The docstrings' examples, from the installed package.
-    run(Command::new(&python)
+    run(in_venv(&python)
         .args([
             "-m",
             "pytest",

@@ -28,19 +28,19 @@ pub use classifier::Classifier;
 pub use world::PyWorld;
 
 create_exception!(
-    _csrl,
+    csrl,
     SettingsError,
     PyValueError,
     "Settings that cannot be used: unknown keys, values out of range, or settings that mean nothing together (the message names them)."
 );
 create_exception!(
-    _csrl,
+    csrl,
     WorldError,
     PyValueError,
     "A world or map that cannot be read or built (the message says what and where)."
 );
 create_exception!(
-    _csrl,
+    csrl,
     DataError,
     PyValueError,
     "Data a classifier cannot learn from (the message says what and where)."

@@ -37,10 +37,10 @@ class World:
     ('frozenlake4x4', 16, 4, ['row', 'col'])
     >>> lake.prices
     [1.0, 2.0]
-    >>> csrl.World("no-such-world")
+    >>> csrl.World("no-such-world")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    csrl._csrl.WorldError: unknown map 'no-such-world'...
+    csrl.WorldError: no built-in map and no file named `no-such-world` (built-in maps: tan3x3, ...)
     """
 
     __slots__ = ("_inner",)
