@@ -151,31 +151,30 @@ fn run_json(
         keep_trace: trace,
         raised: None,
     };
-    let report = match &object {
-        None => {
-            let resolved = csql::Resolved::new(&settings).map_err(|e| run_error(&e))?;
-            py.detach(|| match &resolved {
+    if let Some(w) = &object {
+        settings::check_world_object(&mut settings, &w.world)?;
+    }
+    let world = object.as_ref().map(|w| &w.world);
+    // Resolving a world solves its true model (value iteration), which takes time on
+    // large worlds: everything from here runs without the GIL.
+    let report = py
+        .detach(|| match world {
+            None => match csql::Resolved::new(&settings)? {
                 csql::Resolved::Grid(setup) => {
-                    Ok(csql::run_observed(setup, &settings, &mut signals))
+                    Ok(csql::run_observed(&setup, &settings, &mut signals))
                 }
                 csql::Resolved::Finite { world, oracle } => {
-                    let scene = csql::Scene::new(world, oracle, oracle, world.name());
+                    let scene = csql::Scene::new(&world, &oracle, &oracle, world.name());
                     csql::run_in(&scene, &settings, &mut signals)
                 }
-            })
-        }
-        Some(w) => {
-            let world = &w.world;
-            settings::check_world_object(&mut settings, world)?;
-            let oracle = mdp::Oracle::solve_stochastic(world, settings.gamma.get())
-                .map_err(|e| world_error(&e))?;
-            py.detach(|| {
+            },
+            Some(world) => {
+                let oracle = mdp::Oracle::solve_stochastic(world, settings.gamma.get())?;
                 let scene = csql::Scene::new(world, &oracle, &oracle, world.name());
                 csql::run_in(&scene, &settings, &mut signals)
-            })
-        }
-    }
-    .map_err(|e| run_error(&e))?;
+            }
+        })
+        .map_err(|e| run_error(&e))?;
     if let Some(e) = signals.raised {
         return Err(e);
     }
