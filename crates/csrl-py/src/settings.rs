@@ -36,10 +36,12 @@ impl RunArgs<'_> {
     /// The settings, as `csrl run` builds them from its flags (`crates/csrl/src/run.rs`).
     pub(crate) fn settings(&self) -> PyResult<RunSettings> {
         let mut s = RunSettings::tan1991("tan8x8", StrategyKind::Resetting, 1);
+        // The settings, then the arguments over them; everything is checked together
+        // once all are in (`learner="u-tree"` gives the settings' `[u_tree]` its meaning).
         if let Some(text) = self.settings {
             match text.strip_prefix('@') {
-                Some(path) => s.apply_file(&PathBuf::from(path)),
-                None => s.apply_toml(text, "settings"),
+                Some(path) => s.merge_file(&PathBuf::from(path)),
+                None => s.merge_toml(text, "settings"),
             }
             .map_err(|e| run_error(&e))?;
         }

@@ -48,6 +48,18 @@ CASES = [
 ]
 
 
+def test_arguments_apply_over_the_settings_before_the_check(cli, tmp_path):
+    # A [u_tree] table means something only with learner u-tree, given as an argument.
+    config = tmp_path / "utree.toml"
+    config.write_text("[u_tree]\nfringe = 3\n")
+    flags = ["--world", "tan3x3", "--learner", "u-tree", "--seed", "2", "--max-trials", "40", "--config", str(config)]
+    expected = cli_json(cli, *flags)
+    got = csrl.run_json(world="tan3x3", learner="u-tree", seed=2, max_trials=40, settings={"u_tree": {"fringe": 3}})
+    assert got == expected
+    with pytest.raises(csrl.SettingsError, match="u_tree"):
+        csrl.run(world="tan3x3", settings={"u_tree": {"fringe": 3}})
+
+
 @pytest.mark.parametrize("kwargs,flags", CASES, ids=lambda c: repr(c)[:60])
 def test_run_is_the_cli_byte_for_byte(cli, kwargs, flags):
     expected = cli_json(cli, *flags)
