@@ -7,12 +7,11 @@
    actions; the best of R rounds of N steps each.
 2. csrl.run against `csrl run --json` for the same run: the command's wall time less the
    wall time of `csrl --version` (the process start), against csrl.run_json's wall time;
-   the median of R runs each.
+   the best of R interleaved rounds each.
 """
 
 import argparse
 import pathlib
-import statistics
 import subprocess
 import time
 
@@ -53,15 +52,18 @@ def wall(cmd):
 
 
 def bench_run(cli, repeats, world, strategy, seed):
+    """The best of `repeats` rounds, each timing the process start, the command and the
+    in-process run one after the other (so that load from outside hits all three alike)."""
     flags = ["--world", world, "--strategy", strategy, "--seed", str(seed)]
-    start_up = statistics.median(wall([cli, "--version"]) for _ in range(repeats))
-    t_cli = statistics.median(wall([cli, "run", "--json", *flags]) for _ in range(repeats)) - start_up
-    ts = []
+    start_ups, clis, pys = [], [], []
     for _ in range(repeats):
+        start_ups.append(wall([cli, "--version"]))
+        clis.append(wall([cli, "run", "--json", *flags]))
         start = time.perf_counter()
         csrl.run_json(world=world, strategy=strategy, seed=seed)
-        ts.append(time.perf_counter() - start)
-    return start_up, t_cli, statistics.median(ts)
+        pys.append(time.perf_counter() - start)
+    start_up = min(start_ups)
+    return start_up, min(clis) - start_up, min(pys)
 
 
 def main():
