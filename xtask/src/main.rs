@@ -9,11 +9,13 @@
 //!   assumptions (see `docs/robustness.md`).
 //! * `cargo xtask bench scale` and `cargo xtask bench throughput`: how CS-QL's cost grows
 //!   with the world, and its moves per second against a plain Q-learning loop.
+//! * `cargo xtask test`: every test, Rust and Python (the README's test command).
 
 mod bench;
 mod figures;
 mod files;
 mod fit;
+mod pytest;
 
 mod render;
 mod reproduce;
@@ -58,6 +60,9 @@ enum Command {
     Robustness(robustness::RobustnessArgs),
     /// Benchmarks: CS-QL's growth with the world's size, and its moves per second.
     Bench(bench::BenchArgs),
+    /// Every test: `cargo test --workspace`, then the Python package's tests in a virtual
+    /// environment under `target/` (the README's test command).
+    Test(pytest::TestArgs),
 }
 
 /// Print to stdout; a reader that has gone away (`cargo xtask ... | head`) ends the output
@@ -81,6 +86,7 @@ fn main() -> ExitCode {
         Command::Merge(args) => sweep::merge(args),
         Command::Robustness(args) => robustness::robustness(args),
         Command::Bench(args) => bench::run(args),
+        Command::Test(args) => pytest::test(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,179 @@
+"""csrl: cost-sensitive reinforcement learning (Tan, AAAI-91) from Python, at native speed.
+
+The learning runs in Rust; this package gives it Python's shapes:
+
+* :func:`run` -- one CS-QL run (or a baseline), the same JSON object as ``csrl run --json``.
+* :class:`World` -- a finite world with priced features: built-in worlds and maps by name,
+  world files, your own arrays, and Gymnasium's toy-text environments.
+* :mod:`csrl.gym` -- ``SensingEnv``, a Gymnasium environment where sensing has a price
+  (registered as ``csrl/Sensing-v0``).
+* :mod:`csrl.sklearn` -- ``CsId3Classifier`` and ``CsIblClassifier``, scikit-learn
+  estimators that pay for what they measure.
+
+Errors are Python exceptions carrying the Rust message: :class:`SettingsError` and
+:class:`WorldError` are ``ValueError``\\ s.
+
+>>> import csrl
+>>> report = csrl.run(world="tan3x3", strategy="lazy", seed=1)
+>>> report["converged"], report["map"], report["strategy"]
+(True, 'tan3x3', 'lazy')
+>>> try:
+...     csrl.run(world="tan3x3", settings={"temperature": -1.0})
+... except csrl.SettingsError as e:
+...     print(type(e).__mro__[1].__name__)
+ValueError
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from typing import Any, Mapping, Optional, Union
+
+from . import _csrl
+from ._csrl import DataError, SettingsError, WorldError, dumps, map_names, world_names
+from .world import World
+
+__version__: str = _csrl.__version__
+
+__all__ = [
+    "DataError",
+    "SettingsError",
+    "World",
+    "WorldError",
+    "dumps",
+    "map_names",
+    "resolve_settings",
+    "run",
+    "run_json",
+    "world_names",
+]
+
+Settings = Union[Mapping[str, Any], str, "os.PathLike[str]", None]
+
+
+def _settings_text(settings: Settings) -> Optional[str]:
+    """The settings as ``_csrl`` takes them: TOML text, or ``@PATH`` for a file."""
+    if settings is None:
+        return None
+    if isinstance(settings, Mapping):
+        return _csrl.settings_toml(dict(settings))
+    if isinstance(settings, (str, os.PathLike)):
+        return "@" + os.fspath(settings)
+    raise SettingsError(
+        "settings must be a mapping (the tables of a settings file as dicts) or the path "
+        f"of a TOML settings file, found {type(settings).__name__}"
+    )
+
+
+def _world_arg(world: Union[str, "os.PathLike[str]", World, None]) -> Any:
+    if isinstance(world, World):
+        return world._inner
+    if isinstance(world, os.PathLike):
+        return os.fspath(world)
+    return world
+
+
+def run_json(
+    world: Union[str, "os.PathLike[str]", World, None] = None,
+    strategy: Optional[str] = None,
+    seed: Optional[int] = None,
+    learner: Optional[str] = None,
+    settings: Settings = None,
+    *,
+    max_trials: Optional[int] = None,
+    predict_sensing: Optional[str] = None,
+    trace: bool = False,
+) -> str:
+    """One run, as the text ``csrl run --json`` prints (without its final newline).
+
+    The arguments are the flags of ``csrl run``: ``world`` (``--world``: a built-in
+    world or map, a map or world file, ``random:WxH:DENSITY:SEED``, or a :class:`World`),
+    ``strategy``, ``seed``, ``learner``, ``max_trials``, ``predict_sensing`` and ``trace``;
+    ``settings`` is what ``--config`` reads: the path of a TOML settings file, or the same
+    tables as a dict (``{"temperature": 0.2, "world": {"slip": 0.1}}``). Arguments left
+    at ``None`` take the settings' value, else the paper's.
+
+    The GIL is released while the run goes on, and Ctrl-C stops it
+    (``KeyboardInterrupt``).
+
+    >>> import csrl, json
+    >>> text = csrl.run_json(world="tan3x3", strategy="eager", seed=2)
+    >>> json.loads(text)["seed"]
+    2
+    """
+    return _csrl.run_json(
+        world=_world_arg(world),
+        strategy=strategy,
+        seed=seed,
+        learner=learner,
+        settings=_settings_text(settings),
+        max_trials=max_trials,
+        predict_sensing=predict_sensing,
+        trace=trace,
+    )
+
+
+def run(
+    world: Union[str, "os.PathLike[str]", World, None] = None,
+    strategy: Optional[str] = None,
+    seed: Optional[int] = None,
+    learner: Optional[str] = None,
+    settings: Settings = None,
+    *,
+    max_trials: Optional[int] = None,
+    predict_sensing: Optional[str] = None,
+    trace: bool = False,
+) -> dict:
+    """One run of CS-QL (or a baseline), as a dict: the JSON object ``csrl run --json``
+    prints for the same arguments (see :func:`run_json` for them).
+
+    :func:`dumps` writes it back as the command's text, byte for byte.
+
+    >>> import csrl
+    >>> r = csrl.run(world="frozenlake4x4", strategy="lazy", seed=1)
+    >>> r["converged"], r["map"]
+    (True, 'frozenlake4x4')
+    """
+    return json.loads(
+        run_json(
+            world,
+            strategy,
+            seed,
+            learner,
+            settings,
+            max_trials=max_trials,
+            predict_sensing=predict_sensing,
+            trace=trace,
+        )
+    )
+
+
+def resolve_settings(
+    world: Union[str, "os.PathLike[str]", None] = None,
+    strategy: Optional[str] = None,
+    seed: Optional[int] = None,
+    learner: Optional[str] = None,
+    settings: Settings = None,
+    *,
+    max_trials: Optional[int] = None,
+    predict_sensing: Optional[str] = None,
+) -> dict:
+    """The settings a run with these arguments would use (the report's ``settings``),
+    checked but not run.
+
+    >>> import csrl
+    >>> csrl.resolve_settings(world="tan8x8", settings={"temperature": 0.2})["temperature"]
+    0.2
+    """
+    return json.loads(
+        _csrl.resolve_settings(
+            world=None if world is None else os.fspath(world),
+            strategy=strategy,
+            seed=seed,
+            learner=learner,
+            settings=_settings_text(settings),
+            max_trials=max_trials,
+            predict_sensing=predict_sensing,
+        )
+    )

@@ -1,0 +1,166 @@
+//! `csrl._csrl.Classifier`: CS-ID3 or CS-IBL over integer-coded objects, for the
+//! scikit-learn estimators of `csrl.sklearn` (which code the values and the classes).
+
+use cslearn::{ClassId, DecisionTree, FeatureCosts, FeatureId, Labels, TreeOptions, Value};
+use pyo3::prelude::*;
+
+use crate::DataError;
+
+enum Inner {
+    Id3(cslearn::IndexedCsId3),
+    Ibl(cslearn::CsIbl),
+}
+
+/// An incremental cost-sensitive learner over objects whose values are small integers
+/// (`None` for a missing value), with a price per feature.
+#[pyclass(module = "csrl._csrl")]
+pub struct Classifier {
+    inner: Inner,
+    costs: FeatureCosts,
+}
+
+type Rows = Vec<Vec<Option<u32>>>;
+
+impl Classifier {
+    fn check(&self, rows: &Rows) -> PyResult<Vec<Vec<Option<Value>>>> {
+        let n = self.costs.len();
+        rows.iter()
+            .enumerate()
+            .map(|(i, row)| {
+                if row.len() == n {
+                    Ok(row.iter().map(|v| v.map(Value)).collect())
+                } else {
+                    Err(DataError::new_err(format!(
+                        "row {i} has {} values; the learner has {n} features (one price each)",
+                        row.len()
+                    )))
+                }
+            })
+            .collect()
+    }
+
+    fn library(&self) -> &cslearn::Library {
+        match &self.inner {
+            Inner::Id3(l) => l.library(),
+            Inner::Ibl(l) => l.library(),
+        }
+    }
+}
+
+struct Names<'a> {
+    features: &'a [String],
+    values: &'a [Vec<String>],
+    classes: &'a [String],
+}
+
+impl Labels for Names<'_> {
+    fn feature(&self, feature: FeatureId) -> String {
+        self.features
+            .get(feature.index())
+            .cloned()
+            .unwrap_or_else(|| feature.to_string())
+    }
+    fn value(&self, feature: FeatureId, value: Value) -> String {
+        self.values
+            .get(feature.index())
+            .and_then(|v| v.get(value.0 as usize))
+            .cloned()
+            .unwrap_or_else(|| value.to_string())
+    }
+    fn class(&self, class: ClassId) -> String {
+        self.classes
+            .get(class.0 as usize)
+            .cloned()
+            .unwrap_or_else(|| class.to_string())
+    }
+}
+
+#[pymethods]
+impl Classifier {
+    /// `kind` is `"cs-id3"` or `"cs-ibl"`; `costs` the price of each feature (finite, at
+    /// least 0); `tolerance` the wrong values CS-IBL tolerates on an object.
+    #[new]
+    #[pyo3(signature = (kind, costs, tolerance=1))]
+    fn new(kind: &str, costs: Vec<f64>, tolerance: u32) -> PyResult<Classifier> {
+        let costs = FeatureCosts::from_f64(&costs)
+            .map_err(|e| DataError::new_err(format!("feature_costs: {e}")))?;
+        let inner = match kind {
+            "cs-id3" => Inner::Id3(cslearn::cs_id3_indexed(costs.clone())),
+            "cs-ibl" => Inner::Ibl(cslearn::cs_ibl(costs.clone(), tolerance)),
+            other => {
+                return Err(DataError::new_err(format!(
+                    "learner {other:?}: expected \"cs-id3\" or \"cs-ibl\""
+                )));
+            }
+        };
+        Ok(Classifier { inner, costs })
+    }
+
+    /// Learn the objects in order, each predicted and then learned (the paper's cycle),
+    /// and return the wrong predictions and what was charged.
+    fn learn(&mut self, py: Python<'_>, rows: Rows, classes: Vec<u32>) -> PyResult<(usize, f64)> {
+        if rows.len() != classes.len() {
+            return Err(DataError::new_err(format!(
+                "{} rows but {} classes",
+                rows.len(),
+                classes.len()
+            )));
+        }
+        let rows = self.check(&rows)?;
+        let inner = &mut self.inner;
+        Ok(py.detach(|| {
+            let mut errors = 0;
+            let mut cost = 0.0;
+            for (row, &class) in rows.iter().zip(&classes) {
+                let outcome = match inner {
+                    Inner::Id3(l) => l.learn(&row[..], ClassId(class)),
+                    Inner::Ibl(l) => l.learn(&row[..], ClassId(class)),
+                };
+                errors += usize::from(!outcome.correct());
+                cost += outcome.cost.get();
+            }
+            (errors, cost)
+        }))
+    }
+
+    /// Classify the objects without learning: the class of each (`None` where nothing
+    /// can be predicted) and what classifying it cost.
+    fn classify(&mut self, py: Python<'_>, rows: Rows) -> PyResult<(Vec<Option<u32>>, Vec<f64>)> {
+        let rows = self.check(&rows)?;
+        let inner = &mut self.inner;
+        Ok(py.detach(|| {
+            rows.iter()
+                .map(|row| {
+                    let c = match inner {
+                        Inner::Id3(l) => l.classify(&row[..]),
+                        Inner::Ibl(l) => l.classify(&row[..]),
+                    };
+                    (c.class.map(|c| c.0), c.cost.get())
+                })
+                .unzip()
+        }))
+    }
+
+    /// The number of examples in the learner's library.
+    #[getter]
+    fn library_size(&self) -> usize {
+        self.library().len()
+    }
+
+    /// The cost-sensitive decision tree grown from the library, as Graphviz DOT, with
+    /// the names given (numbers where a name is missing).
+    #[pyo3(signature = (feature_names, value_names, class_names))]
+    fn tree_dot(
+        &self,
+        feature_names: Vec<String>,
+        value_names: Vec<Vec<String>>,
+        class_names: Vec<String>,
+    ) -> String {
+        let tree = DecisionTree::build(self.library(), &self.costs, TreeOptions::observations());
+        tree.to_dot(&Names {
+            features: &feature_names,
+            values: &value_names,
+            classes: &class_names,
+        })
+    }
+}

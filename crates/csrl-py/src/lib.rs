@@ -1,0 +1,254 @@
+//! `csrl._csrl`: the compiled part of the `csrl` Python package.
+//!
+//! The Python modules beside it (`crates/csrl-py/python/csrl`) give the public names; this
+//! module holds what has to run in Rust:
+//!
+//! * `run_json`: one run, the same path from arguments to JSON as `csrl run --json`
+//!   (settings from the paper's preset, then a TOML settings table, then the arguments),
+//!   so the text is the same byte for byte. The GIL is released while it runs, and the
+//!   run checks for Ctrl-C after every trial.
+//! * [`PyWorld`]: a finite world with priced features (`mdp::FiniteWorld`), built from a
+//!   name (the same resolution as `csrl run --world`) or from a world file's JSON.
+//! * [`Classifier`]: CS-ID3 or CS-IBL over integer-coded objects, for the scikit-learn
+//!   estimators.
+//!
+//! Every error of the Rust crates becomes a Python exception with the same message
+//! (`SettingsError` and `WorldError`, both `ValueError`s; `DataError` for the
+//! classifiers), never a panic.
+
+mod classifier;
+mod settings;
+mod world;
+
+use pyo3::create_exception;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+
+pub use classifier::Classifier;
+pub use world::PyWorld;
+
+create_exception!(
+    csrl,
+    SettingsError,
+    PyValueError,
+    "Settings that cannot be used: unknown keys, values out of range, or settings that mean nothing together (the message names them)."
+);
+create_exception!(
+    csrl,
+    WorldError,
+    PyValueError,
+    "A world or map that cannot be read or built (the message says what and where)."
+);
+create_exception!(
+    csrl,
+    DataError,
+    PyValueError,
+    "Data a classifier cannot learn from (the message says what and where)."
+);
+
+/// The error and its causes, each said once (as `csrl` prints them): a cause whose text
+/// the message so far already holds is left out.
+pub(crate) fn message(e: &(dyn std::error::Error + 'static)) -> String {
+    let mut text = e.to_string().trim_end().to_string();
+    let mut cause = e.source();
+    while let Some(c) = cause {
+        let part = c.to_string();
+        let part = part.trim_end();
+        if !text.contains(part) {
+            text.push_str(": ");
+            text.push_str(part);
+        }
+        cause = c.source();
+    }
+    text
+}
+
+/// The Python exception for an error of a run.
+pub(crate) fn run_error(e: &csql::Error) -> PyErr {
+    match e {
+        csql::Error::Map(_)
+        | csql::Error::World(_)
+        | csql::Error::Cost(_)
+        | csql::Error::WorldFile(_) => WorldError::new_err(message(e)),
+        _ => SettingsError::new_err(message(e)),
+    }
+}
+
+/// The Python exception for an error of a world.
+pub(crate) fn world_error(e: &(dyn std::error::Error + 'static)) -> PyErr {
+    WorldError::new_err(message(e))
+}
+
+/// Stops the run when Python has a signal to handle (Ctrl-C), keeping the error that the
+/// signal's handler raised; keeps the trace only when asked.
+struct Signals {
+    keep_trace: bool,
+    raised: Option<PyErr>,
+}
+
+impl csql::Observer for Signals {
+    fn keep_trace(&self) -> bool {
+        self.keep_trace
+    }
+
+    fn trial(&mut self, _point: &csql::TracePoint) -> csql::Flow {
+        // The GIL is released during the run: take it for the check only.
+        match Python::attach(|py| py.check_signals()) {
+            Ok(()) => csql::Flow::Continue,
+            Err(e) => {
+                self.raised = Some(e);
+                csql::Flow::Stop
+            }
+        }
+    }
+}
+
+/// One run, as `csrl run --json` prints it (without the final newline).
+///
+/// `world` is a name or path as `--world` takes it, or a `World`; `settings` is the text
+/// of a TOML settings file (as `--config` reads it); the other arguments are the flags
+/// of the same names.
+#[pyfunction]
+#[pyo3(signature = (world=None, strategy=None, seed=None, learner=None, settings=None, max_trials=None, predict_sensing=None, trace=false))]
+#[allow(
+    clippy::too_many_arguments,
+    reason = "one argument per flag of `csrl run`, all keywords in Python"
+)]
+fn run_json(
+    py: Python<'_>,
+    world: Option<&Bound<'_, PyAny>>,
+    strategy: Option<&str>,
+    seed: Option<u64>,
+    learner: Option<&str>,
+    settings: Option<&str>,
+    max_trials: Option<u32>,
+    predict_sensing: Option<&str>,
+    trace: bool,
+) -> PyResult<String> {
+    let object: Option<PyRef<'_, PyWorld>> = match world {
+        Some(w) if w.is_instance_of::<PyWorld>() => Some(w.extract()?),
+        _ => None,
+    };
+    let name: Option<String> = match (world, &object) {
+        (Some(_), Some(_)) | (None, _) => None,
+        (Some(w), None) => Some(w.extract().map_err(|_| {
+            SettingsError::new_err(
+                "world must be a name, a path or a csrl.World, found another type",
+            )
+        })?),
+    };
+    let args = settings::RunArgs {
+        world: name,
+        strategy,
+        seed,
+        learner,
+        settings,
+        max_trials,
+        predict_sensing,
+    };
+    let mut settings = args.settings()?;
+    let mut signals = Signals {
+        keep_trace: trace,
+        raised: None,
+    };
+    if let Some(w) = &object {
+        settings::check_world_object(&mut settings, &w.world)?;
+    }
+    let world = object.as_ref().map(|w| &w.world);
+    // Resolving a world solves its true model (value iteration), which takes time on
+    // large worlds: everything from here runs without the GIL.
+    let report = py
+        .detach(|| match world {
+            None => match csql::Resolved::new(&settings)? {
+                csql::Resolved::Grid(setup) => {
+                    Ok(csql::run_observed(&setup, &settings, &mut signals))
+                }
+                csql::Resolved::Finite { world, oracle } => {
+                    let scene = csql::Scene::new(&world, &oracle, &oracle, world.name());
+                    csql::run_in(&scene, &settings, &mut signals)
+                }
+            },
+            Some(world) => {
+                let oracle = mdp::Oracle::solve_stochastic(world, settings.gamma.get())?;
+                let scene = csql::Scene::new(world, &oracle, &oracle, world.name());
+                csql::run_in(&scene, &settings, &mut signals)
+            }
+        })
+        .map_err(|e| run_error(&e))?;
+    if let Some(e) = signals.raised {
+        return Err(e);
+    }
+    serde_json::to_string(&report).map_err(|e| SettingsError::new_err(e.to_string()))
+}
+
+/// The settings of a run as `csrl run` would resolve them, as JSON (the report's
+/// `settings` object), without running: to check settings before a long run.
+#[pyfunction]
+#[pyo3(signature = (world=None, strategy=None, seed=None, learner=None, settings=None, max_trials=None, predict_sensing=None))]
+fn resolve_settings(
+    world: Option<&str>,
+    strategy: Option<&str>,
+    seed: Option<u64>,
+    learner: Option<&str>,
+    settings: Option<&str>,
+    max_trials: Option<u32>,
+    predict_sensing: Option<&str>,
+) -> PyResult<String> {
+    let args = settings::RunArgs {
+        world: world.map(str::to_string),
+        strategy,
+        seed,
+        learner,
+        settings,
+        max_trials,
+        predict_sensing,
+    };
+    let s = args.settings()?;
+    serde_json::to_string(&s).map_err(|e| SettingsError::new_err(e.to_string()))
+}
+
+/// A Python settings mapping as the text of a TOML settings file.
+#[pyfunction]
+fn settings_toml(settings: &Bound<'_, PyAny>) -> PyResult<String> {
+    settings::to_toml(settings)
+}
+
+/// A report (any JSON value as Python holds it) as serde_json writes it, keys in the
+/// mapping's order: `dumps(json.loads(text)) == text` for every text `run_json` returns.
+#[pyfunction]
+fn dumps(obj: &Bound<'_, PyAny>) -> PyResult<String> {
+    let mut out = String::new();
+    settings::write_json(obj, &mut out)?;
+    Ok(out)
+}
+
+/// The names of the built-in maps.
+#[pyfunction]
+fn map_names() -> Vec<&'static str> {
+    mdp::builtin_names().to_vec()
+}
+
+/// The names of the built-in worlds beyond grid maps.
+#[pyfunction]
+fn world_names() -> Vec<&'static str> {
+    mdp::builtin_world_names().to_vec()
+}
+
+/// The compiled part of the `csrl` package.
+#[pymodule]
+fn _csrl(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("SettingsError", py.get_type::<SettingsError>())?;
+    m.add("WorldError", py.get_type::<WorldError>())?;
+    m.add("DataError", py.get_type::<DataError>())?;
+    m.add_function(wrap_pyfunction!(run_json, m)?)?;
+    m.add_function(wrap_pyfunction!(resolve_settings, m)?)?;
+    m.add_function(wrap_pyfunction!(settings_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(dumps, m)?)?;
+    m.add_function(wrap_pyfunction!(map_names, m)?)?;
+    m.add_function(wrap_pyfunction!(world_names, m)?)?;
+    m.add_class::<PyWorld>()?;
+    m.add_class::<Classifier>()?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

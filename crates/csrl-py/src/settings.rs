@@ -1,0 +1,215 @@
+//! From Python's arguments to a run's settings, by the path `csrl run` takes: the paper's
+//! preset, then a settings file (here the text of one, or a file), then the arguments.
+
+use std::path::PathBuf;
+
+use csql::{RunSettings, StrategyKind, TrialCap};
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+
+use crate::{SettingsError, run_error};
+
+/// The arguments of a run, as `csrl run` has them as flags.
+pub(crate) struct RunArgs<'a> {
+    /// `--world` (or `--map`).
+    pub world: Option<String>,
+    /// `--strategy`.
+    pub strategy: Option<&'a str>,
+    /// `--seed`.
+    pub seed: Option<u64>,
+    /// `--learner`.
+    pub learner: Option<&'a str>,
+    /// The settings: the text of a TOML file, or `@PATH` for the file itself, as
+    /// `--config PATH` reads it.
+    pub settings: Option<&'a str>,
+    /// `--max-trials`.
+    pub max_trials: Option<u32>,
+    /// `--predict-sensing`.
+    pub predict_sensing: Option<&'a str>,
+}
+
+fn bad(what: &str, value: &str, e: impl std::fmt::Display) -> PyErr {
+    SettingsError::new_err(format!("{what} = {value:?}: {e}"))
+}
+
+impl RunArgs<'_> {
+    /// The settings, as `csrl run` builds them from its flags (`crates/csrl/src/run.rs`).
+    pub(crate) fn settings(&self) -> PyResult<RunSettings> {
+        let mut s = RunSettings::tan1991("tan8x8", StrategyKind::Resetting, 1);
+        // The settings, then the arguments over them; everything is checked together
+        // once all are in (`learner="u-tree"` gives the settings' `[u_tree]` its meaning).
+        if let Some(text) = self.settings {
+            match text.strip_prefix('@') {
+                Some(path) => s.merge_file(&PathBuf::from(path)),
+                None => s.merge_toml(text, "settings"),
+            }
+            .map_err(|e| run_error(&e))?;
+        }
+        if let Some(m) = &self.world {
+            s.map = m.into();
+        }
+        let strategy = self
+            .strategy
+            .map(|k| k.parse::<StrategyKind>().map_err(|e| bad("strategy", k, e)))
+            .transpose()?;
+        if let Some(k) = strategy {
+            s.strategy = k;
+        }
+        if let Some(seed) = self.seed {
+            s.seed = seed;
+        }
+        if let Some(n) = self.max_trials {
+            s.max_trials = TrialCap::new(n).map_err(|e| run_error(&e))?;
+        }
+        if let Some(level) = self.predict_sensing {
+            s.predict_sensing = level
+                .parse()
+                .map_err(|e| bad("predict_sensing", level, e))?;
+        }
+        if let Some(learner) = self.learner {
+            s.learner = learner.parse().map_err(|e| bad("learner", learner, e))?;
+        }
+        if strategy.is_some() && !s.learner.is_cs_ql() {
+            return Err(SettingsError::new_err(format!(
+                "strategy with learner {}: a strategy only chooses how CS-QL refines; the baselines have none",
+                s.learner
+            )));
+        }
+        s.validate().map_err(|e| run_error(&e))?;
+        Ok(s)
+    }
+}
+
+/// Settings run on a `csrl.World` object: the world carries its own dynamics, features
+/// and prices, so the `[world]` settings that would change them are refused as they are
+/// for a world file (`csql::Resolved::new`), and the report names the world.
+pub(crate) fn check_world_object(s: &mut RunSettings, world: &mdp::FiniteWorld) -> PyResult<()> {
+    let w = &s.world;
+    if !w.slip.is_zero() || !w.slide.is_zero() || w.sensing.is_some() || w.factor_costs.is_some() {
+        return Err(run_error(&csql::Error::Conflict {
+            first: "a csrl.World".to_string(),
+            second: "[world] slip, slide, sensing or factor_costs".to_string(),
+            why: "a world object carries its own dynamics, features and prices (give them when building it)",
+        }));
+    }
+    if w.sensing_radius.is_some() {
+        return Err(run_error(&csql::Error::GridOnly {
+            what: "[world] sensing_radius (offsets around a robot on a grid)",
+        }));
+    }
+    s.map = world.name().into();
+    Ok(())
+}
+
+/// A Python mapping of settings (nested mappings for tables) as TOML text.
+pub(crate) fn to_toml(obj: &Bound<'_, PyAny>) -> PyResult<String> {
+    let table = match to_value(obj, "settings")? {
+        toml::Value::Table(t) => t,
+        _ => {
+            return Err(SettingsError::new_err(
+                "settings must be a mapping of names to values",
+            ));
+        }
+    };
+    toml::to_string(&table).map_err(|e| SettingsError::new_err(format!("settings: {e}")))
+}
+
+fn to_value(obj: &Bound<'_, PyAny>, at: &str) -> PyResult<toml::Value> {
+    // bool before int: Python's True is an int too.
+    if obj.is_instance_of::<PyBool>() {
+        return Ok(toml::Value::Boolean(obj.extract()?));
+    }
+    if obj.is_instance_of::<PyInt>() {
+        let v: i64 = obj.extract().map_err(|_| {
+            SettingsError::new_err(format!("settings: {at} is an integer out of range"))
+        })?;
+        return Ok(toml::Value::Integer(v));
+    }
+    if obj.is_instance_of::<PyFloat>() {
+        return Ok(toml::Value::Float(obj.extract()?));
+    }
+    if obj.is_instance_of::<PyString>() {
+        return Ok(toml::Value::String(obj.extract()?));
+    }
+    if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
+        let mut items = Vec::new();
+        for (i, item) in obj.try_iter()?.enumerate() {
+            items.push(to_value(&item?, &format!("{at}[{i}]"))?);
+        }
+        return Ok(toml::Value::Array(items));
+    }
+    if let Ok(dict) = obj.cast::<PyDict>() {
+        let mut table = toml::Table::new();
+        for (k, v) in dict.iter() {
+            let key: String = k.extract().map_err(|_| {
+                SettingsError::new_err(format!("settings: a key of {at} is not a string"))
+            })?;
+            let here = if at == "settings" {
+                key.clone()
+            } else {
+                format!("{at}.{key}")
+            };
+            table.insert(key, to_value(&v, &here)?);
+        }
+        return Ok(toml::Value::Table(table));
+    }
+    let kind = obj
+        .get_type()
+        .name()
+        .map_or_else(|_| "?".to_string(), |n| n.to_string());
+    Err(SettingsError::new_err(format!(
+        "settings: {at} is a {kind}; a setting is a bool, an int, a float, a str, a list or a dict"
+    )))
+}
+
+/// Write a Python JSON value (None, bool, int, float, str, list, tuple, dict with str keys)
+/// as serde_json writes the same value: compact, floats in their shortest form.
+pub(crate) fn write_json(obj: &Bound<'_, PyAny>, out: &mut String) -> PyResult<()> {
+    let json = |e: serde_json::Error| SettingsError::new_err(format!("cannot write JSON: {e}"));
+    if obj.is_none() {
+        out.push_str("null");
+    } else if obj.is_instance_of::<PyBool>() {
+        out.push_str(if obj.extract::<bool>()? {
+            "true"
+        } else {
+            "false"
+        });
+    } else if obj.is_instance_of::<PyInt>() {
+        match obj.extract::<i64>() {
+            Ok(v) => out.push_str(&v.to_string()),
+            Err(_) => out.push_str(&obj.extract::<u64>()?.to_string()),
+        }
+    } else if obj.is_instance_of::<PyFloat>() {
+        out.push_str(&serde_json::to_string(&obj.extract::<f64>()?).map_err(json)?);
+    } else if obj.is_instance_of::<PyString>() {
+        out.push_str(&serde_json::to_string(&obj.extract::<String>()?).map_err(json)?);
+    } else if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
+        out.push('[');
+        for (i, item) in obj.try_iter()?.enumerate() {
+            if i > 0 {
+                out.push(',');
+            }
+            write_json(&item?, out)?;
+        }
+        out.push(']');
+    } else if let Ok(dict) = obj.cast::<PyDict>() {
+        out.push('{');
+        for (i, (k, v)) in dict.iter().enumerate() {
+            if i > 0 {
+                out.push(',');
+            }
+            let key: String = k
+                .extract()
+                .map_err(|_| SettingsError::new_err("cannot write JSON: a key is not a string"))?;
+            out.push_str(&serde_json::to_string(&key).map_err(json)?);
+            out.push(':');
+            write_json(&v, out)?;
+        }
+        out.push('}');
+    } else {
+        return Err(SettingsError::new_err(
+            "cannot write JSON: a value is not None, a bool, an int, a float, a str, a list or a dict",
+        ));
+    }
+    Ok(())
+}

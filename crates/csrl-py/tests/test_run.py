@@ -1,0 +1,188 @@
+"""csrl.run: the same JSON as `csrl run --json`, errors as exceptions, the GIL released,
+Ctrl-C honoured."""
+
+import json
+import signal
+import subprocess
+import sys
+import threading
+import time
+
+import pytest
+
+import csrl
+from csrl import _csrl
+
+
+def cli_json(cli, *args):
+    out = subprocess.run([cli, "run", "--json", *args], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.endswith("\n")
+    return out.stdout[:-1]
+
+
+def cli_error(cli, *args):
+    out = subprocess.run([cli, "run", "--json", *args], capture_output=True, text=True)
+    assert out.returncode == 1, (out.returncode, out.stderr)
+    assert out.stderr.startswith("error: ")
+    return out.stderr[len("error: "):].rstrip("\n")
+
+
+SETTINGS = {
+    "temperature": 0.3,
+    "max_trials": 400,
+    "world": {"slip": 0.1},
+    "extensions": {"detector": "action"},
+}
+
+CASES = [
+    (dict(world="tan3x3", strategy="lazy", seed=1), ["--world", "tan3x3", "--strategy", "lazy", "--seed", "1"]),
+    (dict(world="tan8x8", strategy="random", seed=3), ["--world", "tan8x8", "--strategy", "random", "--seed", "3"]),
+    (dict(world="frozenlake4x4", strategy="eager", seed=2, trace=True),
+     ["--world", "frozenlake4x4", "--strategy", "eager", "--seed", "2", "--trace"]),
+    (dict(world="tan3x3", learner="full-sensing", seed=5, max_trials=50),
+     ["--world", "tan3x3", "--learner", "full-sensing", "--seed", "5", "--max-trials", "50"]),
+    (dict(world="tan3x3", learner="u-tree", seed=4, max_trials=60),
+     ["--world", "tan3x3", "--learner", "u-tree", "--seed", "4", "--max-trials", "60"]),
+    (dict(), []),
+]
+
+
+def test_arguments_apply_over_the_settings_before_the_check(cli, tmp_path):
+    # A [u_tree] table means something only with learner u-tree, given as an argument.
+    config = tmp_path / "utree.toml"
+    config.write_text("[u_tree]\nfringe = 3\n")
+    flags = ["--world", "tan3x3", "--learner", "u-tree", "--seed", "2", "--max-trials", "40", "--config", str(config)]
+    expected = cli_json(cli, *flags)
+    got = csrl.run_json(world="tan3x3", learner="u-tree", seed=2, max_trials=40, settings={"u_tree": {"fringe": 3}})
+    assert got == expected
+    with pytest.raises(csrl.SettingsError, match="u_tree"):
+        csrl.run(world="tan3x3", settings={"u_tree": {"fringe": 3}})
+
+
+@pytest.mark.parametrize("kwargs,flags", CASES, ids=lambda c: repr(c)[:60])
+def test_run_is_the_cli_byte_for_byte(cli, kwargs, flags):
+    expected = cli_json(cli, *flags)
+    assert csrl.run_json(**kwargs) == expected
+    # The dict written as serde_json writes it gives the same bytes.
+    report = csrl.run(**kwargs)
+    assert csrl.dumps(report) == expected
+    assert report == json.loads(expected)
+
+
+def test_settings_dict_is_a_config_file(cli, tmp_path):
+    config = tmp_path / "beyond.toml"
+    config.write_text(_csrl.settings_toml(SETTINGS))
+    flags = ["--world", "tan3x3", "--strategy", "lazy", "--seed", "7", "--config", str(config)]
+    expected = cli_json(cli, *flags)
+    got = csrl.run_json(world="tan3x3", strategy="lazy", seed=7, settings=SETTINGS)
+    assert got == expected
+    assert csrl.run_json(world="tan3x3", strategy="lazy", seed=7, settings=config) == expected
+    # The settings did something: the report differs from the paper's run.
+    plain = csrl.run(world="tan3x3", strategy="lazy", seed=7)
+    assert plain["settings"]["temperature"] != json.loads(got)["settings"]["temperature"]
+    assert json.loads(got)["settings"]["world"]["slip"] == 0.1
+
+
+def test_seed_changes_the_run():
+    a = csrl.run(world="tan8x8", strategy="random", seed=1)
+    b = csrl.run(world="tan8x8", strategy="random", seed=2)
+    assert a["seed"] == 1 and b["seed"] == 2
+    assert (a["trials"], a["total_cost"]) != (b["trials"], b["total_cost"])
+
+
+def test_world_file_runs_as_the_cli_runs_it(cli, tmp_path):
+    path = tmp_path / "lake.json"
+    csrl.World("frozenlake4x4", sensing="factors").save(path)
+    expected = cli_json(cli, "--world", str(path), "--strategy", "lazy", "--seed", "2")
+    assert csrl.run_json(world=str(path), strategy="lazy", seed=2) == expected
+    assert csrl.run_json(world=path, strategy="lazy", seed=2) == expected
+
+
+@pytest.mark.parametrize(
+    "kwargs,flags,exc",
+    [
+        (dict(world="no-such-map"), ["--world", "no-such-map"], csrl.WorldError),
+        (dict(world="tan3x3", settings={"temprature": 0.2}), None, csrl.SettingsError),
+        (dict(world="tan3x3", settings={"world": {"slide": 0.5}}), None, csrl.SettingsError),
+        (dict(world="tan3x3", learner="u-tree", strategy="lazy"),
+         ["--world", "tan3x3", "--learner", "u-tree", "--strategy", "lazy"], csrl.SettingsError),
+        (dict(world="tan3x3", settings={"gamma": 1.0}), None, csrl.SettingsError),
+    ],
+)
+def test_errors_are_value_errors_with_the_cli_message(cli, tmp_path, kwargs, flags, exc):
+    with pytest.raises(exc) as info:
+        csrl.run(**kwargs)
+    assert isinstance(info.value, ValueError)
+    if flags is None:
+        # The same settings as a file named "settings", as the Python side names them.
+        config = tmp_path / "settings"
+        config.write_text(_csrl.settings_toml(kwargs["settings"]))
+        flags = ["--world", kwargs["world"], "--config", "settings"]
+        out = subprocess.run([cli, "run", "--json", *flags], capture_output=True, text=True, cwd=tmp_path)
+        assert out.returncode == 1, out.stderr
+        assert str(info.value) == out.stderr[len("error: "):].rstrip("\n")
+    else:
+        # The command names its flags with their dashes, Python its arguments without.
+        assert str(info.value) == cli_error(cli, *flags).replace("--strategy", "strategy")
+
+
+def test_bad_argument_types_are_refused():
+    with pytest.raises(csrl.SettingsError, match="strategy"):
+        csrl.run(world="tan3x3", strategy="sometimes")
+    with pytest.raises(csrl.SettingsError, match="settings"):
+        csrl.run(world="tan3x3", settings={"world": {"slip": object()}})
+    with pytest.raises(csrl.SettingsError):
+        csrl.run(world="tan3x3", max_trials=0)
+    with pytest.raises(csrl.SettingsError):
+        csrl.run(world=3.5)
+
+
+def test_the_gil_is_released_during_a_run():
+    ticks = 0
+    done = threading.Event()
+    result = {}
+
+    def work():
+        result["r"] = csrl.run(world="tan8x8", strategy="resetting", seed=1,
+                               settings={"world": {"slip": 0.3}, "max_trials": 4000})
+        done.set()
+
+    t = threading.Thread(target=work)
+    started = time.perf_counter()
+    t.start()
+    while not done.is_set():
+        ticks += 1
+        time.sleep(0.001)
+    t.join()
+    elapsed = time.perf_counter() - started
+    assert result["r"]["trials"] > 0
+    # With the GIL held by the run, this loop could not have ticked while it went on.
+    assert elapsed > 0.05, "the run was too short to tell"
+    assert ticks > 10, (ticks, elapsed)
+
+
+def test_ctrl_c_stops_a_long_run():
+    code = (
+        "import csrl, sys\n"
+        "print('ready', flush=True)\n"
+        "csrl.run(world='frozenlake8x8', strategy='lazy', seed=1, settings={'world': {'slip': 0.66}})\n"
+        "print('finished', flush=True)\n"
+    )
+    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    assert proc.stdout.readline().strip() == "ready"
+    time.sleep(1.0)
+    started = time.perf_counter()
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=60)
+    assert "KeyboardInterrupt" in err, err
+    assert "finished" not in out
+    assert proc.returncode != 0
+    assert time.perf_counter() - started < 10
+
+
+def test_resolve_settings_checks_without_running():
+    s = csrl.resolve_settings(world="tan8x8", strategy="eager", settings={"temperature": 0.2})
+    assert s["temperature"] == 0.2 and s["strategy"] == "eager"
+    with pytest.raises(csrl.SettingsError):
+        csrl.resolve_settings(world="tan8x8", settings={"beta": -1.0})
