@@ -202,6 +202,8 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
     // Runs the oracle judges measure the quality as something new, at the speed of the
     // judge; runs judged by the quality keep the sweep their figures were made with.
     let mut meter = QualityMeter::new(judging == Judging::Oracle);
+    let states = world.states().len() as u64;
+    let mut moves_evaluated = 0u64;
     let tolerance = settings.tolerance.get();
     let cap = settings.max_trials.get();
     for trial in 1..=cap {
@@ -231,7 +233,13 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
             out.first_converged = Some((trial, out.cost));
         }
         // The quality: on its schedule, and at the last trial of a run the oracle ends.
-        if trial % settings.extensions.quality_every == 0 || trial == cap || verdict.converged {
+        // Where the oracle judges, the quality is only measured, and an evaluation also
+        // waits for as many moves as the world has states since the last, so that
+        // measuring never costs much more than learning.
+        let due = trial % settings.extensions.quality_every == 0
+            && (judging == Judging::Quality || out.moves >= moves_evaluated + states);
+        if due || trial == cap || verdict.converged {
+            moves_evaluated = out.moves;
             // The incremental judge has just looked up every state's row.
             let rows =
                 (judging == Judging::Oracle && agent.perception.keeps_rows()).then(|| judge.rows());
