@@ -195,11 +195,11 @@ impl Condition {
     }
 }
 
-fn parse_number(text: &str) -> Option<f64> {
+pub(crate) fn parse_number(text: &str) -> Option<f64> {
     text.parse::<f64>().ok().filter(|x| x.is_finite())
 }
 
-fn is_missing(cell: &str) -> bool {
+pub(crate) fn is_missing(cell: &str) -> bool {
     cell.is_empty() || cell == "?"
 }
 
@@ -215,19 +215,39 @@ fn format_number(x: f64) -> String {
 }
 
 /// A header and its records, each with its 1-based line.
-struct Table {
-    header: Vec<String>,
-    records: Vec<(u64, csv::StringRecord)>,
+pub(crate) struct Table {
+    pub(crate) header: Vec<String>,
+    pub(crate) records: Vec<(u64, csv::StringRecord)>,
 }
 
-fn csv_error(path: &Path, err: csv::Error) -> Error {
+/// The 1-based line of the record the CSV reader places at byte `offset`: one more than
+/// the newlines before its first byte. The reader's own line count, and its offset, can
+/// sit on the line end before the record (after a CRLF), so line ends there are skipped:
+/// no record starts with one.
+fn line_at(bytes: &[u8], offset: u64) -> u64 {
+    let end = record_start(bytes, offset);
+    1 + bytes[..end].iter().filter(|&&b| b == b'\n').count() as u64
+}
+
+/// Byte `offset`, moved past any line-end bytes, within `bytes`.
+fn record_start(bytes: &[u8], offset: u64) -> usize {
+    let mut at = usize::try_from(offset)
+        .unwrap_or(usize::MAX)
+        .min(bytes.len());
+    while at < bytes.len() && matches!(bytes[at], b'\r' | b'\n') {
+        at += 1;
+    }
+    at
+}
+
+fn csv_error(path: &Path, err: csv::Error, bytes: &[u8]) -> Error {
     let path = path.to_path_buf();
-    let line = err.position().map(|p| p.line());
+    let line = err.position().map(|p| line_at(bytes, p.byte()));
     match err.kind() {
         csv::ErrorKind::Utf8 { pos, .. } => {
             return Error::NotUtf8 {
                 path,
-                line: pos.as_ref().map_or(1, |p| p.line()),
+                line: pos.as_ref().map_or(1, |p| line_at(bytes, p.byte())),
             };
         }
         csv::ErrorKind::UnequalLengths {
@@ -237,7 +257,7 @@ fn csv_error(path: &Path, err: csv::Error) -> Error {
         } => {
             return Error::RaggedRecord {
                 path,
-                line: pos.as_ref().map_or(0, |p| p.line()),
+                line: pos.as_ref().map_or(0, |p| line_at(bytes, p.byte())),
                 expected: *expected_len,
                 found: *len,
             };
@@ -257,6 +277,27 @@ fn csv_error(path: &Path, err: csv::Error) -> Error {
     }
 }
 
+/// Open a regular file; a directory, a device or a pipe is refused before it is opened.
+pub(crate) fn open_regular(path: &Path) -> Result<std::fs::File, Error> {
+    let io = |source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let not_a_file = || Error::NotAFile {
+        path: path.to_path_buf(),
+    };
+    // Judged from the metadata first: opening a FIFO would block until a writer
+    // comes; then on the opened file, in case the path changed in between.
+    if !std::fs::metadata(path).map_err(io)?.is_file() {
+        return Err(not_a_file());
+    }
+    let file = std::fs::File::open(path).map_err(io)?;
+    if !file.metadata().map_err(io)?.is_file() {
+        return Err(not_a_file());
+    }
+    Ok(file)
+}
+
 /// The most bytes a data or costs file may have (256 MiB); reading stops after them.
 ///
 /// ```
@@ -265,7 +306,7 @@ fn csv_error(path: &Path, err: csv::Error) -> Error {
 pub const MAX_FILE_BYTES: u64 = 256 << 20;
 
 /// Read at most [`MAX_FILE_BYTES`] bytes, refusing anything longer.
-fn read_bounded(mut reader: impl Read, path: &Path) -> Result<Vec<u8>, Error> {
+pub(crate) fn read_bounded(mut reader: impl Read, path: &Path) -> Result<Vec<u8>, Error> {
     let mut bytes = Vec::new();
     (&mut reader)
         .take(MAX_FILE_BYTES + 1)
@@ -317,7 +358,7 @@ fn unterminated_quote(bytes: &[u8]) -> Option<u64> {
     in_quotes.then_some(open_line)
 }
 
-fn read_table(reader: impl Read, path: &Path) -> Result<Table, Error> {
+pub(crate) fn read_table(reader: impl Read, path: &Path) -> Result<Table, Error> {
     let bytes = read_bounded(reader, path)?;
     if let Some(line) = unterminated_quote(&bytes) {
         return Err(Error::UnterminatedQuote {
@@ -331,7 +372,7 @@ fn read_table(reader: impl Read, path: &Path) -> Result<Table, Error> {
         .from_reader(bytes.as_slice());
     let header: Vec<String> = reader
         .headers()
-        .map_err(|e| csv_error(path, e))?
+        .map_err(|e| csv_error(path, e, &bytes))?
         .iter()
         .map(str::to_string)
         .collect();
@@ -341,9 +382,16 @@ fn read_table(reader: impl Read, path: &Path) -> Result<Table, Error> {
         });
     }
     let mut records = Vec::new();
+    // Lines counted from byte offsets, in one pass over the file.
+    let (mut counted, mut line) = (0usize, 1u64);
     for record in reader.records() {
-        let record = record.map_err(|e| csv_error(path, e))?;
-        let line = record.position().map_or(0, |p| p.line());
+        let record = record.map_err(|e| csv_error(path, e, &bytes))?;
+        let at = record
+            .position()
+            .map_or(counted, |p| record_start(&bytes, p.byte()))
+            .max(counted);
+        line += bytes[counted..at].iter().filter(|&&b| b == b'\n').count() as u64;
+        counted = at;
         records.push((line, record));
     }
     Ok(Table { header, records })
@@ -426,6 +474,7 @@ fn sort_texts(texts: &mut [String]) {
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Dataset {
+    target: String,
     columns: Vec<Column>,
     costs: FeatureCosts,
     rows: Vec<Option<Value>>,
@@ -446,27 +495,8 @@ impl Dataset {
     /// assert!(matches!(err, cslearn::Error::Io { .. }));
     /// ```
     pub fn load(data: &Path, costs: &Path, options: &DatasetOptions) -> Result<Dataset, Error> {
-        let open = |path: &Path| {
-            let io = |source| Error::Io {
-                path: path.to_path_buf(),
-                source,
-            };
-            let not_a_file = || Error::NotAFile {
-                path: path.to_path_buf(),
-            };
-            // Judged from the metadata first: opening a FIFO would block until a writer
-            // comes; then on the opened file, in case the path changed in between.
-            if !std::fs::metadata(path).map_err(io)?.is_file() {
-                return Err(not_a_file());
-            }
-            let file = std::fs::File::open(path).map_err(io)?;
-            if !file.metadata().map_err(io)?.is_file() {
-                return Err(not_a_file());
-            }
-            Ok(file)
-        };
-        let data_file = open(data)?;
-        let costs_file = open(costs)?;
+        let data_file = open_regular(data)?;
+        let costs_file = open_regular(costs)?;
         Dataset::from_readers(data_file, data, costs_file, costs, options)
     }
 
@@ -543,6 +573,7 @@ impl Dataset {
             columns.push(column);
         }
         Ok(Dataset {
+            target: options.target.clone(),
             columns,
             costs,
             rows,
@@ -691,6 +722,16 @@ impl Dataset {
     /// ```
     pub fn class_name(&self, class: ClassId) -> Option<&str> {
         self.class_names.get(class.0 as usize).map(String::as_str)
+    }
+
+    /// The name of the target column.
+    ///
+    /// ```
+    /// # let ds = cslearn::Dataset::from_readers("a,t\n1,x\n".as_bytes(), "d", "feature,cost\na,1\n".as_bytes(), "c", &cslearn::DatasetOptions::new("t")).unwrap();
+    /// assert_eq!(ds.target(), "t");
+    /// ```
+    pub fn target(&self) -> &str {
+        &self.target
     }
 
     /// The number of classes.

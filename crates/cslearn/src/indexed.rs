@@ -120,6 +120,21 @@ impl<D: Discriminate> IndexedLearner<D> {
         }
     }
 
+    /// The same learner with `library` as what it learned (its index starts afresh and
+    /// catches up with the library as objects come).
+    ///
+    /// ```
+    /// use cslearn::{ClassId, Example, FeatureCosts, FeatureId, Library, Value};
+    /// let library: Library = [Example::from_pairs([(FeatureId(0), Value(1))], ClassId(2))].into_iter().collect();
+    /// let mut learner = cslearn::cs_id3_indexed(FeatureCosts::from_f64(&[1.0]).unwrap()).with_library(library);
+    /// assert_eq!(learner.classify(&[Some(Value(1))][..]).class, Some(ClassId(2)));
+    /// ```
+    pub fn with_library(mut self, library: Library) -> Self {
+        self.library = library;
+        self.tree = Tree::new();
+        self
+    }
+
     /// Predict the class of the object behind `sensor`, as
     /// [`Learner::classify`](crate::Learner::classify) does.
     ///

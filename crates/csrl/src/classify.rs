@@ -84,6 +84,10 @@ pub struct ClassifyArgs {
     /// library the prequential pass learned, as Graphviz DOT (`dot -Tsvg FILE.dot`).
     #[arg(long, value_name = "FILE.dot")]
     dot: Option<PathBuf>,
+    /// Save what the prequential pass learned as a model file (versioned JSON, format
+    /// `csrl-classifier`), for `csrl predict --model FILE`.
+    #[arg(long, value_name = "MODEL.json")]
+    save: Option<PathBuf>,
 }
 
 /// Accuracy and cost per object on one test part (or summed over folds).
@@ -258,22 +262,6 @@ fn held_out(args: &ClassifyArgs, data: &Dataset) -> Result<Option<(String, HeldO
     Ok(Some((scheme, total)))
 }
 
-/// The decision tree grown from the library CS-ID3 learns in the prequential pass (the
-/// same seeded order as `cslearn::stream_dataset`, so the same library).
-fn cs_id3_tree(data: &Dataset, seed: u64) -> cslearn::DecisionTree {
-    use rand::SeedableRng;
-    let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(seed);
-    let mut learner = cslearn::cs_id3_indexed(data.costs().clone());
-    for i in data.shuffled(&mut rng) {
-        learner.learn(data.object(i), data.labels()[i]);
-    }
-    cslearn::DecisionTree::build(
-        learner.library(),
-        data.costs(),
-        cslearn::TreeOptions::observations(),
-    )
-}
-
 /// Run `csrl classify`.
 pub fn run(args: &ClassifyArgs, out: &mut dyn Write) -> Result<()> {
     let mut options = DatasetOptions::new(args.target.as_str());
@@ -298,12 +286,28 @@ pub fn run(args: &ClassifyArgs, out: &mut dyn Write) -> Result<()> {
         Some(data.len() as u64),
         indicatif::ProgressDrawTarget::stderr(),
     );
-    let report = cslearn::stream_dataset_with_progress(&data, kind, args.seed, &mut |done, _| {
-        bar.set_position(done as u64);
-    });
+    let (report, library) =
+        cslearn::stream_dataset_keeping(&data, kind, args.seed, &mut |done, _| {
+            bar.set_position(done as u64);
+        });
     bar.finish_and_clear();
+    if let Some(path) = &args.save {
+        crate::write_file(path, cslearn::Model::new(&data, kind, &library).to_json())?;
+        crate::note(format_args!(
+            "saved the model ({name}, {} examples) to {}",
+            library.len(),
+            path.display()
+        ));
+    }
     if let Some(path) = &args.dot {
-        crate::write_file(path, cs_id3_tree(&data, args.seed).to_dot(&data))?;
+        // Grown (I^2/C, observation semantics) from the library the prequential pass
+        // learned.
+        let tree = cslearn::DecisionTree::build(
+            &library,
+            data.costs(),
+            cslearn::TreeOptions::observations(),
+        );
+        crate::write_file(path, tree.to_dot(&data))?;
         crate::note(format_args!(
             "wrote the CS-ID3 decision tree to {}",
             path.display()
