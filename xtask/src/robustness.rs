@@ -444,7 +444,7 @@ fn write_report(def: &Definition, results: &[JobResult], out: &Path) -> Result<(
     } else {
         out.to_path_buf()
     };
-    std::fs::create_dir_all(&figures)?;
+    crate::files::create_dir(&figures)?;
     let group = |map: Option<&str>, c: Condition, l: Learner| -> Vec<&JobResult> {
         results
             .iter()
