@@ -149,6 +149,7 @@ fn split_eval<A, S, P, D, U>(
     data: &Dataset,
     train: &[usize],
     test: &[usize],
+    bar: &indicatif::ProgressBar,
 ) -> HeldOut
 where
     A: cslearn::Attend,
@@ -159,6 +160,7 @@ where
 {
     for &i in train {
         learner.learn(data.object(i), data.labels()[i]);
+        bar.inc(1);
     }
     let library: cslearn::Library = train
         .iter()
@@ -179,6 +181,7 @@ where
     );
     let mut out = HeldOut::default();
     for &i in test {
+        bar.inc(1);
         let truth = Some(data.labels()[i]);
         let c = learner.classify(data.object(i));
         out.objects += 1;
@@ -240,11 +243,21 @@ fn held_out(args: &ClassifyArgs, data: &Dataset) -> Result<Option<(String, HeldO
         _ => unreachable!("returned above"),
     };
     let mut total = HeldOut::default();
+    // Each split streams its training part and classifies its test part: a sign of life
+    // over all of them (CS-IBL's time per object grows with its library).
+    let work: usize = splits.iter().map(|(a, b)| a.len() + b.len()).sum();
+    let bar = progress_bar(work);
     for (j, (train, test)) in splits.iter().enumerate() {
         let costs = data.costs().clone();
         let part = match args.learner {
-            Learner::CsId3 => split_eval(cslearn::cs_id3(costs), data, train, test),
-            Learner::CsIbl => split_eval(cslearn::cs_ibl(costs, args.tolerance), data, train, test),
+            Learner::CsId3 => split_eval(cslearn::cs_id3(costs), data, train, test, &bar),
+            Learner::CsIbl => split_eval(
+                cslearn::cs_ibl(costs, args.tolerance),
+                data,
+                train,
+                test,
+                &bar,
+            ),
             Learner::Id3 => split_eval(
                 cslearn::id3(
                     costs,
@@ -255,11 +268,21 @@ fn held_out(args: &ClassifyArgs, data: &Dataset) -> Result<Option<(String, HeldO
                 data,
                 train,
                 test,
+                &bar,
             ),
         };
         total.add(part);
     }
+    bar.finish_and_clear();
     Ok(Some((scheme, total)))
+}
+
+/// A sign of life on long work: a bar on a terminal's stderr, nothing otherwise.
+pub(crate) fn progress_bar(len: usize) -> indicatif::ProgressBar {
+    indicatif::ProgressBar::with_draw_target(
+        Some(len as u64),
+        indicatif::ProgressDrawTarget::stderr(),
+    )
 }
 
 /// Run `csrl classify`.
@@ -281,11 +304,7 @@ pub fn run(args: &ClassifyArgs, out: &mut dyn Write) -> Result<()> {
         args.dot.is_none() || args.learner == Learner::CsId3,
         "--dot draws CS-ID3's decision tree: it needs --learner cs-id3"
     );
-    // A sign of life on long streams: a bar on a terminal's stderr, nothing otherwise.
-    let bar = indicatif::ProgressBar::with_draw_target(
-        Some(data.len() as u64),
-        indicatif::ProgressDrawTarget::stderr(),
-    );
+    let bar = progress_bar(data.len());
     let (report, library) =
         cslearn::stream_dataset_keeping(&data, kind, args.seed, &mut |done, _| {
             bar.set_position(done as u64);

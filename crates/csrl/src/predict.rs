@@ -34,8 +34,7 @@ fn field(text: &str) -> String {
 /// Run `csrl predict`.
 pub fn run(args: &PredictArgs, out: &mut dyn Write) -> Result<()> {
     let model = cslearn::Model::load(&args.model).context("cannot load the model")?;
-    let bar =
-        indicatif::ProgressBar::with_draw_target(None, indicatif::ProgressDrawTarget::stderr());
+    let bar = crate::classify::progress_bar(0);
     let rows = model
         .predict_file(&args.data, &mut |done, total| {
             bar.set_length(total as u64);
