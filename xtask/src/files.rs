@@ -48,6 +48,29 @@ pub fn open_append(path: &Path) -> Result<std::fs::File> {
         .map_err(|e| cannot_write(path, e))
 }
 
+/// Read `path`, which must be a regular file (`what`, for the message) of at most `max`
+/// bytes, as UTF-8 text.
+pub fn read_text(path: &Path, max: u64, what: &str) -> Result<String> {
+    use std::io::Read;
+    let meta =
+        std::fs::metadata(path).with_context(|| format!("cannot read {}", path.display()))?;
+    anyhow::ensure!(
+        meta.is_file(),
+        "{}: not a regular file ({what} is needed)",
+        path.display()
+    );
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|file| file.take(max + 1).read_to_end(&mut bytes))
+        .with_context(|| format!("cannot read {}", path.display()))?;
+    anyhow::ensure!(
+        bytes.len() as u64 <= max,
+        "{}: longer than the {max} bytes {what} may have here",
+        path.display()
+    );
+    String::from_utf8(bytes).with_context(|| format!("{}: not UTF-8 text", path.display()))
+}
+
 /// Write `bytes` to `path` through a temporary file in the same folder and a rename, so
 /// that a kill mid-write leaves the old file or the new one, never a truncated one. A
 /// failure is a [`CannotWrite`] naming `path`.
