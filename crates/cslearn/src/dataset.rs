@@ -888,7 +888,7 @@ fn index_of(texts: &[String]) -> BTreeMap<&str, u32> {
 pub const MAX_TOTAL_COST: f64 = 1e300;
 
 /// Refuse prices whose total over `objects` objects cannot be represented.
-fn check_totals(costs: &FeatureCosts, objects: usize, path: &Path) -> Result<(), Error> {
+pub(crate) fn check_totals(costs: &FeatureCosts, objects: usize, path: &Path) -> Result<(), Error> {
     // Summed without saturation: an infinite sum must show as one.
     let per_object: f64 = costs.as_slice().iter().map(|c| c.get()).sum();
     let total = per_object * objects as f64;

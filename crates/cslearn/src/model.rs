@@ -5,7 +5,9 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::dataset::{Dataset, is_missing, open_regular, parse_number, read_bounded, read_table};
+use crate::dataset::{
+    Dataset, check_totals, is_missing, open_regular, parse_number, read_bounded, read_table,
+};
 use crate::error::Error;
 use crate::example::{Example, Library};
 use crate::indexed::{cs_id3_indexed, id3_indexed};
@@ -470,6 +472,8 @@ impl Model {
                 })
             })
             .collect();
+        // Every total printed must be a true one.
+        check_totals(&self.costs, table.records.len(), path)?;
         let mut rows = Vec::with_capacity(table.records.len() * columns.len());
         let mut lines = Vec::with_capacity(table.records.len());
         for (line, record) in &table.records {
@@ -591,6 +595,14 @@ fn check(file: &File) -> Result<(), (String, String)> {
             }
             _ => return Err((at(), s("needs exactly one of `cuts` and `values`"))),
         }
+    }
+    if file.library.is_empty() {
+        // Never saved so (a stream learns at least one example): a model that could only
+        // abstain.
+        return Err((
+            s("key `library`"),
+            s("no examples: the model could not classify"),
+        ));
     }
     for (i, e) in file.library.iter().enumerate() {
         let at = || format!("library example {i}");

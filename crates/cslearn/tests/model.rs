@@ -299,3 +299,23 @@ fn tables_to_classify_are_checked_cell_by_cell() {
     assert_eq!(rows.len(), 3);
     assert_eq!(rows[2].measured.first(), Some(&FeatureId(0)));
 }
+
+#[test]
+fn a_model_whose_totals_cannot_be_represented_or_that_knows_nothing_is_refused() {
+    let mut v: serde_json::Value = serde_json::from_str(&small().to_json()).unwrap();
+    v["features"][0]["cost"] = 1e308.into();
+    v["features"][1]["cost"] = 1e308.into();
+    let model = Model::from_json(v.to_string().as_bytes(), "m.json").unwrap();
+    let err = model
+        .predict("x,c\n1,red\n2,blue\n".as_bytes(), "new.csv", &mut |_, _| {})
+        .unwrap_err();
+    assert!(matches!(err, Error::CostsTooLarge { .. }), "{err:?}");
+    v["features"][0]["cost"] = 1.into();
+    v["features"][1]["cost"] = 1.into();
+    v["library"] = serde_json::json!([]);
+    let err = Model::from_json(v.to_string().as_bytes(), "m.json").unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "m.json: key `library`: no examples: the model could not classify"
+    );
+}

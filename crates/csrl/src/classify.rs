@@ -304,6 +304,15 @@ pub fn run(args: &ClassifyArgs, out: &mut dyn Write) -> Result<()> {
         args.dot.is_none() || args.learner == Learner::CsId3,
         "--dot draws CS-ID3's decision tree: it needs --learner cs-id3"
     );
+    if let (Some(save), Some(dot)) = (&args.save, &args.dot) {
+        // One would overwrite the other.
+        let same = std::path::absolute(save).ok() == std::path::absolute(dot).ok();
+        anyhow::ensure!(
+            !same,
+            "--save and --dot name the same file ({}): give each its own",
+            save.display()
+        );
+    }
     let bar = progress_bar(data.len());
     let (report, library) =
         cslearn::stream_dataset_keeping(&data, kind, args.seed, &mut |done, _| {

@@ -71,8 +71,9 @@ pub fn run(args: &PredictArgs, out: &mut dyn Write) -> Result<()> {
         cslearn::LearnerKind::Id3 => "id3",
     };
     crate::note(format_args!(
-        "classified {} rows of {} with {} ({name}, {} examples): total cost {}, mean {:.4} per row{}",
+        "classified {} row{} of {} with {} ({name}, {} examples): total cost {}, mean {:.4} per row{}",
         rows.len(),
+        if rows.len() == 1 { "" } else { "s" },
         args.data.display(),
         args.model.display(),
         model.library().len(),

@@ -513,3 +513,15 @@ fn bad_models_and_unwritable_outputs_have_their_exit_codes() {
     ]);
     assert_eq!(out.status.code(), Some(4), "{}", stderr(&out));
 }
+
+#[test]
+fn save_and_dot_may_not_name_one_file() {
+    let same = scratch("same.out", b"");
+    let out = on_heart(&["--learner", "cs-id3", "--save", &same, "--dot", &same]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("--save and --dot name the same file"),
+        "{}",
+        stderr(&out)
+    );
+}
