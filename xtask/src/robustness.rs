@@ -450,6 +450,9 @@ fn draw_figures(
     Ok(())
 }
 
+/// The largest cost, count or mean `--figures-from` draws (a log axis needs room above).
+const MAX_MEASURE: f64 = 1e100;
+
 /// `--figures-from`: the figures again from a report's CSV, without running anything.
 fn redraw(csv: &Path, args: &RobustnessArgs) -> Result<()> {
     let text = crate::files::read_text(csv, 64 << 20, "a robustness.csv")?;
@@ -509,20 +512,39 @@ fn redraw(csv: &Path, args: &RobustnessArgs) -> Result<()> {
         }
         let runs = count(2)?;
         runs_all = runs_all.max(runs);
-        cells.push((
-            condition,
-            learner,
-            Cell {
-                runs,
-                reached: count(3)?,
-                quality: num(4)?,
-                cost_to_quality: opt(5)?,
-                trials_to_quality: opt(6)?,
-                cost_per_state: num(7)?,
-                descriptions: num(8)?,
-                features: num(9)?,
-            },
-        ));
+        let cell = Cell {
+            runs,
+            reached: count(3)?,
+            quality: num(4)?,
+            cost_to_quality: opt(5)?,
+            trials_to_quality: opt(6)?,
+            cost_per_state: num(7)?,
+            descriptions: num(8)?,
+            features: num(9)?,
+        };
+        // What a report writes, and nothing a figure would draw wrongly.
+        if runs == 0 || cell.reached > runs {
+            return Err(bad(&format!(
+                "{} runs of which {} reached 0.95: want at least 1 run, and no more reached than run",
+                runs, cell.reached
+            )));
+        }
+        if !(0.0..=1.0).contains(&cell.quality) {
+            return Err(bad(&format!("quality {} is not in [0, 1]", cell.quality)));
+        }
+        let measures = [
+            cell.cost_to_quality.unwrap_or(0.0),
+            cell.trials_to_quality.unwrap_or(0.0),
+            cell.cost_per_state,
+            cell.descriptions,
+            cell.features,
+        ];
+        if let Some(x) = measures.iter().find(|x| !(0.0..=MAX_MEASURE).contains(*x)) {
+            return Err(bad(&format!(
+                "{x:e} is not a cost, count or mean between 0 and {MAX_MEASURE:e}"
+            )));
+        }
+        cells.push((condition, learner, cell));
     }
     if cells.is_empty() || maps.is_empty() {
         bail!("{}: no rows of map `all` and of each map", csv.display());
@@ -1157,5 +1179,65 @@ mod tests {
                 "1", "12.5", "100", "1k", "2.5k", "100k", "1M", "1.2M", "10M"
             ]
         );
+    }
+
+    #[test]
+    fn figures_from_a_csv_refuse_what_a_report_never_writes() {
+        let dir = tempfile::tempdir().unwrap();
+        let header = "map,condition,learner,runs,reached,quality_mean,cost_to_quality_median,trials_to_quality_median,cost_per_state_mean,descriptions_mean,features_mean\n";
+        let per_map = "\"m\",paper's world,lazy,4,4,1,,,1,1,1\n";
+        for (row, want) in [
+            (
+                "\"all\",paper's world,lazy,4,4,NaN,,,1,1,1",
+                "line 2: field 6 is `NaN`",
+            ),
+            (
+                "\"all\",paper's world,lazy,4,4,-5,,,1,1,1",
+                "line 2: quality -5 is not in [0, 1]",
+            ),
+            (
+                "\"all\",paper's world,lazy,4,4,1,-1,,1,1,1",
+                "line 2: -1e0 is not a cost",
+            ),
+            (
+                "\"all\",paper's world,lazy,4,4,1,1e308,,1,1,1",
+                "line 2: 1e308 is not a cost",
+            ),
+            (
+                "\"all\",paper's world,lazy,0,0,1,,,1,1,1",
+                "line 2: 0 runs of which 0",
+            ),
+            (
+                "\"all\",paper's world,lazy,4,5,1,,,1,1,1",
+                "line 2: 4 runs of which 5",
+            ),
+            (
+                "\"all\",paper's world,lazi,4,4,1,,,1,1,1",
+                "line 2: unknown learner `lazi`",
+            ),
+            (
+                "all,paper's world,lazy,4,4,1,,,1,1,1",
+                "line 2: the map is not a quoted first field",
+            ),
+        ] {
+            let csv = dir.path().join("r.csv");
+            std::fs::write(&csv, format!("{header}{row}\n{per_map}")).unwrap();
+            let args = RobustnessArgs {
+                maps: vec!["tan3x3".into()],
+                runs: 1,
+                seed: 1,
+                max_trials: 10,
+                quality_every: 1,
+                patience: 1,
+                shard: "1/1".into(),
+                threads: None,
+                out: dir.path().join("out"),
+                report: false,
+                bless: false,
+                figures_from: Some(csv),
+            };
+            let err = robustness(&args).unwrap_err().to_string();
+            assert!(err.contains(want), "{row}: {err}");
+        }
     }
 }
