@@ -366,8 +366,9 @@ impl Model {
             .map(|f| f.name.as_str())
     }
 
-    /// Classify every row of a CSV table (see [`Model`] for how columns and cells are read), without learning; `name` is for messages, and
-    /// `progress(done, total)` is called before each row.
+    /// Classify every row of a CSV table (see [`Model`] for how columns and cells are
+    /// read), without learning; `name` is for messages, and `progress(done, total)` is
+    /// called before each row.
     ///
     /// ```
     /// # use cslearn::*;
