@@ -1054,23 +1054,33 @@ mod tests {
         );
     }
 
+    /// A small sweep on tan3x3 into `out`: one run, 60 trials at the most.
+    fn small(out: &Path) -> RobustnessArgs {
+        RobustnessArgs {
+            maps: vec!["tan3x3".into()],
+            runs: 1,
+            seed: 1,
+            max_trials: 60,
+            quality_every: 10,
+            patience: 2,
+            shard: "1/1".into(),
+            threads: Some(1),
+            out: out.to_path_buf(),
+            report: false,
+            bless: false,
+            figures_from: None,
+        }
+    }
+
     #[test]
     fn one_shard_of_a_huge_job_list_runs_its_own_job_only() {
         // Once: the whole list of 62 * 10^8 jobs was built to run one.
         let dir = tempfile::tempdir().unwrap();
         let args = RobustnessArgs {
-            maps: vec!["tan3x3".into()],
             runs: 100_000_000,
-            seed: 1,
             max_trials: 20,
-            quality_every: 10,
-            patience: 2,
             shard: "1/100000000000".into(),
-            threads: Some(1),
-            out: dir.path().to_path_buf(),
-            report: false,
-            bless: false,
-            figures_from: None,
+            ..small(dir.path())
         };
         robustness(&args).unwrap();
         let text =
@@ -1082,20 +1092,7 @@ mod tests {
     #[test]
     fn a_small_sweep_runs_resumes_and_reports() {
         let dir = tempfile::tempdir().unwrap();
-        let args = RobustnessArgs {
-            maps: vec!["tan3x3".into()],
-            runs: 1,
-            seed: 1,
-            max_trials: 60,
-            quality_every: 10,
-            patience: 2,
-            shard: "1/1".into(),
-            threads: Some(1),
-            out: dir.path().to_path_buf(),
-            report: false,
-            bless: false,
-            figures_from: None,
-        };
+        let args = small(dir.path());
         robustness(&args).unwrap();
         let table = std::fs::read_to_string(dir.path().join("robustness.md")).unwrap();
         assert_eq!(table.matches("| u-tree |").count(), 9);
@@ -1223,18 +1220,8 @@ mod tests {
             let csv = dir.path().join("r.csv");
             std::fs::write(&csv, format!("{header}{row}\n{per_map}")).unwrap();
             let args = RobustnessArgs {
-                maps: vec!["tan3x3".into()],
-                runs: 1,
-                seed: 1,
-                max_trials: 10,
-                quality_every: 1,
-                patience: 1,
-                shard: "1/1".into(),
-                threads: None,
-                out: dir.path().join("out"),
-                report: false,
-                bless: false,
                 figures_from: Some(csv),
+                ..small(&dir.path().join("out"))
             };
             let err = robustness(&args).unwrap_err().to_string();
             assert!(err.contains(want), "{row}: {err}");
