@@ -541,6 +541,13 @@ fn json_error(path: &Path, e: &serde_json::Error) -> Error {
         .rsplit_once(" at line ")
         .map_or(text.as_str(), |(r, _)| r)
         .to_string();
+    // A text that is not JSON at all (a CSV file, say) is said to be so.
+    let reason = match e.classify() {
+        serde_json::error::Category::Syntax | serde_json::error::Category::Eof => {
+            format!("not valid JSON ({reason})")
+        }
+        _ => reason,
+    };
     Error::BadModel {
         path: path.to_path_buf(),
         at: format!("line {}, column {}", e.line(), e.column()),

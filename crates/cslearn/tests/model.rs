@@ -262,14 +262,17 @@ fn malformed_models_are_refused_saying_where() {
     for (bytes, want) in [
         (
             &b""[..],
-            "m.json: line 1, column 0: EOF while parsing a value",
+            "m.json: line 1, column 0: not valid JSON (EOF while parsing a value)",
         ),
         (b"[1]", "m.json: the top level: not a JSON object"),
         (
             b"{\"format\": \"csrl-classifier\",\n\"version\": 1,\n}",
-            "m.json: line 3, column 1: trailing comma",
+            "m.json: line 3, column 1: not valid JSON (trailing comma)",
         ),
-        (b"\xff\xfe", "m.json: line 1, column 1: expected value"),
+        (
+            b"\xff\xfe",
+            "m.json: line 1, column 1: not valid JSON (expected value)",
+        ),
     ] {
         let err = Model::from_json(bytes, "m.json").unwrap_err();
         assert_eq!(err.to_string(), want);
