@@ -261,4 +261,14 @@ pub enum Error {
         /// The cell.
         text: String,
     },
+    /// A table with more than [`MAX_CELLS`](crate::MAX_CELLS) cells.
+    #[error("{}: line {line}: more than the {max} cells (records times columns) a table may have", path.display())]
+    TooManyCells {
+        /// The file.
+        path: PathBuf,
+        /// The line of the record that passed the limit.
+        line: u64,
+        /// The limit.
+        max: u64,
+    },
 }

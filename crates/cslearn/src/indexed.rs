@@ -135,6 +135,18 @@ impl<D: Discriminate> IndexedLearner<D> {
         self
     }
 
+    /// The library, taking the learner apart (no copy).
+    ///
+    /// ```
+    /// use cslearn::{ClassId, FeatureCosts, Value};
+    /// let mut learner = cslearn::cs_id3_indexed(FeatureCosts::from_f64(&[1.0]).unwrap());
+    /// learner.learn(&[Some(Value(0))][..], ClassId(1));
+    /// assert_eq!(learner.into_library().len(), 1);
+    /// ```
+    pub fn into_library(self) -> Library {
+        self.library
+    }
+
     /// Predict the class of the object behind `sensor`, as
     /// [`Learner::classify`](crate::Learner::classify) does.
     ///

@@ -212,7 +212,7 @@ mod update;
 pub use attend::{
     Attend, Attention, ObservationAttending, RankedAttending, RuleAttending, Semantics,
 };
-pub use dataset::{Binning, Dataset, DatasetOptions, MAX_FILE_BYTES, MAX_TOTAL_COST};
+pub use dataset::{Binning, Dataset, DatasetOptions, MAX_CELLS, MAX_FILE_BYTES, MAX_TOTAL_COST};
 pub use discriminate::{CheapestFirst, Discriminate, RandomOrder};
 pub use error::Error;
 pub use example::{Example, Library};

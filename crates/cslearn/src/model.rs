@@ -383,40 +383,67 @@ impl Model {
         name: impl AsRef<Path>,
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<Vec<Prediction>, Error> {
+        let mut out = Vec::new();
+        self.predict_each(data, name, &mut |row, total| {
+            progress(out.len(), total);
+            out.push(row);
+        })?;
+        Ok(out)
+    }
+
+    /// [`predict`](Model::predict), handing each row's prediction to `each` with the
+    /// number of rows, in file order, instead of keeping them: memory does not grow with
+    /// the predictions. The whole table is read and checked before the first row is
+    /// classified, so an error comes before any prediction. Returns the number of rows.
+    ///
+    /// ```
+    /// # use cslearn::*;
+    /// # let ds = Dataset::from_readers("a,t\n1,x\n".as_bytes(), "d", "feature,cost\na,1\n".as_bytes(), "c", &DatasetOptions::new("t")).unwrap();
+    /// # let (_, library) = cslearn::stream_dataset_keeping(&ds, LearnerKind::CsId3, 1, &mut |_, _| {});
+    /// let model = Model::new(&ds, LearnerKind::CsId3, &library);
+    /// let mut lines = Vec::new();
+    /// let n = model.predict_each("a\n1\n2\n".as_bytes(), "new.csv", &mut |p, _| lines.push(p.line)).unwrap();
+    /// assert_eq!((n, lines), (2, vec![2, 3]));
+    /// ```
+    pub fn predict_each(
+        &self,
+        data: impl Read,
+        name: impl AsRef<Path>,
+        each: &mut dyn FnMut(Prediction, usize),
+    ) -> Result<usize, Error> {
         let path = name.as_ref();
         let (rows, lines) = self.encode(data, path)?;
         let n = self.file.features.len();
         let total = lines.len();
         let mut classify = self.classifier();
-        let mut out = Vec::with_capacity(total);
         for (i, line) in lines.into_iter().enumerate() {
-            progress(i, total);
             let (c, measured) = classify(&rows[i * n..(i + 1) * n]);
-            out.push(Prediction {
+            let row = Prediction {
                 line,
                 class: c.class,
                 cost: c.cost,
                 measured,
-            });
+            };
+            each(row, total);
         }
-        Ok(out)
+        Ok(total)
     }
 
-    /// [`predict`](Model::predict) on a regular file of at most
+    /// [`predict_each`](Model::predict_each) on a regular file of at most
     /// [`MAX_FILE_BYTES`](crate::MAX_FILE_BYTES).
     ///
     /// ```
     /// # use cslearn::*;
     /// # let ds = Dataset::from_readers("a,t\n1,x\n".as_bytes(), "d", "feature,cost\na,1\n".as_bytes(), "c", &DatasetOptions::new("t")).unwrap();
     /// let model = Model::new(&ds, LearnerKind::CsId3, &Library::new());
-    /// assert!(model.predict_file("no/such.csv".as_ref(), &mut |_, _| {}).is_err());
+    /// assert!(model.predict_file_each("no/such.csv".as_ref(), &mut |_, _| {}).is_err());
     /// ```
-    pub fn predict_file(
+    pub fn predict_file_each(
         &self,
         path: &Path,
-        progress: &mut dyn FnMut(usize, usize),
-    ) -> Result<Vec<Prediction>, Error> {
-        self.predict(open_regular(path)?, path, progress)
+        each: &mut dyn FnMut(Prediction, usize),
+    ) -> Result<usize, Error> {
+        self.predict_each(open_regular(path)?, path, each)
     }
 
     /// The rows of a table as dense rows of values in feature order, and their lines.
@@ -426,7 +453,7 @@ impl Model {
         path: &Path,
     ) -> Result<(Vec<Option<Value>>, Vec<u64>), Error> {
         let table = read_table(data, path)?;
-        if table.records.is_empty() {
+        if table.is_empty() {
             return Err(Error::NoRecords {
                 path: path.to_path_buf(),
             });
@@ -474,10 +501,10 @@ impl Model {
             })
             .collect();
         // Every total printed must be a true one.
-        check_totals(&self.costs, table.records.len(), path)?;
-        let mut rows = Vec::with_capacity(table.records.len() * columns.len());
-        let mut lines = Vec::with_capacity(table.records.len());
-        for (line, record) in &table.records {
+        check_totals(&self.costs, table.len(), path)?;
+        let mut rows = Vec::with_capacity(table.len() * columns.len());
+        let mut lines = Vec::with_capacity(table.len());
+        for (line, record) in table.records() {
             for (f, &c) in columns.iter().enumerate() {
                 let cell = &record[c];
                 let feature = &self.file.features[f];
@@ -486,7 +513,7 @@ impl Model {
                 } else if let Some(cuts) = &feature.cuts {
                     let x = parse_number(cell).ok_or_else(|| Error::NotANumber {
                         path: path.to_path_buf(),
-                        line: *line,
+                        line,
                         column: feature.name.clone(),
                         text: cell.to_string(),
                     })?;
@@ -501,7 +528,7 @@ impl Model {
                 };
                 rows.push(value);
             }
-            lines.push(*line);
+            lines.push(line);
         }
         Ok((rows, lines))
     }

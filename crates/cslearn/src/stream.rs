@@ -144,18 +144,26 @@ fn stream(
         (dataset.object(i), dataset.labels()[i])
     });
     let costs = dataset.costs().clone();
-    macro_rules! run {
+    // The library is taken out of the learner, not copied: it can be most of the memory.
+    macro_rules! indexed {
         ($learner:expr) => {{
             let mut learner = $learner;
             let report = learner.stream(objects);
-            (report, learner.library().clone())
+            (report, learner.into_library())
+        }};
+    }
+    macro_rules! plain {
+        ($learner:expr) => {{
+            let mut learner = $learner;
+            let report = learner.stream(objects);
+            (report, std::mem::take(learner.library_mut()))
         }};
     }
     match (kind, procedure) {
-        (LearnerKind::CsId3, Procedure::Indexed) => run!(cs_id3_indexed(costs)),
-        (LearnerKind::CsId3, Procedure::Plain) => run!(cs_id3(costs)),
-        (LearnerKind::CsIbl { tolerance }, _) => run!(cs_ibl(costs, tolerance)),
-        (LearnerKind::Id3, Procedure::Indexed) => run!(id3_indexed(costs, rng)),
-        (LearnerKind::Id3, Procedure::Plain) => run!(id3(costs, rng)),
+        (LearnerKind::CsId3, Procedure::Indexed) => indexed!(cs_id3_indexed(costs)),
+        (LearnerKind::CsId3, Procedure::Plain) => plain!(cs_id3(costs)),
+        (LearnerKind::CsIbl { tolerance }, _) => plain!(cs_ibl(costs, tolerance)),
+        (LearnerKind::Id3, Procedure::Indexed) => indexed!(id3_indexed(costs, rng)),
+        (LearnerKind::Id3, Procedure::Plain) => plain!(id3(costs, rng)),
     }
 }

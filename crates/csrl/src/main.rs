@@ -138,14 +138,17 @@ impl std::error::Error for CannotWrite {
     }
 }
 
+/// A [`CannotWrite`] for `path`, as an error.
+pub(crate) fn cannot_write(path: &std::path::Path, source: std::io::Error) -> anyhow::Error {
+    anyhow::Error::new(CannotWrite {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
 /// Write `contents` to `path`; a failure is a [`CannotWrite`].
 pub(crate) fn write_file(path: &std::path::Path, contents: impl AsRef<[u8]>) -> anyhow::Result<()> {
-    std::fs::write(path, contents).map_err(|source| {
-        anyhow::Error::new(CannotWrite {
-            path: path.to_path_buf(),
-            source,
-        })
-    })
+    std::fs::write(path, contents).map_err(|source| cannot_write(path, source))
 }
 
 /// Write a line to stderr. Unlike `eprintln!`, a full or closed stderr is no panic: the

@@ -525,3 +525,25 @@ fn save_and_dot_may_not_name_one_file() {
         stderr(&out)
     );
 }
+
+#[test]
+fn predict_writes_out_only_for_a_table_it_accepts() {
+    let model = scratch("model-out.json", b"");
+    assert!(
+        on_heart(&["--learner", "cs-id3", "--save", &model])
+            .status
+            .success()
+    );
+    let out = scratch("classified.csv", b"kept\n");
+    let bad = scratch("bad-rows.csv", b"age,sex\n1,Male\n");
+    let refused = csrl(&["predict", "--model", &model, "--data", &bad, "--out", &out]);
+    assert_eq!(refused.status.code(), Some(1), "{}", stderr(&refused));
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "kept\n");
+    let data = heart("cleveland.csv");
+    let ok = csrl(&["predict", "--model", &model, "--data", &data, "--out", &out]);
+    assert!(ok.status.success(), "{}", stderr(&ok));
+    assert!(ok.stdout.is_empty());
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(text.starts_with("line,class,cost,measured\n2,"), "{text}");
+    assert_eq!(text.lines().count(), 305);
+}
