@@ -67,8 +67,9 @@ struct ExampleEntry {
     values: Vec<(u32, u32)>,
 }
 
-/// The file's contents, as written.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+/// The file's contents, as read. A [`Model`] keeps all but the library here (as a
+/// [`Library`] of its own), and writes the file through [`FileView`].
+#[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct File {
     format: String,
@@ -80,6 +81,48 @@ struct File {
     classes: Vec<String>,
     features: Vec<FeatureEntry>,
     library: Vec<ExampleEntry>,
+}
+
+/// A model as the file writes it, borrowing every part: no copy of the library.
+#[derive(Serialize)]
+struct FileView<'a> {
+    format: &'a str,
+    version: u32,
+    learner: Kind,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    tolerance: Option<u32>,
+    target: &'a str,
+    classes: &'a [String],
+    features: &'a [FeatureEntry],
+    library: LibraryView<'a>,
+}
+
+struct LibraryView<'a>(&'a Library);
+
+impl Serialize for LibraryView<'_> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_seq(self.0.iter().map(ExampleView))
+    }
+}
+
+struct ExampleView<'a>(&'a Example);
+
+impl Serialize for ExampleView<'_> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let mut out = serializer.serialize_struct("Example", 2)?;
+        out.serialize_field("class", &self.0.class().0)?;
+        let pairs: Vec<(u32, u32)> = self.0.pairs().iter().map(|&(f, v)| (f.0, v.0)).collect();
+        out.serialize_field("values", &pairs)?;
+        out.end()
+    }
+}
+
+/// Only the keys that say what a file is; the others are skipped unread.
+#[derive(Deserialize)]
+struct Probe {
+    format: Option<serde_json::Value>,
+    version: Option<serde_json::Value>,
 }
 
 /// A learned classifier: the learner, the columns it reads (names, prices, how cells
@@ -121,7 +164,7 @@ struct File {
 /// let data = "a,b,t\np,x,n\np,y,n\nq,x,y\nq,y,y\np,x,n\nq,y,y\np,y,n\nq,x,y\n";
 /// let ds = Dataset::from_readers(data.as_bytes(), "d.csv", "feature,cost\na,1\nb,5\n".as_bytes(), "c.csv", &DatasetOptions::new("t")).unwrap();
 /// let (_, library) = cslearn::stream_dataset_keeping(&ds, LearnerKind::CsId3, 1, &mut |_, _| {});
-/// let model = Model::new(&ds, LearnerKind::CsId3, &library);
+/// let model = Model::new(&ds, LearnerKind::CsId3, library);
 /// let again = Model::from_json(model.to_json().as_bytes(), "m.json").unwrap();
 /// assert_eq!(again, model);
 /// let rows = again.predict("b,a\ny,q\nx,p\n".as_bytes(), "new.csv", &mut |_, _| {}).unwrap();
@@ -130,6 +173,7 @@ struct File {
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Model {
+    /// Everything but the library, which is `library` (`file.library` stays empty).
     file: File,
     costs: FeatureCosts,
     library: Library,
@@ -159,10 +203,10 @@ impl Model {
     /// ```
     /// use cslearn::{Dataset, DatasetOptions, LearnerKind, Library, Model};
     /// let ds = Dataset::from_readers("a,t\n1,x\n".as_bytes(), "d", "feature,cost\na,1\n".as_bytes(), "c", &DatasetOptions::new("t")).unwrap();
-    /// let model = Model::new(&ds, LearnerKind::CsIbl { tolerance: 1 }, &Library::new());
+    /// let model = Model::new(&ds, LearnerKind::CsIbl { tolerance: 1 }, Library::new());
     /// assert_eq!(model.learner(), LearnerKind::CsIbl { tolerance: 1 });
     /// ```
-    pub fn new(dataset: &Dataset, kind: LearnerKind, library: &Library) -> Model {
+    pub fn new(dataset: &Dataset, kind: LearnerKind, library: Library) -> Model {
         let (learner, tolerance) = match kind {
             LearnerKind::CsId3 => (Kind::CsId3, None),
             LearnerKind::CsIbl { tolerance } => (Kind::CsIbl, Some(tolerance)),
@@ -200,31 +244,38 @@ impl Model {
                 })
                 .collect(),
             features,
-            library: library
-                .iter()
-                .map(|e| ExampleEntry {
-                    class: e.class().0,
-                    values: e.pairs().iter().map(|&(f, v)| (f.0, v.0)).collect(),
-                })
-                .collect(),
+            library: Vec::new(),
         };
         Model {
             costs: dataset.costs().clone(),
-            library: library.clone(),
+            library,
             file,
         }
     }
 
-    /// The model as the text of a model file (pretty-printed JSON, ending in a newline).
+    /// The model as the text of a model file (compact JSON on one line, ending in a
+    /// newline).
     ///
     /// ```
     /// # use cslearn::*;
     /// # let ds = Dataset::from_readers("a,t\n1,x\n".as_bytes(), "d", "feature,cost\na,1\n".as_bytes(), "c", &DatasetOptions::new("t")).unwrap();
-    /// let text = Model::new(&ds, LearnerKind::CsId3, &Library::new()).to_json();
-    /// assert!(text.contains("\"format\": \"csrl-classifier\""));
+    /// let text = Model::new(&ds, LearnerKind::CsId3, Library::new()).to_json();
+    /// assert!(text.starts_with("{\"format\":\"csrl-classifier\",\"version\":1,"));
     /// ```
     pub fn to_json(&self) -> String {
-        let mut text = serde_json::to_string_pretty(&self.file).unwrap_or_default();
+        let f = &self.file;
+        let view = FileView {
+            format: &f.format,
+            version: f.version,
+            learner: f.learner,
+            tolerance: f.tolerance,
+            target: &f.target,
+            classes: &f.classes,
+            features: &f.features,
+            library: LibraryView(&self.library),
+        };
+        // Compact: a large library takes about 20 bytes an example.
+        let mut text = serde_json::to_string(&view).unwrap_or_default();
         text.push('\n');
         text
     }
@@ -244,12 +295,15 @@ impl Model {
         };
         // The format and version first, so that another kind of file or a newer version
         // is named as such rather than as a missing key.
-        let head: serde_json::Value =
-            serde_json::from_slice(bytes).map_err(|e| json_error(path, &e))?;
-        let Some(object) = head.as_object() else {
-            return Err(bad("the top level".into(), "not a JSON object".into()));
-        };
-        match object.get("format") {
+        let probe: Probe = serde_json::from_slice(bytes).map_err(|e| {
+            let first = bytes.iter().find(|b| !b.is_ascii_whitespace());
+            if e.classify() == serde_json::error::Category::Data && first != Some(&b'{') {
+                bad("the top level".into(), "not a JSON object".into())
+            } else {
+                json_error(path, &e)
+            }
+        })?;
+        match &probe.format {
             Some(serde_json::Value::String(f)) if f == MODEL_FORMAT => {}
             Some(serde_json::Value::String(f)) => {
                 return Err(Error::NotAModel {
@@ -264,7 +318,7 @@ impl Model {
                 ));
             }
         }
-        match object.get("version").and_then(serde_json::Value::as_u64) {
+        match probe.version.as_ref().and_then(serde_json::Value::as_u64) {
             Some(v) if v == u64::from(MODEL_VERSION) => {}
             Some(v) => {
                 return Err(bad(
@@ -281,13 +335,12 @@ impl Model {
                 ));
             }
         }
-        let file: File =
-            serde_json::from_value(head).map_err(|e| bad("the file".into(), e.to_string()))?;
+        // Read again as a model, for the line and column of what is wrong.
+        let mut file: File = serde_json::from_slice(bytes).map_err(|e| json_error(path, &e))?;
         check(&file).map_err(|(at, reason)| bad(at, reason))?;
         let costs = FeatureCosts::new(file.features.iter().map(|f| f.cost).collect());
-        let library = file
-            .library
-            .iter()
+        let library = std::mem::take(&mut file.library)
+            .into_iter()
             .map(|e| {
                 Example::from_pairs(
                     e.values.iter().map(|&(f, v)| (FeatureId(f), Value(v))),
@@ -318,7 +371,7 @@ impl Model {
     /// ```
     /// # use cslearn::*;
     /// # let ds = Dataset::from_readers("a,t\n1,x\n".as_bytes(), "d", "feature,cost\na,1\n".as_bytes(), "c", &DatasetOptions::new("t")).unwrap();
-    /// assert_eq!(Model::new(&ds, LearnerKind::Id3, &Library::new()).learner(), LearnerKind::Id3);
+    /// assert_eq!(Model::new(&ds, LearnerKind::Id3, Library::new()).learner(), LearnerKind::Id3);
     /// ```
     pub fn learner(&self) -> LearnerKind {
         match self.file.learner {
@@ -335,7 +388,7 @@ impl Model {
     /// ```
     /// # use cslearn::*;
     /// # let ds = Dataset::from_readers("a,t\n1,x\n".as_bytes(), "d", "feature,cost\na,1\n".as_bytes(), "c", &DatasetOptions::new("t")).unwrap();
-    /// assert!(Model::new(&ds, LearnerKind::CsId3, &Library::new()).library().is_empty());
+    /// assert!(Model::new(&ds, LearnerKind::CsId3, Library::new()).library().is_empty());
     /// ```
     pub fn library(&self) -> &Library {
         &self.library
@@ -346,7 +399,7 @@ impl Model {
     /// ```
     /// # use cslearn::*;
     /// # let ds = Dataset::from_readers("a,t\n1,x\n".as_bytes(), "d", "feature,cost\na,1\n".as_bytes(), "c", &DatasetOptions::new("t")).unwrap();
-    /// assert_eq!(Model::new(&ds, LearnerKind::CsId3, &Library::new()).class_name(ClassId(0)), Some("x"));
+    /// assert_eq!(Model::new(&ds, LearnerKind::CsId3, Library::new()).class_name(ClassId(0)), Some("x"));
     /// ```
     pub fn class_name(&self, class: ClassId) -> Option<&str> {
         self.file.classes.get(class.0 as usize).map(String::as_str)
@@ -357,7 +410,7 @@ impl Model {
     /// ```
     /// # use cslearn::*;
     /// # let ds = Dataset::from_readers("a,t\n1,x\n".as_bytes(), "d", "feature,cost\na,1\n".as_bytes(), "c", &DatasetOptions::new("t")).unwrap();
-    /// assert_eq!(Model::new(&ds, LearnerKind::CsId3, &Library::new()).feature_name(FeatureId(0)), Some("a"));
+    /// assert_eq!(Model::new(&ds, LearnerKind::CsId3, Library::new()).feature_name(FeatureId(0)), Some("a"));
     /// ```
     pub fn feature_name(&self, feature: FeatureId) -> Option<&str> {
         self.file
@@ -373,7 +426,7 @@ impl Model {
     /// ```
     /// # use cslearn::*;
     /// # let ds = Dataset::from_readers("a,t\n1,x\n".as_bytes(), "d", "feature,cost\na,1\n".as_bytes(), "c", &DatasetOptions::new("t")).unwrap();
-    /// let model = Model::new(&ds, LearnerKind::CsId3, &Library::new());
+    /// let model = Model::new(&ds, LearnerKind::CsId3, Library::new());
     /// let err = model.predict("b\n1\n".as_bytes(), "new.csv", &mut |_, _| {}).unwrap_err();
     /// assert_eq!(err.to_string(), "new.csv: no column `a`, which the model reads (columns: b)");
     /// ```
@@ -400,7 +453,7 @@ impl Model {
     /// # use cslearn::*;
     /// # let ds = Dataset::from_readers("a,t\n1,x\n".as_bytes(), "d", "feature,cost\na,1\n".as_bytes(), "c", &DatasetOptions::new("t")).unwrap();
     /// # let (_, library) = cslearn::stream_dataset_keeping(&ds, LearnerKind::CsId3, 1, &mut |_, _| {});
-    /// let model = Model::new(&ds, LearnerKind::CsId3, &library);
+    /// let model = Model::new(&ds, LearnerKind::CsId3, library);
     /// let mut lines = Vec::new();
     /// let n = model.predict_each("a\n1\n2\n".as_bytes(), "new.csv", &mut |p, _| lines.push(p.line)).unwrap();
     /// assert_eq!((n, lines), (2, vec![2, 3]));
@@ -435,7 +488,7 @@ impl Model {
     /// ```
     /// # use cslearn::*;
     /// # let ds = Dataset::from_readers("a,t\n1,x\n".as_bytes(), "d", "feature,cost\na,1\n".as_bytes(), "c", &DatasetOptions::new("t")).unwrap();
-    /// let model = Model::new(&ds, LearnerKind::CsId3, &Library::new());
+    /// let model = Model::new(&ds, LearnerKind::CsId3, Library::new());
     /// assert!(model.predict_file_each("no/such.csv".as_ref(), &mut |_, _| {}).is_err());
     /// ```
     pub fn predict_file_each(

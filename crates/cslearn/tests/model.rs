@@ -61,7 +61,7 @@ fn a_saved_model_classifies_as_the_learner_did() {
     let text = std::fs::read_to_string(heart("cleveland.csv")).unwrap();
     for kind in KINDS {
         let (_, library) = cslearn::stream_dataset_keeping(&data, kind, 3, &mut |_, _| {});
-        let model = Model::new(&data, kind, &library);
+        let model = Model::new(&data, kind, library.clone());
         let read = Model::from_json(model.to_json().as_bytes(), "m.json").unwrap();
         assert_eq!(read, model, "{kind:?}");
         assert_eq!(read.learner(), kind);
@@ -91,7 +91,7 @@ fn columns_are_matched_by_name() {
     let data = heart_data();
     let (_, library) =
         cslearn::stream_dataset_keeping(&data, LearnerKind::CsId3, 1, &mut |_, _| {});
-    let model = Model::new(&data, LearnerKind::CsId3, &library);
+    let model = Model::new(&data, LearnerKind::CsId3, library);
     let text = std::fs::read_to_string(heart("cleveland.csv")).unwrap();
     // The columns reversed, the target dropped and an unknown one added.
     let reversed: String = text
@@ -128,7 +128,7 @@ fn small() -> Model {
     )
     .unwrap();
     let (_, library) = cslearn::stream_dataset_keeping(&ds, LearnerKind::CsId3, 1, &mut |_, _| {});
-    Model::new(&ds, LearnerKind::CsId3, &library)
+    Model::new(&ds, LearnerKind::CsId3, library)
 }
 
 #[test]

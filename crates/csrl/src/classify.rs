@@ -319,14 +319,6 @@ pub fn run(args: &ClassifyArgs, out: &mut dyn Write) -> Result<()> {
             bar.set_position(done as u64);
         });
     bar.finish_and_clear();
-    if let Some(path) = &args.save {
-        crate::write_file(path, cslearn::Model::new(&data, kind, &library).to_json())?;
-        crate::note(format_args!(
-            "saved the model ({name}, {} examples) to {}",
-            library.len(),
-            path.display()
-        ));
-    }
     if let Some(path) = &args.dot {
         // Grown (I^2/C, observation semantics) from the library the prequential pass
         // learned.
@@ -338,6 +330,23 @@ pub fn run(args: &ClassifyArgs, out: &mut dyn Write) -> Result<()> {
         crate::write_file(path, tree.to_dot(&data))?;
         crate::note(format_args!(
             "wrote the CS-ID3 decision tree to {}",
+            path.display()
+        ));
+    }
+    if let Some(path) = &args.save {
+        let examples = library.len();
+        // The library goes into the model, not a copy of it.
+        let text = cslearn::Model::new(&data, kind, library).to_json();
+        anyhow::ensure!(
+            text.len() as u64 <= cslearn::MAX_FILE_BYTES,
+            "the model of {examples} examples would take {} bytes, more than the {} a model \
+             file may have (`csrl predict` could not read it): learn from fewer objects",
+            text.len(),
+            cslearn::MAX_FILE_BYTES
+        );
+        crate::write_file(path, text)?;
+        crate::note(format_args!(
+            "saved the model ({name}, {examples} examples) to {}",
             path.display()
         ));
     }
