@@ -186,15 +186,19 @@ pub fn learning_curves(path: &Path, title: &str, curves: &[Curve]) -> Result<()>
     crate::files::write_atomic(path, svg)
 }
 
-/// A cost on an axis: `250k`, `1.2M`.
+/// A cost on an axis, in one style at every size: at most one decimal, none when it is
+/// zero, and a suffix for thousands and millions (`250k`, `1.2M`, `1M`, `10M`).
 pub fn short(y: f64) -> String {
-    if y >= 1e6 {
-        format!("{:.1}M", y / 1e6)
+    let (x, suffix) = if y >= 1e6 {
+        (y / 1e6, "M")
     } else if y >= 1e3 {
-        format!("{:.0}k", y / 1e3)
+        (y / 1e3, "k")
     } else {
-        format!("{y:.0}")
-    }
+        (y, "")
+    };
+    let text = format!("{x:.1}");
+    let text = text.strip_suffix(".0").unwrap_or(&text);
+    format!("{text}{suffix}")
 }
 
 fn escape(s: &str) -> String {

@@ -6,20 +6,84 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 
+/// An output that cannot be written: a file, a folder or a lock (exit code 4, as in
+/// `csrl`). The operating system's error is its source.
+#[derive(Debug)]
+pub struct CannotWrite {
+    path: PathBuf,
+    source: std::io::Error,
+}
+
+impl std::fmt::Display for CannotWrite {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "cannot write {}", self.path.display())
+    }
+}
+
+impl std::error::Error for CannotWrite {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&self.source)
+    }
+}
+
+/// A [`CannotWrite`] for `path`, as an error.
+pub fn cannot_write(path: &Path, source: std::io::Error) -> anyhow::Error {
+    anyhow::Error::new(CannotWrite {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// Create the folder `dir` and its parents; a failure is a [`CannotWrite`].
+pub fn create_dir(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| cannot_write(dir, e))
+}
+
+/// Open `path` for appending, created if missing; a failure is a [`CannotWrite`].
+pub fn open_append(path: &Path) -> Result<std::fs::File> {
+    std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(path)
+        .map_err(|e| cannot_write(path, e))
+}
+
+/// Read `path`, which must be a regular file (`what`, for the message) of at most `max`
+/// bytes, as UTF-8 text.
+pub fn read_text(path: &Path, max: u64, what: &str) -> Result<String> {
+    use std::io::Read;
+    let meta =
+        std::fs::metadata(path).with_context(|| format!("cannot read {}", path.display()))?;
+    anyhow::ensure!(
+        meta.is_file(),
+        "{}: not a regular file ({what} is needed)",
+        path.display()
+    );
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|file| file.take(max + 1).read_to_end(&mut bytes))
+        .with_context(|| format!("cannot read {}", path.display()))?;
+    anyhow::ensure!(
+        bytes.len() as u64 <= max,
+        "{}: longer than the {max} bytes {what} may have here",
+        path.display()
+    );
+    String::from_utf8(bytes).with_context(|| format!("{}: not UTF-8 text", path.display()))
+}
+
 /// Write `bytes` to `path` through a temporary file in the same folder and a rename, so
-/// that a kill mid-write leaves the old file or the new one, never a truncated one.
+/// that a kill mid-write leaves the old file or the new one, never a truncated one. A
+/// failure is a [`CannotWrite`] naming `path`.
 pub fn write_atomic(path: &Path, bytes: impl AsRef<[u8]>) -> Result<()> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    let mut tmp = tempfile::NamedTempFile::new_in(dir)
-        .with_context(|| format!("cannot create a temporary file in {}", dir.display()))?;
+    let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(|e| cannot_write(path, e))?;
     tmp.write_all(bytes.as_ref())
         .and_then(|()| tmp.as_file().sync_all())
-        .with_context(|| format!("cannot write {}", tmp.path().display()))?;
-    tmp.persist(path)
-        .with_context(|| format!("cannot move the new {} into place", path.display()))?;
+        .map_err(|e| cannot_write(path, e))?;
+    tmp.persist(path).map_err(|e| cannot_write(path, e.error))?;
     Ok(())
 }
 
@@ -77,11 +141,11 @@ fn create_exclusive(path: &Path) -> Result<bool> {
         Ok(mut f) => {
             writeln!(f, "{}", std::process::id())
                 .and_then(|()| f.sync_all())
-                .with_context(|| format!("cannot write {}", path.display()))?;
+                .map_err(|e| cannot_write(path, e))?;
             Ok(true)
         }
         Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => Ok(false),
-        Err(e) => Err(e).with_context(|| format!("cannot create {}", path.display())),
+        Err(e) => Err(cannot_write(path, e)),
     }
 }
 

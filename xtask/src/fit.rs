@@ -393,11 +393,7 @@ impl Cache {
                 }
             }
         }
-        let file = std::fs::OpenOptions::new()
-            .create(true)
-            .append(true)
-            .open(path)
-            .with_context(|| format!("cannot open {}", path.display()))?;
+        let file = crate::files::open_append(path)?;
         Ok(Cache {
             runs,
             file,
@@ -547,8 +543,7 @@ pub fn run(args: &FitArgs) -> Result<()> {
         )?,
         None => Target::paper(),
     };
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("cannot create {}", args.out.display()))?;
+    crate::files::create_dir(&args.out)?;
     let mut cache = Cache::open(&args.out.join("evaluations.jsonl"), args.max_trials)?;
     let search = seeds(SEARCH_BASE, args.search_seeds);
     let select = seeds(SELECT_BASE, args.select_seeds);

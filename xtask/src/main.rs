@@ -10,6 +10,11 @@
 //! * `cargo xtask bench scale` and `cargo xtask bench throughput`: how CS-QL's cost grows
 //!   with the world, and its moves per second against a plain Q-learning loop.
 //! * `cargo xtask test`: every test, Rust and Python (the README's test command).
+//!
+//! Exit codes, the same kinds as `csrl`'s: 0 success; 1 an input that cannot be read or is
+//! not valid, or another failure (`error: ...` on stderr); 2 a usage error (clap's); 4 an
+//! output (a file, a folder, a lock) that cannot be written, a missing folder's parent and
+//! a read-only folder alike.
 
 mod bench;
 mod figures;
@@ -31,7 +36,12 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 #[derive(Parser)]
-#[command(name = "cargo xtask", about = "Repository automation for csrl")]
+#[command(
+    name = "cargo xtask",
+    about = "Repository automation for csrl",
+    after_help = "Exit codes: 0 success; 1 an input that cannot be read or is not valid, or \
+another failure; 2 a usage error; 4 an output that cannot be written."
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -92,7 +102,10 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             note(&format!("error: {e:#}"));
-            ExitCode::FAILURE
+            let cannot_write = e
+                .chain()
+                .any(|c| c.downcast_ref::<files::CannotWrite>().is_some());
+            ExitCode::from(if cannot_write { 4 } else { 1 })
         }
     }
 }

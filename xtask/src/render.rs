@@ -86,23 +86,7 @@ pub const MAX_SVG_BYTES: u64 = 16 << 20;
 
 /// Read an SVG file: a regular file of at most [`MAX_SVG_BYTES`], as UTF-8 text.
 fn read_svg(f: &Path) -> Result<String> {
-    use std::io::Read;
-    let meta = std::fs::metadata(f).with_context(|| format!("cannot read {}", f.display()))?;
-    ensure!(
-        meta.is_file(),
-        "{}: not a regular file (an SVG file is needed)",
-        f.display()
-    );
-    let mut bytes = Vec::new();
-    std::fs::File::open(f)
-        .and_then(|file| file.take(MAX_SVG_BYTES + 1).read_to_end(&mut bytes))
-        .with_context(|| format!("cannot read {}", f.display()))?;
-    ensure!(
-        bytes.len() as u64 <= MAX_SVG_BYTES,
-        "{}: longer than the {MAX_SVG_BYTES} bytes an SVG file may have here",
-        f.display()
-    );
-    String::from_utf8(bytes).with_context(|| format!("{}: not UTF-8 text", f.display()))
+    crate::files::read_text(f, MAX_SVG_BYTES, "an SVG file")
 }
 
 /// `cargo xtask png FILE.svg...`: write `FILE.png` beside each.

@@ -737,8 +737,7 @@ pub fn run(args: &ReproduceArgs) -> Result<()> {
         );
     }
     let res = compute(args)?;
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("cannot create {}", args.out.display()))?;
+    crate::files::create_dir(&args.out)?;
     let _lock = crate::files::OutLock::acquire(&args.out)?;
     let md = res.markdown();
     let write = |name: &str, text: &str| -> Result<PathBuf> {
@@ -762,7 +761,7 @@ pub fn run(args: &ReproduceArgs) -> Result<()> {
         // The committed copies that the README shows and `--check` compares with.
         crate::files::write_atomic(Path::new(COMMITTED), &md)?;
         written.push(PathBuf::from(COMMITTED));
-        std::fs::create_dir_all("docs/figures").context("cannot create docs/figures")?;
+        crate::files::create_dir(Path::new("docs/figures"))?;
         for name in BLESSED_FIGURES {
             let to = Path::new("docs/figures").join(name);
             let from = args.out.join(name);

@@ -84,6 +84,10 @@ pub struct RobustnessArgs {
     /// Also write the table and figures into `docs/`.
     #[arg(long)]
     bless: bool,
+    /// Run nothing: redraw the three figures from a `robustness.csv` written by an earlier
+    /// report (its rows of map `all`), into `--out` (or `docs/figures` with `--bless`).
+    #[arg(long, value_name = "FILE.csv", conflicts_with_all = ["report", "shard"])]
+    figures_from: Option<PathBuf>,
 }
 
 /// One departure from the paper's world.
@@ -295,6 +299,9 @@ fn settings(
 
 /// `cargo xtask robustness`.
 pub fn robustness(args: &RobustnessArgs) -> Result<()> {
+    if let Some(csv) = &args.figures_from {
+        return redraw(csv, args);
+    }
     if args.runs == 0 || args.quality_every == 0 || args.patience == 0 {
         bail!("robustness needs --runs, --quality-every and --patience of at least 1");
     }
@@ -378,7 +385,190 @@ pub fn robustness(args: &RobustnessArgs) -> Result<()> {
     Ok(())
 }
 
+/// The three figures (slip, noise, radius) into the folder `figures`, from each
+/// condition's and learner's cell over every map.
+fn draw_figures(
+    figures: &Path,
+    maps: usize,
+    runs: u64,
+    all: &dyn Fn(Condition, Learner) -> Option<Cell>,
+) -> Result<()> {
+    // Each figure: the paper's world, then the conditions of one departure, in order.
+    let along = |departs: fn(&Condition) -> bool| -> Vec<Condition> {
+        std::iter::once(Condition::Paper)
+            .chain(Condition::ALL.into_iter().filter(departs))
+            .collect()
+    };
+    for (name, axis, conditions) in [
+        (
+            "slip",
+            "slip probability",
+            along(|c| matches!(c, Condition::Slip(_))),
+        ),
+        (
+            "noise",
+            "sensor noise",
+            along(|c| matches!(c, Condition::Noise(_))),
+        ),
+        (
+            "radius",
+            "sensing radius",
+            along(|c| matches!(c, Condition::Radius(_))),
+        ),
+    ] {
+        let series: Vec<Series> = Learner::ALL
+            .iter()
+            .map(|&l| Series {
+                name: l.label(),
+                points: conditions
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &c)| (i, all(c, l)))
+                    .collect(),
+            })
+            .collect();
+        let ticks: Vec<String> = conditions
+            .iter()
+            .map(|c| match c {
+                Condition::Paper => {
+                    if name == "radius" {
+                        "unbounded".into()
+                    } else {
+                        "0".into()
+                    }
+                }
+                Condition::Slip(p) | Condition::Noise(p) => format!("{p}"),
+                Condition::Radius(r) => r.to_string(),
+            })
+            .collect();
+        let path = figures.join(format!("robustness_{name}.svg"));
+        let title = format!("Every learner against {axis}: means over {maps} maps x {runs} runs");
+        figure(&path, &title, axis, &ticks, &series)?;
+    }
+    Ok(())
+}
+
+/// The largest cost, count or mean `--figures-from` draws (a log axis needs room above).
+const MAX_MEASURE: f64 = 1e100;
+
+/// `--figures-from`: the figures again from a report's CSV, without running anything.
+fn redraw(csv: &Path, args: &RobustnessArgs) -> Result<()> {
+    let text = crate::files::read_text(csv, 64 << 20, "a robustness.csv")?;
+    let mut lines = text.lines();
+    let header = lines.next().unwrap_or_default();
+    let want = "map,condition,learner,runs,reached,quality_mean,cost_to_quality_median,trials_to_quality_median,cost_per_state_mean,descriptions_mean,features_mean";
+    if header.trim_end() != want {
+        bail!(
+            "{}: line 1: not a robustness.csv header (want `{want}`)",
+            csv.display()
+        );
+    }
+    let mut cells: Vec<(Condition, Learner, Cell)> = Vec::new();
+    let mut maps = std::collections::BTreeSet::new();
+    let mut runs_all = 0;
+    for (i, line) in lines.enumerate() {
+        let at = i + 2;
+        let bad = |what: &str| anyhow!("{}: line {at}: {what}", csv.display());
+        // The map is the one quoted field; the others hold no comma.
+        let rest = line
+            .strip_prefix('"')
+            .and_then(|l| l.split_once("\","))
+            .ok_or_else(|| bad("the map is not a quoted first field"))?;
+        let (map, rest) = rest;
+        let f: Vec<&str> = rest.split(',').collect();
+        if f.len() != 10 {
+            return Err(bad(&format!("{} fields after the map, want 10", f.len())));
+        }
+        let condition = Condition::ALL
+            .into_iter()
+            .find(|c| c.label() == f[0])
+            .ok_or_else(|| bad(&format!("unknown condition `{}`", f[0])))?;
+        let learner = Learner::ALL
+            .into_iter()
+            .find(|l| l.label() == f[1])
+            .ok_or_else(|| bad(&format!("unknown learner `{}`", f[1])))?;
+        let num = |k: usize| -> Result<f64> {
+            f[k].parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| bad(&format!("field {} is `{}`, not a number", k + 2, f[k])))
+        };
+        let opt = |k: usize| -> Result<Option<f64>> {
+            if f[k].is_empty() {
+                Ok(None)
+            } else {
+                num(k).map(Some)
+            }
+        };
+        let count = |k: usize| -> Result<usize> {
+            f[k].parse::<usize>()
+                .map_err(|_| bad(&format!("field {} is `{}`, not a count", k + 2, f[k])))
+        };
+        if map != "all" {
+            maps.insert(map.to_string());
+            continue;
+        }
+        let runs = count(2)?;
+        runs_all = runs_all.max(runs);
+        let cell = Cell {
+            runs,
+            reached: count(3)?,
+            quality: num(4)?,
+            cost_to_quality: opt(5)?,
+            trials_to_quality: opt(6)?,
+            cost_per_state: num(7)?,
+            descriptions: num(8)?,
+            features: num(9)?,
+        };
+        // What a report writes, and nothing a figure would draw wrongly.
+        if runs == 0 || cell.reached > runs {
+            return Err(bad(&format!(
+                "{} runs of which {} reached 0.95: want at least 1 run, and no more reached than run",
+                runs, cell.reached
+            )));
+        }
+        if !(0.0..=1.0).contains(&cell.quality) {
+            return Err(bad(&format!("quality {} is not in [0, 1]", cell.quality)));
+        }
+        let measures = [
+            cell.cost_to_quality.unwrap_or(0.0),
+            cell.trials_to_quality.unwrap_or(0.0),
+            cell.cost_per_state,
+            cell.descriptions,
+            cell.features,
+        ];
+        if let Some(x) = measures.iter().find(|x| !(0.0..=MAX_MEASURE).contains(*x)) {
+            return Err(bad(&format!(
+                "{x:e} is not a cost, count or mean between 0 and {MAX_MEASURE:e}"
+            )));
+        }
+        cells.push((condition, learner, cell));
+    }
+    if cells.is_empty() || maps.is_empty() {
+        bail!("{}: no rows of map `all` and of each map", csv.display());
+    }
+    let all = |c: Condition, l: Learner| {
+        cells
+            .iter()
+            .find(|(cc, ll, _)| *cc == c && *ll == l)
+            .map(|(_, _, x)| x.clone())
+    };
+    let out = if args.bless {
+        Path::new("docs/figures").to_path_buf()
+    } else {
+        args.out.clone()
+    };
+    crate::files::create_dir(&out)?;
+    draw_figures(&out, maps.len(), (runs_all / maps.len()) as u64, &all)?;
+    crate::emit(&format!(
+        "Wrote the robustness figures into {}\n",
+        out.display()
+    ))?;
+    Ok(())
+}
+
 /// Aggregates of a group of runs.
+#[derive(Clone, Debug)]
 struct Cell {
     runs: usize,
     reached: usize,
@@ -442,7 +632,7 @@ fn write_report(def: &Definition, results: &[JobResult], out: &Path) -> Result<(
     } else {
         out.to_path_buf()
     };
-    std::fs::create_dir_all(&figures)?;
+    crate::files::create_dir(&figures)?;
     let group = |map: Option<&str>, c: Condition, l: Learner| -> Vec<&JobResult> {
         results
             .iter()
@@ -522,62 +712,8 @@ fn write_report(def: &Definition, results: &[JobResult], out: &Path) -> Result<(
     };
     crate::files::write_atomic(&table, &md)?;
     crate::files::write_atomic(&out.join("robustness.csv"), &csv)?;
-    // Each figure: the paper's world, then the conditions of one departure, in order.
-    let along = |departs: fn(&Condition) -> bool| -> Vec<Condition> {
-        std::iter::once(Condition::Paper)
-            .chain(Condition::ALL.into_iter().filter(departs))
-            .collect()
-    };
-    for (name, axis, conditions) in [
-        (
-            "slip",
-            "slip probability",
-            along(|c| matches!(c, Condition::Slip(_))),
-        ),
-        (
-            "noise",
-            "sensor noise",
-            along(|c| matches!(c, Condition::Noise(_))),
-        ),
-        (
-            "radius",
-            "sensing radius",
-            along(|c| matches!(c, Condition::Radius(_))),
-        ),
-    ] {
-        let series: Vec<Series> = Learner::ALL
-            .iter()
-            .map(|&l| Series {
-                name: l.label(),
-                points: conditions
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &c)| (i, cell(&group(None, c, l))))
-                    .collect(),
-            })
-            .collect();
-        let ticks: Vec<String> = conditions
-            .iter()
-            .map(|c| match c {
-                Condition::Paper => {
-                    if name == "radius" {
-                        "unbounded".into()
-                    } else {
-                        "0".into()
-                    }
-                }
-                Condition::Slip(p) | Condition::Noise(p) => format!("{p}"),
-                Condition::Radius(r) => r.to_string(),
-            })
-            .collect();
-        let path = figures.join(format!("robustness_{name}.svg"));
-        let title = format!(
-            "Every learner against {axis}: means over {} maps x {} runs",
-            def.maps.len(),
-            def.runs
-        );
-        figure(&path, &title, axis, &ticks, &series)?;
-    }
+    let all = |c: Condition, l: Learner| cell(&group(None, c, l));
+    draw_figures(&figures, def.maps.len(), def.runs, &all)?;
     crate::emit(&format!("{md}\nWrote {}\n", table.display()))?;
     Ok(())
 }
@@ -605,15 +741,20 @@ fn figure(path: &Path, title: &str, axis: &str, ticks: &[String], series: &[Seri
     crate::figures::register_font();
     let plot_err = |e: &dyn std::fmt::Display| anyhow!("drawing {}: {e}", path.display());
     let mut svg = String::new();
-    let base = SVGBackend::with_string(&mut svg, (1500, 470)).into_drawing_area();
+    let base = SVGBackend::with_string(&mut svg, (1500, 550)).into_drawing_area();
     base.fill(&WHITE).map_err(|e| plot_err(&e))?;
     let root = base
         .titled(title, ("sans-serif", 22))
         .map_err(|e| plot_err(&e))?;
-    let (plots, legend) = root.split_horizontally(1290);
+    let height = root.dim_in_pixel().1;
+    let (upper, footer) = root.split_vertically(height - 82);
+    let (plots, legend) = upper.split_horizontally(1290);
     let panels = plots.split_evenly((1, 3));
     let n = ticks.len();
-    let x_range = -0.2..(n as f64 - 0.8);
+    // Room on both sides for the sideways shift of the series (`draw_series`).
+    let x_range = -0.5..(n as f64 - 0.5);
+    // Per panel, the learners with no point in it, named under it.
+    let mut missing: [Vec<&str>; 3] = Default::default();
     let tick_label = |x: &f64| {
         let i = x.round();
         if (x - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < n {
@@ -649,7 +790,10 @@ fn figure(path: &Path, title: &str, axis: &str, ticks: &[String], series: &[Seri
                 .iter()
                 .filter_map(|(i, c)| c.as_ref().map(|c| (*i as f64, c.quality)))
                 .collect();
-            draw_series(&mut chart, k, &pts).map_err(|e| plot_err(&e))?;
+            if pts.is_empty() {
+                missing[0].push(&s.name);
+            }
+            draw_series(&mut chart, k, series.len(), &pts).map_err(|e| plot_err(&e))?;
         }
     }
     // Panels 2 and 3: costs on log scales.
@@ -666,7 +810,7 @@ fn figure(path: &Path, title: &str, axis: &str, ticks: &[String], series: &[Seri
             |c| Some(c.cost_per_state),
         ),
     ];
-    for (panel, (caption, y_desc, pick)) in panels[1..].iter().zip(costs) {
+    for (p, (panel, (caption, y_desc, pick))) in panels[1..].iter().zip(costs).enumerate() {
         let values: Vec<f64> = series
             .iter()
             .flat_map(|s| {
@@ -711,8 +855,59 @@ fn figure(path: &Path, title: &str, axis: &str, ticks: &[String], series: &[Seri
                 .filter_map(|(i, c)| c.as_ref().and_then(pick).map(|v| (*i as f64, v)))
                 .filter(|p| p.1 > 0.0)
                 .collect();
-            draw_series(&mut chart, k, &pts).map_err(|e| plot_err(&e))?;
+            if pts.is_empty() {
+                missing[p + 1].push(&s.name);
+            }
+            draw_series(&mut chart, k, series.len(), &pts).map_err(|e| plot_err(&e))?;
         }
+    }
+    // Under each panel, the learners it lacks; then how to read the shift and the gaps.
+    let note = ("sans-serif", 14).into_font();
+    let width = 1290 / 3;
+    for (p, names) in missing.iter().enumerate() {
+        let text = if names.is_empty() {
+            "every learner shown".to_string()
+        } else {
+            format!("not shown (no point): {}", names.join(", "))
+        };
+        footer
+            .draw(&Text::new(text, (width * p as i32 + 70, 6), note.clone()))
+            .map_err(|e| plot_err(&e))?;
+    }
+    footer
+        .draw(&Text::new(
+            "Learners are drawn side by side at each setting so that equal values stay \
+             visible. A point is left out where fewer than half the runs reached quality \
+             0.95 (middle panel) or the cost is 0 (log scales).",
+            (70, 32),
+            note.clone(),
+        ))
+        .map_err(|e| plot_err(&e))?;
+    // Settings where a learner was not run at all (lazy+fit in the paper's world, where
+    // it is lazy).
+    let not_run: Vec<String> = series
+        .iter()
+        .filter_map(|s| {
+            let at: Vec<&str> = s
+                .points
+                .iter()
+                .filter(|(_, c)| c.is_none())
+                .map(|(i, _)| ticks[*i].as_str())
+                .collect();
+            (!at.is_empty()).then(|| format!("{} at {}", s.name, at.join(", ")))
+        })
+        .collect();
+    if !not_run.is_empty() {
+        footer
+            .draw(&Text::new(
+                format!(
+                    "Not run: {} (in the paper's world lazy+fit is lazy).",
+                    not_run.join("; ")
+                ),
+                (70, 54),
+                note,
+            ))
+            .map_err(|e| plot_err(&e))?;
     }
     // The legend, once, to the right.
     for (k, s) in series.iter().enumerate() {
@@ -739,6 +934,8 @@ fn figure(path: &Path, title: &str, axis: &str, ticks: &[String], series: &[Seri
     drop(panels);
     drop(plots);
     drop(legend);
+    drop(upper);
+    drop(footer);
     drop(root);
     drop(base);
     crate::files::write_atomic(path, svg)
@@ -764,14 +961,19 @@ fn marker<DB: DrawingBackend>(
     }
 }
 
+/// The sideways step between two series' points at one setting, in settings.
+const DODGE: f64 = 0.1;
+
 fn draw_series<DB: DrawingBackend, Y: Ranged<ValueType = f64>>(
     chart: &mut ChartContext<'_, DB, Cartesian2d<plotters::coord::types::RangedCoordf64, Y>>,
     k: usize,
+    count: usize,
     pts: &[(f64, f64)],
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     let color = PALETTE[k % PALETTE.len()];
-    // Each series is shifted a little sideways, so that equal values stay visible.
-    let shift = (k as f64 - 3.0) * 0.025;
+    // Series side by side around each setting, a marker's width apart, so that equal
+    // values (every learner at quality 1) stay visible.
+    let shift = (k as f64 - (count as f64 - 1.0) / 2.0) * DODGE;
     let pts: Vec<(f64, f64)> = pts.iter().map(|&(x, y)| (x + shift, y)).collect();
     chart.draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))?;
     chart.draw_series(
@@ -850,22 +1052,33 @@ mod tests {
         );
     }
 
+    /// A small sweep on tan3x3 into `out`: one run, 60 trials at the most.
+    fn small(out: &Path) -> RobustnessArgs {
+        RobustnessArgs {
+            maps: vec!["tan3x3".into()],
+            runs: 1,
+            seed: 1,
+            max_trials: 60,
+            quality_every: 10,
+            patience: 2,
+            shard: "1/1".into(),
+            threads: Some(1),
+            out: out.to_path_buf(),
+            report: false,
+            bless: false,
+            figures_from: None,
+        }
+    }
+
     #[test]
     fn one_shard_of_a_huge_job_list_runs_its_own_job_only() {
         // Once: the whole list of 62 * 10^8 jobs was built to run one.
         let dir = tempfile::tempdir().unwrap();
         let args = RobustnessArgs {
-            maps: vec!["tan3x3".into()],
             runs: 100_000_000,
-            seed: 1,
             max_trials: 20,
-            quality_every: 10,
-            patience: 2,
             shard: "1/100000000000".into(),
-            threads: Some(1),
-            out: dir.path().to_path_buf(),
-            report: false,
-            bless: false,
+            ..small(dir.path())
         };
         robustness(&args).unwrap();
         let text =
@@ -877,19 +1090,7 @@ mod tests {
     #[test]
     fn a_small_sweep_runs_resumes_and_reports() {
         let dir = tempfile::tempdir().unwrap();
-        let args = RobustnessArgs {
-            maps: vec!["tan3x3".into()],
-            runs: 1,
-            seed: 1,
-            max_trials: 60,
-            quality_every: 10,
-            patience: 2,
-            shard: "1/1".into(),
-            threads: Some(1),
-            out: dir.path().to_path_buf(),
-            report: false,
-            bless: false,
-        };
+        let args = small(dir.path());
         robustness(&args).unwrap();
         let table = std::fs::read_to_string(dir.path().join("robustness.md")).unwrap();
         assert_eq!(table.matches("| u-tree |").count(), 9);
@@ -926,5 +1127,102 @@ mod tests {
             std::fs::read_to_string(dir.path().join("robustness.md")).unwrap(),
             table
         );
+    }
+
+    #[test]
+    fn figures_say_which_learners_they_lack_and_tell_equal_values_apart() {
+        let dir = tempfile::tempdir().unwrap();
+        let cell = |q: f64, cost: Option<f64>| Cell {
+            runs: 10,
+            reached: 10,
+            quality: q,
+            cost_to_quality: cost,
+            trials_to_quality: cost,
+            cost_per_state: 5.0,
+            descriptions: 1.0,
+            features: 1.0,
+        };
+        // Every learner at quality 1; one never reaches 0.95; lazy+fit not run at 0.
+        let all = |c: Condition, l: Learner| match (c, l) {
+            (Condition::Paper, Learner::LazyFit) => None,
+            (_, Learner::UTree) => Some(cell(1.0, None)),
+            _ => Some(cell(1.0, Some(2.5e6))),
+        };
+        draw_figures(dir.path(), 2, 3, &all).unwrap();
+        let svg = std::fs::read_to_string(dir.path().join("robustness_slip.svg")).unwrap();
+        assert!(svg.contains("not shown (no point): u-tree"), "{svg}");
+        assert!(svg.contains("Not run: lazy+fit at 0"));
+        assert!(svg.contains("means over 2 maps x 3 runs"));
+        // Seven learners at one setting, a marker's width apart: no two at one place.
+        let xs: Vec<f64> = (0..7).map(|k| (k as f64 - 3.0) * DODGE).collect();
+        assert!(xs.windows(2).all(|w| w[1] - w[0] >= 0.1 - 1e-12));
+        assert!(
+            xs[6] < 0.5,
+            "a setting's learners stay clear of the next setting"
+        );
+    }
+
+    #[test]
+    fn cost_ticks_have_one_style() {
+        let ticks: Vec<String> = [1.0, 12.5, 100.0, 1e3, 2.5e3, 1e5, 1e6, 1.25e6, 1e7]
+            .iter()
+            .map(|&y| crate::figures::short(y))
+            .collect();
+        assert_eq!(
+            ticks,
+            [
+                "1", "12.5", "100", "1k", "2.5k", "100k", "1M", "1.2M", "10M"
+            ]
+        );
+    }
+
+    #[test]
+    fn figures_from_a_csv_refuse_what_a_report_never_writes() {
+        let dir = tempfile::tempdir().unwrap();
+        let header = "map,condition,learner,runs,reached,quality_mean,cost_to_quality_median,trials_to_quality_median,cost_per_state_mean,descriptions_mean,features_mean\n";
+        let per_map = "\"m\",paper's world,lazy,4,4,1,,,1,1,1\n";
+        for (row, want) in [
+            (
+                "\"all\",paper's world,lazy,4,4,NaN,,,1,1,1",
+                "line 2: field 6 is `NaN`",
+            ),
+            (
+                "\"all\",paper's world,lazy,4,4,-5,,,1,1,1",
+                "line 2: quality -5 is not in [0, 1]",
+            ),
+            (
+                "\"all\",paper's world,lazy,4,4,1,-1,,1,1,1",
+                "line 2: -1e0 is not a cost",
+            ),
+            (
+                "\"all\",paper's world,lazy,4,4,1,1e308,,1,1,1",
+                "line 2: 1e308 is not a cost",
+            ),
+            (
+                "\"all\",paper's world,lazy,0,0,1,,,1,1,1",
+                "line 2: 0 runs of which 0",
+            ),
+            (
+                "\"all\",paper's world,lazy,4,5,1,,,1,1,1",
+                "line 2: 4 runs of which 5",
+            ),
+            (
+                "\"all\",paper's world,lazi,4,4,1,,,1,1,1",
+                "line 2: unknown learner `lazi`",
+            ),
+            (
+                "all,paper's world,lazy,4,4,1,,,1,1,1",
+                "line 2: the map is not a quoted first field",
+            ),
+        ] {
+            let csv = dir.path().join("r.csv");
+            std::fs::write(&csv, format!("{header}{row}\n{per_map}")).unwrap();
+            let args = RobustnessArgs {
+                figures_from: Some(csv),
+                ..small(&dir.path().join("out"))
+            };
+            let err = robustness(&args).unwrap_err().to_string();
+            assert!(err.contains(want), "{row}: {err}");
+        }
     }
 }

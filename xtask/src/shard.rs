@@ -194,11 +194,7 @@ pub fn set_aside_bad_lines<T>(path: &Path, read: &ReadResults<T>) -> Result<()> 
         return Ok(());
     }
     let aside = path.with_file_name("results.corrupt.jsonl");
-    let mut kept = std::fs::OpenOptions::new()
-        .create(true)
-        .append(true)
-        .open(&aside)
-        .with_context(|| format!("cannot open {}", aside.display()))?;
+    let mut kept = crate::files::open_append(&aside)?;
     for bad in &read.bad {
         crate::note(&format!(
             "{}:{}: {}; set aside in {}{}",
@@ -251,7 +247,7 @@ where
     }
     let mine: Vec<u64> = shard_jobs(k, n, total).collect();
     let dir = out.join(format!("shard-{k}-of-{n}"));
-    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    crate::files::create_dir(&dir)?;
     let _lock = crate::files::OutLock::acquire(&dir)?;
     let manifest = Manifest {
         sweep: definition,
@@ -290,11 +286,7 @@ where
         done.len(),
         todo.len()
     ));
-    let file = std::fs::OpenOptions::new()
-        .create(true)
-        .append(true)
-        .open(&results_path)
-        .with_context(|| format!("cannot open {}", results_path.display()))?;
+    let file = crate::files::open_append(&results_path)?;
     let file = Mutex::new(file);
     let bar = ProgressBar::new(todo.len() as u64);
     crate::files::pool(threads)?.install(|| {

@@ -251,8 +251,7 @@ pub fn merge(args: &MergeArgs) -> Result<()> {
             csv.push('\n');
         }
     }
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("cannot create {}", args.out.display()))?;
+    crate::files::create_dir(&args.out)?;
     let _lock = crate::files::OutLock::acquire(&args.out)?;
     crate::files::write_atomic(&args.out.join("sweep.md"), &md)?;
     crate::files::write_atomic(&args.out.join("sweep.csv"), &csv)?;

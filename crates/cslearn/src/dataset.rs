@@ -195,11 +195,11 @@ impl Condition {
     }
 }
 
-fn parse_number(text: &str) -> Option<f64> {
+pub(crate) fn parse_number(text: &str) -> Option<f64> {
     text.parse::<f64>().ok().filter(|x| x.is_finite())
 }
 
-fn is_missing(cell: &str) -> bool {
+pub(crate) fn is_missing(cell: &str) -> bool {
     cell.is_empty() || cell == "?"
 }
 
@@ -214,20 +214,110 @@ fn format_number(x: f64) -> String {
     }
 }
 
-/// A header and its records, each with its 1-based line.
-struct Table {
-    header: Vec<String>,
-    records: Vec<(u64, csv::StringRecord)>,
+/// A header and its records, each with its 1-based line, stored compactly: every cell's
+/// text one after another in one string, and where each ends.
+#[derive(Debug)]
+pub(crate) struct Table {
+    pub(crate) header: Vec<String>,
+    text: String,
+    /// Where each cell ends in `text`, `header.len()` per record.
+    ends: Vec<u32>,
+    /// The 1-based line of each record.
+    lines: Vec<u32>,
 }
 
-fn csv_error(path: &Path, err: csv::Error) -> Error {
+/// One record of a [`Table`]: its cells by column, `record[c]`.
+pub(crate) struct Record<'a> {
+    table: &'a Table,
+    first: usize,
+}
+
+impl<'a> Record<'a> {
+    /// The cell in `column`.
+    pub(crate) fn get(&self, column: usize) -> &'a str {
+        let k = self.first + column;
+        let start = if k == 0 {
+            0
+        } else {
+            self.table.ends[k - 1] as usize
+        };
+        &self.table.text[start..self.table.ends[k] as usize]
+    }
+}
+
+impl std::ops::Index<usize> for Record<'_> {
+    type Output = str;
+    fn index(&self, column: usize) -> &str {
+        self.get(column)
+    }
+}
+
+impl Table {
+    /// The number of records.
+    pub(crate) fn len(&self) -> usize {
+        self.lines.len()
+    }
+
+    pub(crate) fn is_empty(&self) -> bool {
+        self.lines.is_empty()
+    }
+
+    /// Each record with its line, in file order.
+    pub(crate) fn records(&self) -> impl Iterator<Item = (u64, Record<'_>)> + '_ {
+        let width = self.header.len();
+        self.lines.iter().enumerate().map(move |(i, &line)| {
+            (
+                u64::from(line),
+                Record {
+                    table: self,
+                    first: i * width,
+                },
+            )
+        })
+    }
+
+    /// The cells of column `c`, record by record.
+    pub(crate) fn column(&self, c: usize) -> impl Iterator<Item = &str> + '_ {
+        self.records().map(move |(_, r)| r.get(c))
+    }
+}
+
+/// The most cells (records times columns) a data or costs table may have: 2^25, so that
+/// reading and encoding a table stays within about 2 GB whatever its shape.
+///
+/// ```
+/// assert_eq!(cslearn::MAX_CELLS, 33_554_432);
+/// ```
+pub const MAX_CELLS: u64 = 1 << 25;
+
+/// The 1-based line of the record the CSV reader places at byte `offset`: one more than
+/// the newlines before its first byte. The reader's own line count, and its offset, can
+/// sit on the line end before the record (after a CRLF), so line ends there are skipped:
+/// no record starts with one.
+fn line_at(bytes: &[u8], offset: u64) -> u64 {
+    let end = record_start(bytes, offset);
+    1 + bytes[..end].iter().filter(|&&b| b == b'\n').count() as u64
+}
+
+/// Byte `offset`, moved past any line-end bytes, within `bytes`.
+fn record_start(bytes: &[u8], offset: u64) -> usize {
+    let mut at = usize::try_from(offset)
+        .unwrap_or(usize::MAX)
+        .min(bytes.len());
+    while at < bytes.len() && matches!(bytes[at], b'\r' | b'\n') {
+        at += 1;
+    }
+    at
+}
+
+fn csv_error(path: &Path, err: csv::Error, bytes: &[u8]) -> Error {
     let path = path.to_path_buf();
-    let line = err.position().map(|p| p.line());
+    let line = err.position().map(|p| line_at(bytes, p.byte()));
     match err.kind() {
         csv::ErrorKind::Utf8 { pos, .. } => {
             return Error::NotUtf8 {
                 path,
-                line: pos.as_ref().map_or(1, |p| p.line()),
+                line: pos.as_ref().map_or(1, |p| line_at(bytes, p.byte())),
             };
         }
         csv::ErrorKind::UnequalLengths {
@@ -237,7 +327,7 @@ fn csv_error(path: &Path, err: csv::Error) -> Error {
         } => {
             return Error::RaggedRecord {
                 path,
-                line: pos.as_ref().map_or(0, |p| p.line()),
+                line: pos.as_ref().map_or(0, |p| line_at(bytes, p.byte())),
                 expected: *expected_len,
                 found: *len,
             };
@@ -257,6 +347,27 @@ fn csv_error(path: &Path, err: csv::Error) -> Error {
     }
 }
 
+/// Open a regular file; a directory, a device or a pipe is refused before it is opened.
+pub(crate) fn open_regular(path: &Path) -> Result<std::fs::File, Error> {
+    let io = |source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let not_a_file = || Error::NotAFile {
+        path: path.to_path_buf(),
+    };
+    // Judged from the metadata first: opening a FIFO would block until a writer
+    // comes; then on the opened file, in case the path changed in between.
+    if !std::fs::metadata(path).map_err(io)?.is_file() {
+        return Err(not_a_file());
+    }
+    let file = std::fs::File::open(path).map_err(io)?;
+    if !file.metadata().map_err(io)?.is_file() {
+        return Err(not_a_file());
+    }
+    Ok(file)
+}
+
 /// The most bytes a data or costs file may have (256 MiB); reading stops after them.
 ///
 /// ```
@@ -265,7 +376,7 @@ fn csv_error(path: &Path, err: csv::Error) -> Error {
 pub const MAX_FILE_BYTES: u64 = 256 << 20;
 
 /// Read at most [`MAX_FILE_BYTES`] bytes, refusing anything longer.
-fn read_bounded(mut reader: impl Read, path: &Path) -> Result<Vec<u8>, Error> {
+pub(crate) fn read_bounded(mut reader: impl Read, path: &Path) -> Result<Vec<u8>, Error> {
     let mut bytes = Vec::new();
     (&mut reader)
         .take(MAX_FILE_BYTES + 1)
@@ -317,7 +428,12 @@ fn unterminated_quote(bytes: &[u8]) -> Option<u64> {
     in_quotes.then_some(open_line)
 }
 
-fn read_table(reader: impl Read, path: &Path) -> Result<Table, Error> {
+pub(crate) fn read_table(reader: impl Read, path: &Path) -> Result<Table, Error> {
+    read_table_within(reader, path, MAX_CELLS)
+}
+
+/// [`read_table`] with at most `max_cells` cells.
+fn read_table_within(reader: impl Read, path: &Path, max_cells: u64) -> Result<Table, Error> {
     let bytes = read_bounded(reader, path)?;
     if let Some(line) = unterminated_quote(&bytes) {
         return Err(Error::UnterminatedQuote {
@@ -331,7 +447,7 @@ fn read_table(reader: impl Read, path: &Path) -> Result<Table, Error> {
         .from_reader(bytes.as_slice());
     let header: Vec<String> = reader
         .headers()
-        .map_err(|e| csv_error(path, e))?
+        .map_err(|e| csv_error(path, e, &bytes))?
         .iter()
         .map(str::to_string)
         .collect();
@@ -340,13 +456,40 @@ fn read_table(reader: impl Read, path: &Path) -> Result<Table, Error> {
             path: path.to_path_buf(),
         });
     }
-    let mut records = Vec::new();
-    for record in reader.records() {
-        let record = record.map_err(|e| csv_error(path, e))?;
-        let line = record.position().map_or(0, |p| p.line());
-        records.push((line, record));
+    let (mut text, mut ends, mut lines) = (String::new(), Vec::new(), Vec::new());
+    // Lines counted from byte offsets, in one pass over the file.
+    let (mut counted, mut line) = (0usize, 1u64);
+    let mut record = csv::StringRecord::new();
+    while reader
+        .read_record(&mut record)
+        .map_err(|e| csv_error(path, e, &bytes))?
+    {
+        let at = record
+            .position()
+            .map_or(counted, |p| record_start(&bytes, p.byte()))
+            .max(counted);
+        line += bytes[counted..at].iter().filter(|&&b| b == b'\n').count() as u64;
+        counted = at;
+        if (ends.len() + record.len()) as u64 > max_cells {
+            return Err(Error::TooManyCells {
+                path: path.to_path_buf(),
+                line,
+                max: max_cells,
+            });
+        }
+        for cell in &record {
+            text.push_str(cell);
+            // The text is no longer than the file, at most MAX_FILE_BYTES < 2^32.
+            ends.push(text.len() as u32);
+        }
+        lines.push(line as u32);
     }
-    Ok(Table { header, records })
+    Ok(Table {
+        header,
+        text,
+        ends,
+        lines,
+    })
 }
 
 /// One feature column.
@@ -426,6 +569,7 @@ fn sort_texts(texts: &mut [String]) {
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Dataset {
+    target: String,
     columns: Vec<Column>,
     costs: FeatureCosts,
     rows: Vec<Option<Value>>,
@@ -446,27 +590,8 @@ impl Dataset {
     /// assert!(matches!(err, cslearn::Error::Io { .. }));
     /// ```
     pub fn load(data: &Path, costs: &Path, options: &DatasetOptions) -> Result<Dataset, Error> {
-        let open = |path: &Path| {
-            let io = |source| Error::Io {
-                path: path.to_path_buf(),
-                source,
-            };
-            let not_a_file = || Error::NotAFile {
-                path: path.to_path_buf(),
-            };
-            // Judged from the metadata first: opening a FIFO would block until a writer
-            // comes; then on the opened file, in case the path changed in between.
-            if !std::fs::metadata(path).map_err(io)?.is_file() {
-                return Err(not_a_file());
-            }
-            let file = std::fs::File::open(path).map_err(io)?;
-            if !file.metadata().map_err(io)?.is_file() {
-                return Err(not_a_file());
-            }
-            Ok(file)
-        };
-        let data_file = open(data)?;
-        let costs_file = open(costs)?;
+        let data_file = open_regular(data)?;
+        let costs_file = open_regular(costs)?;
         Dataset::from_readers(data_file, data, costs_file, costs, options)
     }
 
@@ -520,7 +645,7 @@ impl Dataset {
         if feature_columns.is_empty() {
             return Err(Error::NoFeatures { path: path() });
         }
-        if table.records.is_empty() {
+        if table.is_empty() {
             return Err(Error::NoRecords { path: path() });
         }
         let names: Vec<&str> = feature_columns
@@ -528,14 +653,14 @@ impl Dataset {
             .map(|&c| table.header[c].as_str())
             .collect();
         let costs = read_costs(costs, costs_path, &names, &options.target)?;
-        check_totals(&costs, table.records.len(), costs_path)?;
+        check_totals(&costs, table.len(), costs_path)?;
         let (labels, class_names) = classes(&table, target, condition.as_ref(), data_path)?;
 
         let n_features = feature_columns.len();
-        let mut rows = vec![None; table.records.len() * n_features];
+        let mut rows = vec![None; table.len() * n_features];
         let mut columns = Vec::with_capacity(n_features);
         for (f, &c) in feature_columns.iter().enumerate() {
-            let cells: Vec<&str> = table.records.iter().map(|(_, r)| &r[c]).collect();
+            let cells: Vec<&str> = table.column(c).collect();
             let (column, values) = encode_column(&table.header[c], &cells, options.binning);
             for (row, value) in values.into_iter().enumerate() {
                 rows[row * n_features + f] = value;
@@ -543,6 +668,7 @@ impl Dataset {
             columns.push(column);
         }
         Ok(Dataset {
+            target: options.target.clone(),
             columns,
             costs,
             rows,
@@ -693,6 +819,16 @@ impl Dataset {
         self.class_names.get(class.0 as usize).map(String::as_str)
     }
 
+    /// The name of the target column.
+    ///
+    /// ```
+    /// # let ds = cslearn::Dataset::from_readers("a,t\n1,x\n".as_bytes(), "d", "feature,cost\na,1\n".as_bytes(), "c", &cslearn::DatasetOptions::new("t")).unwrap();
+    /// assert_eq!(ds.target(), "t");
+    /// ```
+    pub fn target(&self) -> &str {
+        &self.target
+    }
+
     /// The number of classes.
     ///
     /// ```
@@ -768,16 +904,16 @@ fn classes(
     condition: Option<&Condition>,
     path: &Path,
 ) -> Result<(Vec<ClassId>, Vec<String>), Error> {
-    let mut cells = Vec::with_capacity(table.records.len());
-    for (line, record) in &table.records {
-        let cell = &record[target];
+    let mut cells = Vec::with_capacity(table.len());
+    for (line, record) in table.records() {
+        let cell = record.get(target);
         if is_missing(cell) {
             return Err(Error::MissingTarget {
                 path: path.to_path_buf(),
-                line: *line,
+                line,
             });
         }
-        cells.push((*line, cell));
+        cells.push((line, cell));
     }
     let target_name = &table.header[target];
     if let Some(condition) = condition {
@@ -847,7 +983,7 @@ fn index_of(texts: &[String]) -> BTreeMap<&str, u32> {
 pub const MAX_TOTAL_COST: f64 = 1e300;
 
 /// Refuse prices whose total over `objects` objects cannot be represented.
-fn check_totals(costs: &FeatureCosts, objects: usize, path: &Path) -> Result<(), Error> {
+pub(crate) fn check_totals(costs: &FeatureCosts, objects: usize, path: &Path) -> Result<(), Error> {
     // Summed without saturation: an infinite sum must show as one.
     let per_object: f64 = costs.as_slice().iter().map(|c| c.get()).sum();
     let total = per_object * objects as f64;
@@ -895,7 +1031,7 @@ fn read_costs(
     let mut costs: Vec<Option<Cost>> = vec![None; names.len()];
     let path_buf = || -> PathBuf { path.to_path_buf() };
     let index: BTreeMap<&str, usize> = names.iter().enumerate().map(|(i, &n)| (n, i)).collect();
-    for (line, record) in &table.records {
+    for (line, record) in table.records() {
         let (feature, text) = (&record[0], &record[1]);
         if feature == target {
             continue;
@@ -903,14 +1039,14 @@ fn read_costs(
         let Some(&f) = index.get(feature) else {
             return Err(Error::UnknownCostFeature {
                 path: path_buf(),
-                line: *line,
+                line,
                 feature: feature.to_string(),
             });
         };
         if costs[f].is_some() {
             return Err(Error::DuplicateCost {
                 path: path_buf(),
-                line: *line,
+                line,
                 feature: feature.to_string(),
             });
         }
@@ -920,7 +1056,7 @@ fn read_costs(
             .and_then(|x| Cost::new(x).ok())
             .ok_or_else(|| Error::BadCost {
                 path: path_buf(),
-                line: *line,
+                line,
                 feature: feature.to_string(),
                 text: text.to_string(),
             })?;
@@ -937,4 +1073,51 @@ fn read_costs(
         })
         .collect::<Result<Vec<_>, Error>>()?;
     Ok(FeatureCosts::new(costs))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_table_past_its_cells_is_refused_at_the_record_that_passes_them() {
+        let text = "a,b\n1,2\n3,4\n5,6\n";
+        let table = read_table_within(text.as_bytes(), "t.csv".as_ref(), 6).unwrap();
+        assert_eq!(table.len(), 3);
+        let cells: Vec<&str> = table.column(1).collect();
+        assert_eq!(cells, ["2", "4", "6"]);
+        let err = read_table_within(text.as_bytes(), "t.csv".as_ref(), 5).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                Error::TooManyCells {
+                    line: 4,
+                    max: 5,
+                    ..
+                }
+            ),
+            "{err:?}"
+        );
+        assert_eq!(
+            err.to_string(),
+            "t.csv: line 4: more than the 5 cells (records times columns) a table may have"
+        );
+    }
+
+    #[test]
+    fn cells_keep_their_unquoted_trimmed_text() {
+        let text = "a,b\n\" x \",\"y,\"\"z\"\"\"\n,?\n";
+        let table = read_table(text.as_bytes(), "t.csv".as_ref()).unwrap();
+        let rows: Vec<(u64, String, String)> = table
+            .records()
+            .map(|(line, r)| (line, r[0].to_string(), r[1].to_string()))
+            .collect();
+        assert_eq!(
+            rows,
+            [
+                (2, "x".to_string(), "y,\"z\"".to_string()),
+                (3, String::new(), "?".to_string())
+            ]
+        );
+    }
 }

@@ -220,4 +220,55 @@ pub enum Error {
         /// The cell as written.
         text: String,
     },
+    /// A model file that cannot be used: `at` says where (a line and column, a key, a
+    /// feature, a library example), `reason` what is wrong there.
+    #[error("{}: {at}: {reason}", path.display())]
+    BadModel {
+        /// The file.
+        path: PathBuf,
+        /// Where in it.
+        at: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A JSON file whose `format` is not a model's.
+    #[error("{}: not a csrl-classifier model file (its format is `{format}`)", path.display())]
+    NotAModel {
+        /// The file.
+        path: PathBuf,
+        /// The format it says it has.
+        format: String,
+    },
+    /// A table to classify lacks columns the model reads.
+    #[error("{}: no column {}, which the model reads (columns: {})", path.display(), missing.iter().map(|m| format!("`{m}`")).collect::<Vec<_>>().join(", "), columns.join(", "))]
+    MissingColumns {
+        /// The file.
+        path: PathBuf,
+        /// The model's features that are not columns.
+        missing: Vec<String>,
+        /// The columns present.
+        columns: Vec<String>,
+    },
+    /// A cell of a numeric feature that is not a finite number.
+    #[error("{}: line {line}: `{text}` in column `{column}` is not a number, but the model reads that column as numbers", path.display())]
+    NotANumber {
+        /// The file.
+        path: PathBuf,
+        /// The 1-based line.
+        line: u64,
+        /// The column.
+        column: String,
+        /// The cell.
+        text: String,
+    },
+    /// A table with more than [`MAX_CELLS`](crate::MAX_CELLS) cells.
+    #[error("{}: line {line}: more than the {max} cells (records times columns) a table may have", path.display())]
+    TooManyCells {
+        /// The file.
+        path: PathBuf,
+        /// The line of the record that passed the limit.
+        line: u64,
+        /// The limit.
+        max: u64,
+    },
 }

@@ -120,6 +120,33 @@ impl<D: Discriminate> IndexedLearner<D> {
         }
     }
 
+    /// The same learner with `library` as what it learned (its index starts afresh and
+    /// catches up with the library as objects come).
+    ///
+    /// ```
+    /// use cslearn::{ClassId, Example, FeatureCosts, FeatureId, Library, Value};
+    /// let library: Library = [Example::from_pairs([(FeatureId(0), Value(1))], ClassId(2))].into_iter().collect();
+    /// let mut learner = cslearn::cs_id3_indexed(FeatureCosts::from_f64(&[1.0]).unwrap()).with_library(library);
+    /// assert_eq!(learner.classify(&[Some(Value(1))][..]).class, Some(ClassId(2)));
+    /// ```
+    pub fn with_library(mut self, library: Library) -> Self {
+        self.library = library;
+        self.tree = Tree::new();
+        self
+    }
+
+    /// The library, taking the learner apart (no copy).
+    ///
+    /// ```
+    /// use cslearn::{ClassId, FeatureCosts, Value};
+    /// let mut learner = cslearn::cs_id3_indexed(FeatureCosts::from_f64(&[1.0]).unwrap());
+    /// learner.learn(&[Some(Value(0))][..], ClassId(1));
+    /// assert_eq!(learner.into_library().len(), 1);
+    /// ```
+    pub fn into_library(self) -> Library {
+        self.library
+    }
+
     /// Predict the class of the object behind `sensor`, as
     /// [`Learner::classify`](crate::Learner::classify) does.
     ///

@@ -200,6 +200,7 @@ mod error;
 mod example;
 mod indexed;
 mod learner;
+mod model;
 mod predict;
 mod select;
 mod sensing;
@@ -211,7 +212,7 @@ mod update;
 pub use attend::{
     Attend, Attention, ObservationAttending, RankedAttending, RuleAttending, Semantics,
 };
-pub use dataset::{Binning, Dataset, DatasetOptions, MAX_FILE_BYTES, MAX_TOTAL_COST};
+pub use dataset::{Binning, Dataset, DatasetOptions, MAX_CELLS, MAX_FILE_BYTES, MAX_TOTAL_COST};
 pub use discriminate::{CheapestFirst, Discriminate, RandomOrder};
 pub use error::Error;
 pub use example::{Example, Library};
@@ -219,11 +220,13 @@ pub use indexed::{IndexedCsId3, IndexedId3, IndexedLearner, cs_id3_indexed, id3_
 pub use learner::{
     Classified, CsIbl, CsId3, Id3, Learner, Outcome, StreamReport, cs_ibl, cs_id3, id3,
 };
+pub use model::{MODEL_FORMAT, MODEL_VERSION, Model, Prediction};
 pub use predict::{Decision, Nearest, Predict, Unanimous};
 pub use select::{BestScore, InfoCost, MissingRule, Select, SplitCounts};
 pub use sensing::{Ledger, Probe, Sensor};
 pub use stream::{
-    LearnerKind, Procedure, stream_dataset, stream_dataset_with, stream_dataset_with_progress,
+    LearnerKind, Procedure, stream_dataset, stream_dataset_keeping, stream_dataset_with,
+    stream_dataset_with_progress,
 };
 pub use tree::{Branch, DecisionTree, Labels, Node, NodeId, PlainLabels, TreeOptions};
 pub use types::{ClassId, Cost, CostBlind, Costs, FeatureCosts, FeatureId, Value};

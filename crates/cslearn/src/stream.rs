@@ -4,6 +4,7 @@ use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 use crate::dataset::Dataset;
+use crate::example::Library;
 use crate::indexed::{cs_id3_indexed, id3_indexed};
 use crate::learner::{StreamReport, cs_ibl, cs_id3, id3};
 
@@ -84,7 +85,7 @@ pub fn stream_dataset_with(
     seed: u64,
     procedure: Procedure,
 ) -> StreamReport {
-    stream(dataset, kind, seed, procedure, &mut |_, _| {})
+    stream(dataset, kind, seed, procedure, &mut |_, _| {}).0
 }
 
 /// [`stream_dataset`], calling `progress(done, total)` as each object is taken up, so a
@@ -105,6 +106,26 @@ pub fn stream_dataset_with_progress(
     seed: u64,
     progress: &mut dyn FnMut(usize, usize),
 ) -> StreamReport {
+    stream(dataset, kind, seed, Procedure::Indexed, progress).0
+}
+
+/// [`stream_dataset_with_progress`], also giving the library the learner ended with (what
+/// a [`Model`](crate::Model) keeps).
+///
+/// ```
+/// use cslearn::{Dataset, DatasetOptions, LearnerKind};
+/// let data = "a,t\n0,n\n1,y\n0,n\n";
+/// let ds = Dataset::from_readers(data.as_bytes(), "d.csv", "feature,cost\na,1\n".as_bytes(), "c.csv", &DatasetOptions::new("t")).unwrap();
+/// let (report, library) = cslearn::stream_dataset_keeping(&ds, LearnerKind::CsId3, 1, &mut |_, _| {});
+/// assert_eq!(report, cslearn::stream_dataset(&ds, LearnerKind::CsId3, 1));
+/// assert_eq!(library.len(), 3);
+/// ```
+pub fn stream_dataset_keeping(
+    dataset: &Dataset,
+    kind: LearnerKind,
+    seed: u64,
+    progress: &mut dyn FnMut(usize, usize),
+) -> (StreamReport, Library) {
     stream(dataset, kind, seed, Procedure::Indexed, progress)
 }
 
@@ -114,7 +135,7 @@ fn stream(
     seed: u64,
     procedure: Procedure,
     progress: &mut dyn FnMut(usize, usize),
-) -> StreamReport {
+) -> (StreamReport, Library) {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
     let order = dataset.shuffled(&mut rng);
     let total = order.len();
@@ -123,11 +144,26 @@ fn stream(
         (dataset.object(i), dataset.labels()[i])
     });
     let costs = dataset.costs().clone();
+    // The library is taken out of the learner, not copied: it can be most of the memory.
+    macro_rules! indexed {
+        ($learner:expr) => {{
+            let mut learner = $learner;
+            let report = learner.stream(objects);
+            (report, learner.into_library())
+        }};
+    }
+    macro_rules! plain {
+        ($learner:expr) => {{
+            let mut learner = $learner;
+            let report = learner.stream(objects);
+            (report, std::mem::take(learner.library_mut()))
+        }};
+    }
     match (kind, procedure) {
-        (LearnerKind::CsId3, Procedure::Indexed) => cs_id3_indexed(costs).stream(objects),
-        (LearnerKind::CsId3, Procedure::Plain) => cs_id3(costs).stream(objects),
-        (LearnerKind::CsIbl { tolerance }, _) => cs_ibl(costs, tolerance).stream(objects),
-        (LearnerKind::Id3, Procedure::Indexed) => id3_indexed(costs, rng).stream(objects),
-        (LearnerKind::Id3, Procedure::Plain) => id3(costs, rng).stream(objects),
+        (LearnerKind::CsId3, Procedure::Indexed) => indexed!(cs_id3_indexed(costs)),
+        (LearnerKind::CsId3, Procedure::Plain) => plain!(cs_id3(costs)),
+        (LearnerKind::CsIbl { tolerance }, _) => plain!(cs_ibl(costs, tolerance)),
+        (LearnerKind::Id3, Procedure::Indexed) => indexed!(id3_indexed(costs, rng)),
+        (LearnerKind::Id3, Procedure::Plain) => plain!(id3(costs, rng)),
     }
 }

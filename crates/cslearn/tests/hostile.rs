@@ -99,3 +99,22 @@ proptest! {
         let _ = Dataset::from_readers(bytes.as_slice(), "d.csv", COSTS.as_bytes(), "c.csv", &DatasetOptions::new("t"));
     }
 }
+
+#[test]
+fn lines_are_counted_right_after_crlf_line_ends() {
+    // The CSV reader's own count ran one behind after a CRLF header.
+    for end in ["\n", "\r\n"] {
+        let text = ["a,b,t", "1,2,x", "3,4,y", "5,6,"].join(end) + end;
+        let err = read(&text).unwrap_err();
+        assert!(
+            matches!(err, Error::MissingTarget { line: 4, .. }),
+            "{end:?}: {err:?}"
+        );
+        let ragged = ["a,b,t", "1,2,x", "3,4"].join(end) + end;
+        let err = read(&ragged).unwrap_err();
+        assert!(
+            matches!(err, Error::RaggedRecord { line: 3, .. }),
+            "{end:?}: {err:?}"
+        );
+    }
+}

@@ -84,6 +84,10 @@ pub struct ClassifyArgs {
     /// library the prequential pass learned, as Graphviz DOT (`dot -Tsvg FILE.dot`).
     #[arg(long, value_name = "FILE.dot")]
     dot: Option<PathBuf>,
+    /// Save what the prequential pass learned as a model file (versioned JSON, format
+    /// `csrl-classifier`), for `csrl predict --model FILE`.
+    #[arg(long, value_name = "MODEL.json")]
+    save: Option<PathBuf>,
 }
 
 /// Accuracy and cost per object on one test part (or summed over folds).
@@ -145,6 +149,7 @@ fn split_eval<A, S, P, D, U>(
     data: &Dataset,
     train: &[usize],
     test: &[usize],
+    bar: &indicatif::ProgressBar,
 ) -> HeldOut
 where
     A: cslearn::Attend,
@@ -155,6 +160,7 @@ where
 {
     for &i in train {
         learner.learn(data.object(i), data.labels()[i]);
+        bar.inc(1);
     }
     let library: cslearn::Library = train
         .iter()
@@ -175,6 +181,7 @@ where
     );
     let mut out = HeldOut::default();
     for &i in test {
+        bar.inc(1);
         let truth = Some(data.labels()[i]);
         let c = learner.classify(data.object(i));
         out.objects += 1;
@@ -236,11 +243,21 @@ fn held_out(args: &ClassifyArgs, data: &Dataset) -> Result<Option<(String, HeldO
         _ => unreachable!("returned above"),
     };
     let mut total = HeldOut::default();
+    // Each split streams its training part and classifies its test part: a sign of life
+    // over all of them (CS-IBL's time per object grows with its library).
+    let work: usize = splits.iter().map(|(a, b)| a.len() + b.len()).sum();
+    let bar = progress_bar(work);
     for (j, (train, test)) in splits.iter().enumerate() {
         let costs = data.costs().clone();
         let part = match args.learner {
-            Learner::CsId3 => split_eval(cslearn::cs_id3(costs), data, train, test),
-            Learner::CsIbl => split_eval(cslearn::cs_ibl(costs, args.tolerance), data, train, test),
+            Learner::CsId3 => split_eval(cslearn::cs_id3(costs), data, train, test, &bar),
+            Learner::CsIbl => split_eval(
+                cslearn::cs_ibl(costs, args.tolerance),
+                data,
+                train,
+                test,
+                &bar,
+            ),
             Learner::Id3 => split_eval(
                 cslearn::id3(
                     costs,
@@ -251,26 +268,20 @@ fn held_out(args: &ClassifyArgs, data: &Dataset) -> Result<Option<(String, HeldO
                 data,
                 train,
                 test,
+                &bar,
             ),
         };
         total.add(part);
     }
+    bar.finish_and_clear();
     Ok(Some((scheme, total)))
 }
 
-/// The decision tree grown from the library CS-ID3 learns in the prequential pass (the
-/// same seeded order as `cslearn::stream_dataset`, so the same library).
-fn cs_id3_tree(data: &Dataset, seed: u64) -> cslearn::DecisionTree {
-    use rand::SeedableRng;
-    let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(seed);
-    let mut learner = cslearn::cs_id3_indexed(data.costs().clone());
-    for i in data.shuffled(&mut rng) {
-        learner.learn(data.object(i), data.labels()[i]);
-    }
-    cslearn::DecisionTree::build(
-        learner.library(),
-        data.costs(),
-        cslearn::TreeOptions::observations(),
+/// A sign of life on long work: a bar on a terminal's stderr, nothing otherwise.
+pub(crate) fn progress_bar(len: usize) -> indicatif::ProgressBar {
+    indicatif::ProgressBar::with_draw_target(
+        Some(len as u64),
+        indicatif::ProgressDrawTarget::stderr(),
     )
 }
 
@@ -293,19 +304,49 @@ pub fn run(args: &ClassifyArgs, out: &mut dyn Write) -> Result<()> {
         args.dot.is_none() || args.learner == Learner::CsId3,
         "--dot draws CS-ID3's decision tree: it needs --learner cs-id3"
     );
-    // A sign of life on long streams: a bar on a terminal's stderr, nothing otherwise.
-    let bar = indicatif::ProgressBar::with_draw_target(
-        Some(data.len() as u64),
-        indicatif::ProgressDrawTarget::stderr(),
-    );
-    let report = cslearn::stream_dataset_with_progress(&data, kind, args.seed, &mut |done, _| {
-        bar.set_position(done as u64);
-    });
+    if let (Some(save), Some(dot)) = (&args.save, &args.dot) {
+        // One would overwrite the other.
+        let same = std::path::absolute(save).ok() == std::path::absolute(dot).ok();
+        anyhow::ensure!(
+            !same,
+            "--save and --dot name the same file ({}): give each its own",
+            save.display()
+        );
+    }
+    let bar = progress_bar(data.len());
+    let (report, library) =
+        cslearn::stream_dataset_keeping(&data, kind, args.seed, &mut |done, _| {
+            bar.set_position(done as u64);
+        });
     bar.finish_and_clear();
     if let Some(path) = &args.dot {
-        crate::write_file(path, cs_id3_tree(&data, args.seed).to_dot(&data))?;
+        // Grown (I^2/C, observation semantics) from the library the prequential pass
+        // learned.
+        let tree = cslearn::DecisionTree::build(
+            &library,
+            data.costs(),
+            cslearn::TreeOptions::observations(),
+        );
+        crate::write_file(path, tree.to_dot(&data))?;
         crate::note(format_args!(
             "wrote the CS-ID3 decision tree to {}",
+            path.display()
+        ));
+    }
+    if let Some(path) = &args.save {
+        let examples = library.len();
+        // The library goes into the model, not a copy of it.
+        let text = cslearn::Model::new(&data, kind, library).to_json();
+        anyhow::ensure!(
+            text.len() as u64 <= cslearn::MAX_FILE_BYTES,
+            "the model of {examples} examples would take {} bytes, more than the {} a model \
+             file may have (`csrl predict` could not read it): learn from fewer objects",
+            text.len(),
+            cslearn::MAX_FILE_BYTES
+        );
+        crate::write_file(path, text)?;
+        crate::note(format_args!(
+            "saved the model ({name}, {examples} examples) to {}",
             path.display()
         ));
     }

@@ -10,7 +10,7 @@
 //! | 1 | an input that cannot be read or is not valid (a file, a map, a world, settings, data), said on stderr as `error: ...` |
 //! | 2 | a usage error (clap's: an unknown flag, a missing or malformed argument) |
 //! | 3 | `run --require-convergence` on a run that did not converge |
-//! | 4 | an output file that cannot be written (`--svg`, `world export --out`): a missing folder and a read-only one alike |
+//! | 4 | an output file that cannot be written (`--svg`, `--save`, `--dot`, `--out`): a missing folder and a read-only one alike |
 //! | 130 | a run stopped by Ctrl-C or SIGTERM, after printing what it reached |
 //!
 //! No input makes it panic, and a full or closed stderr loses the message but not the
@@ -19,6 +19,7 @@
 
 mod classify;
 mod maps;
+mod predict;
 mod run;
 mod worlds;
 
@@ -64,6 +65,9 @@ enum Command {
     Run(run::RunArgs),
     /// Stream a CSV table through a cost-sensitive learner and report errors and costs.
     Classify(classify::ClassifyArgs),
+    /// Classify new rows with a model saved by `classify --save`: each row's class and
+    /// what its measurements cost, as CSV (`line,class,cost,measured`).
+    Predict(predict::PredictArgs),
 }
 
 fn main() -> ExitCode {
@@ -76,6 +80,7 @@ fn main() -> ExitCode {
         Command::World(cmd) => worlds::run(cmd, &mut out),
         Command::Run(args) => run::run(args, &mut out),
         Command::Classify(args) => classify::run(args, &mut out),
+        Command::Predict(args) => predict::run(args, &mut out),
     }
     .and_then(|()| out.flush().map_err(anyhow::Error::from));
     match result {
@@ -133,14 +138,17 @@ impl std::error::Error for CannotWrite {
     }
 }
 
+/// A [`CannotWrite`] for `path`, as an error.
+pub(crate) fn cannot_write(path: &std::path::Path, source: std::io::Error) -> anyhow::Error {
+    anyhow::Error::new(CannotWrite {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
 /// Write `contents` to `path`; a failure is a [`CannotWrite`].
 pub(crate) fn write_file(path: &std::path::Path, contents: impl AsRef<[u8]>) -> anyhow::Result<()> {
-    std::fs::write(path, contents).map_err(|source| {
-        anyhow::Error::new(CannotWrite {
-            path: path.to_path_buf(),
-            source,
-        })
-    })
+    std::fs::write(path, contents).map_err(|source| cannot_write(path, source))
 }
 
 /// Write a line to stderr. Unlike `eprintln!`, a full or closed stderr is no panic: the

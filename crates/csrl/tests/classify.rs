@@ -415,3 +415,138 @@ fn dot_writes_the_cs_id3_tree() {
         stderr(&out)
     );
 }
+
+#[test]
+fn a_saved_model_predicts_new_rows_by_column_name() {
+    let model = scratch("model.json", b"");
+    let out = on_heart(&[
+        "--positive-if",
+        ">0",
+        "--learner",
+        "cs-id3",
+        "--save",
+        &model,
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = std::fs::read_to_string(&model).unwrap();
+    assert!(
+        text.starts_with("{\"format\":\"csrl-classifier\",\"version\":1,"),
+        "{text}"
+    );
+    // Three rows, columns in another order, no target.
+    let rows = scratch(
+        "new.csv",
+        b"sex,age,cp,trestbps,chol,fbs,restecg,thalch,exang,oldpeak,slope,ca,thal\n\
+          Male,63,typical angina,145,233,TRUE,lv hypertrophy,150,FALSE,2.3,downsloping,0,fixed defect\n\
+          Male,67,asymptomatic,160,286,FALSE,lv hypertrophy,108,TRUE,1.5,flat,3,normal\n\
+          ,,,,,,,,,,,,\n",
+    );
+    let out = csrl(&["predict", "--model", &model, "--data", &rows]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let stdout = String::from_utf8(out.stdout.clone()).unwrap();
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert_eq!(lines[0], "line,class,cost,measured");
+    assert_eq!(lines.len(), 4, "{stdout}");
+    assert!(
+        lines[1].starts_with("2,") && lines[3].starts_with("4,"),
+        "{stdout}"
+    );
+    // The same rows in the training file's column order classify the same.
+    let heart_rows = scratch(
+        "heart3.csv",
+        &std::fs::read(heart("cleveland.csv")).unwrap()[..]
+            .split(|&b| b == b'\n')
+            .take(3)
+            .collect::<Vec<_>>()
+            .join(&b'\n'),
+    );
+    let again = csrl(&["predict", "--model", &model, "--data", &heart_rows]);
+    let again = String::from_utf8(again.stdout).unwrap();
+    let tail = |s: &str| {
+        s.lines()
+            .skip(1)
+            .take(2)
+            .map(|l| l.split_once(',').unwrap().1.to_string())
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(tail(&stdout), tail(&again));
+    assert!(
+        stderr(&out).contains("classified 3 rows"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn bad_models_and_unwritable_outputs_have_their_exit_codes() {
+    let out = on_heart(&["--learner", "cs-id3", "--save", "/no/such/dir/m.json"]);
+    assert_eq!(out.status.code(), Some(4), "{}", stderr(&out));
+    assert!(stderr(&out).contains("cannot write /no/such/dir/m.json"));
+    let bad = scratch(
+        "bad-model.json",
+        b"{\"format\": \"csrl-classifier\", \"version\": 7}",
+    );
+    let out = csrl(&[
+        "predict",
+        "--model",
+        &bad,
+        "--data",
+        &heart("cleveland.csv"),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr(&out).contains("version 7 is not supported"),
+        "{}",
+        stderr(&out)
+    );
+    let model = scratch("model2.json", b"");
+    assert!(
+        on_heart(&["--learner", "cs-ibl", "--save", &model])
+            .status
+            .success()
+    );
+    let out = csrl(&[
+        "predict",
+        "--model",
+        &model,
+        "--data",
+        &heart("cleveland.csv"),
+        "--out",
+        "/no/such/dir/o.csv",
+    ]);
+    assert_eq!(out.status.code(), Some(4), "{}", stderr(&out));
+}
+
+#[test]
+fn save_and_dot_may_not_name_one_file() {
+    let same = scratch("same.out", b"");
+    let out = on_heart(&["--learner", "cs-id3", "--save", &same, "--dot", &same]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("--save and --dot name the same file"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn predict_writes_out_only_for_a_table_it_accepts() {
+    let model = scratch("model-out.json", b"");
+    assert!(
+        on_heart(&["--learner", "cs-id3", "--save", &model])
+            .status
+            .success()
+    );
+    let out = scratch("classified.csv", b"kept\n");
+    let bad = scratch("bad-rows.csv", b"age,sex\n1,Male\n");
+    let refused = csrl(&["predict", "--model", &model, "--data", &bad, "--out", &out]);
+    assert_eq!(refused.status.code(), Some(1), "{}", stderr(&refused));
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "kept\n");
+    let data = heart("cleveland.csv");
+    let ok = csrl(&["predict", "--model", &model, "--data", &data, "--out", &out]);
+    assert!(ok.status.success(), "{}", stderr(&ok));
+    assert!(ok.stdout.is_empty());
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(text.starts_with("line,class,cost,measured\n2,"), "{text}");
+    assert_eq!(text.lines().count(), 305);
+}

@@ -307,3 +307,100 @@ fn flags_complete_a_settings_file_before_it_is_checked() {
         stderr(&without)
     );
 }
+
+/// `csrl predict` against broken models and tables: each refused with exit code 1 and a
+/// message that names the file and what is wrong, never a panic.
+#[test]
+fn predict_refuses_broken_models_and_tables() {
+    let dir = tempfile::tempdir().unwrap();
+    let heart = |name: &str| {
+        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("../../data/heart-disease")
+            .join(name)
+            .to_string_lossy()
+            .into_owned()
+    };
+    let file = |name: &str, bytes: &[u8]| {
+        let path = dir.path().join(name);
+        std::fs::write(&path, bytes).unwrap();
+        path.to_string_lossy().into_owned()
+    };
+    let model = dir.path().join("model.json").to_string_lossy().into_owned();
+    let (data, costs) = (heart("cleveland.csv"), heart("costs.csv"));
+    let saved = csrl(&[
+        "classify",
+        "--data",
+        &data,
+        "--costs",
+        &costs,
+        "--target",
+        "num",
+        "--learner",
+        "cs-id3",
+        "--save",
+        &model,
+    ]);
+    assert!(saved.status.success(), "{}", stderr(&saved));
+    let binary: Vec<u8> = (0..=255u8).rev().cycle().take(4096).collect();
+    let bad_model = file("binary.json", &binary);
+    let deep = file("deep.json", "[".repeat(100_000).as_bytes());
+    let empty = file("empty.json", b"");
+    let header = "age,sex,cp,trestbps,chol,fbs,restecg,thalch,exang,oldpeak,slope,ca,thal\n";
+    let nan = file(
+        "nan.csv",
+        format!("{header}NaN,Male,x,,,,,,,,,,\n").as_bytes(),
+    );
+    let only_header = file("header.csv", header.as_bytes());
+    let binary_data = file("binary.csv", &binary);
+    let missing = file("few.csv", b"age,sex\n1,Male\n");
+    for (args, want) in [
+        (
+            vec!["--model", &bad_model, "--data", &data],
+            "line 1, column 1",
+        ),
+        (
+            vec!["--model", &deep, "--data", &data],
+            "recursion limit exceeded",
+        ),
+        (
+            vec!["--model", &empty, "--data", &data],
+            "EOF while parsing",
+        ),
+        (
+            vec!["--model", "/dev/zero", "--data", &data],
+            "not a regular file",
+        ),
+        (
+            vec!["--model", &costs, "--data", &data],
+            "costs.csv: line 1, column 2: not valid JSON",
+        ),
+        (
+            vec!["--model", &model, "--data", &nan],
+            "line 2: `NaN` in column `age`",
+        ),
+        (
+            vec!["--model", &model, "--data", &only_header],
+            "a header but no records",
+        ),
+        (
+            vec!["--model", &model, "--data", &binary_data],
+            "not UTF-8 text",
+        ),
+        (
+            vec!["--model", &model, "--data", &missing],
+            "no column `cp`",
+        ),
+        (
+            vec!["--model", &model, "--data", "/dev/stdin"],
+            "not a regular file",
+        ),
+    ] {
+        let mut all = vec!["predict"];
+        all.extend(args.iter().copied());
+        let out = csrl(&all);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {}", stderr(&out));
+        let text = stderr(&out);
+        assert!(text.contains(want), "{args:?}: {text}");
+        assert!(!text.contains("panicked"), "{args:?}: {text}");
+    }
+}

@@ -1,0 +1,121 @@
+//! `csrl predict`: classify new rows with a model saved by `csrl classify --save`.
+
+use std::fmt::Write as _;
+use std::io::Write;
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+use clap::Args;
+
+/// Arguments of `csrl predict`.
+#[derive(Args)]
+pub struct PredictArgs {
+    /// The model: a file written by `csrl classify --save`.
+    #[arg(long, value_name = "MODEL.json")]
+    model: PathBuf,
+    /// The rows to classify: a CSV file with a header. Columns are matched to the model's
+    /// features by name, in any order; other columns (the target too) are ignored.
+    #[arg(long, value_name = "FILE.csv")]
+    data: PathBuf,
+    /// Write the classified rows to this file instead of stdout.
+    #[arg(long, value_name = "FILE.csv")]
+    out: Option<PathBuf>,
+}
+
+/// Quote a CSV field when it needs it.
+fn field(text: &str) -> String {
+    if text.contains([',', '"', '\n', '\r']) || text.trim() != text {
+        format!("\"{}\"", text.replace('"', "\"\""))
+    } else {
+        text.to_string()
+    }
+}
+
+/// Run `csrl predict`.
+pub fn run(args: &PredictArgs, out: &mut dyn Write) -> Result<()> {
+    let model = cslearn::Model::load(&args.model).context("cannot load the model")?;
+    // Rows are written as they are classified, so memory does not grow with the output.
+    // The table is read and checked whole before the first row comes, so `--out` is
+    // created only then: a refused table leaves an existing file as it was.
+    let mut file: Option<std::io::BufWriter<std::fs::File>> = None;
+    let mut failed: Option<std::io::Error> = None;
+    let mut started = false;
+    let mut write = |text: &str| {
+        if failed.is_some() {
+            return;
+        }
+        let sink: &mut dyn Write = match (&args.out, &mut file) {
+            (None, _) => &mut *out,
+            (Some(_), Some(f)) => f,
+            (Some(path), None) => match std::fs::File::create(path) {
+                Ok(f) => file.insert(std::io::BufWriter::new(f)),
+                Err(e) => {
+                    failed = Some(e);
+                    return;
+                }
+            },
+        };
+        if let Err(e) = sink.write_all(text.as_bytes()) {
+            failed = Some(e);
+        }
+    };
+    let bar = crate::classify::progress_bar(0);
+    let mut total = 0.0;
+    let mut line = String::new();
+    let rows = model
+        .predict_file_each(&args.data, &mut |row, rows| {
+            bar.set_length(rows as u64);
+            bar.inc(1);
+            let class = row.class.and_then(|c| model.class_name(c)).unwrap_or("");
+            let measured: Vec<&str> = row
+                .measured
+                .iter()
+                .map(|&f| model.feature_name(f).unwrap_or("?"))
+                .collect();
+            total += row.cost.get();
+            line.clear();
+            let _ = writeln!(
+                line,
+                "{},{},{},{}",
+                row.line,
+                field(class),
+                row.cost.get(),
+                field(&measured.join(";"))
+            );
+            if !started {
+                started = true;
+                write("line,class,cost,measured\n");
+            }
+            write(&line);
+        })
+        .context("cannot classify the data")?;
+    bar.finish_and_clear();
+    let flushed = match &mut file {
+        Some(f) => f.flush(),
+        None => out.flush(),
+    };
+    match (failed.or(flushed.err()), &args.out) {
+        (None, _) => {}
+        (Some(e), Some(path)) => return Err(crate::cannot_write(path, e)),
+        (Some(e), None) => return Err(e.into()),
+    }
+    let name = match model.learner() {
+        cslearn::LearnerKind::CsId3 => "cs-id3",
+        cslearn::LearnerKind::CsIbl { .. } => "cs-ibl",
+        cslearn::LearnerKind::Id3 => "id3",
+    };
+    crate::note(format_args!(
+        "classified {} row{} of {} with {} ({name}, {} examples): total cost {}, mean {:.4} per row{}",
+        rows,
+        if rows == 1 { "" } else { "s" },
+        args.data.display(),
+        args.model.display(),
+        model.library().len(),
+        total,
+        total / rows.max(1) as f64,
+        args.out
+            .as_ref()
+            .map_or(String::new(), |p| format!("; written to {}", p.display()))
+    ));
+    Ok(())
+}
