@@ -201,7 +201,12 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
     eval_rng.long_jump();
     // Runs the oracle judges measure the quality as something new, at the speed of the
     // judge; runs judged by the quality keep the sweep their figures were made with.
-    let mut meter = QualityMeter::new(judging == Judging::Oracle);
+    let mut meter = QualityMeter::new(
+        scene.truth,
+        settings.world.sensor_noise,
+        eval_rng,
+        judging == Judging::Oracle,
+    );
     let states = world.states().len() as u64;
     let mut moves_evaluated = 0u64;
     let tolerance = settings.tolerance.get();
@@ -243,15 +248,7 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
             // The incremental judge has just looked up every state's row.
             let rows =
                 (judging == Judging::Oracle && agent.perception.keeps_rows()).then(|| judge.rows());
-            let q = meter.evaluate(
-                world,
-                scene.truth,
-                &mut agent.perception,
-                &agent.table,
-                settings.world.sensor_noise,
-                rows,
-                &mut eval_rng,
-            );
+            let q = meter.evaluate(world, &mut agent.perception, &agent.table, rows);
             out.quality.add(q, trial, out.cost);
         }
         let point = TracePoint {
@@ -280,15 +277,7 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
     // A run stopped off the schedule (by its observer, or at `max_rows`) is evaluated
     // where it stopped, so that its quality is that of its final policy.
     if out.quality.at != out.trials {
-        let q = meter.evaluate(
-            world,
-            scene.truth,
-            &mut agent.perception,
-            &agent.table,
-            settings.world.sensor_noise,
-            None,
-            &mut eval_rng,
-        );
+        let q = meter.evaluate(world, &mut agent.perception, &agent.table, None);
         out.quality.add(q, out.trials, out.cost);
     }
     out

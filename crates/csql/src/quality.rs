@@ -119,8 +119,14 @@ pub struct QualityEstimate {
 /// The policy quality of an agent over a run (see the module docs), with what one
 /// evaluation can hand the next: the floor of the world's returns, computed once, and the
 /// last exact evaluation, which is reused, bit for bit, while the policy is the same.
-#[derive(Clone, Debug, Default)]
-pub(crate) struct QualityMeter {
+#[derive(Clone, Debug)]
+pub(crate) struct QualityMeter<'a, R> {
+    /// The oracle of the true model.
+    truth: &'a Oracle,
+    /// The world's sensor noise, which the evaluated policy acts through.
+    noise: SensorNoise,
+    /// The evaluation's own generator, drawn from only under noise.
+    rng: R,
     /// Value a deterministic policy by following its paths ([`mdp::follow_policy`]),
     /// linear in the states, where it has no loop; otherwise by sweeping its Bellman
     /// equation.
@@ -130,31 +136,33 @@ pub(crate) struct QualityMeter {
     last: Option<(Vec<ActionId>, f64)>,
 }
 
-impl QualityMeter {
-    /// A meter that follows deterministic policies' paths (`follow`) or sweeps.
-    pub(crate) fn new(follow: bool) -> QualityMeter {
+impl<'a, R: Rng> QualityMeter<'a, R> {
+    /// A meter of the policy quality against `truth`, through sensors with `noise`,
+    /// drawing from `rng` (the evaluation's own generator); it follows deterministic
+    /// policies' paths (`follow`) or sweeps.
+    pub(crate) fn new(truth: &'a Oracle, noise: SensorNoise, rng: R, follow: bool) -> Self {
         QualityMeter {
+            truth,
+            noise,
+            rng,
             follow,
-            ..QualityMeter::default()
+            floor: None,
+            last: None,
         }
     }
 
-    /// One evaluation of the policy quality. `truth` is the oracle of the true model;
-    /// `rng` is the evaluation's own generator, drawn from only under noise. `rows`, when
-    /// given, are the rows of `world.states()` as the oracle's judge found them at the end
-    /// of this trial (the perception's free view of each state, for a perception without
-    /// a memory): the same rows [`Sees::sees`] would give, without walking to them again.
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn evaluate<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
+    /// One evaluation of the policy quality. `rows`, when given, are the rows of
+    /// `world.states()` as the oracle's judge found them at the end of this trial (the
+    /// perception's free view of each state, for a perception without a memory): the
+    /// same rows [`Sees::sees`] would give, without walking to them again.
+    pub(crate) fn evaluate<W: World + ?Sized, P: Sees>(
         &mut self,
         world: &W,
-        truth: &Oracle,
         perception: &mut P,
         table: &QTable,
-        noise: SensorNoise,
         rows: Option<&[Option<RowId>]>,
-        rng: &mut R,
     ) -> QualityEstimate {
+        let (truth, noise, rng) = (self.truth, self.noise, &mut self.rng);
         let gamma = truth.gamma();
         let floor = *self.floor.get_or_insert_with(|| value_floor(world, gamma));
         if !(noise.is_zero() && perception.memoryless()) {

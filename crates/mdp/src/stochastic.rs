@@ -421,17 +421,8 @@ pub fn follow_policy<M: StochasticMdp + ?Sized>(
     gamma: f64,
     policy: &[ActionId],
 ) -> Result<Option<Vec<f64>>, MdpError> {
-    if !(0.0..1.0).contains(&gamma) {
-        return Err(MdpError::InvalidDiscount { gamma });
-    }
-    let (n, na) = (mdp.num_states(), mdp.num_actions());
-    if policy.len() != n || policy.iter().any(|a| a.index() >= na) {
-        return Err(MdpError::BadPolicy {
-            found: policy.len(),
-            states: n,
-            actions: na,
-        });
-    }
+    check_policy(mdp, gamma, policy)?;
+    let n = mdp.num_states();
     const NEW: u8 = 0;
     const ON_PATH: u8 = 1;
     const DONE: u8 = 2;
@@ -501,17 +492,7 @@ pub fn evaluate_policy<M: StochasticMdp + ?Sized>(
     gamma: f64,
     policy: &[ActionId],
 ) -> Result<Vec<f64>, MdpError> {
-    if !(0.0..1.0).contains(&gamma) {
-        return Err(MdpError::InvalidDiscount { gamma });
-    }
-    let (n, na) = (mdp.num_states(), mdp.num_actions());
-    if policy.len() != n || policy.iter().any(|a| a.index() >= na) {
-        return Err(MdpError::BadPolicy {
-            found: policy.len(),
-            states: n,
-            actions: na,
-        });
-    }
+    check_policy(mdp, gamma, policy)?;
     iterate_bellman(mdp, |s, v, out| {
         mdp.outcomes(s, policy[s.index()], out);
         backup(out, v, gamma)
@@ -595,6 +576,27 @@ fn iterate_bellman<M: StochasticMdp + ?Sized>(
             return Ok(v);
         }
     }
+}
+
+/// A discount in [0, 1) and one valid action per state, or the error that says which is
+/// wrong.
+fn check_policy<M: StochasticMdp + ?Sized>(
+    mdp: &M,
+    gamma: f64,
+    policy: &[ActionId],
+) -> Result<(), MdpError> {
+    if !(0.0..1.0).contains(&gamma) {
+        return Err(MdpError::InvalidDiscount { gamma });
+    }
+    let (n, na) = (mdp.num_states(), mdp.num_actions());
+    if policy.len() != n || policy.iter().any(|a| a.index() >= na) {
+        return Err(MdpError::BadPolicy {
+            found: policy.len(),
+            states: n,
+            actions: na,
+        });
+    }
+    Ok(())
 }
 
 /// The expected reward plus discounted value of a list of outcomes.
