@@ -208,6 +208,9 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
         judging == Judging::Oracle,
     );
     let states = world.states().len() as u64;
+    // Whether the oracle's judge can follow the perception incrementally (U-Tree's
+    // splits move states between rows: it is judged whole at every trial).
+    let incremental = agent.perception.keeps_rows();
     let mut moves_evaluated = 0u64;
     let tolerance = settings.tolerance.get();
     let cap = settings.max_trials.get();
@@ -222,9 +225,7 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
                 agent.take_journal();
                 Verdict::default()
             }
-            Judging::Oracle if agent.perception.keeps_rows() => {
-                judge.judge(world, scene.oracle, agent, tolerance)
-            }
+            Judging::Oracle if incremental => judge.judge(world, scene.oracle, agent, tolerance),
             Judging::Oracle => {
                 agent.take_journal();
                 let now = situations(world, &mut agent.perception);
@@ -246,8 +247,7 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
         if due || trial == cap || verdict.converged {
             moves_evaluated = out.moves;
             // The incremental judge has just looked up every state's row.
-            let rows =
-                (judging == Judging::Oracle && agent.perception.keeps_rows()).then(|| judge.rows());
+            let rows = (judging == Judging::Oracle && incremental).then(|| judge.rows());
             let q = meter.evaluate(world, &mut agent.perception, &agent.table, rows);
             out.quality.add(q, trial, out.cost);
         }

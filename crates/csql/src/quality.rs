@@ -165,8 +165,11 @@ impl<'a, R: Rng> QualityMeter<'a, R> {
         let (truth, noise, rng) = (self.truth, self.noise, &mut self.rng);
         let gamma = truth.gamma();
         let floor = *self.floor.get_or_insert_with(|| value_floor(world, gamma));
-        if !(noise.is_zero() && perception.memoryless()) {
-            return policy_quality(world, truth, floor, perception, table, noise, rng);
+        if !perception.memoryless() {
+            return episode_quality(world, truth, floor, perception, table, noise, rng);
+        }
+        if !noise.is_zero() {
+            return sampled_policy_quality(world, truth, floor, perception, table, noise, rng);
         }
         let states = world.states();
         let act = |row: Option<RowId>| row.map_or(ActionId(0), |r| table.greedy(r));
@@ -212,9 +215,9 @@ impl<'a, R: Rng> QualityMeter<'a, R> {
     }
 }
 
-/// The policy quality of a perception with a memory, or under sensor noise (see the
-/// module docs); `floor` is the world's [`value_floor`].
-fn policy_quality<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
+/// The policy quality of a perception with a memory, from episodes (see the module
+/// docs); `floor` is the world's [`value_floor`].
+fn episode_quality<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
     world: &W,
     truth: &Oracle,
     floor: f64,
@@ -226,9 +229,6 @@ fn policy_quality<W: World + ?Sized, P: Sees, R: Rng + ?Sized>(
     let states = world.states();
     let gamma = truth.gamma();
     let act = |row: Option<RowId>| row.map_or(ActionId(0), |r| table.greedy(r));
-    if perception.memoryless() {
-        return sampled_policy_quality(world, truth, floor, perception, table, noise, rng);
-    }
     // Without slip and noise, an episode is a function of its start: one round is the
     // exact value (up to MC_MAX_MOVES moves, beyond which nothing is left to earn).
     let deterministic = noise.is_zero() && is_deterministic(world);
