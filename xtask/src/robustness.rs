@@ -265,9 +265,9 @@ fn settings(
     };
     let mut s = RunSettings::tan1991(map, strategy, def.seed + run);
     s.max_trials = csql::TrialCap::new(def.max_trials)?;
-    s.extensions.judge_by_quality = true;
-    s.extensions.quality_every = def.quality_every;
-    s.extensions.quality_patience = def.patience;
+    s.judge.judge_by_quality = true;
+    s.judge.quality_every = def.quality_every;
+    s.judge.quality_patience = def.patience;
     match condition {
         Condition::Paper => {}
         Condition::Slip(p) => s.world.slip = Slip::new(p)?,
@@ -279,19 +279,22 @@ fn settings(
     }
     match learner {
         Learner::Plain(_) => {}
-        Learner::LazyFit => match condition {
-            Condition::Paper => {}
-            Condition::Slip(_) => s.extensions.detector = DetectorKind::Statistical,
-            Condition::Noise(_) => {
-                s.extensions.detector = DetectorKind::Statistical;
-                s.extensions.matching = Matching::Nearest;
-                s.extensions.confirm_new = 3;
-                s.extensions.reads = 5;
+        Learner::LazyFit => {
+            let e = &mut s.cs_ql_mut().expect("CS-QL").extensions;
+            match condition {
+                Condition::Paper => {}
+                Condition::Slip(_) => e.detector = DetectorKind::Statistical,
+                Condition::Noise(_) => {
+                    e.detector = DetectorKind::Statistical;
+                    e.matching = Matching::Nearest;
+                    e.confirm_new = 3;
+                    e.reads = 5;
+                }
+                Condition::Radius(_) => e.memory = 2,
             }
-            Condition::Radius(_) => s.extensions.memory = 2,
-        },
-        Learner::UTree => s.learner = LearnerKind::UTree,
-        Learner::FullSensing => s.learner = LearnerKind::FullSensing,
+        }
+        Learner::UTree => s = s.with_learner(LearnerKind::UTree),
+        Learner::FullSensing => s = s.with_learner(LearnerKind::FullSensing),
     }
     s.validate()?;
     Ok(s)
@@ -1006,13 +1009,14 @@ mod tests {
         let list: Vec<_> = (0..jobs.total).map(|id| jobs.get(id)).collect();
         for &(m, c, l, run) in &list {
             let s = settings(&d, &d.maps[m], c, l, run).unwrap();
-            assert!(s.beyond_paper());
+            assert!(s.judged_by_quality(true));
             assert_eq!(s.beta.get() < 1.0, c.stochastic());
-            assert_eq!(s.learner == LearnerKind::UTree, l == Learner::UTree);
-            let extended = s.extensions.memory > 0
-                || s.extensions.matching == Matching::Nearest
-                || s.extensions.detector == DetectorKind::Statistical
-                || s.extensions.reads > 1;
+            assert_eq!(s.learner.kind() == LearnerKind::UTree, l == Learner::UTree);
+            let e = s.extensions();
+            let extended = e.memory > 0
+                || e.matching == Matching::Nearest
+                || e.detector == DetectorKind::Statistical
+                || e.reads > 1;
             assert_eq!(extended, l == Learner::LazyFit, "{c:?} {l:?}");
         }
     }

@@ -35,7 +35,9 @@ pub fn write(res: &Results, out: &Path, to_docs: bool) -> Result<Vec<PathBuf>> {
         jobs.par_iter()
             .map(|&(level, strategy, i)| {
                 let mut s = csql::RunSettings::tan1991(&args.map, strategy, args.seed + i);
-                s.predict_sensing = level;
+                if let Some(q) = s.cs_ql_mut() {
+                    q.predict_sensing = level;
+                }
                 csql::run_on(&res.setup, &s)
             })
             .collect()

@@ -34,7 +34,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 for seed in 1..=seeds {
                     let mut s = RunSettings::tan1991(map, strategy, seed);
                     s.apply_toml(&toml, "arguments")?;
-                    s.predict_sensing = level;
+                    if let Some(q) = s.cs_ql_mut() {
+                        q.predict_sensing = level;
+                    }
                     jobs.push(s);
                 }
             }

@@ -154,16 +154,20 @@ fn main() -> Result<(), csql::Error> {
                 .map(|seed| {
                     let mut s = RunSettings::tan1991(c.world, strategy, seed);
                     s.apply_toml(&c.toml, "worlds example")?;
-                    s.learner = learner;
-                    if learner == LearnerKind::CsQl && !c.dynamics.starts_with("deterministic") {
-                        // A single decrease is noise where moves are random: ask the
-                        // statistical detector for evidence (specification 6.8).
-                        s.extensions.detector = csql::DetectorKind::Statistical;
+                    if learner != LearnerKind::CsQl {
+                        s = s.with_learner(learner);
                     }
-                    if learner == LearnerKind::CsQl && ["taxi", "cliffwalking"].contains(&c.world) {
-                        // Penalties for one state of a description fall on Q, not V
-                        // (specification 1.11).
-                        s.extensions.detector = csql::DetectorKind::Action;
+                    if let Some(q) = s.cs_ql_mut() {
+                        if !c.dynamics.starts_with("deterministic") {
+                            // A single decrease is noise where moves are random: ask the
+                            // statistical detector for evidence (specification 6.8).
+                            q.extensions.detector = csql::DetectorKind::Statistical;
+                        }
+                        if ["taxi", "cliffwalking"].contains(&c.world) {
+                            // Penalties for one state of a description fall on Q, not V
+                            // (specification 1.11).
+                            q.extensions.detector = csql::DetectorKind::Action;
+                        }
                     }
                     s.validate()?;
                     Ok(s)

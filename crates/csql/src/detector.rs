@@ -241,6 +241,21 @@ pub enum DetectorKind {
     Action,
 }
 
+impl DetectorKind {
+    /// The setting's value: `decrease`, `statistical` or `action`.
+    ///
+    /// ```
+    /// assert_eq!(csql::DetectorKind::Statistical.name(), "statistical");
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            DetectorKind::Decrease => "decrease",
+            DetectorKind::Statistical => "statistical",
+            DetectorKind::Action => "action",
+        }
+    }
+}
+
 /// The detector of a run, chosen by a setting.
 ///
 /// ```

@@ -1,7 +1,8 @@
 //! Settings beyond the paper, in two small groups that are off by default: the world's
-//! departures from the paper's assumptions ([`WorldExtras`]) and CS-QL's remedies
-//! ([`Extensions`]). At their defaults neither is written into a run's JSON, so every
-//! default run is byte-identical to the paper's procedure.
+//! departures from the paper's assumptions ([`WorldExtras`], for every learner) and
+//! CS-QL's remedies ([`Extensions`], part of [`crate::CsQlSettings`]). At their defaults
+//! neither is written into a run's JSON, so every default run is byte-identical to the
+//! paper's procedure.
 
 use mdp::{SensorNoise, Slip};
 use serde::{Deserialize, Serialize};
@@ -109,77 +110,32 @@ pub enum Matching {
     Nearest,
 }
 
-/// CS-QL's remedies beyond the paper and the measures of a stochastic run (specification §6). All
-/// off, or at the specification's values, by default.
+/// CS-QL's remedies beyond the paper (specification §6), the CS-QL-only keys of the TOML
+/// table `[extensions]`. All off by default.
 ///
 /// ```
 /// let mut s = csql::RunSettings::tan1991("tan8x8", csql::StrategyKind::Lazy, 1);
 /// s.apply_toml("[extensions]\ndetector = \"statistical\"\nmatching = \"nearest\"", "x.toml").unwrap();
-/// assert_eq!(s.extensions.detector, csql::DetectorKind::Statistical);
-/// assert!(s.apply_toml("[extensions]\nquality_every = 0", "x.toml").is_err());
+/// assert_eq!(s.cs_ql().unwrap().extensions.detector, csql::DetectorKind::Statistical);
+/// assert!(s.apply_toml("[extensions]\nreads = 0", "x.toml").is_err());
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Extensions {
     /// How an inconsistent description is recognised.
-    #[serde(skip_serializing_if = "is_default_detector")]
     pub detector: DetectorKind,
     /// The statistical detector's parameters.
-    #[serde(skip_serializing_if = "is_default_rate")]
     pub rate: RateParams,
     /// How CLASSIFY matches descriptions.
-    #[serde(skip_serializing_if = "is_exact")]
     pub matching: Matching,
     /// Sightings of an unmatched measurement before it becomes a new description (1: at
     /// once, the paper's CLASSIFY; see [`crate::Classify::with_confirmation`]). 1 to 16.
-    #[serde(skip_serializing_if = "is_one")]
     pub confirm_new: u32,
     /// Reads of each measured feature, the majority taken, each charged (1: the paper's
     /// single read; see [`crate::Classify::with_reads`]). 1 to 9.
-    #[serde(skip_serializing_if = "is_one")]
     pub reads: u32,
     /// Steps of history a description may use once its sensable features are exhausted
     /// (0: none, the paper's CLASSIFY; see [`crate::Remembering`]). At most 8.
-    #[serde(skip_serializing_if = "is_zero")]
     pub memory: u32,
-    /// Judge the run by the policy quality even in the paper's world (as every run beyond
-    /// it is judged), so that runs in and beyond it are measured alike. Off by default:
-    /// the paper's runs are judged by the oracle's convergence.
-    #[serde(skip_serializing_if = "is_false")]
-    pub judge_by_quality: bool,
-    /// In a world beyond the paper's: trials between two evaluations of the policy
-    /// quality.
-    #[serde(skip_serializing_if = "is_ten")]
-    pub quality_every: u32,
-    /// In a world beyond the paper's: the run ends once the quality has stayed at or above
-    /// 0.95 for this many consecutive evaluations.
-    #[serde(skip_serializing_if = "is_twenty")]
-    pub quality_patience: u32,
-}
-
-fn is_default_detector(d: &DetectorKind) -> bool {
-    *d == DetectorKind::default()
-}
-fn is_default_rate(r: &RateParams) -> bool {
-    *r == RateParams::default()
-}
-fn is_exact(m: &Matching) -> bool {
-    *m == Matching::Exact
-}
-fn is_one(x: &u32) -> bool {
-    *x == 1
-}
-fn is_false(x: &bool) -> bool {
-    !*x
-}
-fn is_zero(x: &u32) -> bool {
-    *x == 0
-}
-fn is_ten(x: &u32) -> bool {
-    *x == 10
-}
-fn is_twenty(x: &u32) -> bool {
-    *x == 20
 }
 
 impl Default for Extensions {
@@ -191,9 +147,6 @@ impl Default for Extensions {
             confirm_new: 1,
             reads: 1,
             memory: 0,
-            judge_by_quality: false,
-            quality_every: 10,
-            quality_patience: 20,
         }
     }
 }
@@ -227,12 +180,6 @@ impl Extensions {
         }
         if self.memory > 8 {
             return bad("extensions.memory", self.memory.to_string(), "0 to 8");
-        }
-        if self.quality_every == 0 {
-            return bad("extensions.quality_every", "0".into(), "at least 1");
-        }
-        if self.quality_patience == 0 {
-            return bad("extensions.quality_patience", "0".into(), "at least 1");
         }
         if !(1..=64).contains(&self.rate.window) {
             return bad(

@@ -99,13 +99,13 @@ impl Judging {
     /// let lake = mdp::builtin_world("frozenlake4x4", &Default::default()).unwrap();
     /// let mut s = RunSettings::tan1991("frozenlake4x4", StrategyKind::Lazy, 1);
     /// assert_eq!(Judging::of(&s, &lake), Judging::Oracle);
-    /// s.learner = LearnerKind::UTree; // the baselines are judged as CS-QL is
+    /// s = s.with_learner(LearnerKind::UTree); // the baselines are judged as CS-QL is
     /// assert_eq!(Judging::of(&s, &lake), Judging::Oracle);
-    /// s.extensions.judge_by_quality = true;
+    /// s.judge.judge_by_quality = true;
     /// assert_eq!(Judging::of(&s, &lake), Judging::Quality);
     /// ```
     pub fn of<W: World + ?Sized>(settings: &RunSettings, world: &W) -> Judging {
-        if settings.beyond_paper() || !crate::quality::is_deterministic(world) {
+        if settings.judged_by_quality(crate::quality::is_deterministic(world)) {
             Judging::Quality
         } else {
             Judging::Oracle
@@ -242,7 +242,7 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
         // Where the oracle judges, the quality is only measured, and an evaluation also
         // waits for as many moves as the world has states since the last, so that
         // measuring never costs much more than learning.
-        let due = trial % settings.extensions.quality_every == 0
+        let due = trial % settings.judge.quality_every == 0
             && (judging == Judging::Quality || out.moves >= moves_evaluated + states);
         if due || trial == cap || verdict.converged {
             moves_evaluated = out.moves;
@@ -267,8 +267,8 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
             out.trace.push(point);
         }
         let flow = observer.trial(&point);
-        let settled = judging == Judging::Quality
-            && out.quality.streak >= settings.extensions.quality_patience;
+        let settled =
+            judging == Judging::Quality && out.quality.streak >= settings.judge.quality_patience;
         out.capped = agent.perception.rows() > settings.max_rows;
         if verdict.converged || settled || flow == Flow::Stop || out.capped {
             break;

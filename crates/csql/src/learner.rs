@@ -1,4 +1,4 @@
-//! Which learner a run uses (the run setting `learner`): CS-QL, the paper's method and the
+//! Which learner a run uses (the run setting `learner`), with its own settings: CS-QL, the paper's method and the
 //! default, or one of two baselines that share its sensing model and its charges.
 //!
 //! | `learner` | perception | type |
@@ -16,6 +16,134 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::Error;
+use crate::extensions::Extensions;
+use crate::predict::level::{PredictSensing, Prediction};
+use crate::strategy::StrategyKind;
+
+/// The learner of a run with the settings that are its own: CS-QL's strategy, prediction
+/// and extensions, or U-Tree's parameters. A setting of one learner cannot be given to
+/// another: the settings file's keys of CS-QL with a baseline, or `[u_tree]` with CS-QL,
+/// are refused when the file is read ([`crate::SettingsDraft::build`]).
+///
+/// ```
+/// use csql::{Learner, LearnerKind, StrategyKind};
+/// let l = Learner::cs_ql(StrategyKind::Eager);
+/// assert_eq!(l.kind(), LearnerKind::CsQl);
+/// assert_eq!(l.strategy(), Some(StrategyKind::Eager));
+/// assert_eq!(Learner::from(LearnerKind::UTree).strategy(), None);
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub enum Learner {
+    /// CS-QL, the paper's method.
+    CsQl(CsQlSettings),
+    /// A U-Tree-like statistical splitter ([`crate::UTree`]).
+    UTree(UTreeParams),
+    /// Q-learning on the whole sensable view ([`crate::FullView`]).
+    FullSensing,
+}
+
+impl Learner {
+    /// CS-QL with `strategy` and otherwise the paper's settings ([`CsQlSettings::new`]).
+    ///
+    /// ```
+    /// let l = csql::Learner::cs_ql(csql::StrategyKind::Random);
+    /// assert_eq!(l.strategy(), Some(csql::StrategyKind::Random));
+    /// ```
+    pub fn cs_ql(strategy: StrategyKind) -> Learner {
+        Learner::CsQl(CsQlSettings::new(strategy))
+    }
+
+    /// Which learner this is.
+    ///
+    /// ```
+    /// assert_eq!(csql::Learner::FullSensing.kind(), csql::LearnerKind::FullSensing);
+    /// ```
+    pub fn kind(&self) -> LearnerKind {
+        match self {
+            Learner::CsQl(_) => LearnerKind::CsQl,
+            Learner::UTree(_) => LearnerKind::UTree,
+            Learner::FullSensing => LearnerKind::FullSensing,
+        }
+    }
+
+    /// CS-QL's strategy; `None` for a baseline, which refines by none.
+    ///
+    /// ```
+    /// assert_eq!(csql::Learner::FullSensing.strategy(), None);
+    /// ```
+    pub fn strategy(&self) -> Option<StrategyKind> {
+        match self {
+            Learner::CsQl(q) => Some(q.strategy),
+            _ => None,
+        }
+    }
+}
+
+/// Each learner with its defaults; CS-QL with the resetting strategy, as `csrl run` has
+/// it when no strategy is given.
+///
+/// ```
+/// use csql::{Learner, LearnerKind, StrategyKind};
+/// assert_eq!(Learner::from(LearnerKind::CsQl), Learner::cs_ql(StrategyKind::Resetting));
+/// assert_eq!(Learner::from(LearnerKind::UTree), Learner::UTree(csql::UTreeParams::default()));
+/// ```
+impl From<LearnerKind> for Learner {
+    fn from(kind: LearnerKind) -> Learner {
+        match kind {
+            LearnerKind::CsQl => Learner::cs_ql(StrategyKind::Resetting),
+            LearnerKind::UTree => Learner::UTree(UTreeParams::default()),
+            LearnerKind::FullSensing => Learner::FullSensing,
+        }
+    }
+}
+
+/// CS-QL's own settings: how it refines (the strategy), whether it predicts instead of
+/// sensing, and its remedies beyond the paper.
+///
+/// ```
+/// let q = csql::CsQlSettings::new(csql::StrategyKind::Lazy);
+/// assert_eq!(q.random_moves, 20);
+/// assert!(q.predict_sensing.is_off() && q.extensions == csql::Extensions::default());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CsQlSettings {
+    /// How decreases are handled.
+    pub strategy: StrategyKind,
+    /// Random moves after each refinement, for the random strategy (the paper: 20; another
+    /// value is refused with another strategy).
+    pub random_moves: u32,
+    /// Whether, and with what knowledge, the agent predicts instead of sensing (`off`,
+    /// the paper's procedure, by default; see [`crate::Predicting`]).
+    pub predict_sensing: PredictSensing,
+    /// The confidence rule, re-check rates and navigation trials of prediction (the
+    /// TOML table `[prediction]`; only with `predict_sensing` other than `off`).
+    pub prediction: Prediction,
+    /// CS-QL's remedies beyond the paper (the CS-QL keys of the TOML table
+    /// `[extensions]`).
+    pub extensions: Extensions,
+}
+
+/// The paper's random moves after a refinement, and the default of `random_moves`.
+pub(crate) const PAPER_RANDOM_MOVES: u32 = 20;
+
+impl CsQlSettings {
+    /// The paper's CS-QL with `strategy`: 20 random moves after a refinement (random
+    /// strategy), no prediction, no extension.
+    ///
+    /// ```
+    /// let q = csql::CsQlSettings::new(csql::StrategyKind::Eager);
+    /// assert_eq!(q.strategy, csql::StrategyKind::Eager);
+    /// ```
+    pub fn new(strategy: StrategyKind) -> CsQlSettings {
+        CsQlSettings {
+            strategy,
+            random_moves: PAPER_RANDOM_MOVES,
+            predict_sensing: PredictSensing::Off,
+            prediction: Prediction::default(),
+            extensions: Extensions::default(),
+        }
+    }
+}
 
 /// The learner of a run.
 ///

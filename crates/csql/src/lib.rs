@@ -147,6 +147,7 @@ mod audit;
 )]
 mod classify;
 mod detector;
+mod draft;
 mod error;
 mod extensions;
 mod figure;
@@ -210,12 +211,13 @@ pub use classify::{Classification, Classify};
 pub use detector::{
     ActionDrop, AnyDrop, Detector, DetectorKind, RateParams, RateTest, RunDetector,
 };
+pub use draft::{DEFAULT_MAP, ExtensionsTable, SettingsDraft};
 pub use error::{Error, SettingsProblem};
 pub use extensions::{Extensions, Matching, WorldExtras};
 pub use figure::{descriptions_svg, descriptions_table, policy_svg};
 pub use judge::{Judge, Verdict};
 pub use learn::{Judging, Scene};
-pub use learner::{LearnerKind, UTreeParams};
+pub use learner::{CsQlSettings, Learner, LearnerKind, UTreeParams};
 pub use main_loop::{Agent, LoopParams, TrialRecord};
 pub use memory::Remembering;
 pub use navigate::{Navigation, navigate};
@@ -243,7 +245,9 @@ pub use run::{
     run, run_in, run_observed, run_on, run_on_with, run_settings, run_with_representation,
 };
 pub use sensor::Sensor;
-pub use settings::{MAX_ROWS, MAX_SETTINGS_BYTES, MapSource, NonNegative, RunSettings, TrialCap};
+pub use settings::{
+    JudgeSettings, MAX_ROWS, MAX_SETTINGS_BYTES, MapSource, NonNegative, RunSettings, TrialCap,
+};
 pub use setup::Setup;
 pub use strategy::{
     Eager, Lazy, Never, RandomMoves, Reaction, Resetting, Strategy, StrategyKind, UnknownStrategy,

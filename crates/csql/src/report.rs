@@ -126,8 +126,9 @@ pub struct DescriptionReport {
 pub struct RunReport {
     /// The map's name.
     pub map: String,
-    /// The strategy (its name in JSON).
-    pub strategy: StrategyKind,
+    /// CS-QL's strategy (its name in JSON; absent for a baseline, which has none).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub strategy: Option<StrategyKind>,
     /// The seed.
     pub seed: u64,
     /// Whether the oracle judged the run converged before the trial cap (never in a run
@@ -187,14 +188,14 @@ impl RunReport {
     /// ```
     /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Eager, 1);
     /// assert_eq!(csql::run(&s).unwrap().learned_by(), "eager strategy");
-    /// s.learner = csql::LearnerKind::UTree;
+    /// s = s.with_learner(csql::LearnerKind::UTree);
     /// assert_eq!(csql::run(&s).unwrap().learned_by(), "U-Tree");
     /// ```
     pub fn learned_by(&self) -> String {
-        match self.settings.learner {
-            crate::LearnerKind::CsQl => format!("{} strategy", self.strategy),
-            crate::LearnerKind::UTree => "U-Tree".to_string(),
-            crate::LearnerKind::FullSensing => "full sensing".to_string(),
+        match &self.settings.learner {
+            crate::Learner::CsQl(q) => format!("{} strategy", q.strategy),
+            crate::Learner::UTree(_) => "U-Tree".to_string(),
+            crate::Learner::FullSensing => "full sensing".to_string(),
         }
     }
 }
@@ -535,7 +536,7 @@ pub(crate) fn report<W: World + ?Sized, P: Perception + Describes + crate::view:
     });
     RunReport {
         map: scene.name.to_string(),
-        strategy: settings.strategy,
+        strategy: settings.learner.strategy(),
         seed: settings.seed,
         converged,
         trials: learned.trials,

@@ -110,11 +110,11 @@ impl Resolved {
 ///
 /// ```
 /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
-/// s.extensions.quality_patience = 3;
+/// s.judge.quality_patience = 3;
 /// let err = csql::Resolved::new(&s).unwrap_err().to_string();
 /// assert!(err.contains("quality_patience"), "{err}");
-/// s.extensions.quality_patience = 20;
-/// s.extensions.quality_every = 11; // the quality is measured in every run
+/// s.judge.quality_patience = 20;
+/// s.judge.quality_every = 11; // the quality is measured in every run
 /// assert!(csql::Resolved::new(&s).is_ok());
 /// ```
 pub(crate) fn check_with_world(
@@ -122,10 +122,11 @@ pub(crate) fn check_with_world(
     deterministic: bool,
     grid: bool,
 ) -> Result<(), Error> {
-    let e = &settings.extensions;
-    let by_quality = settings.beyond_paper() || !deterministic;
-    let defaults = crate::extensions::Extensions::default();
-    if !by_quality && e.quality_patience != defaults.quality_patience {
+    let e = settings.extensions();
+    let defaults = crate::settings::JudgeSettings::default();
+    if !settings.judged_by_quality(deterministic)
+        && settings.judge.quality_patience != defaults.quality_patience
+    {
         return Err(Error::Conflict {
             first: "extensions.quality_patience".to_string(),
             second: "a run the oracle judges (a deterministic world, the paper's setting)"
@@ -159,9 +160,8 @@ pub fn is_world_name(name: &str) -> bool {
 /// the estimate: full sensing keeps every state's whole view ([`crate::FullView`]).
 ///
 /// ```
-/// let s = csql::RunSettings::tan1991("random:256x256:0.2:1", csql::StrategyKind::Lazy, 1);
-/// let mut s = s;
-/// s.learner = csql::LearnerKind::FullSensing;
+/// let s = csql::RunSettings::tan1991("random:256x256:0.2:1", csql::StrategyKind::Lazy, 1)
+///     .with_learner(csql::LearnerKind::FullSensing);
 /// let err = csql::Resolved::new(&s).unwrap_err().to_string();
 /// assert!(err.contains("over the limit"), "{err}");
 /// ```
@@ -169,7 +169,7 @@ pub(crate) fn check_size<W: mdp::World + ?Sized>(
     settings: &RunSettings,
     world: &W,
 ) -> Result<(), Error> {
-    if settings.learner == crate::LearnerKind::FullSensing {
+    if settings.learner == crate::Learner::FullSensing {
         let needed = crate::FullView::readings_needed(world);
         if needed > crate::FULL_VIEW_LIMIT {
             return Err(Error::TooLarge {

@@ -10,7 +10,7 @@ use crate::classify::Classify;
 use crate::detector::RunDetector;
 use crate::error::Error;
 use crate::learn::{Scene, learn};
-use crate::learner::LearnerKind;
+use crate::learner::Learner;
 use crate::main_loop::{Agent, LoopParams};
 use crate::memory::Remembering;
 use crate::navigate::navigate;
@@ -97,7 +97,7 @@ pub fn run_in<W: World + ?Sized>(
 ) -> Result<RunReport, Error> {
     settings.validate()?;
     if scene.world.grid().is_none() {
-        if settings.predict_sensing == PredictSensing::Motion {
+        if settings.predict_sensing() == PredictSensing::Motion {
             return Err(Error::GridOnly {
                 what: "predict_sensing = \"motion\" (dead reckoning on a grid)",
             });
@@ -190,55 +190,55 @@ fn run_classify<W: World + ?Sized>(
     // sensor noise).
     let mut sensor_rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
     sensor_rng.jump();
+    let extensions = settings.extensions();
     let classify = classify
         .with_noise(settings.world.sensor_noise, sensor_rng)
-        .with_matching(settings.extensions.matching)
-        .with_confirmation(settings.extensions.confirm_new)
-        .with_reads(settings.extensions.reads);
-    let learner = settings.learner;
-    let predicting = match (learner, settings.predict_sensing) {
-        (LearnerKind::FullSensing, _) => {
+        .with_matching(extensions.matching)
+        .with_confirmation(extensions.confirm_new)
+        .with_reads(extensions.reads);
+    let (q, predicting) = match &settings.learner {
+        Learner::FullSensing => {
             let perception = FullView::new(scene.world);
             let (report, _) = learn_and_report(scene, settings, perception, Never, observer);
             return (report, classify.into_representation());
         }
-        (LearnerKind::UTree, _) => {
+        Learner::UTree(params) => {
             let mut utree_rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
             utree_rng.jump();
-            let perception = UTree::new(scene.world, settings.u_tree, settings.gamma.get())
+            let perception = UTree::new(scene.world, *params, settings.gamma.get())
                 .with_noise(settings.world.sensor_noise, utree_rng);
             let (report, _) = learn_and_report(scene, settings, perception, Never, observer);
             return (report, classify.into_representation());
         }
-        (LearnerKind::CsQl, PredictSensing::Off) if settings.extensions.memory > 0 => {
-            let perception = Remembering::new(classify, settings.extensions.memory);
-            let strategy = settings.strategy.build(settings.random_moves);
-            let (report, perception) =
-                learn_and_report(scene, settings, perception, strategy, observer);
-            return (report, perception.into_classify().into_representation());
-        }
-        (LearnerKind::CsQl, PredictSensing::Off) => {
-            let strategy = settings.strategy.build(settings.random_moves);
-            let (report, perception) =
-                learn_and_report(scene, settings, classify, strategy, observer);
-            return (report, perception.into_representation());
-        }
-        (LearnerKind::CsQl, PredictSensing::Learned) => {
-            Predicting::learned(classify, &settings.prediction, scene.world.num_actions())
-        }
-        (LearnerKind::CsQl, PredictSensing::Motion) => {
-            match scene.world.grid().zip(scene.world.local_space()) {
-                Some((grid, space)) => {
-                    Predicting::motion(classify, &settings.prediction, grid, space)
-                }
-                // Refused by run_in before anything runs.
-                None => {
-                    Predicting::learned(classify, &settings.prediction, scene.world.num_actions())
-                }
+        Learner::CsQl(q) => match q.predict_sensing {
+            PredictSensing::Off if extensions.memory > 0 => {
+                let perception = Remembering::new(classify, extensions.memory);
+                let strategy = q.strategy.build(q.random_moves);
+                let (report, perception) =
+                    learn_and_report(scene, settings, perception, strategy, observer);
+                return (report, perception.into_classify().into_representation());
             }
-        }
+            PredictSensing::Off => {
+                let strategy = q.strategy.build(q.random_moves);
+                let (report, perception) =
+                    learn_and_report(scene, settings, classify, strategy, observer);
+                return (report, perception.into_representation());
+            }
+            PredictSensing::Learned => (
+                q,
+                Predicting::learned(classify, &q.prediction, scene.world.num_actions()),
+            ),
+            PredictSensing::Motion => (
+                q,
+                match scene.world.grid().zip(scene.world.local_space()) {
+                    Some((grid, space)) => Predicting::motion(classify, &q.prediction, grid, space),
+                    // Refused by run_in before anything runs.
+                    None => Predicting::learned(classify, &q.prediction, scene.world.num_actions()),
+                },
+            ),
+        },
     };
-    let strategy = settings.strategy.build(settings.random_moves);
+    let strategy = q.strategy.build(q.random_moves);
     // The oracle counts wrong predictions from outside the learner.
     let mut agent = new_agent(scene.world, settings, Audited::new(predicting), strategy);
     let learned = learn(scene, settings, &mut agent, observer);
@@ -253,14 +253,14 @@ fn run_classify<W: World + ?Sized>(
     agent
         .perception
         .inner_mut()
-        .navigate_with(settings.prediction.verify);
+        .navigate_with(q.prediction.verify);
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed ^ NAVIGATION_STREAM);
     let nav = navigate(
         scene.world,
         scene.oracle,
         &mut agent.perception,
         &mut agent.table,
-        settings.prediction.navigation_trials,
+        q.prediction.navigation_trials,
         settings.max_moves.get(),
         &mut rng,
     );
@@ -315,7 +315,7 @@ fn new_agent<W: World + ?Sized, P, S>(
         LoopParams::from(settings),
     )
     .with_detector(RunDetector::new(
-        settings.extensions.detector,
-        settings.extensions.rate,
+        settings.extensions().detector,
+        settings.extensions().rate,
     ))
 }

@@ -1,21 +1,20 @@
-//! Run settings: one struct of validated values, the paper's preset, and a TOML file form.
+//! Run settings: one struct of validated values, with the learner's own settings in the
+//! learner ([`crate::Learner`]), and the paper's preset. The settings file's form, and
+//! the one conversion from it, are [`crate::SettingsDraft`].
 //!
 //! Every field holds only valid values: numbers are newtypes whose constructors and
 //! deserialisation share one check (as qlearn's parameters are), so a settings file with
-//! `max_trials = 0` is refused when it is read, and a [`RunSettings`] value can always be
-//! run. The map is either named (a built-in, a file or a map spec, resolved when the run
-//! is set up) or given as a [`mdp::Map`] value.
+//! `max_trials = 0` is refused when it is read. The map is either named (a built-in, a
+//! file or a map spec, resolved when the run is set up) or given as a [`mdp::Map`] value.
 
 use std::fmt;
-use std::io::Read;
-use std::path::Path;
 
 use qlearn::{Discount, LearningRate, MoveCap, Temperature};
 use serde::{Deserialize, Serialize};
 
-use crate::error::{Error, SettingsProblem};
+use crate::error::Error;
 use crate::extensions::{Extensions, WorldExtras};
-use crate::learner::{LearnerKind, UTreeParams};
+use crate::learner::{CsQlSettings, Learner, LearnerKind, PAPER_RANDOM_MOVES};
 use crate::predict::level::{PredictSensing, Prediction};
 use crate::strategy::StrategyKind;
 
@@ -238,29 +237,35 @@ impl From<TrialCap> for u32 {
     }
 }
 
-/// Everything a CS-QL run depends on. A run is a pure function of these settings.
+/// Everything a run depends on. A run is a pure function of these settings.
 ///
-/// Build one with [`RunSettings::tan1991`] (the paper's values) and change fields, or
-/// read overrides from a TOML file with [`RunSettings::apply_toml`]. Every field holds a
-/// valid value, so any `RunSettings` can be run.
+/// Build one with [`RunSettings::tan1991`] (the paper's values) and change fields, read
+/// overrides from a TOML file with [`RunSettings::apply_toml`], or gather a file and
+/// flags in a [`crate::SettingsDraft`] and build it. The learner holds the settings that
+/// are only its own ([`Learner`]); how the run is judged is [`JudgeSettings`]. Every
+/// field holds a valid value by its type, and [`RunSettings::validate`] checks what spans
+/// several of them; a run checks them before it starts.
+///
+/// Serialised (a report's `settings`), it is the settings file's flat layout
+/// ([`crate::SettingsDraft`]), with the defaults beyond the paper left out.
 ///
 /// ```
 /// use csql::{RunSettings, StrategyKind};
 /// let s = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 7);
 /// assert_eq!((s.beta.get(), s.gamma.get(), s.temperature.get()), (1.0, 0.9, 0.4));
-/// assert_eq!((s.max_moves.get(), s.random_moves), (100, 20));
+/// assert_eq!(s.max_moves.get(), 100);
+/// assert_eq!(s.cs_ql().unwrap().random_moves, 20);
 /// // A map of one's own is a value like any other.
 /// let mine = mdp::Map::from_layout("mine", "..G\n.#.\n...").unwrap();
 /// let report = csql::run(&RunSettings::tan1991(mine, StrategyKind::Lazy, 1)).unwrap();
 /// assert!(report.converged && report.map == "mine");
 /// ```
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct RunSettings {
     /// The map: a name (built-in, file or spec) or a map value.
     pub map: MapSource,
-    /// How decreases are handled.
-    pub strategy: StrategyKind,
+    /// The learner, with its own settings: CS-QL (the paper's method) or a baseline.
+    pub learner: Learner,
     /// Learning rate beta of equation 2.
     pub beta: LearningRate,
     /// Discount gamma of equation 2.
@@ -269,8 +274,6 @@ pub struct RunSettings {
     pub temperature: Temperature,
     /// Moves per trial before it is cut (the paper: 100).
     pub max_moves: MoveCap,
-    /// Random moves after each refinement, for the random strategy (the paper: 20).
-    pub random_moves: u32,
     /// Largest `|V(desc(s)) - V*(s)|` that counts as converged.
     pub tolerance: NonNegative,
     /// A decrease is a drop of V by more than this (0: any drop). The paper's remark on
@@ -280,35 +283,50 @@ pub struct RunSettings {
     pub max_trials: TrialCap,
     /// The seed of the run's one random generator.
     pub seed: u64,
-    /// Whether, and with what knowledge, the agent predicts instead of sensing (`off`,
-    /// the paper's procedure, by default; see [`crate::Predicting`]). Absent from the
-    /// JSON when `off`.
-    #[serde(default, skip_serializing_if = "PredictSensing::is_off")]
-    pub predict_sensing: PredictSensing,
-    /// The confidence rule, re-check rates and navigation trials of prediction (the
-    /// TOML table `[prediction]`). Absent from the JSON when every value is the default.
-    #[serde(default, skip_serializing_if = "Prediction::is_default")]
-    pub prediction: Prediction,
-    /// The world's departures from the paper (TOML table `[world]`; omitted when off).
-    #[serde(default, skip_serializing_if = "WorldExtras::is_default")]
+    /// The world's departures from the paper (TOML table `[world]`).
     pub world: WorldExtras,
-    /// CS-QL's remedies beyond the paper (TOML table `[extensions]`; omitted when off).
-    #[serde(default, skip_serializing_if = "Extensions::is_default")]
-    pub extensions: Extensions,
-    /// The learner: CS-QL (the default, omitted from the JSON) or a baseline
-    /// ([`LearnerKind`]).
-    #[serde(default, skip_serializing_if = "LearnerKind::is_cs_ql")]
-    pub learner: LearnerKind,
-    /// The U-Tree learner's parameters (TOML table `[u_tree]`; omitted when default).
-    #[serde(default, skip_serializing_if = "UTreeParams::is_default")]
-    pub u_tree: UTreeParams,
+    /// How the run is judged (the judging keys of the TOML table `[extensions]`).
+    pub judge: JudgeSettings,
     /// The most rows the representation may reach before the run ends, saying so (at
-    /// least 1, at most and by default [`MAX_ROWS`]; omitted when default).
-    #[serde(
-        default = "default_max_rows",
-        skip_serializing_if = "is_default_max_rows"
-    )]
+    /// least 1, at most and by default [`MAX_ROWS`]).
     pub max_rows: usize,
+}
+
+/// How a run is judged: one explicit choice, `judge_by_quality`, and the schedule of the
+/// policy quality (the keys `judge_by_quality`, `quality_every` and `quality_patience` of
+/// the TOML table `[extensions]`; specification §6.3).
+///
+/// By default a run in a deterministic world in the paper's setting is judged by the
+/// oracle's convergence, and any other by the quality; `judge_by_quality = true` judges
+/// every run by the quality ([`crate::Judging`]). The quality is measured in every run,
+/// every `quality_every` trials.
+///
+/// ```
+/// let j = csql::JudgeSettings::default();
+/// assert_eq!((j.judge_by_quality, j.quality_every, j.quality_patience), (false, 10, 20));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct JudgeSettings {
+    /// Judge the run by the policy quality even in the paper's world (as every run beyond
+    /// it is judged), so that runs in and beyond it are measured alike. Off by default:
+    /// the paper's runs are judged by the oracle's convergence.
+    pub judge_by_quality: bool,
+    /// Trials between two evaluations of the policy quality (at least 1).
+    pub quality_every: u32,
+    /// Where the quality judges: the run ends once the quality has stayed at or above
+    /// 0.95 for this many consecutive evaluations (at least 1; refused where the oracle
+    /// judges).
+    pub quality_patience: u32,
+}
+
+impl Default for JudgeSettings {
+    fn default() -> JudgeSettings {
+        JudgeSettings {
+            judge_by_quality: false,
+            quality_every: 10,
+            quality_patience: 20,
+        }
+    }
 }
 
 /// The most bytes a settings file may have (64 KiB; the longest useful one is under 1 KiB).
@@ -317,120 +335,6 @@ pub struct RunSettings {
 /// assert_eq!(csql::MAX_SETTINGS_BYTES, 65536);
 /// ```
 pub const MAX_SETTINGS_BYTES: u64 = 64 << 10;
-
-/// The tables of a settings file and the keys each takes: where a key given in the
-/// wrong place belongs (a test checks every key here is read in its table).
-const TABLES: &[(&str, &[&str])] = &[
-    (
-        "world",
-        &[
-            "slip",
-            "sensor_noise",
-            "sensing_radius",
-            "slide",
-            "sensing",
-            "factor_costs",
-        ],
-    ),
-    (
-        "extensions",
-        &[
-            "detector",
-            "rate",
-            "matching",
-            "confirm_new",
-            "reads",
-            "memory",
-            "judge_by_quality",
-            "quality_every",
-            "quality_patience",
-        ],
-    ),
-    (
-        "prediction",
-        &[
-            "confirmations",
-            "recheck",
-            "max_skips",
-            "verify",
-            "navigation_trials",
-            "memory_moves",
-        ],
-    ),
-    (
-        "u_tree",
-        &[
-            "fringe",
-            "alpha",
-            "window",
-            "test_every",
-            "min_group",
-            "patience",
-        ],
-    ),
-];
-
-/// The keys of the top level that are not tables.
-const TOP: &[&str] = &[
-    "map",
-    "strategy",
-    "beta",
-    "gamma",
-    "temperature",
-    "max_moves",
-    "random_moves",
-    "tolerance",
-    "decrease_threshold",
-    "max_trials",
-    "seed",
-    "predict_sensing",
-    "learner",
-    "max_rows",
-];
-
-/// Tables are tables (`world = [0.3, 0.1]` would set fields by position), and a key in
-/// the wrong place says where it belongs.
-fn check_layout(layout: &toml::Table) -> Result<(), SettingsProblem> {
-    for (key, value) in layout {
-        if let Some((table, _)) = TABLES.iter().find(|(t, _)| t == key) {
-            let Some(inner) = value.as_table() else {
-                return Err(SettingsProblem::Layout(format!(
-                    "`{key}` must be a table: write [{key}] and its settings by name, one per line"
-                )));
-            };
-            for inner_key in inner.keys() {
-                if TOP.contains(&inner_key.as_str()) {
-                    return Err(SettingsProblem::Layout(format!(
-                        "`{inner_key}` is a setting of the top level, not of [{table}]: write it before any table"
-                    )));
-                }
-                if let Some((home, _)) = TABLES
-                    .iter()
-                    .find(|(t, keys)| t != table && keys.contains(&inner_key.as_str()))
-                {
-                    return Err(SettingsProblem::Layout(format!(
-                        "`{inner_key}` is a setting of the [{home}] table, not of [{table}]"
-                    )));
-                }
-            }
-            if *table == "extensions"
-                && let Some(rate) = inner.get("rate")
-                && !rate.is_table()
-            {
-                return Err(SettingsProblem::Layout(
-                    "`rate` in [extensions] must be a table: write [extensions.rate] and its settings by name".to_string(),
-                ));
-            }
-        } else if !TOP.contains(&key.as_str())
-            && let Some((home, _)) = TABLES.iter().find(|(_, keys)| keys.contains(&key.as_str()))
-        {
-            return Err(SettingsProblem::Layout(format!(
-                "`{key}` is a setting of the [{home}] table: write it under [{home}]"
-            )));
-        }
-    }
-    Ok(())
-}
 
 /// The most rows (descriptions, leaves, views or remembered histories) a run's
 /// representation may reach, and the default of the setting `max_rows`: a run whose
@@ -443,41 +347,10 @@ fn check_layout(layout: &toml::Table) -> Result<(), SettingsProblem> {
 /// ```
 pub const MAX_ROWS: usize = 100_000;
 
-fn default_max_rows() -> usize {
-    MAX_ROWS
-}
-
-fn is_default_max_rows(n: &usize) -> bool {
-    *n == MAX_ROWS
-}
-
-/// The TOML file form: every key optional, each one overriding the preset.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct SettingsFile {
-    map: Option<MapSource>,
-    strategy: Option<StrategyKind>,
-    beta: Option<LearningRate>,
-    gamma: Option<Discount>,
-    temperature: Option<Temperature>,
-    max_moves: Option<MoveCap>,
-    random_moves: Option<u32>,
-    tolerance: Option<NonNegative>,
-    decrease_threshold: Option<NonNegative>,
-    max_trials: Option<TrialCap>,
-    seed: Option<u64>,
-    predict_sensing: Option<PredictSensing>,
-    prediction: Option<Prediction>,
-    world: Option<WorldExtras>,
-    extensions: Option<Extensions>,
-    learner: Option<LearnerKind>,
-    u_tree: Option<UTreeParams>,
-    max_rows: Option<usize>,
-}
-
 impl RunSettings {
     /// The paper's settings (beta 1, gamma 0.9, T 0.4, 100 moves per trial, 20 random
-    /// moves) with a tolerance of 1e-6, no decrease threshold and a cap of 20000 trials.
+    /// moves) for CS-QL with `strategy`, with a tolerance of 1e-6, no decrease threshold
+    /// and a cap of 20000 trials.
     ///
     /// ```
     /// let s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Resetting, 1);
@@ -487,165 +360,90 @@ impl RunSettings {
         let q = qlearn::Params::tan1991();
         RunSettings {
             map: map.into(),
-            strategy,
+            learner: Learner::cs_ql(strategy),
             beta: q.learning_rate,
             gamma: q.discount,
             temperature: q.temperature,
             max_moves: q.max_moves,
-            random_moves: 20,
             tolerance: NonNegative(1e-6),
             decrease_threshold: NonNegative::ZERO,
             max_trials: TrialCap(20_000),
             seed,
-            predict_sensing: PredictSensing::Off,
-            prediction: Prediction::default(),
             world: WorldExtras::default(),
-            extensions: Extensions::default(),
-            learner: LearnerKind::CsQl,
-            u_tree: UTreeParams::default(),
+            judge: JudgeSettings::default(),
             max_rows: MAX_ROWS,
         }
     }
 
-    /// Override fields from TOML text (`source` names it in errors); unknown keys and
-    /// invalid values are refused.
+    /// The same settings with another learner (at its defaults).
     ///
     /// ```
-    /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
-    /// s.apply_toml("temperature = 0.2\nstrategy = \"eager\"", "my.toml").unwrap();
-    /// assert_eq!(s.temperature.get(), 0.2);
-    /// assert_eq!(s.strategy, csql::StrategyKind::Eager);
-    /// assert!(s.apply_toml("temprature = 0.2", "my.toml").is_err());
-    /// assert!(s.apply_toml("gamma = 1.0", "my.toml").is_err());
+    /// use csql::{LearnerKind, RunSettings, StrategyKind};
+    /// let s = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1).with_learner(LearnerKind::UTree);
+    /// assert_eq!(s.learner.kind(), LearnerKind::UTree);
     /// ```
-    pub fn apply_toml(&mut self, text: &str, source: &str) -> Result<(), Error> {
-        self.merge_toml(text, source)?;
-        self.validate()
+    pub fn with_learner(mut self, kind: LearnerKind) -> RunSettings {
+        self.learner = Learner::from(kind);
+        self
     }
 
-    /// Override fields from TOML text as [`RunSettings::apply_toml`] does, without the
-    /// checks that span several settings ([`RunSettings::validate`]): for a caller that
-    /// overrides more before it validates, such as a command line whose `--learner`
-    /// makes the file's `[u_tree]` table mean something.
+    /// CS-QL's settings, if CS-QL is the learner.
+    ///
+    /// ```
+    /// let s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
+    /// assert_eq!(s.cs_ql().unwrap().strategy, csql::StrategyKind::Lazy);
+    /// ```
+    pub fn cs_ql(&self) -> Option<&CsQlSettings> {
+        match &self.learner {
+            Learner::CsQl(q) => Some(q),
+            _ => None,
+        }
+    }
+
+    /// CS-QL's settings to change, if CS-QL is the learner.
     ///
     /// ```
     /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
-    /// s.merge_toml("[u_tree]\nfringe = 3", "my.toml").unwrap();
-    /// assert!(s.validate().is_err()); // [u_tree] with cs-ql
-    /// s.learner = csql::LearnerKind::UTree;
+    /// s.cs_ql_mut().unwrap().extensions.reads = 3;
     /// assert!(s.validate().is_ok());
-    /// assert!(s.merge_toml("temprature = 0.2", "my.toml").is_err());
     /// ```
-    pub fn merge_toml(&mut self, text: &str, source: &str) -> Result<(), Error> {
-        let fail = |problem: SettingsProblem| Error::Settings {
-            source_name: source.to_string(),
-            problem,
-        };
-        // The layout first (tables are tables, keys in their tables), with hints the
-        // typed reading below cannot give; then the values, with line and column.
-        let layout: toml::Table =
-            toml::from_str(text).map_err(|e| fail(SettingsProblem::Parse(e)))?;
-        check_layout(&layout).map_err(fail)?;
-        let f: SettingsFile = toml::from_str(text).map_err(|e| fail(SettingsProblem::Parse(e)))?;
-        let strategy_given = f.strategy.is_some();
-        macro_rules! take {
-            ($($field:ident),*) => { $( if let Some(v) = f.$field { self.$field = v; } )* };
+    pub fn cs_ql_mut(&mut self) -> Option<&mut CsQlSettings> {
+        match &mut self.learner {
+            Learner::CsQl(q) => Some(q),
+            _ => None,
         }
-        take!(
-            map,
-            strategy,
-            beta,
-            gamma,
-            temperature,
-            max_moves,
-            random_moves,
-            tolerance,
-            decrease_threshold,
-            max_trials,
-            seed,
-            predict_sensing,
-            prediction,
-            world,
-            extensions,
-            learner,
-            u_tree,
-            max_rows
-        );
-        if strategy_given && !self.learner.is_cs_ql() {
-            return Err(Error::InvalidSetting {
-                value: format!(
-                    "strategy = {} with learner = {}",
-                    self.strategy, self.learner
-                ),
-                expected: "a strategy only with learner = \"cs-ql\" (the baselines never refine by a strategy)",
-            });
-        }
-        Ok(())
     }
 
-    /// Override fields from a TOML file. Only a regular file of at most
-    /// [`MAX_SETTINGS_BYTES`] is read: a directory, a device or a pipe is refused before it
-    /// is opened, and reading stops at the limit whatever the file's metadata says.
+    /// CS-QL's extensions, or none (all off) for a baseline.
     ///
     /// ```
-    /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
-    /// assert!(s.apply_file(std::path::Path::new("/no/such.toml")).is_err());
+    /// let s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
+    /// assert_eq!(s.extensions(), csql::Extensions::default());
     /// ```
-    pub fn apply_file(&mut self, path: &Path) -> Result<(), Error> {
-        self.merge_file(path)?;
-        self.validate()
+    pub fn extensions(&self) -> Extensions {
+        self.cs_ql().map(|q| q.extensions).unwrap_or_default()
     }
 
-    /// Override fields from a TOML file as [`RunSettings::apply_file`] does, without the
-    /// checks that span several settings (see [`RunSettings::merge_toml`]).
+    /// Whether, and how, CS-QL predicts instead of sensing (`off` for a baseline).
     ///
     /// ```
-    /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
-    /// assert!(s.merge_file(std::path::Path::new("/no/such.toml")).is_err());
+    /// let s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
+    /// assert!(s.predict_sensing().is_off());
     /// ```
-    pub fn merge_file(&mut self, path: &Path) -> Result<(), Error> {
-        let source = path.display().to_string();
-        let fail = |problem: SettingsProblem| Error::Settings {
-            source_name: source.clone(),
-            problem,
-        };
-        if !std::fs::metadata(path)
-            .map_err(|e| fail(SettingsProblem::Read(e)))?
-            .is_file()
-        {
-            return Err(fail(SettingsProblem::NotAFile));
-        }
-        let file = std::fs::File::open(path).map_err(|e| fail(SettingsProblem::Read(e)))?;
-        if !file
-            .metadata()
-            .map_err(|e| fail(SettingsProblem::Read(e)))?
-            .is_file()
-        {
-            return Err(fail(SettingsProblem::NotAFile));
-        }
-        let mut bytes = Vec::new();
-        file.take(MAX_SETTINGS_BYTES + 1)
-            .read_to_end(&mut bytes)
-            .map_err(|e| fail(SettingsProblem::Read(e)))?;
-        if bytes.len() as u64 > MAX_SETTINGS_BYTES {
-            return Err(fail(SettingsProblem::TooLarge {
-                limit: MAX_SETTINGS_BYTES,
-            }));
-        }
-        let text = String::from_utf8(bytes).map_err(|e| fail(SettingsProblem::NotUtf8(e)))?;
-        self.merge_toml(&text, &source)
+    pub fn predict_sensing(&self) -> PredictSensing {
+        self.cs_ql().map(|q| q.predict_sensing).unwrap_or_default()
     }
 
     /// Whether the run leaves the paper's setting: a world with slip, slide, noise or a
-    /// sensing range, or an extension on (other than the `action` detector, which works
-    /// in the paper's world). Such a run ends by the policy quality
+    /// sensing range, or an extension of CS-QL on (other than the `action` detector,
+    /// which works in the paper's world). Such a run ends by the policy quality
     /// (`docs/specification.md`, section 6); the paper's runs, whatever their learner,
     /// keep the paper's convergence ([`crate::Judging`]).
     ///
     /// ```
     /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
     /// assert!(!s.beyond_paper());
-    /// s.learner = csql::LearnerKind::FullSensing;
+    /// s = s.with_learner(csql::LearnerKind::FullSensing);
     /// assert!(!s.beyond_paper());
     /// s.world.slip = mdp::Slip::new(0.1).unwrap();
     /// assert!(s.beyond_paper());
@@ -653,20 +451,31 @@ impl RunSettings {
     pub fn beyond_paper(&self) -> bool {
         // The action detector only sees more of what the paper's rule sees, in the
         // paper's deterministic world: the oracle still judges.
-        let mut extensions = self.extensions;
+        let mut extensions = self.extensions();
         if extensions.detector == crate::DetectorKind::Action {
             extensions.detector = crate::DetectorKind::default();
         }
-        // The quality's schedule is how a run judged by quality is judged, not a reason
-        // to judge it so.
-        let defaults = Extensions::default();
-        extensions.quality_every = defaults.quality_every;
-        extensions.quality_patience = defaults.quality_patience;
-        self.world.departs_from_the_paper() || !extensions.is_default()
+        self.world.departs_from_the_paper() || extensions != Extensions::default()
     }
 
-    /// Check the settings beyond the paper that have no type of their own (every other
-    /// field holds only valid values by its type).
+    /// Whether a run of these settings is judged by the policy quality: where it leaves
+    /// the paper's setting ([`RunSettings::beyond_paper`]), where the world is not
+    /// `deterministic`, or where `judge_by_quality` says so; by the oracle otherwise
+    /// ([`crate::Judging::of`]).
+    ///
+    /// ```
+    /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
+    /// assert!(!s.judged_by_quality(true) && s.judged_by_quality(false));
+    /// s.judge.judge_by_quality = true;
+    /// assert!(s.judged_by_quality(true));
+    /// ```
+    pub fn judged_by_quality(&self, deterministic: bool) -> bool {
+        self.judge.judge_by_quality || self.beyond_paper() || !deterministic
+    }
+
+    /// Check what spans several settings, or has no type of its own (every other field
+    /// holds only valid values by its type). The message names both settings of a
+    /// combination that means nothing.
     ///
     /// ```
     /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
@@ -675,25 +484,19 @@ impl RunSettings {
     /// assert!(s.validate().is_err());
     /// ```
     pub fn validate(&self) -> Result<(), Error> {
-        if self.world.sensing_radius == Some(0) {
-            return Err(Error::InvalidSetting {
-                value: "world.sensing_radius = 0".to_string(),
-                expected: "a sensing radius of at least 1",
-            });
-        }
-        self.prediction.validate()?;
-        self.extensions.validate()?;
-        self.u_tree.validate()?;
         let refuse =
             |value: String, expected: &'static str| Err(Error::InvalidSetting { value, expected });
-        if !self.learner.is_cs_ql() && !self.predict_sensing.is_off() {
+        if self.world.sensing_radius == Some(0) {
             return refuse(
-                format!(
-                    "predict_sensing = {} with learner = {}",
-                    self.predict_sensing, self.learner
-                ),
-                "predict_sensing = off with a learner other than cs-ql",
+                "world.sensing_radius = 0".to_string(),
+                "a sensing radius of at least 1",
             );
+        }
+        if self.judge.quality_every == 0 {
+            return refuse("extensions.quality_every = 0".into(), "at least 1");
+        }
+        if self.judge.quality_patience == 0 {
+            return refuse("extensions.quality_patience = 0".into(), "at least 1");
         }
         if !(1..=MAX_ROWS).contains(&self.max_rows) {
             return refuse(
@@ -701,72 +504,65 @@ impl RunSettings {
                 "max_rows from 1 to 100000 (csql::MAX_ROWS)",
             );
         }
-        if self.extensions.rate != crate::RateParams::default()
-            && self.extensions.detector != crate::DetectorKind::Statistical
+        match &self.learner {
+            Learner::CsQl(q) => self.validate_cs_ql(q),
+            Learner::UTree(p) => p.validate(),
+            Learner::FullSensing => Ok(()),
+        }
+    }
+
+    fn validate_cs_ql(&self, q: &CsQlSettings) -> Result<(), Error> {
+        let conflict = |first: String, second: String, why: &'static str| {
+            Err(Error::Conflict { first, second, why })
+        };
+        q.prediction.validate()?;
+        q.extensions.validate()?;
+        let e = &q.extensions;
+        if q.random_moves != PAPER_RANDOM_MOVES && q.strategy != StrategyKind::Random {
+            return conflict(
+                format!("random_moves = {}", q.random_moves),
+                format!("strategy = {}", q.strategy),
+                "random moves follow a refinement of the random strategy only",
+            );
+        }
+        if e.rate != crate::RateParams::default() && e.detector != crate::DetectorKind::Statistical
         {
-            return refuse(
-                format!(
-                    "extensions.rate with extensions.detector = \"{}\"",
-                    match self.extensions.detector {
-                        crate::DetectorKind::Decrease => "decrease",
-                        crate::DetectorKind::Statistical => "statistical",
-                        crate::DetectorKind::Action => "action",
-                    }
-                ),
-                "extensions.rate only with detector = \"statistical\" (the rate test is its parameters)",
+            return conflict(
+                "extensions.rate".to_string(),
+                format!("extensions.detector = {}", e.detector.name()),
+                "the rate test is the statistical detector's parameters: give them with detector = \"statistical\"",
             );
         }
-        if !self.u_tree.is_default() && self.learner != LearnerKind::UTree {
-            return refuse(
-                format!("[u_tree] settings with learner = {}", self.learner),
-                "[u_tree] only with learner = \"u-tree\"",
+        if q.prediction != Prediction::default() && q.predict_sensing.is_off() {
+            return conflict(
+                "[prediction] settings".to_string(),
+                "predict_sensing = off".to_string(),
+                "[prediction] tunes predict_sensing = \"learned\" or \"motion\"",
             );
         }
-        if !self.prediction.is_default() && self.predict_sensing.is_off() {
-            return refuse(
-                "[prediction] settings with predict_sensing = off".to_string(),
-                "[prediction] only with predict_sensing = \"learned\" or \"motion\"",
-            );
-        }
-        if self.predict_sensing == PredictSensing::Motion
+        if q.predict_sensing == PredictSensing::Motion
             && !(self.world.slip.is_zero()
                 && self.world.slide.is_zero()
                 && self.world.sensor_noise.is_zero())
         {
-            return refuse(
-                "predict_sensing = \"motion\" with [world] slip, slide or sensor_noise".to_string(),
-                "dead reckoning (motion) only with deterministic moves and exact sensors: it places cells by the moves it believes it made",
+            return conflict(
+                "predict_sensing = \"motion\"".to_string(),
+                "[world] slip, slide or sensor_noise".to_string(),
+                "dead reckoning (motion) needs deterministic moves and exact sensors: it places cells by the moves it believes it made",
             );
         }
-        if self.extensions.detector == crate::DetectorKind::Action && self.beta.get() != 1.0 {
-            return refuse(
-                format!(
-                    "extensions.detector = \"action\" with beta = {}",
-                    self.beta.get()
-                ),
-                "beta = 1 with detector = \"action\" (below 1, Q approaches a target from above and falls without proving anything)",
+        if e.detector == crate::DetectorKind::Action && self.beta.get() != 1.0 {
+            return conflict(
+                "extensions.detector = \"action\"".to_string(),
+                format!("beta = {}", self.beta.get()),
+                "the action detector needs beta = 1 (below 1, Q approaches a target from above and falls without proving anything)",
             );
         }
-        let e = &self.extensions;
-        let cs_ql_only = e.detector != crate::DetectorKind::default()
-            || e.matching != crate::Matching::Exact
-            || e.confirm_new != 1
-            || e.reads != 1
-            || e.memory > 0;
-        if !self.learner.is_cs_ql() && cs_ql_only {
-            return refuse(
-                format!("an extension of CS-QL with learner = {}", self.learner),
-                "detector, matching, confirm_new, reads and memory at their defaults with a learner other than cs-ql",
-            );
-        }
-        if self.extensions.memory > 0 && !(self.learner.is_cs_ql() && self.predict_sensing.is_off())
-        {
-            return refuse(
-                format!(
-                    "extensions.memory = {} with learner = {} and predict_sensing = {}",
-                    self.extensions.memory, self.learner, self.predict_sensing
-                ),
-                "memory with learner = cs-ql and predict_sensing = off only",
+        if e.memory > 0 && !q.predict_sensing.is_off() {
+            return conflict(
+                format!("extensions.memory = {}", e.memory),
+                format!("predict_sensing = {}", q.predict_sensing),
+                "memory refines descriptions that CLASSIFY senses; give it with predict_sensing = off",
             );
         }
         Ok(())

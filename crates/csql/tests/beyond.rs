@@ -110,7 +110,7 @@ fn slip_with_the_statistical_detector_reaches_quality() {
         "t",
     )
     .unwrap();
-    assert_eq!(s.extensions.detector, DetectorKind::Statistical);
+    assert_eq!(s.extensions().detector, DetectorKind::Statistical);
     let r = csql::run(&s).unwrap();
     let q = r.quality;
     assert!(q.trials_to_quality.is_some(), "{q:?}");
@@ -129,7 +129,7 @@ fn nearest_matching_makes_fewer_descriptions_under_noise() {
         )
         .unwrap();
     let mut near = exact.clone();
-    near.extensions.matching = Matching::Nearest;
+    near.cs_ql_mut().unwrap().extensions.matching = Matching::Nearest;
     let a = csql::run(&exact).unwrap().quality;
     let b = csql::run(&near).unwrap().quality;
     assert!(
@@ -187,9 +187,9 @@ fn new_settings_at_their_defaults_change_nothing() {
 fn reading_three_times_without_noise_learns_the_same_at_three_times_the_cost() {
     // Without noise every read agrees: the run is the same, each charge tripled.
     let mut once = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 6);
-    once.extensions.judge_by_quality = true;
+    once.judge.judge_by_quality = true;
     let mut thrice = once.clone();
-    thrice.extensions.reads = 3;
+    thrice.cs_ql_mut().unwrap().extensions.reads = 3;
     let (a, b) = (csql::run(&once).unwrap(), csql::run(&thrice).unwrap());
     assert_eq!(a.trials, b.trials);
     assert_eq!(a.descriptions, b.descriptions);
@@ -212,7 +212,7 @@ fn confirming_new_descriptions_keeps_misreadings_out() {
         )
         .unwrap();
     let mut confirmed = plain.clone();
-    confirmed.extensions.confirm_new = 3;
+    confirmed.cs_ql_mut().unwrap().extensions.confirm_new = 3;
     let a = csql::run(&plain).unwrap().quality;
     let b = csql::run(&confirmed).unwrap().quality;
     assert!(
@@ -233,7 +233,7 @@ fn memory_tells_apart_what_a_radius_of_one_cannot() {
         )
         .unwrap();
     let mut remembering = plain.clone();
-    remembering.extensions.memory = 1;
+    remembering.cs_ql_mut().unwrap().extensions.memory = 1;
     let a = csql::run(&plain).unwrap().quality;
     let b = csql::run(&remembering).unwrap().quality;
     // Four neighbours give at most 3^4 views; a step of history gives more rows, and a
@@ -254,7 +254,7 @@ fn memory_tells_apart_what_a_radius_of_one_cannot() {
 fn the_baselines_learn_the_paper_world() {
     for learner in [csql::LearnerKind::UTree, csql::LearnerKind::FullSensing] {
         let mut s = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 2);
-        s.learner = learner;
+        s = s.with_learner(learner);
         s.max_trials = csql::TrialCap::new(2000).unwrap();
         let r = csql::run(&s).unwrap();
         // Judged as CS-QL is: by the oracle, which ends the run at convergence.
@@ -391,7 +391,9 @@ fn every_learner_is_judged_alike() {
         for learner in csql::LearnerKind::ALL {
             let mut s = RunSettings::tan1991(world, StrategyKind::Lazy, 4);
             s.apply_toml(toml, "t").unwrap();
-            s.learner = learner;
+            if learner != csql::LearnerKind::CsQl {
+                s = s.with_learner(learner);
+            }
             let r = csql::run(&s).unwrap();
             let what = format!("{learner} on {world} {toml:?}");
             assert_eq!(r.judged_by, csql::Judging::Oracle, "{what}");
@@ -404,7 +406,7 @@ fn every_learner_is_judged_alike() {
             assert!(r.quality.evaluations >= 1, "{what}");
             // The same settings judged by the quality: no oracle's verdict, a run that
             // ends once the quality has held.
-            s.extensions.judge_by_quality = true;
+            s.judge.judge_by_quality = true;
             let q = csql::run(&s).unwrap();
             assert_eq!(q.judged_by, csql::Judging::Quality, "{what}");
             assert!(

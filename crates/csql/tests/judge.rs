@@ -14,7 +14,7 @@ fn check(map: &str, strategy: StrategyKind, seed: u64, seen: &mut [bool; 3]) {
     let world = setup.sensed(&settings);
     let mut agent = Agent::new(
         Classify::new(&world),
-        strategy.build(settings.random_moves),
+        strategy.build(settings.cs_ql().unwrap().random_moves),
         QTable::new(4).unwrap(),
         LoopParams::from(&settings),
     );

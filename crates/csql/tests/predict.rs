@@ -11,8 +11,9 @@ fn run(
     p: Prediction,
 ) -> RunReport {
     let mut s = RunSettings::tan1991(map, strategy, seed);
-    s.predict_sensing = level;
-    s.prediction = p;
+    let q = s.cs_ql_mut().unwrap();
+    q.predict_sensing = level;
+    q.prediction = p;
     let setup = Setup::new(&s).unwrap();
     csql::run_on(&setup, &s)
 }
@@ -41,10 +42,11 @@ fn the_levels_are_read_from_toml_and_appear_in_the_json() {
         "t.toml",
     )
     .unwrap();
-    assert_eq!(s.predict_sensing, PredictSensing::Learned);
-    assert_eq!((s.prediction.recheck, s.prediction.max_skips), (0.1, 4));
+    let q = s.cs_ql().unwrap();
+    assert_eq!(q.predict_sensing, PredictSensing::Learned);
+    assert_eq!((q.prediction.recheck, q.prediction.max_skips), (0.1, 4));
     assert_eq!(
-        s.prediction.confirmations,
+        q.prediction.confirmations,
         Prediction::default().confirmations
     );
     for bad in [

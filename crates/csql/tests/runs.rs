@@ -16,7 +16,9 @@ fn assert_optimal(setup: &Setup, r: &RunReport) {
     assert!(
         r.converged,
         "{} {} seed {} did not converge",
-        r.map, r.strategy, r.seed
+        r.map,
+        r.learned_by(),
+        r.seed
     );
     let oracle = Oracle::for_grid(&setup.world, 0.9).unwrap();
     let world = setup.sensed(&r.settings);
@@ -196,12 +198,21 @@ fn the_reference_points_cost_what_they_should() {
 
 #[test]
 fn settings_files_are_validated() {
-    let mut s = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 1);
+    let mut s = RunSettings::tan1991("tan8x8", StrategyKind::Random, 1);
     assert!(
         s.apply_toml("beta = 0.5\nrandom_moves = 7", "f.toml")
             .is_ok()
     );
-    assert_eq!((s.beta.get(), s.random_moves), (0.5, 7));
+    assert_eq!((s.beta.get(), s.cs_ql().unwrap().random_moves), (0.5, 7));
+    // Random moves follow the random strategy's refinements only.
+    let err = s
+        .apply_toml("strategy = \"lazy\"", "f.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("random_moves = 7") && err.contains("strategy = lazy"),
+        "{err}"
+    );
     for bad in [
         "betta = 1",
         "beta = 0",

@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use csql::{RunSettings, StrategyKind, TrialCap};
+use csql::{RunSettings, SettingsDraft, StrategyKind, TrialCap};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 
@@ -35,48 +35,38 @@ fn bad(what: &str, value: &str, e: impl std::fmt::Display) -> PyErr {
 impl RunArgs<'_> {
     /// The settings, as `csrl run` builds them from its flags (`crates/csrl/src/run.rs`).
     pub(crate) fn settings(&self) -> PyResult<RunSettings> {
-        let mut s = RunSettings::tan1991("tan8x8", StrategyKind::Resetting, 1);
         // The settings, then the arguments over them; everything is checked together
         // once all are in (`learner="u-tree"` gives the settings' `[u_tree]` its meaning).
-        if let Some(text) = self.settings {
-            match text.strip_prefix('@') {
-                Some(path) => s.merge_file(&PathBuf::from(path)),
-                None => s.merge_toml(text, "settings"),
+        let mut draft = match self.settings {
+            Some(text) => match text.strip_prefix('@') {
+                Some(path) => SettingsDraft::from_file(&PathBuf::from(path)),
+                None => SettingsDraft::from_toml(text, "settings"),
             }
-            .map_err(|e| run_error(&e))?;
-        }
-        if let Some(m) = &self.world {
-            s.map = m.into();
-        }
-        let strategy = self
-            .strategy
-            .map(|k| k.parse::<StrategyKind>().map_err(|e| bad("strategy", k, e)))
-            .transpose()?;
-        if let Some(k) = strategy {
-            s.strategy = k;
-        }
-        if let Some(seed) = self.seed {
-            s.seed = seed;
-        }
-        if let Some(n) = self.max_trials {
-            s.max_trials = TrialCap::new(n).map_err(|e| run_error(&e))?;
-        }
-        if let Some(level) = self.predict_sensing {
-            s.predict_sensing = level
-                .parse()
-                .map_err(|e| bad("predict_sensing", level, e))?;
-        }
-        if let Some(learner) = self.learner {
-            s.learner = learner.parse().map_err(|e| bad("learner", learner, e))?;
-        }
-        if strategy.is_some() && !s.learner.is_cs_ql() {
-            return Err(SettingsError::new_err(format!(
-                "strategy with learner {}: a strategy only chooses how CS-QL refines; the baselines have none",
-                s.learner
-            )));
-        }
-        s.validate().map_err(|e| run_error(&e))?;
-        Ok(s)
+            .map_err(|e| run_error(&e))?,
+            None => SettingsDraft::default(),
+        };
+        draft.overlay(SettingsDraft {
+            map: self.world.as_ref().map(Into::into),
+            strategy: self
+                .strategy
+                .map(|k| k.parse::<StrategyKind>().map_err(|e| bad("strategy", k, e)))
+                .transpose()?,
+            seed: self.seed,
+            max_trials: self
+                .max_trials
+                .map(|n| TrialCap::new(n).map_err(|e| run_error(&e)))
+                .transpose()?,
+            predict_sensing: self
+                .predict_sensing
+                .map(|l| l.parse().map_err(|e| bad("predict_sensing", l, e)))
+                .transpose()?,
+            learner: self
+                .learner
+                .map(|l| l.parse().map_err(|e| bad("learner", l, e)))
+                .transpose()?,
+            ..SettingsDraft::default()
+        });
+        draft.build().map_err(|e| run_error(&e))
     }
 }
 

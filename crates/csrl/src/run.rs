@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::Result;
 use clap::Args;
-use csql::{Flow, Observer, RunReport, RunSettings, StrategyKind, TracePoint};
+use csql::{Flow, Observer, RunReport, RunSettings, SettingsDraft, StrategyKind, TracePoint};
 
 use crate::Status;
 
@@ -68,39 +68,22 @@ pub struct RunArgs {
 
 impl RunArgs {
     fn settings(&self) -> Result<RunSettings> {
-        let mut s = RunSettings::tan1991("tan8x8", StrategyKind::Resetting, 1);
-        // The file's settings, then the flags over them; the settings are checked
-        // together once all are in (a `--learner u-tree` gives a file's `[u_tree]` its
-        // meaning).
-        if let Some(path) = &self.config {
-            s.merge_file(path)?;
-        }
-        if let Some(m) = self.map.as_ref().or(self.world.as_ref()) {
-            s.map = m.into();
-        }
-        if let Some(k) = self.strategy {
-            s.strategy = k;
-        }
-        if let Some(seed) = self.seed {
-            s.seed = seed;
-        }
-        if let Some(n) = self.max_trials {
-            s.max_trials = n;
-        }
-        if let Some(level) = self.predict_sensing {
-            s.predict_sensing = level;
-        }
-        if let Some(learner) = self.learner {
-            s.learner = learner;
-        }
-        if self.strategy.is_some() && !s.learner.is_cs_ql() {
-            anyhow::bail!(
-                "--strategy with learner {}: a strategy only chooses how CS-QL refines; the baselines have none",
-                s.learner
-            );
-        }
-        s.validate()?;
-        Ok(s)
+        // The file's settings, then the flags over them, checked together once all are
+        // in (a `--learner u-tree` gives a file's `[u_tree]` its meaning).
+        let mut draft = match &self.config {
+            Some(path) => SettingsDraft::from_file(path)?,
+            None => SettingsDraft::default(),
+        };
+        draft.overlay(SettingsDraft {
+            map: self.map.as_ref().or(self.world.as_ref()).map(Into::into),
+            strategy: self.strategy,
+            seed: self.seed,
+            max_trials: self.max_trials,
+            predict_sensing: self.predict_sensing,
+            learner: self.learner,
+            ..SettingsDraft::default()
+        });
+        Ok(draft.build()?)
     }
 }
 
@@ -264,10 +247,10 @@ fn print_policy(r: &RunReport, map: Option<&mdp::Map>, out: &mut dyn Write) -> s
 }
 
 fn print_report(r: &RunReport, out: &mut dyn Write) -> std::io::Result<()> {
-    let who = match r.settings.learner {
-        csql::LearnerKind::CsQl => format!("CS-QL on {} with the {} strategy", r.map, r.strategy),
-        csql::LearnerKind::UTree => format!("U-Tree on {}", r.map),
-        csql::LearnerKind::FullSensing => format!("Full sensing on {}", r.map),
+    let who = match &r.settings.learner {
+        csql::Learner::CsQl(q) => format!("CS-QL on {} with the {} strategy", r.map, q.strategy),
+        csql::Learner::UTree(_) => format!("U-Tree on {}", r.map),
+        csql::Learner::FullSensing => format!("Full sensing on {}", r.map),
     };
     // The same three lines for every learner, so that runs compare line by line.
     let verdict = match r.judged_by {
@@ -307,7 +290,7 @@ fn print_report(r: &RunReport, out: &mut dyn Write) -> std::io::Result<()> {
         writeln!(
             out,
             "Navigation after learning ({}): sensing cost {cost:.2} per move, {:.1}% of trials by an optimal path",
-            r.settings.predict_sensing,
+            r.settings.predict_sensing(),
             100.0 * success
         )?;
     }
