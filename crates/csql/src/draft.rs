@@ -157,6 +157,22 @@ impl Default for ExtensionsTable {
     }
 }
 
+/// The keys of CS-QL's extensions that are not at their defaults.
+fn cs_ql_extension_keys(e: &Extensions) -> Vec<&'static str> {
+    let d = Extensions::default();
+    [
+        ("detector", e.detector != d.detector),
+        ("rate", e.rate != d.rate),
+        ("matching", e.matching != d.matching),
+        ("confirm_new", e.confirm_new != d.confirm_new),
+        ("reads", e.reads != d.reads),
+        ("memory", e.memory != d.memory),
+    ]
+    .into_iter()
+    .filter_map(|(key, given)| given.then_some(key))
+    .collect()
+}
+
 impl ExtensionsTable {
     /// The table of CS-QL's extensions and the judging.
     ///
@@ -470,7 +486,7 @@ impl SettingsDraft {
             }
             LearnerKind::UTree | LearnerKind::FullSensing => {
                 let why =
-                    "it chooses how CS-QL learns; the baselines have none of CS-QL's settings";
+                    "it is a setting of CS-QL, and the baselines have none of CS-QL's settings";
                 if let Some(k) = self.strategy {
                     return conflict(format!("strategy = {k}"), why);
                 }
@@ -483,12 +499,9 @@ impl SettingsDraft {
                 if self.prediction.is_some_and(|p| !p.is_default()) {
                     return conflict("[prediction] settings".to_string(), why);
                 }
-                if extensions != Extensions::default() {
-                    return conflict(
-                        "[extensions] detector, rate, matching, confirm_new, reads or memory"
-                            .to_string(),
-                        why,
-                    );
+                let given = cs_ql_extension_keys(&extensions);
+                if !given.is_empty() {
+                    return conflict(format!("[extensions] {}", given.join(", ")), why);
                 }
                 if kind == LearnerKind::UTree {
                     Learner::UTree(self.u_tree.unwrap_or_default())
