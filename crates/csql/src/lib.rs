@@ -140,6 +140,7 @@
 #![deny(missing_docs)]
 #![cfg_attr(not(test), warn(clippy::unwrap_used, clippy::expect_used))]
 
+mod amrl;
 mod audit;
 #[allow(
     clippy::expect_used,
@@ -207,6 +208,7 @@ mod tree;
 mod utree;
 mod view;
 
+pub use amrl::{AmrlParams, CostlySummary, Episode, SensingRule, amrl_q};
 pub use classify::{Classification, Classify};
 pub use detector::{
     ActionDrop, AnyDrop, Detector, DetectorKind, RateParams, RateTest, RunDetector,
