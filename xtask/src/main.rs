@@ -17,6 +17,7 @@
 //! a read-only folder alike.
 
 mod bench;
+mod costly;
 mod figures;
 mod files;
 mod fit;
@@ -68,6 +69,9 @@ enum Command {
     Merge(sweep::MergeArgs),
     /// CS-QL and two baselines under slip, sensor noise and a sensing range.
     Robustness(robustness::RobustnessArgs),
+    /// The active-measurement benchmark: FrozenLake with priced row and column, the
+    /// costed return per episode of each learner under both sensing rules.
+    Costly(costly::CostlyArgs),
     /// Benchmarks: CS-QL's growth with the world's size, and its moves per second.
     Bench(bench::BenchArgs),
     /// Every test: `cargo test --workspace`, then the Python package's tests in a virtual
@@ -95,6 +99,7 @@ fn main() -> ExitCode {
         Command::Sweep(args) => sweep::sweep(args),
         Command::Merge(args) => sweep::merge(args),
         Command::Robustness(args) => robustness::robustness(args),
+        Command::Costly(args) => costly::costly(args),
         Command::Bench(args) => bench::run(args),
         Command::Test(args) => pytest::test(args),
     };

@@ -22,7 +22,7 @@
 
 use mdp::{ActionId, StateId, World};
 use rand::{Rng, RngExt};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// AMRL-Q's parameters; the defaults are those the active-measurement benchmark runs it
 /// with.
@@ -63,7 +63,7 @@ impl Default for AmrlParams {
 /// ```
 /// assert_ne!(csql::SensingRule::WithTheMove, csql::SensingRule::AfterTheOutcome);
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum SensingRule {
     /// Decided with the move, before its outcome is seen, and paid even when the move

@@ -1,0 +1,601 @@
+//! `cargo xtask costly`: the active-measurement benchmark (specification 6.10).
+//!
+//! FrozenLake 4x4 (1000 episodes a run) and 8x8 (2000), each deterministic,
+//! semi-slippery (`slide = 0.5`) and slippery (`slip = 2/3`), sensed by its row and
+//! column, each coordinate priced 0.025 or 0.05 reward units; every learner under both
+//! sensing rules, `--runs` seeded runs each (run i seeded S + i). Sharded and resumable
+//! as `cargo xtask sweep` is. The report: `costly.csv` (the published rule: sensing
+//! decided with the move), `costly_after_outcome.csv` (sensing after the outcome), both
+//! with one row per world, dynamics, price and learner; `costly.md`; and one figure per
+//! world of the costed return against episodes.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Result, anyhow, bail};
+use clap::Args;
+use csql::{AmrlParams, CostlySummary, Episode, SensingRule};
+use mdp::{FiniteWorld, SensingModel, WorldOptions};
+use plotters::prelude::*;
+use rand::SeedableRng;
+use rand_xoshiro::Xoshiro256PlusPlus;
+use serde::{Deserialize, Serialize};
+
+use crate::shard::JobLine;
+
+/// Arguments of `cargo xtask costly`.
+#[derive(Args, Clone, Debug)]
+pub struct CostlyArgs {
+    /// Runs per world, dynamics, price, rule and learner.
+    #[arg(long, default_value_t = 5)]
+    runs: u64,
+    /// Base seed: run i uses seed S + i.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// This machine's shard, `K/N` (K from 1 to N).
+    #[arg(long, default_value = "1/1")]
+    shard: String,
+    /// Worker threads (default: every core). Results do not depend on it.
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Output folder (shared by all shards).
+    #[arg(long, default_value = "results/costly")]
+    out: PathBuf,
+    /// Run nothing: write the report from the shards under `--out`.
+    #[arg(long)]
+    report: bool,
+    /// Also write the tables and figures into `docs/` (`docs/costly_results.md`,
+    /// `docs/figures/costly_*.svg`).
+    #[arg(long)]
+    bless: bool,
+}
+
+/// The lakes: name, episodes a run, moves an episode (Gymnasium's caps).
+const WORLDS: [(&str, u32, u32); 2] = [("frozenlake4x4", 1000, 100), ("frozenlake8x8", 2000, 200)];
+
+/// The price of each coordinate, in reward units (measuring the whole state costs twice).
+const PRICES: [f64; 2] = [0.025, 0.05];
+
+/// Episodes averaged into one point of a learning curve.
+const BLOCK: usize = 25;
+
+/// How the lake moves.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Dynamics {
+    /// Every move as intended.
+    Deterministic,
+    /// One more cell with probability 1/2 (`slide = 0.5`).
+    SemiSlippery,
+    /// Gymnasium's slippery lake (`slip = 2/3`).
+    Slippery,
+}
+
+impl Dynamics {
+    const ALL: [Dynamics; 3] = [
+        Dynamics::Deterministic,
+        Dynamics::SemiSlippery,
+        Dynamics::Slippery,
+    ];
+
+    fn name(self) -> &'static str {
+        match self {
+            Dynamics::Deterministic => "deterministic",
+            Dynamics::SemiSlippery => "semi-slippery",
+            Dynamics::Slippery => "slippery",
+        }
+    }
+
+    fn options(self) -> WorldOptions {
+        let (slip, slide) = match self {
+            Dynamics::Deterministic => (0.0, 0.0),
+            Dynamics::SemiSlippery => (0.0, 0.5),
+            Dynamics::Slippery => (2.0 / 3.0, 0.0),
+        };
+        WorldOptions {
+            slip,
+            slide,
+            sensing: Some(SensingModel::Factors),
+            factor_costs: None,
+        }
+    }
+}
+
+/// The sensing rules, the published one first.
+const RULES: [SensingRule; 2] = [SensingRule::WithTheMove, SensingRule::AfterTheOutcome];
+
+/// A learner of the benchmark.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Learner {
+    /// AMRL-Q with its published parameters (`csql::amrl_q`).
+    AmrlQ,
+}
+
+impl Learner {
+    const ALL: [Learner; 1] = [Learner::AmrlQ];
+
+    fn name(self) -> &'static str {
+        match self {
+            Learner::AmrlQ => "amrl-q",
+        }
+    }
+}
+
+/// What the job list is: shards of one list agree on it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Definition {
+    runs: u64,
+    seed: u64,
+    learners: Vec<Learner>,
+}
+
+/// One finished run.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct JobResult {
+    id: u64,
+    world: String,
+    dynamics: Dynamics,
+    price: f64,
+    rule: SensingRule,
+    learner: Learner,
+    seed: u64,
+    summary: Summary,
+    /// The mean costed return of each block of [`BLOCK`] episodes, in order.
+    curve: Vec<f64>,
+}
+
+/// [`CostlySummary`] as a results line holds it.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize)]
+pub struct Summary {
+    episodes: usize,
+    mean_all: f64,
+    mean_last10: f64,
+    sensing_per_episode: f64,
+    steps_per_episode: f64,
+    success: f64,
+}
+
+impl From<CostlySummary> for Summary {
+    fn from(s: CostlySummary) -> Summary {
+        Summary {
+            episodes: s.episodes,
+            mean_all: s.mean_all,
+            mean_last10: s.mean_last10,
+            sensing_per_episode: s.sensing_per_episode,
+            steps_per_episode: s.steps_per_episode,
+            success: s.success,
+        }
+    }
+}
+
+impl JobLine for JobResult {
+    fn id(&self) -> u64 {
+        self.id
+    }
+}
+
+/// A job of the list: (world, dynamics, price, rule, learner, run), from its number.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Job {
+    world: usize,
+    dynamics: Dynamics,
+    price: f64,
+    rule: SensingRule,
+    learner: Learner,
+    run: u64,
+}
+
+/// The size of the job list.
+fn total(def: &Definition) -> Result<u64> {
+    let per_run =
+        (WORLDS.len() * Dynamics::ALL.len() * PRICES.len() * RULES.len() * def.learners.len())
+            as u64;
+    per_run
+        .checked_mul(def.runs)
+        .ok_or_else(|| anyhow!("--runs is more jobs than can be numbered"))
+}
+
+/// Job `id`, in the order world, dynamics, price, rule, learner, run.
+fn job(def: &Definition, id: u64) -> Job {
+    let run = id % def.runs;
+    let mut rest = id / def.runs;
+    let mut take = |n: usize| {
+        let i = rest % n as u64;
+        rest /= n as u64;
+        i as usize
+    };
+    let learner = def.learners[take(def.learners.len())];
+    let rule = RULES[take(RULES.len())];
+    let price = PRICES[take(PRICES.len())];
+    let dynamics = Dynamics::ALL[take(Dynamics::ALL.len())];
+    let world = take(WORLDS.len());
+    Job {
+        world,
+        dynamics,
+        price,
+        rule,
+        learner,
+        run,
+    }
+}
+
+/// One run of a job.
+fn run_job(
+    def: &Definition,
+    lakes: &BTreeMap<(usize, Dynamics), FiniteWorld>,
+    id: u64,
+) -> Result<JobResult> {
+    let j = job(def, id);
+    let (world, episodes, max_moves) = WORLDS[j.world];
+    let lake = &lakes[&(j.world, j.dynamics)];
+    let seed = def.seed + j.run;
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    let run: Vec<Episode> = match j.learner {
+        // AMRL-Q measures the whole state: every coordinate at once.
+        Learner::AmrlQ => csql::amrl_q(
+            lake,
+            &AmrlParams::default(),
+            2.0 * j.price,
+            j.rule,
+            episodes,
+            max_moves,
+            &mut rng,
+        ),
+    };
+    Ok(JobResult {
+        id,
+        world: world.to_string(),
+        dynamics: j.dynamics,
+        price: j.price,
+        rule: j.rule,
+        learner: j.learner,
+        seed,
+        summary: CostlySummary::of(&run).into(),
+        curve: run
+            .chunks(BLOCK)
+            .map(|b| b.iter().map(Episode::costed_return).sum::<f64>() / b.len() as f64)
+            .collect(),
+    })
+}
+
+/// `cargo xtask costly`.
+pub fn costly(args: &CostlyArgs) -> Result<()> {
+    if args.runs == 0 {
+        bail!("costly needs --runs of at least 1");
+    }
+    crate::files::seeds(args.seed, args.runs)?;
+    let def = Definition {
+        runs: args.runs,
+        seed: args.seed,
+        learners: Learner::ALL.to_vec(),
+    };
+    if !args.report {
+        let mut lakes = BTreeMap::new();
+        for (w, &(name, _, _)) in WORLDS.iter().enumerate() {
+            for d in Dynamics::ALL {
+                lakes.insert((w, d), mdp::builtin_world(name, &d.options())?);
+            }
+        }
+        crate::shard::run_shard(
+            &args.out,
+            &args.shard,
+            def.clone(),
+            total(&def)?,
+            args.threads,
+            |id| run_job(&def, &lakes, id),
+        )?;
+        if crate::shard::parse_shard(&args.shard)?.1 > 1 {
+            crate::note("run `cargo xtask costly --report` once every shard is done");
+            return Ok(());
+        }
+    }
+    let (found, by_id): (Definition, BTreeMap<u64, JobResult>) =
+        crate::shard::collect(std::slice::from_ref(&args.out))?;
+    if found != def {
+        bail!(
+            "{} holds another job list ({found:?}); give its arguments, or another --out",
+            args.out.display()
+        );
+    }
+    let results: Vec<JobResult> = by_id.into_values().collect();
+    write_report(&results, &args.out, "costly.md")?;
+    if args.bless {
+        write_report(&results, Path::new("docs"), "costly_results.md")?;
+    }
+    Ok(())
+}
+
+/// One row of the tables: a world, dynamics, price, rule and learner over its runs.
+struct Row<'a> {
+    world: &'a str,
+    dynamics: Dynamics,
+    price: f64,
+    rule: SensingRule,
+    learner: Learner,
+    runs: Vec<&'a JobResult>,
+}
+
+impl Row<'_> {
+    /// The mean over runs of a run's figure.
+    fn mean(&self, f: impl Fn(&Summary) -> f64) -> f64 {
+        self.runs.iter().map(|r| f(&r.summary)).sum::<f64>() / self.runs.len() as f64
+    }
+
+    /// The mean learning curve over runs.
+    fn curve(&self) -> Vec<f64> {
+        let n = self.runs.iter().map(|r| r.curve.len()).min().unwrap_or(0);
+        (0..n)
+            .map(|i| self.runs.iter().map(|r| r.curve[i]).sum::<f64>() / self.runs.len() as f64)
+            .collect()
+    }
+}
+
+fn rows(results: &[JobResult]) -> Vec<Row<'_>> {
+    let mut groups: BTreeMap<(usize, Dynamics, usize, usize, Learner), Vec<&JobResult>> =
+        BTreeMap::new();
+    for r in results {
+        let w = WORLDS
+            .iter()
+            .position(|w| w.0 == r.world)
+            .unwrap_or(usize::MAX);
+        let p = PRICES
+            .iter()
+            .position(|&p| p == r.price)
+            .unwrap_or(usize::MAX);
+        let k = RULES
+            .iter()
+            .position(|&k| k == r.rule)
+            .unwrap_or(usize::MAX);
+        groups
+            .entry((w, r.dynamics, p, k, r.learner))
+            .or_default()
+            .push(r);
+    }
+    groups
+        .into_values()
+        .map(|runs| Row {
+            world: &runs[0].world,
+            dynamics: runs[0].dynamics,
+            price: runs[0].price,
+            rule: runs[0].rule,
+            learner: runs[0].learner,
+            runs,
+        })
+        .collect()
+}
+
+fn rule_name(rule: SensingRule) -> &'static str {
+    match rule {
+        SensingRule::WithTheMove => "sensing decided with the move (the published rule)",
+        SensingRule::AfterTheOutcome => "sensing after the outcome",
+    }
+}
+
+/// `costly.csv`, `costly_after_outcome.csv`, the Markdown tables and the figures into
+/// `dir`.
+fn write_report(results: &[JobResult], dir: &Path, md_name: &str) -> Result<()> {
+    let rows = rows(results);
+    let mut md = String::from(
+        "# The active-measurement benchmark: measured\n\nWritten by `cargo xtask costly --bless` (specification 6.10): the costed return per episode (reward less the prices of what was sensed, in reward units), mean over runs of each run's mean over all its episodes and over its last 10%.\n",
+    );
+    for (rule, csv_name) in [
+        (SensingRule::WithTheMove, "costly.csv"),
+        (SensingRule::AfterTheOutcome, "costly_after_outcome.csv"),
+    ] {
+        let mut csv = String::from(
+            "world,dynamics,price,learner,runs,episodes,mean_all,mean_last10,sensing_per_episode,steps_per_episode,success\n",
+        );
+        let _ = write!(
+            md,
+            "\n## {} (`{csv_name}`)\n\n| world | dynamics | price per coordinate | learner | runs | episodes | mean all | mean last 10% | measurements / episode | moves / episode | success |\n|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|\n",
+            rule_name(rule)
+        );
+        for r in rows.iter().filter(|r| r.rule == rule) {
+            let episodes = r.runs[0].summary.episodes;
+            let cells = [
+                r.mean(|s| s.mean_all),
+                r.mean(|s| s.mean_last10),
+                r.mean(|s| s.sensing_per_episode),
+                r.mean(|s| s.steps_per_episode),
+                r.mean(|s| s.success),
+            ];
+            let _ = writeln!(
+                csv,
+                "{},{},{},{},{},{episodes},{},{},{},{},{}",
+                r.world,
+                r.dynamics.name(),
+                r.price,
+                r.learner.name(),
+                r.runs.len(),
+                cells[0],
+                cells[1],
+                cells[2],
+                cells[3],
+                cells[4]
+            );
+            let _ = writeln!(
+                md,
+                "| {} | {} | {} | {} | {} | {episodes} | {:.3} | {:.3} | {:.2} | {:.2} | {:.3} |",
+                r.world,
+                r.dynamics.name(),
+                r.price,
+                r.learner.name(),
+                r.runs.len(),
+                cells[0],
+                cells[1],
+                cells[2],
+                cells[3],
+                cells[4]
+            );
+        }
+        crate::files::write_atomic(&dir.join(csv_name), csv)?;
+    }
+    let figures = dir.join("figures");
+    crate::files::create_dir(&figures)?;
+    md.push_str("\n## Learning curves\n\n");
+    for &(world, _, _) in &WORLDS {
+        let name = format!("costly_{world}.svg");
+        draw(&figures.join(&name), world, &rows)?;
+        let _ = writeln!(md, "![the costed return on {world}](figures/{name})\n");
+    }
+    crate::files::write_atomic(&dir.join(md_name), md)
+}
+
+/// One figure: a panel per dynamics, the costed return (mean over runs of each block of
+/// episodes) against episodes, one line per learner and price, the published rule.
+fn draw(path: &Path, world: &str, rows: &[Row<'_>]) -> Result<()> {
+    crate::figures::register_font();
+    let plot_err = |e: &dyn std::fmt::Display| anyhow!("drawing {}: {e}", path.display());
+    let mut svg = String::new();
+    let (pw, ph) = (520_u32, 380_u32);
+    let base = SVGBackend::with_string(&mut svg, (pw * 3, ph + 50)).into_drawing_area();
+    base.fill(&WHITE).map_err(|e| plot_err(&e))?;
+    let root = base
+        .titled(
+            &format!(
+                "{world}: costed return per episode (mean over runs, blocks of {BLOCK} episodes)"
+            ),
+            ("sans-serif", 20),
+        )
+        .map_err(|e| plot_err(&e))?;
+    let panels = root.split_evenly((1, 3));
+    let styles = [
+        BLACK.stroke_width(2),
+        RGBColor(140, 140, 140).stroke_width(2),
+    ];
+    for (i, (panel, dynamics)) in panels.iter().zip(Dynamics::ALL).enumerate() {
+        let lines: Vec<&Row<'_>> = rows
+            .iter()
+            .filter(|r| {
+                r.world == world && r.dynamics == dynamics && r.rule == SensingRule::WithTheMove
+            })
+            .collect();
+        let episodes = lines.first().map_or(1, |r| r.runs[0].summary.episodes) as f64;
+        let low = lines
+            .iter()
+            .flat_map(|r| r.curve())
+            .fold(0.0_f64, f64::min)
+            .min(-0.1)
+            - 0.05;
+        let mut chart = ChartBuilder::on(panel)
+            .caption(dynamics.name(), ("sans-serif", 18))
+            .margin(12)
+            .x_label_area_size(44)
+            .y_label_area_size(56)
+            .build_cartesian_2d(0.0..episodes, low..1.05)
+            .map_err(|e| plot_err(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc("episode")
+            .y_desc("costed return")
+            .axis_desc_style(("sans-serif", 15))
+            .label_style(("sans-serif", 13))
+            .light_line_style(WHITE)
+            .bold_line_style(RGBColor(230, 230, 230))
+            .x_label_formatter(&|x| format!("{x:.0}"))
+            .y_label_formatter(&|y| format!("{:.1}", if y.abs() < 0.05 { 0.0 } else { *y }))
+            .draw()
+            .map_err(|e| plot_err(&e))?;
+        // AMRL-Q plays its last 10% of episodes greedily.
+        let greedy = episodes * 0.9;
+        let dashes = RGBColor(120, 120, 120);
+        chart
+            .draw_series(DashedLineSeries::new(
+                vec![(greedy, low), (greedy, 1.05)],
+                4,
+                4,
+                dashes.stroke_width(1),
+            ))
+            .map_err(|e| plot_err(&e))?
+            .label("last 10% of episodes: greedy")
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 24, y)], dashes.stroke_width(1))
+            });
+        for (line, style) in lines.iter().zip(styles.iter().cycle()) {
+            let curve = line.curve();
+            let style = *style;
+            chart
+                .draw_series(LineSeries::new(
+                    curve
+                        .iter()
+                        .enumerate()
+                        .map(|(b, &y)| (((b as f64) + 0.5) * BLOCK as f64, y)),
+                    style,
+                ))
+                .map_err(|e| plot_err(&e))?
+                .label(format!(
+                    "{}, {} per coordinate",
+                    line.learner.name(),
+                    line.price
+                ))
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
+        }
+        if i == 0 {
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::LowerRight)
+                .background_style(WHITE.mix(0.9))
+                .border_style(RGBColor(150, 150, 150))
+                .label_font(("sans-serif", 13))
+                .draw()
+                .map_err(|e| plot_err(&e))?;
+        }
+    }
+    root.present().map_err(|e| plot_err(&e))?;
+    drop(panels);
+    drop(root);
+    drop(base);
+    crate::files::write_atomic(path, svg)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn def(runs: u64) -> Definition {
+        Definition {
+            runs,
+            seed: 1,
+            learners: Learner::ALL.to_vec(),
+        }
+    }
+
+    #[test]
+    fn every_job_is_numbered_once() {
+        let d = def(3);
+        let n = total(&d).unwrap();
+        assert_eq!(n, 2 * 3 * 2 * 2 * 3);
+        let jobs: Vec<Job> = (0..n).map(|id| job(&d, id)).collect();
+        for (i, a) in jobs.iter().enumerate() {
+            assert!(jobs[i + 1..].iter().all(|b| b != a), "{a:?} twice");
+        }
+        // Runs are the innermost: a job's runs are neighbours.
+        assert_eq!((jobs[0].run, jobs[1].run, jobs[2].run), (0, 1, 2));
+        assert_eq!(jobs[0].world, 0);
+        assert_eq!(jobs[(n - 1) as usize].world, 1);
+    }
+
+    #[test]
+    fn a_run_is_its_seeds_alone() {
+        let d = def(2);
+        let mut lakes = BTreeMap::new();
+        lakes.insert(
+            (0, Dynamics::SemiSlippery),
+            mdp::builtin_world("frozenlake4x4", &Dynamics::SemiSlippery.options()).unwrap(),
+        );
+        // Job 0 of the second rule, price and dynamics of the 4x4 lake.
+        let id = (0..total(&d).unwrap())
+            .find(|&id| {
+                let j = job(&d, id);
+                j.world == 0 && j.dynamics == Dynamics::SemiSlippery && j.run == 1
+            })
+            .unwrap();
+        let a = serde_json::to_string(&run_job(&d, &lakes, id).unwrap()).unwrap();
+        let b = serde_json::to_string(&run_job(&d, &lakes, id).unwrap()).unwrap();
+        assert_eq!(a, b);
+        let r = run_job(&d, &lakes, id).unwrap();
+        assert_eq!((r.seed, r.curve.len()), (2, 1000 / BLOCK));
+    }
+}
