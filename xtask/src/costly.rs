@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Result, anyhow, bail};
 use clap::Args;
-use csql::{AmrlParams, CostlySummary, Episode, SensingRule};
+use csql::{AmrlParams, CostlySummary, Episode, Measuring, SensingRule};
 use mdp::{FiniteWorld, SensingModel, WorldOptions};
 use plotters::prelude::*;
 use rand::SeedableRng;
@@ -111,14 +111,18 @@ const RULES: [SensingRule; 2] = [SensingRule::WithTheMove, SensingRule::AfterThe
 pub enum Learner {
     /// AMRL-Q with its published parameters (`csql::amrl_q`).
     AmrlQ,
+    /// The same Q-learning measuring the whole state at every step
+    /// (`csql::Measuring::Always`).
+    AlwaysMeasuring,
 }
 
 impl Learner {
-    const ALL: [Learner; 1] = [Learner::AmrlQ];
+    const ALL: [Learner; 2] = [Learner::AmrlQ, Learner::AlwaysMeasuring];
 
     fn name(self) -> &'static str {
         match self {
             Learner::AmrlQ => "amrl-q",
+            Learner::AlwaysMeasuring => "always-measuring",
         }
     }
 }
@@ -232,18 +236,24 @@ fn run_job(
     let lake = &lakes[&(j.world, j.dynamics)];
     let seed = def.seed + j.run;
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
-    let run: Vec<Episode> = match j.learner {
-        // AMRL-Q measures the whole state: every coordinate at once.
-        Learner::AmrlQ => csql::amrl_q(
-            lake,
-            &AmrlParams::default(),
-            2.0 * j.price,
-            j.rule,
-            episodes,
-            max_moves,
-            &mut rng,
-        ),
+    let measuring = match j.learner {
+        Learner::AmrlQ => Measuring::Choose,
+        Learner::AlwaysMeasuring => Measuring::Always,
     };
+    let params = AmrlParams {
+        measuring,
+        ..AmrlParams::default()
+    };
+    // Both measure the whole state: every coordinate at once.
+    let run: Vec<Episode> = csql::amrl_q(
+        lake,
+        &params,
+        2.0 * j.price,
+        j.rule,
+        episodes,
+        max_moves,
+        &mut rng,
+    );
     Ok(JobResult {
         id,
         world: world.to_string(),
@@ -461,10 +471,7 @@ fn draw(path: &Path, world: &str, rows: &[Row<'_>]) -> Result<()> {
         )
         .map_err(|e| plot_err(&e))?;
     let panels = root.split_evenly((1, 3));
-    let styles = [
-        BLACK.stroke_width(2),
-        RGBColor(140, 140, 140).stroke_width(2),
-    ];
+    let grey = RGBColor(140, 140, 140);
     for (i, (panel, dynamics)) in panels.iter().zip(Dynamics::ALL).enumerate() {
         let lines: Vec<&Row<'_>> = rows
             .iter()
@@ -513,24 +520,32 @@ fn draw(path: &Path, world: &str, rows: &[Row<'_>]) -> Result<()> {
             .legend(move |(x, y)| {
                 PathElement::new(vec![(x, y), (x + 24, y)], dashes.stroke_width(1))
             });
-        for (line, style) in lines.iter().zip(styles.iter().cycle()) {
-            let curve = line.curve();
-            let style = *style;
-            chart
-                .draw_series(LineSeries::new(
-                    curve
-                        .iter()
-                        .enumerate()
-                        .map(|(b, &y)| (((b as f64) + 0.5) * BLOCK as f64, y)),
-                    style,
-                ))
-                .map_err(|e| plot_err(&e))?
-                .label(format!(
-                    "{}, {} per coordinate",
-                    line.learner.name(),
-                    line.price
-                ))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
+        // Colour by price, stroke by learner: AMRL-Q solid, always measuring dashed.
+        for line in &lines {
+            let colour = if line.price == PRICES[0] { BLACK } else { grey };
+            let style = colour.stroke_width(2);
+            let points: Vec<(f64, f64)> = line
+                .curve()
+                .iter()
+                .enumerate()
+                .map(|(b, &y)| (((b as f64) + 0.5) * BLOCK as f64, y))
+                .collect();
+            let label = format!("{}, {} per coordinate", line.learner.name(), line.price);
+            let drawn = match line.learner {
+                Learner::AmrlQ => chart.draw_series(LineSeries::new(points, style)),
+                Learner::AlwaysMeasuring => {
+                    chart.draw_series(DashedLineSeries::new(points, 6, 4, style))
+                }
+            }
+            .map_err(|e| plot_err(&e))?;
+            let dashed = line.learner == Learner::AlwaysMeasuring;
+            drawn.label(label).legend(move |(x, y)| {
+                if dashed {
+                    PathElement::new(vec![(x, y), (x + 8, y)], style)
+                } else {
+                    PathElement::new(vec![(x, y), (x + 24, y)], style)
+                }
+            });
         }
         if i == 0 {
             chart
@@ -566,7 +581,7 @@ mod tests {
     fn every_job_is_numbered_once() {
         let d = def(3);
         let n = total(&d).unwrap();
-        assert_eq!(n, 2 * 3 * 2 * 2 * 3);
+        assert_eq!(n, 2 * 3 * 2 * 2 * 2 * 3);
         let jobs: Vec<Job> = (0..n).map(|id| job(&d, id)).collect();
         for (i, a) in jobs.iter().enumerate() {
             assert!(jobs[i + 1..].iter().all(|b| b != a), "{a:?} twice");

@@ -30,6 +30,7 @@ use serde::{Deserialize, Serialize};
 /// ```
 /// let p = csql::AmrlParams::default();
 /// assert_eq!((p.learning_rate, p.epsilon, p.discount, p.measure_bias, p.greedy_share), (0.3, 0.1, 0.95, 0.1, 0.1));
+/// assert_eq!(p.measuring, csql::Measuring::Choose);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct AmrlParams {
@@ -44,6 +45,25 @@ pub struct AmrlParams {
     pub measure_bias: f64,
     /// The share of the last episodes played greedily (0.1).
     pub greedy_share: f64,
+    /// Whether the agent chooses to measure (AMRL-Q) or measures at every step.
+    pub measuring: Measuring,
+}
+
+/// Whether the agent chooses to measure.
+///
+/// ```
+/// assert_eq!(csql::Measuring::default(), csql::Measuring::Choose);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Measuring {
+    /// AMRL-Q: the pair (action, measure or not) is chosen at every step.
+    #[default]
+    Choose,
+    /// The whole state is measured at every step, and only the action is chosen (over
+    /// `Q(s, a, measure)`): Q-learning on the true state, paying for it every step, the
+    /// benchmark's always-measuring learner.
+    Always,
 }
 
 impl Default for AmrlParams {
@@ -54,6 +74,7 @@ impl Default for AmrlParams {
             discount: 0.95,
             measure_bias: 0.1,
             greedy_share: 0.1,
+            measuring: Measuring::Choose,
         }
     }
 }
@@ -202,6 +223,18 @@ impl Tables {
         (best / PAIRS, best % PAIRS == 1)
     }
 
+    /// The greedy action among the measuring halves: the first maximum.
+    fn greedy_measured(&self, s: StateId) -> usize {
+        let row = self.row(s);
+        let mut best = 0;
+        for a in 1..self.actions {
+            if row[a * PAIRS + 1] > row[best * PAIRS + 1] {
+                best = a;
+            }
+        }
+        best
+    }
+
     fn max(&self, s: StateId) -> f64 {
         self.row(s)
             .iter()
@@ -274,10 +307,12 @@ pub fn amrl_q<W: World + ?Sized, R: Rng + ?Sized>(
             reached_goal: false,
         };
         for _ in 0..max_moves {
-            let (a, measure) = if greedy || !rng.random_bool(params.epsilon) {
-                t.greedy(believed)
-            } else {
-                (rng.random_range(0..actions), rng.random_bool(0.5))
+            let exploit = greedy || !rng.random_bool(params.epsilon);
+            let (a, measure) = match (params.measuring, exploit) {
+                (Measuring::Choose, true) => t.greedy(believed),
+                (Measuring::Choose, false) => (rng.random_range(0..actions), rng.random_bool(0.5)),
+                (Measuring::Always, true) => (t.greedy_measured(believed), true),
+                (Measuring::Always, false) => (rng.random_range(0..actions), true),
             };
             let step = world.sample(truth, ActionId(a as u32), rng);
             e.steps += 1;

@@ -1,7 +1,7 @@
 //! AMRL-Q, the active-measurement baseline: its accounting, its two sensing rules, and
 //! that it learns the deterministic lake.
 
-use csql::{AmrlParams, CostlySummary, Episode, SensingRule, amrl_q};
+use csql::{AmrlParams, CostlySummary, Episode, Measuring, SensingRule, amrl_q};
 use mdp::{SensingModel, WorldOptions};
 use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -76,4 +76,28 @@ fn it_learns_the_deterministic_lake() {
         let last = &episodes[900..];
         assert!(last.iter().all(|e| e.steps == 6 && e.measurements == 0));
     }
+}
+
+/// Measuring at every step: every move is measured and paid, and the greedy end follows a
+/// shortest path, paying for each of its six moves.
+#[test]
+fn the_always_measuring_learner_pays_every_move() {
+    let world = lake(0.0);
+    let params = AmrlParams {
+        measuring: Measuring::Always,
+        ..AmrlParams::default()
+    };
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(2);
+    let episodes = amrl_q(
+        &world,
+        &params,
+        0.05,
+        SensingRule::WithTheMove,
+        1000,
+        100,
+        &mut rng,
+    );
+    assert!(episodes.iter().all(|e| e.measurements == e.steps));
+    let s = CostlySummary::of(&episodes);
+    assert!((s.mean_last10 - (1.0 - 6.0 * 0.05)).abs() < 1e-9, "{s:?}");
 }
