@@ -126,7 +126,7 @@ pub use random::RandomMap;
 pub use reference::{
     BELIEF_QUANTUM, BestSensing, DEFAULT_MAX_BELIEFS, DEFAULT_MAX_PLANS, MAX_MENU_FEATURES,
     OpenLoop, ReferenceError, ReferenceOptions, ReferencePoints, SensingMenu, SensingRule,
-    always_measuring, best_sensing, free_sensing, open_loop, reference_points,
+    always_measuring, best_sensing, free_sensing, open_loop, reference_points, sensing_ceiling,
 };
 pub use render::{Overlay, render_svg, render_text};
 pub use sensing::{BadCost, CostModel, Feature, FeatureSpace, Manhattan};

@@ -36,6 +36,10 @@
 //!   step, found by value iteration over the finite graph of beliefs reachable when at most
 //!   `K` steps in a row leave the agent uncertain of the state ([`ReferenceOptions::max_uncertain`]).
 //!
+//! Each is the value of some policy, so the best of them is a lower bound of the optimum
+//! over every policy. [`sensing_ceiling`] is an upper bound (the same search with the
+//! state told for free past `K` uncertain steps); where the two meet, the optimum is found.
+//!
 //! Episodes are capped at a horizon of `H` moves ([`ReferenceOptions::horizon`]): every
 //! value here is the exact optimum of the `H`-move problem (finite-horizon backward
 //! induction; it stops early, exactly, when a step leaves every value unchanged bit for
@@ -496,9 +500,10 @@ pub fn always_measuring<W: World>(
 /// ceiling of every reference point (no policy that senses less, or pays, does better).
 ///
 /// ```
-/// let w = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { slip: 2.0 / 3.0, ..Default::default() }).unwrap();
+/// // On the semi-slippery lake a policy that knows the state always reaches the goal.
+/// let w = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { slide: 0.5, ..Default::default() }).unwrap();
 /// let v = mdp::free_sensing(&w, &mdp::ReferenceOptions::default()).unwrap();
-/// assert!((v - 0.7417).abs() < 1e-3); // Gymnasium's slippery lake, 100 moves
+/// assert!((v - 1.0).abs() < 1e-12);
 /// ```
 pub fn free_sensing<W: World>(
     world: &W,
@@ -793,6 +798,43 @@ pub fn best_sensing<W: World>(
     rule: SensingRule,
     options: &ReferenceOptions,
 ) -> Result<BestSensing, ReferenceError> {
+    search(world, menu, rule, options, false)
+}
+
+/// An upper bound of the best expected costed return of **every** policy, with no bound
+/// on uncertain steps: the optimum of a relaxed problem in which, whenever a step would
+/// leave the agent uncertain for more than [`ReferenceOptions::max_uncertain`] steps in a
+/// row, the state is told to it at no price. Every policy of the real problem runs
+/// unchanged in the relaxed one (it may ignore what it is told), so none scores more than
+/// this; with [`best_sensing`] below it, the two bracket the optimum, and where they meet
+/// it is found. The search is [`best_sensing`]'s over the same beliefs.
+///
+/// ```
+/// use mdp::{ReferenceOptions, SensingMenu, SensingRule};
+/// let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { slide: 0.5, ..Default::default() }).unwrap();
+/// let menu = SensingMenu::Whole { price: 0.05 };
+/// let o = ReferenceOptions { max_uncertain: Some(4), ..Default::default() };
+/// let low = mdp::best_sensing(&lake, menu, SensingRule::WithMove, &o).unwrap().value;
+/// let high = mdp::sensing_ceiling(&lake, menu, SensingRule::WithMove, &o).unwrap().value;
+/// assert!(low <= high + 1e-12 && high <= 1.0);
+/// ```
+pub fn sensing_ceiling<W: World>(
+    world: &W,
+    menu: SensingMenu,
+    rule: SensingRule,
+    options: &ReferenceOptions,
+) -> Result<BestSensing, ReferenceError> {
+    search(world, menu, rule, options, true)
+}
+
+/// The search of [`best_sensing`]; with `reveal`, that of [`sensing_ceiling`].
+fn search<W: World>(
+    world: &W,
+    menu: SensingMenu,
+    rule: SensingRule,
+    options: &ReferenceOptions,
+    reveal: bool,
+) -> Result<BestSensing, ReferenceError> {
     check_horizon(options)?;
     check_menu(menu)?;
     if options.max_beliefs == 0 {
@@ -870,7 +912,15 @@ pub fn best_sensing<W: World>(
                                 if !next.is_empty() {
                                     for (w, part) in split(&m, &probes, set, &next) {
                                         if part.len() > 1 && count >= k_max {
-                                            continue 'subset;
+                                            if !reveal {
+                                                continue 'subset;
+                                            }
+                                            // The relaxation: the state is told, free.
+                                            for &(s, p) in &part {
+                                                let point = g.node(Kind::Act, vec![(s, 1.0)], 0)?;
+                                                children.push((w * p, point));
+                                            }
+                                            continue;
                                         }
                                         children.push((w, g.node(Kind::Act, part, next_count)?));
                                     }
@@ -899,6 +949,16 @@ pub fn best_sensing<W: World>(
                     choices.push(Choice {
                         reward: 0.0,
                         children: vec![(1.0, act)],
+                    });
+                } else if reveal {
+                    // The relaxation: past the bound the state is told, free.
+                    let mut children = Vec::new();
+                    for &(s, p) in &b {
+                        children.push((p, g.node(Kind::Act, vec![(s, 1.0)], 0)?));
+                    }
+                    choices.push(Choice {
+                        reward: 0.0,
+                        children,
                     });
                 }
                 for j in 0..probes.len() {

@@ -183,30 +183,53 @@ fn reads(p: &Plain, whole: bool, set: u32, s: usize) -> Vec<u32> {
     }
 }
 
+/// What the brute force searches: the menu, the rule, the bound on uncertain steps and
+/// whether the state is told for free past it (the relaxation of `sensing_ceiling`).
+#[derive(Clone, Copy)]
+struct Setup {
+    whole: bool,
+    rule: SensingRule,
+    k: u32,
+    reveal: bool,
+}
+
+fn certain(d: &[(usize, f64)]) -> bool {
+    let mut s: Vec<usize> = d.iter().filter(|x| x.1 > 0.0).map(|x| x.0).collect();
+    s.sort();
+    s.dedup();
+    s.len() <= 1
+}
+
+/// The relaxation: the state of an uncertain `info` told, free.
+fn told(p: &Plain, u: Setup, info: &[(usize, f64)], h: u32) -> f64 {
+    info.iter()
+        .map(|&(s, q)| brute_best(p, u, &[(s, q)], h, 0))
+        .sum()
+}
+
+/// Group states by what a probe set reads.
+fn groups(p: &Plain, whole: bool, set: u32, info: &[(usize, f64)]) -> Vec<Group> {
+    let mut groups: Vec<Group> = Vec::new();
+    for &(t, q) in info {
+        let r = reads(p, whole, set, t);
+        match groups.iter_mut().find(|g| g.0 == r) {
+            Some(g) => g.1.push((t, q)),
+            None => groups.push((r, vec![(t, q)])),
+        }
+    }
+    groups
+}
+
 /// The optimum over every policy, by recursion over every history of what the agent
 /// saw: `info` is the unnormalised distribution of the state given that history (no
 /// beliefs are merged and nothing is rounded); `uncertain` counts the steps in a row
-/// that left the agent uncertain, at most `k`.
-fn brute_best(
-    p: &Plain,
-    whole: bool,
-    rule: SensingRule,
-    info: &[(usize, f64)],
-    h: u32,
-    uncertain: u32,
-    k: u32,
-) -> f64 {
+/// that left the agent uncertain, at most `u.k`.
+fn brute_best(p: &Plain, u: Setup, info: &[(usize, f64)], h: u32, uncertain: u32) -> f64 {
     if h == 0 || info.is_empty() {
         return 0.0;
     }
-    let certain = |d: &[(usize, f64)]| {
-        let mut s: Vec<usize> = d.iter().filter(|x| x.1 > 0.0).map(|x| x.0).collect();
-        s.sort();
-        s.dedup();
-        s.len() <= 1
-    };
     let price = |set: u32| -> f64 {
-        if whole {
+        if u.whole {
             if set == 0 {
                 0.0
             } else {
@@ -219,7 +242,11 @@ fn brute_best(
                 .sum()
         }
     };
-    let sets: Vec<u32> = if whole { vec![0, 1] } else { vec![0, 1, 2, 3] };
+    let sets: Vec<u32> = if u.whole {
+        vec![0, 1]
+    } else {
+        vec![0, 1, 2, 3]
+    };
     let mut best = f64::NEG_INFINITY;
     for a in 0..p.na {
         let mut gain = 0.0;
@@ -233,35 +260,22 @@ fn brute_best(
             }
         }
         let mass: f64 = info.iter().map(|x| x.1).sum();
-        match rule {
+        match u.rule {
             SensingRule::WithMove => {
                 for &set in &sets {
-                    // Group the next states by what the set reads.
-                    let mut groups: Vec<Group> = Vec::new();
-                    for &(t, q) in &next {
-                        let r = reads(p, whole, set, t);
-                        match groups.iter_mut().find(|g| g.0 == r) {
-                            Some(g) => g.1.push((t, q)),
-                            None => groups.push((r, vec![(t, q)])),
-                        }
-                    }
                     let mut v = gain - mass * price(set);
                     let mut ok = true;
-                    for (_, g) in &groups {
+                    for (_, g) in &groups(p, u.whole, set, &next) {
                         let c = certain(g);
-                        if !c && uncertain >= k {
+                        if !c && uncertain >= u.k {
+                            if u.reveal {
+                                v += told(p, u, g, h - 1);
+                                continue;
+                            }
                             ok = false;
                             break;
                         }
-                        v += brute_best(
-                            p,
-                            whole,
-                            rule,
-                            g,
-                            h - 1,
-                            if c { 0 } else { uncertain + 1 },
-                            k,
-                        );
+                        v += brute_best(p, u, g, h - 1, if c { 0 } else { uncertain + 1 });
                     }
                     if ok {
                         best = best.max(v);
@@ -269,7 +283,7 @@ fn brute_best(
                 }
             }
             SensingRule::AfterOutcome => {
-                let v = gain + brute_sense(p, whole, &next, h - 1, uncertain + 1, k, 0);
+                let v = gain + brute_sense(p, u, &next, h - 1, uncertain + 1, 0);
                 best = best.max(v);
             }
         }
@@ -280,54 +294,36 @@ fn brute_best(
 /// After a move (the other rule): stop, or measure one more probe not yet measured.
 fn brute_sense(
     p: &Plain,
-    whole: bool,
+    u: Setup,
     info: &[(usize, f64)],
     h: u32,
     uncertain: u32,
-    k: u32,
     done: u32,
 ) -> f64 {
     if h == 0 || info.is_empty() {
         return 0.0;
     }
-    let mut states: Vec<usize> = info.iter().filter(|x| x.1 > 0.0).map(|x| x.0).collect();
-    states.sort();
-    states.dedup();
-    let certain = states.len() <= 1;
+    let c = certain(info);
     let mut best = f64::NEG_INFINITY;
-    if certain || uncertain <= k {
-        best = brute_best(
-            p,
-            whole,
-            SensingRule::AfterOutcome,
-            info,
-            h,
-            if certain { 0 } else { uncertain },
-            k,
-        );
+    if c || uncertain <= u.k {
+        best = brute_best(p, u, info, h, if c { 0 } else { uncertain });
+    } else if u.reveal {
+        best = told(p, u, info, h);
     }
     let mass: f64 = info.iter().map(|x| x.1).sum();
-    let probes: Vec<u32> = if whole { vec![1] } else { vec![1, 2] };
+    let probes: Vec<u32> = if u.whole { vec![1] } else { vec![1, 2] };
     for probe in probes {
         if done & probe != 0 {
             continue;
         }
-        let price = if whole {
+        let price = if u.whole {
             p.prices[0] + p.prices[1]
         } else {
             p.prices[(probe - 1) as usize]
         };
-        let mut groups: Vec<Group> = Vec::new();
-        for &(t, q) in info {
-            let r = reads(p, whole, probe, t);
-            match groups.iter_mut().find(|g| g.0 == r) {
-                Some(g) => g.1.push((t, q)),
-                None => groups.push((r, vec![(t, q)])),
-            }
-        }
         let mut v = -mass * price;
-        for (_, g) in &groups {
-            v += brute_sense(p, whole, g, h, uncertain, k, done | probe);
+        for (_, g) in &groups(p, u.whole, probe, info) {
+            v += brute_sense(p, u, g, h, uncertain, done | probe);
         }
         best = best.max(v);
     }
@@ -396,15 +392,13 @@ fn best_sensing_is_the_best_of_every_policy() {
                             SensingMenu::Features
                         };
                         let got = best_sensing(&w, menu, rule, &options(h, k)).unwrap().value;
-                        let want = brute_best(
-                            &p,
+                        let u = Setup {
                             whole,
                             rule,
-                            &[(0, 1.0)],
-                            h,
-                            0,
-                            k.unwrap_or(u32::MAX - 1),
-                        );
+                            k: k.unwrap_or(u32::MAX - 1),
+                            reveal: false,
+                        };
+                        let want = brute_best(&p, u, &[(0, 1.0)], h, 0);
                         assert!(
                             (got - want).abs() < EPS,
                             "seed {seed} h {h} k {k:?} {rule:?} whole {whole}: {got} vs {want}"
@@ -594,4 +588,59 @@ fn aliased_features_with_a_bound_are_infeasible_not_a_panic() {
     )
     .unwrap();
     assert!((free.value - 1.0).abs() < EPS);
+}
+
+/// The ceiling is the optimum of the relaxation (the state told for free past `k`
+/// uncertain steps), and so above the optimum of every policy.
+#[test]
+fn the_sensing_ceiling_is_the_relaxation_and_bounds_every_policy() {
+    for seed in 0..10 {
+        let w = tiny(seed, 4, 2, [0.03, 0.08]);
+        let p = plain(&w);
+        for h in 1..=4 {
+            for rule in [SensingRule::WithMove, SensingRule::AfterOutcome] {
+                for whole in [true, false] {
+                    let menu = if whole {
+                        SensingMenu::whole(&w)
+                    } else {
+                        SensingMenu::Features
+                    };
+                    let free = Setup {
+                        whole,
+                        rule,
+                        k: u32::MAX - 1,
+                        reveal: false,
+                    };
+                    let all = brute_best(&p, free, &[(0, 1.0)], h, 0);
+                    for k in [0, 1, 2] {
+                        let up = mdp::sensing_ceiling(&w, menu, rule, &options(h, Some(k)))
+                            .unwrap()
+                            .value;
+                        let relaxed = brute_best(
+                            &p,
+                            Setup {
+                                k,
+                                reveal: true,
+                                ..free
+                            },
+                            &[(0, 1.0)],
+                            h,
+                            0,
+                        );
+                        assert!(
+                            (up - relaxed).abs() < EPS,
+                            "seed {seed} h {h} k {k}: {up} vs {relaxed}"
+                        );
+                        let low = best_sensing(&w, menu, rule, &options(h, Some(k)))
+                            .unwrap()
+                            .value;
+                        assert!(
+                            up >= all - EPS && low <= all + EPS,
+                            "seed {seed} h {h} k {k}: {low} {all} {up}"
+                        );
+                    }
+                }
+            }
+        }
+    }
 }
