@@ -145,7 +145,7 @@ impl SensingMenu {
     }
 }
 
-/// When the decision to sense is taken (see the [module](self) documentation).
+/// When the decision to sense is taken (see [`reference_points`]).
 ///
 /// ```
 /// assert_ne!(mdp::SensingRule::WithMove, mdp::SensingRule::AfterOutcome);
@@ -314,7 +314,82 @@ pub struct ReferencePoints {
     pub best_sensing: BestSensing,
 }
 
-/// All three reference points and their ceiling (see the [module](self) documentation).
+/// Exact reference points for costly sensing: what the best policies of three kinds
+/// score, computed from a world's model.
+///
+/// An agent acts in a [`World`] whose state it sees only when it pays for a measurement.
+/// Its score is the **costed return** of an episode: the undiscounted sum of the rewards
+/// minus the prices of everything it sensed in that episode, in reward units. The start
+/// state is known to the agent (a start distribution is averaged over, each start known).
+///
+/// What can be measured ([`SensingMenu`]): the whole state at one price, or any set of the
+/// world's features, each at its [`Sensors::price`]. Measuring feature `f` and reading `v`
+/// narrows the belief to its states that read `v` on `f`, renormalised.
+///
+/// When the decision to sense is taken ([`SensingRule`]):
+///
+/// * [`SensingRule::WithMove`] (the rule of the active-measurement literature): the agent
+///   chooses the move and what to measure together, before the move's outcome is seen;
+///   the price is paid even when the move ends the episode, and the readings describe the
+///   state the move leads to.
+/// * [`SensingRule::AfterOutcome`]: the agent moves, sees whether the episode ended, and
+///   only if it goes on decides what to measure, one feature (or the whole state) at a
+///   time, each decided after the readings before it. Nothing is sensed once the episode
+///   has ended (by a terminal state or by the horizon).
+///
+/// Both rules see when an episode ends: a belief after a move is conditioned on the
+/// episode going on.
+///
+/// The three reference points ([`reference_points`]), below the ceiling of free sensing
+/// ([`free_sensing`]: the state known after every move at no price):
+///
+/// * **always measuring** ([`always_measuring`]): the best policy that measures the whole
+///   state after every move (under [`SensingRule::WithMove`] every move pays; under
+///   [`SensingRule::AfterOutcome`] every move the episode survives pays);
+/// * **open loop** ([`open_loop`]): the best plan, a sequence of actions fixed at the start
+///   and never revised by a measurement;
+/// * **best sensing** ([`best_sensing`]): the best policy that may measure or not at each
+///   step, found by value iteration over the finite graph of beliefs reachable when at most
+///   `K` steps in a row leave the agent uncertain of the state ([`ReferenceOptions::max_uncertain`]).
+///
+/// Each is the value of some policy, so the best of them is a lower bound of the optimum
+/// over every policy. [`sensing_ceiling`] is an upper bound (the same search with the
+/// state told for free past `K` uncertain steps); where the two meet, the optimum is found.
+///
+/// Episodes are capped at a horizon of `H` moves ([`ReferenceOptions::horizon`]): every
+/// value here is the exact optimum of the `H`-move problem (finite-horizon backward
+/// induction; it stops early, exactly, when a step leaves every value unchanged bit for
+/// bit, since the values of longer horizons are then the same).
+///
+/// # Beliefs and their keys
+///
+/// A belief is a list of `(state, probability)` pairs sorted by state, without zeros,
+/// summing to 1. Two beliefs are the same node of the graph when they have the same states
+/// and each probability rounds to the same multiple of [`BELIEF_QUANTUM`] (`2^-40`, about
+/// `9.1e-13`); the first one reached stands for both. Rounding only ever merges beliefs
+/// that agree to that tolerance, so a value differs from the unrounded one by at most
+/// about `H * BELIEF_QUANTUM` times the largest return.
+///
+/// # Example
+///
+/// ```
+/// use mdp::{ReferenceOptions, SensingMenu, SensingModel, SensingRule, WorldOptions};
+/// let options = WorldOptions {
+///     slide: 0.5,
+///     sensing: Some(SensingModel::Factors),
+///     factor_costs: Some(vec![0.025, 0.025]),
+///     ..Default::default()
+/// };
+/// let lake = mdp::builtin_world("frozenlake4x4", &options).unwrap();
+/// let opts = ReferenceOptions { max_uncertain: Some(2), ..ReferenceOptions::default() };
+/// let whole = mdp::reference_points(&lake, SensingMenu::whole(&lake), SensingRule::WithMove, &opts).unwrap();
+/// assert!((whole.always_measuring - 0.7375).abs() < 1e-9);
+/// assert!((whole.best_sensing.value - 0.90).abs() < 1e-9);
+/// let apart = mdp::best_sensing(&lake, SensingMenu::Features, SensingRule::WithMove, &opts).unwrap();
+/// assert!((apart.value - 0.95).abs() < 1e-9);
+/// ```
+///
+/// # Another example
 ///
 /// ```
 /// let w = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions::default()).unwrap();
@@ -566,7 +641,7 @@ fn measured(m: &Model, c: f64, rule: SensingRule, horizon: u32) -> f64 {
 /// ```
 /// let o = mdp::WorldOptions { slide: 0.5, ..Default::default() };
 /// let lake = mdp::builtin_world("frozenlake8x8", &o).unwrap();
-/// let o = mdp::ReferenceOptions { horizon: 200, max_plans: 500, ..Default::default() };
+/// let o = mdp::ReferenceOptions { horizon: 20, max_plans: 100, ..Default::default() };
 /// let r = mdp::open_loop(&lake, &o).unwrap();
 /// assert!(r.exact && (r.value - 1.0).abs() < 1e-12); // right to the edge, then down
 /// ```
@@ -773,7 +848,7 @@ impl Graph {
 
 /// The best expected costed return of a policy that may measure or not at each step,
 /// with at most [`ReferenceOptions::max_uncertain`] uncertain steps in a row: value
-/// iteration over the beliefs such policies reach (see the [module](self) documentation).
+/// iteration over the beliefs such policies reach (see [`reference_points`]).
 ///
 /// Under [`SensingRule::WithMove`] a choice is a move and a set of probes (with
 /// [`SensingMenu::Whole`]: nothing or the whole state; with [`SensingMenu::Features`]:
