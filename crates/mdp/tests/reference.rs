@@ -480,7 +480,7 @@ fn the_benchmark_figures_come_out() {
     let ol = open_loop(
         &semi8,
         &ReferenceOptions {
-            max_plans: 500,
+            max_plans: 100,
             ..options(200, None)
         },
     )
