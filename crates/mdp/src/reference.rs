@@ -81,7 +81,8 @@ use crate::world::{Sensors, World};
 
 /// The rounding of belief probabilities for telling beliefs apart: `2^-40`.
 pub const BELIEF_QUANTUM: f64 = 1.0 / 1_099_511_627_776.0;
-/// The default cap on the beliefs of [`best_sensing`] (nodes of its graph).
+/// The default cap on the beliefs of [`best_sensing`] (nodes of its graph). On the 4x4
+/// slippery lake 685,436 beliefs (K = 8) take 1.1 GB and a minute on one core.
 pub const DEFAULT_MAX_BELIEFS: usize = 1_000_000;
 /// The default cap on the plans [`open_loop`] keeps at each step.
 pub const DEFAULT_MAX_PLANS: usize = 2_000;
@@ -814,7 +815,10 @@ enum Kind {
 
 struct Graph {
     keys: BTreeMap<(Kind, Key, u32), usize>,
+    /// The beliefs not yet expanded (an expanded one is emptied to save memory).
     beliefs: Vec<Belief>,
+    /// How many states each belief has.
+    sizes: Vec<usize>,
     kinds: Vec<Kind>,
     counts: Vec<u32>,
     choices: Vec<Vec<Choice>>,
@@ -838,6 +842,7 @@ impl Graph {
         }
         let i = self.beliefs.len();
         self.keys.insert(k, i);
+        self.sizes.push(b.len());
         self.beliefs.push(b);
         self.kinds.push(kind);
         self.counts.push(count);
@@ -945,6 +950,7 @@ fn search<W: World>(
     let mut g = Graph {
         keys: BTreeMap::new(),
         beliefs: Vec::new(),
+        sizes: Vec::new(),
         kinds: Vec::new(),
         counts: Vec::new(),
         choices: Vec::new(),
@@ -962,7 +968,7 @@ fn search<W: World>(
     }
     let mut i = 0;
     while i < g.beliefs.len() {
-        let b = g.beliefs[i].clone();
+        let b = std::mem::take(&mut g.beliefs[i]);
         let count = g.counts[i];
         let next_count = count.saturating_add(1);
         let mut choices = Vec::new();
@@ -1058,7 +1064,7 @@ fn search<W: World>(
     let n = g.beliefs.len();
     // Sense nodes in order of support size, so that a probe's parts (smaller) come first.
     let mut sense_order: Vec<usize> = (0..n).filter(|&i| g.kinds[i] == Kind::Sense).collect();
-    sense_order.sort_by_key(|&i| (g.beliefs[i].len(), i));
+    sense_order.sort_by_key(|&i| (g.sizes[i], i));
     let act_nodes: Vec<usize> = (0..n).filter(|&i| g.kinds[i] == Kind::Act).collect();
     let value_of = |c: &Choice, v: &[f64]| -> f64 {
         c.reward + c.children.iter().map(|&(w, j)| w * v[j]).sum::<f64>()
