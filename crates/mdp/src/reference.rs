@@ -959,9 +959,13 @@ fn search<W: World>(
             .max_uncertain
             .map_or("unbounded".to_string(), |k| k.to_string()),
     };
-    let subsets: Vec<Vec<usize>> = (0..1usize << probes.len())
-        .map(|mask| (0..probes.len()).filter(|j| mask >> j & 1 == 1).collect())
-        .collect();
+    // Every subset of the probes, with the move only (at most MAX_MENU_FEATURES of them).
+    let subsets: Vec<Vec<usize>> = match rule {
+        SensingRule::WithMove => (0..1usize << probes.len())
+            .map(|mask| (0..probes.len()).filter(|j| mask >> j & 1 == 1).collect())
+            .collect(),
+        SensingRule::AfterOutcome => Vec::new(),
+    };
     let mut starts = Vec::new();
     for &(p, s) in &m.start {
         starts.push((p, g.node(Kind::Act, vec![(s, 1.0)], 0)?));

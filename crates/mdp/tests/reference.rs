@@ -644,3 +644,22 @@ fn the_sensing_ceiling_is_the_relaxation_and_bounds_every_policy() {
         }
     }
 }
+
+#[test]
+fn many_features_are_refused_with_the_move_and_taken_one_at_a_time_after() {
+    // Taxi with local sensing is refused, so take the 8x8 lake sensed locally: hundreds
+    // of features.
+    let w = builtin_world(
+        "frozenlake8x8",
+        &WorldOptions {
+            slide: 0.5,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let o = options(30, Some(1));
+    let err = best_sensing(&w, SensingMenu::Features, SensingRule::WithMove, &o).unwrap_err();
+    assert!(err.to_string().contains("features"), "{err}");
+    let after = best_sensing(&w, SensingMenu::Features, SensingRule::AfterOutcome, &o).unwrap();
+    assert!(after.value.is_finite());
+}
