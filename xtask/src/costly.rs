@@ -1,4 +1,4 @@
-//! `cargo xtask costly`: the active-measurement benchmark (specification 6.10).
+//! `cargo xtask costly`: the active-measurement benchmark (specification 6.10 and 6.11).
 //!
 //! FrozenLake 4x4 (1000 episodes a run) and 8x8 (2000), each deterministic,
 //! semi-slippery (`slide = 0.5`) and slippery (`slip = 2/3`), sensed by its row and
@@ -388,7 +388,7 @@ fn rule_name(rule: SensingRule) -> &'static str {
 fn write_report(results: &[JobResult], dir: &Path, md_name: &str) -> Result<()> {
     let rows = rows(results);
     let mut md = String::from(
-        "# The active-measurement benchmark: measured\n\nWritten by `cargo xtask costly --bless` (specification 6.10): the costed return per episode (reward less the prices of what was sensed, in reward units), mean over runs of each run's mean over all its episodes and over its last 10%.\n",
+        "# The active-measurement benchmark: measured\n\nWritten by `cargo xtask costly --bless` (specification 6.10 and 6.11): the costed return per episode (reward less the prices of what was sensed, in reward units), mean over runs of each run's mean over all its episodes and over its last 10%.\n",
     );
     for (rule, csv_name) in [
         (SensingRule::WithTheMove, "costly.csv"),

@@ -1,5 +1,5 @@
 //! AMRL-Q (Bellinger et al., 2021): Q-learning over a state and a pair (action, measure
-//! or not), the baseline of the active-measurement literature (specification 6.10).
+//! or not), the baseline of the active-measurement literature (specification 6.11).
 //!
 //! The agent knows its start state. At every step it chooses an action and whether to
 //! measure the whole state at once (at one price, in reward units), greedily on

@@ -53,6 +53,9 @@
 //!   explicit finite world read from a JSON world file ([`FiniteWorld::read`]), exported
 //!   from a grid ([`FiniteWorld::from_grid`]) or built in ([`builtin_world`]:
 //!   `frozenlake4x4`, `frozenlake8x8`, `taxi`, `cliffwalking`, as Gymnasium defines them).
+//! * [`reference_points`]: what the best policies score when sensing is priced in reward
+//!   units (always measuring, the best open-loop plan, the best policy that measures only
+//!   when it pays), computed exactly from a world's model.
 //!
 //! # Example
 //!
@@ -97,6 +100,7 @@ mod map;
 mod oracle;
 mod process;
 mod random;
+mod reference;
 mod render;
 mod sensing;
 mod spec;
@@ -119,6 +123,11 @@ pub use map::{MAX_SIDE, Map};
 pub use oracle::Oracle;
 pub use process::{ActionId, Mdp, StateId, Step};
 pub use random::RandomMap;
+pub use reference::{
+    BELIEF_QUANTUM, BestSensing, DEFAULT_MAX_BELIEFS, DEFAULT_MAX_PLANS, MAX_MENU_FEATURES,
+    OpenLoop, ReferenceError, ReferenceOptions, ReferencePoints, SensingMenu, SensingRule,
+    always_measuring, best_sensing, free_sensing, open_loop, reference_points, sensing_ceiling,
+};
 pub use render::{Overlay, render_svg, render_text};
 pub use sensing::{BadCost, CostModel, Feature, FeatureSpace, Manhattan};
 pub use spec::{MAX_GOAL_MOVES, resolve};

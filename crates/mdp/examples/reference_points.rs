@@ -1,0 +1,132 @@
+//! The reference points of the costly-sensing benchmark: FrozenLake 4x4 and 8x8 with row
+//! and column sensing, three dynamics, two price variants, two sensing menus and two
+//! sensing rules. Prints a Markdown table.
+//!
+//! ```text
+//! cargo run --release -p mdp --example reference_points [-- K]
+//! ```
+//!
+//! `K` (default 3) bounds the steps in a row after which the agent may be uncertain of
+//! the state in the search for the best policy; episodes are capped at Gymnasium's limits
+//! (100 moves on 4x4, 200 on 8x8). The open loop keeps at most 2000 plans a step on 4x4
+//! and 500 on 8x8 (beyond, its value is a lower bound, shown `>=`).
+
+use std::process::ExitCode;
+
+use mdp::{ReferenceError, ReferenceOptions, SensingMenu, SensingModel, SensingRule, WorldOptions};
+
+fn main() -> ExitCode {
+    let k = match std::env::args().nth(1).map(|a| a.parse::<u32>()) {
+        None => 3,
+        Some(Ok(k)) => k,
+        Some(Err(_)) => {
+            eprintln!("usage: reference_points [K] (K: a whole number of steps)");
+            return ExitCode::FAILURE;
+        }
+    };
+    match table(k) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn table(k: u32) -> Result<(), Box<dyn std::error::Error>> {
+    println!(
+        "| world | dynamics | price per coordinate | sensing | rule | free sensing | always measuring | open loop | best (K = {k}) | nodes | ceiling (K = {k}) | optimum |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
+    let dynamics = [
+        ("deterministic", 0.0, 0.0),
+        ("semi-slippery", 0.0, 0.5),
+        ("slippery", 2.0 / 3.0, 0.0),
+    ];
+    for (world, horizon, max_plans) in [("frozenlake4x4", 100, 2000), ("frozenlake8x8", 200, 500)] {
+        for (name, slip, slide) in dynamics {
+            let mut open = None;
+            let mut free_cache = None;
+            for price in [0.025, 0.05] {
+                let lake = mdp::builtin_world(
+                    world,
+                    &WorldOptions {
+                        slip,
+                        slide,
+                        sensing: Some(SensingModel::Factors),
+                        factor_costs: Some(vec![price, price]),
+                    },
+                )?;
+                let options = ReferenceOptions {
+                    horizon,
+                    max_uncertain: Some(k),
+                    ..ReferenceOptions::default()
+                };
+                let open_loop = match open {
+                    Some(o) => o,
+                    None => {
+                        let o = mdp::open_loop(
+                            &lake,
+                            &ReferenceOptions {
+                                max_plans,
+                                ..options
+                            },
+                        )?;
+                        open = Some(o);
+                        o
+                    }
+                };
+                let free = match free_cache {
+                    Some(c) => c,
+                    None => {
+                        let c = mdp::free_sensing(&lake, &options)?;
+                        free_cache = Some(c);
+                        c
+                    }
+                };
+                let open_text = if open_loop.exact {
+                    format!("{:.4}", open_loop.value)
+                } else {
+                    format!(">= {:.4}", open_loop.value)
+                };
+                for (menu, menu_name) in [
+                    (SensingMenu::whole(&lake), "whole state"),
+                    (SensingMenu::Features, "row, column apart"),
+                ] {
+                    for rule in [SensingRule::WithMove, SensingRule::AfterOutcome] {
+                        let always = mdp::always_measuring(&lake, menu, rule, &options)?;
+                        let (best, best_text, nodes) =
+                            match mdp::best_sensing(&lake, menu, rule, &options) {
+                                Ok(b) => {
+                                    (b.value, format!("{:.4}", b.value), b.beliefs.to_string())
+                                }
+                                Err(e @ ReferenceError::TooManyBeliefs { .. }) => {
+                                    (f64::NEG_INFINITY, "refused".to_string(), format!("({e})"))
+                                }
+                                Err(e) => return Err(e.into()),
+                            };
+                        let ceiling = match mdp::sensing_ceiling(&lake, menu, rule, &options) {
+                            Ok(b) => b.value.min(free),
+                            Err(ReferenceError::TooManyBeliefs { .. }) => free,
+                            Err(e) => return Err(e.into()),
+                        };
+                        // Every reference point is a policy's value, so the best of them
+                        // is a lower bound of the optimum; where it meets the ceiling it
+                        // is the optimum.
+                        let known = always.max(open_loop.value).max(best);
+                        let known_text = if known >= ceiling - 1e-9 {
+                            format!("**{known:.4}**")
+                        } else {
+                            format!("{known:.4} to {ceiling:.4}")
+                        };
+                        println!(
+                            "| {world} | {name} | {price} | {menu_name} | {} | {free:.4} | {always:.4} | {open_text} | {best_text} | {nodes} | {ceiling:.4} | {known_text} |",
+                            rule.name(),
+                        );
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,1113 @@
+//! Exact reference points for costly sensing: what the best policies of three kinds
+//! score, computed from a world's model.
+//!
+//! An agent acts in a [`World`] whose state it sees only when it pays for a measurement.
+//! Its score is the **costed return** of an episode: the undiscounted sum of the rewards
+//! minus the prices of everything it sensed in that episode, in reward units. The start
+//! state is known to the agent (a start distribution is averaged over, each start known).
+//!
+//! What can be measured ([`SensingMenu`]): the whole state at one price, or any set of the
+//! world's features, each at its [`Sensors::price`]. Measuring feature `f` and reading `v`
+//! narrows the belief to its states that read `v` on `f`, renormalised.
+//!
+//! When the decision to sense is taken ([`SensingRule`]):
+//!
+//! * [`SensingRule::WithMove`] (the rule of the active-measurement literature): the agent
+//!   chooses the move and what to measure together, before the move's outcome is seen;
+//!   the price is paid even when the move ends the episode, and the readings describe the
+//!   state the move leads to.
+//! * [`SensingRule::AfterOutcome`]: the agent moves, sees whether the episode ended, and
+//!   only if it goes on decides what to measure, one feature (or the whole state) at a
+//!   time, each decided after the readings before it. Nothing is sensed once the episode
+//!   has ended (by a terminal state or by the horizon).
+//!
+//! Both rules see when an episode ends: a belief after a move is conditioned on the
+//! episode going on.
+//!
+//! The three reference points ([`reference_points`]), below the ceiling of free sensing
+//! ([`free_sensing`]: the state known after every move at no price):
+//!
+//! * **always measuring** ([`always_measuring`]): the best policy that measures the whole
+//!   state after every move (under [`SensingRule::WithMove`] every move pays; under
+//!   [`SensingRule::AfterOutcome`] every move the episode survives pays);
+//! * **open loop** ([`open_loop`]): the best plan, a sequence of actions fixed at the start
+//!   and never revised by a measurement;
+//! * **best sensing** ([`best_sensing`]): the best policy that may measure or not at each
+//!   step, found by value iteration over the finite graph of beliefs reachable when at most
+//!   `K` steps in a row leave the agent uncertain of the state ([`ReferenceOptions::max_uncertain`]).
+//!
+//! Each is the value of some policy, so the best of them is a lower bound of the optimum
+//! over every policy. [`sensing_ceiling`] is an upper bound (the same search with the
+//! state told for free past `K` uncertain steps); where the two meet, the optimum is found.
+//!
+//! Episodes are capped at a horizon of `H` moves ([`ReferenceOptions::horizon`]): every
+//! value here is the exact optimum of the `H`-move problem (finite-horizon backward
+//! induction; it stops early, exactly, when a step leaves every value unchanged bit for
+//! bit, since the values of longer horizons are then the same).
+//!
+//! # Beliefs and their keys
+//!
+//! A belief is a list of `(state, probability)` pairs sorted by state, without zeros,
+//! summing to 1. Two beliefs are the same node of the graph when they have the same states
+//! and each probability rounds to the same multiple of [`BELIEF_QUANTUM`] (`2^-40`, about
+//! `9.1e-13`); the first one reached stands for both. Rounding only ever merges beliefs
+//! that agree to that tolerance, so a value differs from the unrounded one by at most
+//! about `H * BELIEF_QUANTUM` times the largest return.
+//!
+//! # Example
+//!
+//! ```
+//! use mdp::{ReferenceOptions, SensingMenu, SensingModel, SensingRule, WorldOptions};
+//! let options = WorldOptions {
+//!     slide: 0.5,
+//!     sensing: Some(SensingModel::Factors),
+//!     factor_costs: Some(vec![0.025, 0.025]),
+//!     ..Default::default()
+//! };
+//! let lake = mdp::builtin_world("frozenlake4x4", &options).unwrap();
+//! let opts = ReferenceOptions { max_uncertain: Some(2), ..ReferenceOptions::default() };
+//! let whole = mdp::reference_points(&lake, SensingMenu::whole(&lake), SensingRule::WithMove, &opts).unwrap();
+//! assert!((whole.always_measuring - 0.7375).abs() < 1e-9);
+//! assert!((whole.best_sensing.value - 0.90).abs() < 1e-9);
+//! let apart = mdp::best_sensing(&lake, SensingMenu::Features, SensingRule::WithMove, &opts).unwrap();
+//! assert!((apart.value - 0.95).abs() < 1e-9);
+//! ```
+
+use std::collections::BTreeMap;
+
+use crate::process::{ActionId, StateId};
+use crate::sensing::Feature;
+use crate::world::{Sensors, World};
+
+/// The rounding of belief probabilities for telling beliefs apart: `2^-40`.
+pub const BELIEF_QUANTUM: f64 = 1.0 / 1_099_511_627_776.0;
+/// The default cap on the beliefs of [`best_sensing`] (nodes of its graph). On the 4x4
+/// slippery lake 685,436 beliefs (K = 8) take 1.1 GB and a minute on one core.
+pub const DEFAULT_MAX_BELIEFS: usize = 1_000_000;
+/// The default cap on the plans [`open_loop`] keeps at each step.
+pub const DEFAULT_MAX_PLANS: usize = 2_000;
+/// The most features [`SensingMenu::Features`] takes under [`SensingRule::WithMove`] (it
+/// tries every subset of them with every move).
+pub const MAX_MENU_FEATURES: usize = 12;
+
+/// What an agent may measure, and at what price (reward units).
+///
+/// ```
+/// let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions {
+///     sensing: Some(mdp::SensingModel::Factors),
+///     factor_costs: Some(vec![0.025, 0.025]),
+///     ..Default::default()
+/// }).unwrap();
+/// assert_eq!(mdp::SensingMenu::whole(&lake), mdp::SensingMenu::Whole { price: 0.05 });
+/// assert_eq!(mdp::SensingMenu::whole(&lake).whole_price(&lake), 0.05);
+/// assert_eq!(mdp::SensingMenu::Features.whole_price(&lake), 0.05);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SensingMenu {
+    /// One measurement reveals the state, at this price.
+    Whole {
+        /// The price of one measurement (finite, at least 0).
+        price: f64,
+    },
+    /// Any set of the world's features, each at its price; the whole state is all of them.
+    Features,
+}
+
+impl SensingMenu {
+    /// The whole state at the sum of the world's feature prices.
+    ///
+    /// ```
+    /// let w = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions {
+    ///     sensing: Some(mdp::SensingModel::Factors), ..Default::default() }).unwrap();
+    /// assert_eq!(mdp::SensingMenu::whole(&w), mdp::SensingMenu::Whole { price: 2.0 });
+    /// ```
+    pub fn whole<W: Sensors>(world: &W) -> SensingMenu {
+        let price = (0..world.num_features())
+            .map(|f| world.price(Feature(f as u32)))
+            .sum();
+        SensingMenu::Whole { price }
+    }
+
+    /// What measuring the whole state costs: the price of [`SensingMenu::Whole`], or the
+    /// sum of the feature prices.
+    ///
+    /// ```
+    /// let w = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions::default()).unwrap();
+    /// assert_eq!(mdp::SensingMenu::Whole { price: 0.5 }.whole_price(&w), 0.5);
+    /// ```
+    pub fn whole_price<W: Sensors>(&self, world: &W) -> f64 {
+        match *self {
+            SensingMenu::Whole { price } => price,
+            SensingMenu::Features => match SensingMenu::whole(world) {
+                SensingMenu::Whole { price } => price,
+                SensingMenu::Features => 0.0,
+            },
+        }
+    }
+}
+
+/// When the decision to sense is taken (see [`reference_points`]).
+///
+/// ```
+/// assert_ne!(mdp::SensingRule::WithMove, mdp::SensingRule::AfterOutcome);
+/// assert_eq!(mdp::SensingRule::WithMove.name(), "with-move");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SensingRule {
+    /// Chosen with the move, before its outcome; paid even when the move ends the episode.
+    WithMove,
+    /// Chosen after the outcome, one measurement at a time; nothing once the episode ended.
+    AfterOutcome,
+}
+
+impl SensingRule {
+    /// A short name: `with-move` or `after-outcome`.
+    ///
+    /// ```
+    /// assert_eq!(mdp::SensingRule::AfterOutcome.name(), "after-outcome");
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            SensingRule::WithMove => "with-move",
+            SensingRule::AfterOutcome => "after-outcome",
+        }
+    }
+}
+
+/// The settings of the reference points.
+///
+/// ```
+/// let o = mdp::ReferenceOptions::default();
+/// assert_eq!((o.horizon, o.max_uncertain), (100, Some(3)));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ReferenceOptions {
+    /// `H`: the most moves an episode has (at least 1); it is truncated after them.
+    pub horizon: u32,
+    /// `K`: the most steps in a row after which the agent may be uncertain of the state
+    /// (its belief has more than one state); `None` is no bound but the horizon, and then
+    /// the search is exact over every policy but may well pass the cap on beliefs. A step after which the agent is certain (it measured,
+    /// or the move could lead to one state only) resets the count.
+    pub max_uncertain: Option<u32>,
+    /// The most beliefs [`best_sensing`] may visit before it refuses.
+    pub max_beliefs: usize,
+    /// The most plans [`open_loop`] keeps at each step; beyond it the value is a lower
+    /// bound ([`OpenLoop::exact`] is false).
+    pub max_plans: usize,
+}
+
+impl Default for ReferenceOptions {
+    fn default() -> Self {
+        ReferenceOptions {
+            horizon: 100,
+            max_uncertain: Some(3),
+            max_beliefs: DEFAULT_MAX_BELIEFS,
+            max_plans: DEFAULT_MAX_PLANS,
+        }
+    }
+}
+
+/// Why a reference point could not be computed.
+///
+/// ```
+/// let w = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions::default()).unwrap();
+/// let o = mdp::ReferenceOptions { horizon: 0, ..Default::default() };
+/// let err = mdp::open_loop(&w, &o).unwrap_err();
+/// assert!(err.to_string().contains("horizon"), "{err}");
+/// ```
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ReferenceError {
+    /// A setting out of its range.
+    #[error("{what}: {problem}")]
+    BadSetting {
+        /// Which setting.
+        what: &'static str,
+        /// What is wrong.
+        problem: String,
+    },
+    /// Something of the world the computation cannot use.
+    #[error("the world: {0}")]
+    BadWorld(String),
+    /// The belief graph grew past its cap.
+    #[error(
+        "more than {cap} beliefs are reachable with at most {k} uncertain steps in a row; lower the bound or raise the cap"
+    )]
+    TooManyBeliefs {
+        /// The cap.
+        cap: usize,
+        /// The bound on uncertain steps, as text (`unbounded` for none).
+        k: String,
+    },
+    /// No policy keeps within the bound on uncertain steps.
+    #[error(
+        "no policy keeps the agent uncertain for at most {k} steps in a row (measuring every feature does not tell some states apart)"
+    )]
+    Infeasible {
+        /// The bound.
+        k: u32,
+    },
+}
+
+fn bad(what: &'static str, problem: impl Into<String>) -> ReferenceError {
+    ReferenceError::BadSetting {
+        what,
+        problem: problem.into(),
+    }
+}
+
+/// The value of the best open-loop plan.
+///
+/// ```
+/// let w = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions::default()).unwrap();
+/// let o = mdp::open_loop(&w, &mdp::ReferenceOptions::default()).unwrap();
+/// assert!(o.exact && (o.value - 1.0).abs() < 1e-12);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OpenLoop {
+    /// The expected return of the best plan (nothing is sensed).
+    pub value: f64,
+    /// Whether it is the optimum; false when the plans kept were capped (and the value
+    /// is below [`free_sensing`]), and then `value` is the return of a plan, so a lower
+    /// bound of the optimum.
+    pub exact: bool,
+    /// The most plans (undominated value vectors) kept at one step.
+    pub plans: usize,
+}
+
+/// The value of the best policy that may measure or not at each step.
+///
+/// ```
+/// let w = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions::default()).unwrap();
+/// let menu = mdp::SensingMenu::Whole { price: 0.05 };
+/// let b = mdp::best_sensing(&w, menu, mdp::SensingRule::WithMove, &mdp::ReferenceOptions::default()).unwrap();
+/// assert!((b.value - 1.0).abs() < 1e-12);
+/// assert!(b.beliefs >= 1);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BestSensing {
+    /// The expected costed return of the best policy.
+    pub value: f64,
+    /// How many beliefs (nodes of the graph) the search visited.
+    pub beliefs: usize,
+    /// The horizon at which the values stopped changing (`H` if they never did).
+    pub converged_at: u32,
+}
+
+/// The three reference points of a world, one sensing menu and one rule.
+///
+/// ```
+/// let w = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions::default()).unwrap();
+/// let menu = mdp::SensingMenu::Whole { price: 0.05 };
+/// let r = mdp::reference_points(&w, menu, mdp::SensingRule::WithMove, &Default::default()).unwrap();
+/// assert!((r.always_measuring - 0.7).abs() < 1e-12); // six moves at 0.05
+/// assert_eq!(r.open_loop.value, 1.0);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ReferencePoints {
+    /// [`free_sensing`]: the ceiling of the others.
+    pub free_sensing: f64,
+    /// [`always_measuring`].
+    pub always_measuring: f64,
+    /// [`open_loop`].
+    pub open_loop: OpenLoop,
+    /// [`best_sensing`].
+    pub best_sensing: BestSensing,
+}
+
+/// Exact reference points for costly sensing: what the best policies of three kinds
+/// score, computed from a world's model.
+///
+/// An agent acts in a [`World`] whose state it sees only when it pays for a measurement.
+/// Its score is the **costed return** of an episode: the undiscounted sum of the rewards
+/// minus the prices of everything it sensed in that episode, in reward units. The start
+/// state is known to the agent (a start distribution is averaged over, each start known).
+///
+/// What can be measured ([`SensingMenu`]): the whole state at one price, or any set of the
+/// world's features, each at its [`Sensors::price`]. Measuring feature `f` and reading `v`
+/// narrows the belief to its states that read `v` on `f`, renormalised.
+///
+/// When the decision to sense is taken ([`SensingRule`]):
+///
+/// * [`SensingRule::WithMove`] (the rule of the active-measurement literature): the agent
+///   chooses the move and what to measure together, before the move's outcome is seen;
+///   the price is paid even when the move ends the episode, and the readings describe the
+///   state the move leads to.
+/// * [`SensingRule::AfterOutcome`]: the agent moves, sees whether the episode ended, and
+///   only if it goes on decides what to measure, one feature (or the whole state) at a
+///   time, each decided after the readings before it. Nothing is sensed once the episode
+///   has ended (by a terminal state or by the horizon).
+///
+/// Both rules see when an episode ends: a belief after a move is conditioned on the
+/// episode going on.
+///
+/// The three reference points ([`reference_points`]), below the ceiling of free sensing
+/// ([`free_sensing`]: the state known after every move at no price):
+///
+/// * **always measuring** ([`always_measuring`]): the best policy that measures the whole
+///   state after every move (under [`SensingRule::WithMove`] every move pays; under
+///   [`SensingRule::AfterOutcome`] every move the episode survives pays);
+/// * **open loop** ([`open_loop`]): the best plan, a sequence of actions fixed at the start
+///   and never revised by a measurement;
+/// * **best sensing** ([`best_sensing`]): the best policy that may measure or not at each
+///   step, found by value iteration over the finite graph of beliefs reachable when at most
+///   `K` steps in a row leave the agent uncertain of the state ([`ReferenceOptions::max_uncertain`]).
+///
+/// Each is the value of some policy, so the best of them is a lower bound of the optimum
+/// over every policy. [`sensing_ceiling`] is an upper bound (the same search with the
+/// state told for free past `K` uncertain steps); where the two meet, the optimum is found.
+///
+/// Episodes are capped at a horizon of `H` moves ([`ReferenceOptions::horizon`]): every
+/// value here is the exact optimum of the `H`-move problem (finite-horizon backward
+/// induction; it stops early, exactly, when a step leaves every value unchanged bit for
+/// bit, since the values of longer horizons are then the same).
+///
+/// # Beliefs and their keys
+///
+/// A belief is a list of `(state, probability)` pairs sorted by state, without zeros,
+/// summing to 1. Two beliefs are the same node of the graph when they have the same states
+/// and each probability rounds to the same multiple of [`BELIEF_QUANTUM`] (`2^-40`, about
+/// `9.1e-13`); the first one reached stands for both. Rounding only ever merges beliefs
+/// that agree to that tolerance, so a value differs from the unrounded one by at most
+/// about `H * BELIEF_QUANTUM` times the largest return.
+///
+/// # Example
+///
+/// ```
+/// use mdp::{ReferenceOptions, SensingMenu, SensingModel, SensingRule, WorldOptions};
+/// let options = WorldOptions {
+///     slide: 0.5,
+///     sensing: Some(SensingModel::Factors),
+///     factor_costs: Some(vec![0.025, 0.025]),
+///     ..Default::default()
+/// };
+/// let lake = mdp::builtin_world("frozenlake4x4", &options).unwrap();
+/// let opts = ReferenceOptions { max_uncertain: Some(2), ..ReferenceOptions::default() };
+/// let whole = mdp::reference_points(&lake, SensingMenu::whole(&lake), SensingRule::WithMove, &opts).unwrap();
+/// assert!((whole.always_measuring - 0.7375).abs() < 1e-9);
+/// assert!((whole.best_sensing.value - 0.90).abs() < 1e-9);
+/// let apart = mdp::best_sensing(&lake, SensingMenu::Features, SensingRule::WithMove, &opts).unwrap();
+/// assert!((apart.value - 0.95).abs() < 1e-9);
+/// ```
+///
+/// # Another example
+///
+/// ```
+/// let w = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions::default()).unwrap();
+/// let r = mdp::reference_points(&w, mdp::SensingMenu::Whole { price: 0.0 },
+///     mdp::SensingRule::AfterOutcome, &Default::default()).unwrap();
+/// assert_eq!(r.always_measuring, 1.0);
+/// ```
+pub fn reference_points<W: World>(
+    world: &W,
+    menu: SensingMenu,
+    rule: SensingRule,
+    options: &ReferenceOptions,
+) -> Result<ReferencePoints, ReferenceError> {
+    Ok(ReferencePoints {
+        free_sensing: free_sensing(world, options)?,
+        always_measuring: always_measuring(world, menu, rule, options)?,
+        open_loop: open_loop(world, options)?,
+        best_sensing: best_sensing(world, menu, rule, options)?,
+    })
+}
+
+/// The world's model, read once: merged outcomes, expected rewards, readings.
+struct Model {
+    n: usize,
+    na: usize,
+    terminal: Vec<bool>,
+    /// Expected reward of `(s, a)`, at `s * na + a`.
+    reward: Vec<f64>,
+    /// Non-terminal next states of `(s, a)` with their probabilities, sorted by state.
+    next: Vec<Vec<(u32, f64)>>,
+    prices: Vec<f64>,
+    /// What feature `f` reads in state `s`, at `s * nf + f`.
+    readings: Vec<u32>,
+    start: Vec<(f64, u32)>,
+}
+
+impl Model {
+    fn read<W: World>(world: &W) -> Result<Model, ReferenceError> {
+        let n = world.num_states();
+        let na = world.num_actions();
+        if n == 0 || na == 0 {
+            return Err(ReferenceError::BadWorld(
+                "it has no states or no actions".to_string(),
+            ));
+        }
+        let terminal: Vec<bool> = (0..n)
+            .map(|s| world.is_terminal(StateId(s as u32)))
+            .collect();
+        let mut reward = vec![0.0; n * na];
+        let mut next = vec![Vec::new(); n * na];
+        let mut out = Vec::new();
+        for s in 0..n {
+            if terminal[s] {
+                continue;
+            }
+            for a in 0..na {
+                world.outcomes(StateId(s as u32), ActionId(a as u32), &mut out);
+                let mut merged: BTreeMap<u32, f64> = BTreeMap::new();
+                let mut r = 0.0;
+                for (p, step) in &out {
+                    if !(p.is_finite() && *p >= 0.0 && step.reward.is_finite()) {
+                        return Err(ReferenceError::BadWorld(format!(
+                            "state {s}, action {a}: an outcome has probability {p} and reward {}",
+                            step.reward
+                        )));
+                    }
+                    if step.next.index() >= n {
+                        return Err(ReferenceError::BadWorld(format!(
+                            "state {s}, action {a} leads to state {}, which does not exist",
+                            step.next
+                        )));
+                    }
+                    r += p * step.reward;
+                    if !step.terminated && !terminal[step.next.index()] && *p > 0.0 {
+                        *merged.entry(step.next.0).or_insert(0.0) += p;
+                    }
+                }
+                reward[s * na + a] = r;
+                next[s * na + a] = merged.into_iter().collect();
+            }
+        }
+        let nf = world.num_features();
+        let prices: Vec<f64> = (0..nf).map(|f| world.price(Feature(f as u32))).collect();
+        if let Some((f, p)) = prices
+            .iter()
+            .enumerate()
+            .find(|(_, p)| !(p.is_finite() && **p >= 0.0))
+        {
+            return Err(ReferenceError::BadWorld(format!(
+                "feature {f} has price {p}; prices must be finite and >= 0"
+            )));
+        }
+        let mut readings = Vec::with_capacity(n * nf);
+        for s in 0..n {
+            for f in 0..nf {
+                readings.push(world.read(StateId(s as u32), Feature(f as u32)).0);
+            }
+        }
+        let mut start = Vec::new();
+        for (p, s) in world.start_distribution() {
+            if s.index() >= n || terminal[s.index()] || !(p.is_finite() && p >= 0.0) {
+                return Err(ReferenceError::BadWorld(format!(
+                    "the start distribution has ({p}, {s}): a start must be a non-terminal state with a probability"
+                )));
+            }
+            if p > 0.0 {
+                start.push((p, s.0));
+            }
+        }
+        if start.is_empty() {
+            return Err(ReferenceError::BadWorld(
+                "the start distribution is empty".to_string(),
+            ));
+        }
+        Ok(Model {
+            n,
+            na,
+            terminal,
+            reward,
+            next,
+            prices,
+            readings,
+            start,
+        })
+    }
+
+    fn pair(&self, s: u32, a: usize) -> usize {
+        s as usize * self.na + a
+    }
+
+    /// The expected value over the start distribution of a per-state value.
+    fn at_start(&self, v: impl Fn(u32) -> f64) -> f64 {
+        self.start.iter().map(|&(p, s)| p * v(s)).sum()
+    }
+}
+
+fn check_horizon(options: &ReferenceOptions) -> Result<(), ReferenceError> {
+    if options.horizon == 0 {
+        return Err(bad("horizon", "0 moves; an episode needs at least one"));
+    }
+    Ok(())
+}
+
+fn check_menu(menu: SensingMenu) -> Result<(), ReferenceError> {
+    if let SensingMenu::Whole { price } = menu
+        && !(price.is_finite() && price >= 0.0)
+    {
+        return Err(bad("price", format!("{price} is not a finite number >= 0")));
+    }
+    Ok(())
+}
+
+/// The best expected costed return of a policy that measures the whole state after every
+/// move, at [`SensingMenu::whole_price`]: backward induction over the states for
+/// `H` moves.
+///
+/// ```
+/// use mdp::{SensingMenu, SensingRule};
+/// let w = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions::default()).unwrap();
+/// let o = mdp::ReferenceOptions::default();
+/// let m = SensingMenu::Whole { price: 0.05 };
+/// // Six moves; after the last one the episode has ended, so the other rule pays five.
+/// assert!((mdp::always_measuring(&w, m, SensingRule::WithMove, &o).unwrap() - 0.70).abs() < 1e-12);
+/// assert!((mdp::always_measuring(&w, m, SensingRule::AfterOutcome, &o).unwrap() - 0.75).abs() < 1e-12);
+/// ```
+pub fn always_measuring<W: World>(
+    world: &W,
+    menu: SensingMenu,
+    rule: SensingRule,
+    options: &ReferenceOptions,
+) -> Result<f64, ReferenceError> {
+    check_horizon(options)?;
+    check_menu(menu)?;
+    let m = Model::read(world)?;
+    let c = match menu {
+        SensingMenu::Whole { price } => price,
+        SensingMenu::Features => m.prices.iter().sum(),
+    };
+    Ok(measured(&m, c, rule, options.horizon))
+}
+
+/// The best expected return when the state is known after every move for free: a
+/// ceiling of every reference point (no policy that senses less, or pays, does better).
+///
+/// ```
+/// // On the semi-slippery lake a policy that knows the state always reaches the goal.
+/// let w = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { slide: 0.5, ..Default::default() }).unwrap();
+/// let v = mdp::free_sensing(&w, &mdp::ReferenceOptions::default()).unwrap();
+/// assert!((v - 1.0).abs() < 1e-12);
+/// ```
+pub fn free_sensing<W: World>(
+    world: &W,
+    options: &ReferenceOptions,
+) -> Result<f64, ReferenceError> {
+    check_horizon(options)?;
+    let m = Model::read(world)?;
+    Ok(measured(&m, 0.0, SensingRule::WithMove, options.horizon))
+}
+
+/// Backward induction over the states, the state measured at `c` after every move.
+fn measured(m: &Model, c: f64, rule: SensingRule, horizon: u32) -> f64 {
+    // v[s]: the value with h moves left, from a known state s.
+    let mut v = vec![0.0; m.n];
+    let mut w = vec![0.0; m.n];
+    for h in 1..=horizon {
+        // Under the other rule a move that leaves the episode going measures, unless it
+        // was the last move of the horizon.
+        let after_price = if h > 1 { c } else { 0.0 };
+        for (s, ws) in w.iter_mut().enumerate() {
+            if m.terminal[s] {
+                continue;
+            }
+            let mut best = f64::NEG_INFINITY;
+            for a in 0..m.na {
+                let i = m.pair(s as u32, a);
+                let mut q = m.reward[i];
+                for &(t, p) in &m.next[i] {
+                    q += p * v[t as usize];
+                    if rule == SensingRule::AfterOutcome {
+                        q -= p * after_price;
+                    }
+                }
+                if rule == SensingRule::WithMove {
+                    q -= c;
+                }
+                best = best.max(q);
+            }
+            *ws = best;
+        }
+        if w == v {
+            break;
+        }
+        std::mem::swap(&mut v, &mut w);
+    }
+    m.at_start(|s| v[s as usize])
+}
+
+/// The best expected return of an open-loop plan: `H` actions fixed at the start (which
+/// is known), nothing sensed after it.
+///
+/// Computed backwards over value vectors: each plan of `h` moves has a vector of its
+/// expected returns from every state, the plans of `h + 1` moves are each action followed
+/// by a plan of `h`, and a plan whose vector is nowhere above another's is dropped (it is
+/// never better from any belief). That is exact. When more than
+/// [`ReferenceOptions::max_plans`] vectors remain, the ones with the largest sum are
+/// kept: every vector kept is still a plan's, so the value is then a lower bound
+/// ([`OpenLoop::exact`] false), unless it reaches the ceiling [`free_sensing`].
+///
+/// ```
+/// let o = mdp::WorldOptions { slide: 0.5, ..Default::default() };
+/// let lake = mdp::builtin_world("frozenlake8x8", &o).unwrap();
+/// let o = mdp::ReferenceOptions { horizon: 20, max_plans: 100, ..Default::default() };
+/// let r = mdp::open_loop(&lake, &o).unwrap();
+/// assert!(r.exact && (r.value - 1.0).abs() < 1e-12); // right to the edge, then down
+/// ```
+pub fn open_loop<W: World>(
+    world: &W,
+    options: &ReferenceOptions,
+) -> Result<OpenLoop, ReferenceError> {
+    check_horizon(options)?;
+    if options.max_plans == 0 {
+        return Err(bad("max_plans", "0; at least one plan must be kept"));
+    }
+    let m = Model::read(world)?;
+    let live: Vec<u32> = (0..m.n as u32)
+        .filter(|&s| !m.terminal[s as usize])
+        .collect();
+    let mut index = vec![usize::MAX; m.n];
+    for (i, &s) in live.iter().enumerate() {
+        index[s as usize] = i;
+    }
+    let d = live.len();
+    let mut plans: Vec<Vec<f64>> = vec![vec![0.0; d]];
+    let mut exact = true;
+    let mut most = 1;
+    for _ in 0..options.horizon {
+        let mut candidates: Vec<Vec<f64>> = Vec::with_capacity(plans.len() * m.na);
+        for a in 0..m.na {
+            for alpha in &plans {
+                let v: Vec<f64> = live
+                    .iter()
+                    .map(|&s| {
+                        let i = m.pair(s, a);
+                        m.reward[i]
+                            + m.next[i]
+                                .iter()
+                                .map(|&(t, p)| p * alpha[index[t as usize]])
+                                .sum::<f64>()
+                    })
+                    .collect();
+                candidates.push(v);
+            }
+        }
+        let mut kept = undominated(candidates);
+        if kept.len() > options.max_plans {
+            kept.truncate(options.max_plans);
+            exact = false;
+        }
+        most = most.max(kept.len());
+        let same = kept == plans;
+        plans = kept;
+        if same {
+            break;
+        }
+    }
+    let value = m.at_start(|s| {
+        plans
+            .iter()
+            .map(|alpha| alpha[index[s as usize]])
+            .fold(f64::NEG_INFINITY, f64::max)
+    });
+    // A capped search that reaches the ceiling of free sensing is exact all the same.
+    let ceiling = measured(&m, 0.0, SensingRule::WithMove, options.horizon);
+    let exact = exact || value >= ceiling - DOMINANCE_TOLERANCE;
+    Ok(OpenLoop {
+        value,
+        exact,
+        plans: most,
+    })
+}
+
+/// The vectors no other is at least as large as everywhere, by decreasing sum (ties by
+/// the vectors' order, so the result is deterministic); of equal vectors one is kept.
+fn undominated(mut candidates: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
+    let sums: Vec<f64> = candidates.iter().map(|v| v.iter().sum()).collect();
+    let mut order: Vec<usize> = (0..candidates.len()).collect();
+    order.sort_by(|&i, &j| {
+        sums[j]
+            .total_cmp(&sums[i])
+            .then_with(|| compare(&candidates[i], &candidates[j]))
+    });
+    let mut kept: Vec<Vec<f64>> = Vec::new();
+    for i in order {
+        let v = std::mem::take(&mut candidates[i]);
+        let dominated = kept.iter().any(|k| {
+            k.iter()
+                .zip(&v)
+                .all(|(a, b)| *a >= *b - DOMINANCE_TOLERANCE)
+        });
+        if !dominated {
+            kept.push(v);
+        }
+    }
+    kept
+}
+
+/// How much lower a vector may be somewhere and still count as dominated (rounding).
+const DOMINANCE_TOLERANCE: f64 = 1e-12;
+
+fn compare(a: &[f64], b: &[f64]) -> std::cmp::Ordering {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| x.total_cmp(y))
+        .find(|o| o.is_ne())
+        .unwrap_or(std::cmp::Ordering::Equal)
+}
+
+/// A belief: `(state, probability)` sorted by state, summing to 1.
+type Belief = Vec<(u32, f64)>;
+/// A belief's key: probabilities rounded to multiples of [`BELIEF_QUANTUM`].
+type Key = Vec<(u32, u64)>;
+
+fn key(b: &[(u32, f64)]) -> Key {
+    b.iter()
+        .map(|&(s, p)| (s, (p / BELIEF_QUANTUM).round() as u64))
+        .collect()
+}
+
+/// Normalise a sub-distribution sorted by state; its mass.
+fn normalise(mut b: Belief) -> (f64, Belief) {
+    let total: f64 = b.iter().map(|x| x.1).sum();
+    for x in &mut b {
+        x.1 /= total;
+    }
+    (total, b)
+}
+
+/// A probe: one thing that can be measured, with its price and what each state reads.
+struct Probe {
+    price: f64,
+    /// `None`: the state itself (the whole state).
+    feature: Option<usize>,
+}
+
+impl Probe {
+    fn read(&self, m: &Model, s: u32) -> u32 {
+        match self.feature {
+            None => s,
+            Some(f) => m.readings[s as usize * m.prices.len() + f],
+        }
+    }
+}
+
+/// Split a sub-distribution (sorted by state) by what the probes in `set` read: the
+/// parts' masses (of the whole) and normalised beliefs, in the order of the readings.
+fn split(m: &Model, probes: &[Probe], set: &[usize], b: &[(u32, f64)]) -> Vec<(f64, Belief)> {
+    if set.is_empty() {
+        return vec![normalise(b.to_vec())];
+    }
+    let mut parts: BTreeMap<Vec<u32>, Belief> = BTreeMap::new();
+    for &(s, p) in b {
+        let r: Vec<u32> = set.iter().map(|&j| probes[j].read(m, s)).collect();
+        parts.entry(r).or_default().push((s, p));
+    }
+    parts.into_values().map(normalise).collect()
+}
+
+/// One choice at a node: an immediate reward (net of prices) and weighted children.
+struct Choice {
+    reward: f64,
+    children: Vec<(f64, usize)>,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+enum Kind {
+    /// The agent chooses a move (and, under the rule with the move, what to measure).
+    Act,
+    /// Under the rule after the outcome: the agent chooses to measure one more probe or
+    /// to stop and act.
+    Sense,
+}
+
+struct Graph {
+    keys: BTreeMap<(Kind, Key, u32), usize>,
+    /// The beliefs not yet expanded (an expanded one is emptied to save memory).
+    beliefs: Vec<Belief>,
+    /// How many states each belief has.
+    sizes: Vec<usize>,
+    kinds: Vec<Kind>,
+    counts: Vec<u32>,
+    choices: Vec<Vec<Choice>>,
+    cap: usize,
+    k_text: String,
+}
+
+impl Graph {
+    /// The node of a belief with its count of uncertain steps (0 if certain).
+    fn node(&mut self, kind: Kind, b: Belief, count: u32) -> Result<usize, ReferenceError> {
+        let count = if b.len() == 1 { 0 } else { count };
+        let k = (kind, key(&b), count);
+        if let Some(&i) = self.keys.get(&k) {
+            return Ok(i);
+        }
+        if self.beliefs.len() >= self.cap {
+            return Err(ReferenceError::TooManyBeliefs {
+                cap: self.cap,
+                k: self.k_text.clone(),
+            });
+        }
+        let i = self.beliefs.len();
+        self.keys.insert(k, i);
+        self.sizes.push(b.len());
+        self.beliefs.push(b);
+        self.kinds.push(kind);
+        self.counts.push(count);
+        self.choices.push(Vec::new());
+        Ok(i)
+    }
+}
+
+/// The best expected costed return of a policy that may measure or not at each step,
+/// with at most [`ReferenceOptions::max_uncertain`] uncertain steps in a row: value
+/// iteration over the beliefs such policies reach (see [`reference_points`]).
+///
+/// Under [`SensingRule::WithMove`] a choice is a move and a set of probes (with
+/// [`SensingMenu::Whole`]: nothing or the whole state; with [`SensingMenu::Features`]:
+/// any subset of the features, at most [`MAX_MENU_FEATURES`] of them). Under
+/// [`SensingRule::AfterOutcome`] a move is followed, if the episode goes on, by probes one
+/// at a time, each chosen after the readings before it.
+///
+/// ```
+/// use mdp::{ReferenceOptions, SensingMenu, SensingRule};
+/// let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { slide: 0.5, ..Default::default() }).unwrap();
+/// let menu = SensingMenu::Whole { price: 0.05 };
+/// let o = ReferenceOptions { max_uncertain: Some(3), ..Default::default() };
+/// let with = mdp::best_sensing(&lake, menu, SensingRule::WithMove, &o).unwrap();
+/// let after = mdp::best_sensing(&lake, menu, SensingRule::AfterOutcome, &o).unwrap();
+/// assert!(after.value >= with.value);
+/// let tiny = ReferenceOptions { max_beliefs: 3, ..o };
+/// assert!(mdp::best_sensing(&lake, menu, SensingRule::WithMove, &tiny).is_err());
+/// ```
+pub fn best_sensing<W: World>(
+    world: &W,
+    menu: SensingMenu,
+    rule: SensingRule,
+    options: &ReferenceOptions,
+) -> Result<BestSensing, ReferenceError> {
+    search(world, menu, rule, options, false)
+}
+
+/// An upper bound of the best expected costed return of **every** policy, with no bound
+/// on uncertain steps: the optimum of a relaxed problem in which, whenever a step would
+/// leave the agent uncertain for more than [`ReferenceOptions::max_uncertain`] steps in a
+/// row, the state is told to it at no price. Every policy of the real problem runs
+/// unchanged in the relaxed one (it may ignore what it is told), so none scores more than
+/// this; with [`best_sensing`] below it, the two bracket the optimum, and where they meet
+/// it is found. The search is [`best_sensing`]'s over the same beliefs.
+///
+/// ```
+/// use mdp::{ReferenceOptions, SensingMenu, SensingRule};
+/// let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { slide: 0.5, ..Default::default() }).unwrap();
+/// let menu = SensingMenu::Whole { price: 0.05 };
+/// let o = ReferenceOptions { max_uncertain: Some(4), ..Default::default() };
+/// let low = mdp::best_sensing(&lake, menu, SensingRule::WithMove, &o).unwrap().value;
+/// let high = mdp::sensing_ceiling(&lake, menu, SensingRule::WithMove, &o).unwrap().value;
+/// assert!(low <= high + 1e-12 && high <= 1.0);
+/// ```
+pub fn sensing_ceiling<W: World>(
+    world: &W,
+    menu: SensingMenu,
+    rule: SensingRule,
+    options: &ReferenceOptions,
+) -> Result<BestSensing, ReferenceError> {
+    search(world, menu, rule, options, true)
+}
+
+/// The search of [`best_sensing`]; with `reveal`, that of [`sensing_ceiling`].
+fn search<W: World>(
+    world: &W,
+    menu: SensingMenu,
+    rule: SensingRule,
+    options: &ReferenceOptions,
+    reveal: bool,
+) -> Result<BestSensing, ReferenceError> {
+    check_horizon(options)?;
+    check_menu(menu)?;
+    if options.max_beliefs == 0 {
+        return Err(bad("max_beliefs", "0; at least one belief is needed"));
+    }
+    let m = Model::read(world)?;
+    let probes: Vec<Probe> = match menu {
+        SensingMenu::Whole { price } => vec![Probe {
+            price,
+            feature: None,
+        }],
+        SensingMenu::Features => (0..m.prices.len())
+            .map(|f| Probe {
+                price: m.prices[f],
+                feature: Some(f),
+            })
+            .collect(),
+    };
+    if rule == SensingRule::WithMove && probes.len() > MAX_MENU_FEATURES {
+        return Err(bad(
+            "sensing menu",
+            format!(
+                "{} features; with the move at most {MAX_MENU_FEATURES} are tried in every subset (measure the whole state instead)",
+                probes.len()
+            ),
+        ));
+    }
+    // No run has more uncertain steps in a row than moves.
+    let k_max = options
+        .max_uncertain
+        .unwrap_or(u32::MAX)
+        .min(options.horizon);
+    let mut g = Graph {
+        keys: BTreeMap::new(),
+        beliefs: Vec::new(),
+        sizes: Vec::new(),
+        kinds: Vec::new(),
+        counts: Vec::new(),
+        choices: Vec::new(),
+        cap: options.max_beliefs,
+        k_text: options
+            .max_uncertain
+            .map_or("unbounded".to_string(), |k| k.to_string()),
+    };
+    // Every subset of the probes, with the move only (at most MAX_MENU_FEATURES of them).
+    let subsets: Vec<Vec<usize>> = match rule {
+        SensingRule::WithMove => (0..1usize << probes.len())
+            .map(|mask| (0..probes.len()).filter(|j| mask >> j & 1 == 1).collect())
+            .collect(),
+        SensingRule::AfterOutcome => Vec::new(),
+    };
+    let mut starts = Vec::new();
+    for &(p, s) in &m.start {
+        starts.push((p, g.node(Kind::Act, vec![(s, 1.0)], 0)?));
+    }
+    let mut i = 0;
+    while i < g.beliefs.len() {
+        let b = std::mem::take(&mut g.beliefs[i]);
+        let count = g.counts[i];
+        let next_count = count.saturating_add(1);
+        let mut choices = Vec::new();
+        match g.kinds[i] {
+            Kind::Act => {
+                for a in 0..m.na {
+                    let mut reward = 0.0;
+                    let mut next: BTreeMap<u32, f64> = BTreeMap::new();
+                    for &(s, p) in &b {
+                        let pair = m.pair(s, a);
+                        reward += p * m.reward[pair];
+                        for &(t, q) in &m.next[pair] {
+                            *next.entry(t).or_insert(0.0) += p * q;
+                        }
+                    }
+                    let next: Belief = next.into_iter().filter(|x| x.1 > 0.0).collect();
+                    match rule {
+                        SensingRule::WithMove => {
+                            'subset: for set in &subsets {
+                                let price: f64 = set.iter().map(|&j| probes[j].price).sum();
+                                let mut children = Vec::new();
+                                if !next.is_empty() {
+                                    for (w, part) in split(&m, &probes, set, &next) {
+                                        if part.len() > 1 && count >= k_max {
+                                            if !reveal {
+                                                continue 'subset;
+                                            }
+                                            // The relaxation: the state is told, free.
+                                            for &(s, p) in &part {
+                                                let point = g.node(Kind::Act, vec![(s, 1.0)], 0)?;
+                                                children.push((w * p, point));
+                                            }
+                                            continue;
+                                        }
+                                        children.push((w, g.node(Kind::Act, part, next_count)?));
+                                    }
+                                }
+                                choices.push(Choice {
+                                    reward: reward - price,
+                                    children,
+                                });
+                            }
+                        }
+                        SensingRule::AfterOutcome => {
+                            let mut children = Vec::new();
+                            if !next.is_empty() {
+                                let (w, part) = normalise(next);
+                                children.push((w, g.node(Kind::Sense, part, next_count)?));
+                            }
+                            choices.push(Choice { reward, children });
+                        }
+                    }
+                }
+            }
+            Kind::Sense => {
+                // Stop and act: allowed when certain or within the bound.
+                if b.len() == 1 || count <= k_max {
+                    let act = g.node(Kind::Act, b.clone(), count)?;
+                    choices.push(Choice {
+                        reward: 0.0,
+                        children: vec![(1.0, act)],
+                    });
+                } else if reveal {
+                    // The relaxation: past the bound the state is told, free.
+                    let mut children = Vec::new();
+                    for &(s, p) in &b {
+                        children.push((p, g.node(Kind::Act, vec![(s, 1.0)], 0)?));
+                    }
+                    choices.push(Choice {
+                        reward: 0.0,
+                        children,
+                    });
+                }
+                for j in 0..probes.len() {
+                    let parts = split(&m, &probes, &[j], &b);
+                    if parts.len() < 2 {
+                        continue; // reads alike on every state of the belief: no news
+                    }
+                    let mut children = Vec::new();
+                    for (w, part) in parts {
+                        children.push((w, g.node(Kind::Sense, part, count)?));
+                    }
+                    choices.push(Choice {
+                        reward: -probes[j].price,
+                        children,
+                    });
+                }
+            }
+        }
+        g.choices[i] = choices;
+        i += 1;
+    }
+    let n = g.beliefs.len();
+    // Sense nodes in order of support size, so that a probe's parts (smaller) come first.
+    let mut sense_order: Vec<usize> = (0..n).filter(|&i| g.kinds[i] == Kind::Sense).collect();
+    sense_order.sort_by_key(|&i| (g.sizes[i], i));
+    let act_nodes: Vec<usize> = (0..n).filter(|&i| g.kinds[i] == Kind::Act).collect();
+    let value_of = |c: &Choice, v: &[f64]| -> f64 {
+        c.reward + c.children.iter().map(|&(w, j)| w * v[j]).sum::<f64>()
+    };
+    let best_of = |cs: &[Choice], v: &[f64]| -> f64 {
+        cs.iter()
+            .map(|c| value_of(c, v))
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    // prev: values with h - 1 moves left (0 moves left: 0 everywhere, nothing sensed).
+    let mut prev = vec![0.0; n];
+    let mut cur = vec![0.0; n];
+    let mut converged_at = options.horizon;
+    for h in 1..=options.horizon {
+        for &i in &act_nodes {
+            cur[i] = best_of(&g.choices[i], &prev);
+        }
+        if rule == SensingRule::AfterOutcome {
+            // A sense node with h moves left acts now (an act node at h) or probes (sense
+            // nodes at h). Act nodes read sense nodes with h - 1 moves left, so `cur`
+            // must hold them: act values were computed from `prev`, now sense values.
+            for &i in &sense_order {
+                cur[i] = best_of(&g.choices[i], &cur);
+            }
+        }
+        let same = cur == prev;
+        std::mem::swap(&mut prev, &mut cur);
+        if same {
+            converged_at = h;
+            break;
+        }
+    }
+    let value: f64 = starts.iter().map(|&(p, i)| p * prev[i]).sum();
+    if value == f64::NEG_INFINITY || value.is_nan() {
+        return Err(ReferenceError::Infeasible { k: k_max });
+    }
+    Ok(BestSensing {
+        value,
+        beliefs: n,
+        converged_at,
+    })
+}
