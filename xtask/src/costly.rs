@@ -15,8 +15,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Result, anyhow, bail};
 use clap::Args;
-use csql::{AmrlParams, CostlySummary, Episode, Measuring, SensingRule};
-use mdp::{FiniteWorld, SensingModel, WorldOptions};
+use csql::{AmrlParams, CostlySummary, Episode, Measuring};
+use mdp::{FiniteWorld, SensingModel, SensingRule, WorldOptions};
 use plotters::prelude::*;
 use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -103,7 +103,7 @@ impl Dynamics {
 }
 
 /// The sensing rules, the published one first.
-const RULES: [SensingRule; 2] = [SensingRule::WithTheMove, SensingRule::AfterTheOutcome];
+const RULES: [SensingRule; 2] = [SensingRule::WithMove, SensingRule::AfterOutcome];
 
 /// A learner of the benchmark.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
@@ -378,8 +378,8 @@ fn rows(results: &[JobResult]) -> Vec<Row<'_>> {
 
 fn rule_name(rule: SensingRule) -> &'static str {
     match rule {
-        SensingRule::WithTheMove => "sensing decided with the move (the published rule)",
-        SensingRule::AfterTheOutcome => "sensing after the outcome",
+        SensingRule::WithMove => "sensing decided with the move (the published rule)",
+        SensingRule::AfterOutcome => "sensing after the outcome",
     }
 }
 
@@ -391,8 +391,8 @@ fn write_report(results: &[JobResult], dir: &Path, md_name: &str) -> Result<()> 
         "# The active-measurement benchmark: measured\n\nWritten by `cargo xtask costly --bless` (specification 6.10 and 6.11): the costed return per episode (reward less the prices of what was sensed, in reward units), mean over runs of each run's mean over all its episodes and over its last 10%.\n",
     );
     for (rule, csv_name) in [
-        (SensingRule::WithTheMove, "costly.csv"),
-        (SensingRule::AfterTheOutcome, "costly_after_outcome.csv"),
+        (SensingRule::WithMove, "costly.csv"),
+        (SensingRule::AfterOutcome, "costly_after_outcome.csv"),
     ] {
         let mut csv = String::from(
             "world,dynamics,price,learner,runs,episodes,mean_all,mean_last10,sensing_per_episode,steps_per_episode,success\n",
@@ -476,7 +476,7 @@ fn draw(path: &Path, world: &str, rows: &[Row<'_>]) -> Result<()> {
         let lines: Vec<&Row<'_>> = rows
             .iter()
             .filter(|r| {
-                r.world == world && r.dynamics == dynamics && r.rule == SensingRule::WithTheMove
+                r.world == world && r.dynamics == dynamics && r.rule == SensingRule::WithMove
             })
             .collect();
         let episodes = lines.first().map_or(1, |r| r.runs[0].summary.episodes) as f64;

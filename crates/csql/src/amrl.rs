@@ -14,13 +14,13 @@
 //! use rand::SeedableRng;
 //! let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions::default()).unwrap();
 //! let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
-//! let run = csql::amrl_q(&lake, &csql::AmrlParams::default(), 0.05, csql::SensingRule::WithTheMove, 300, 100, &mut rng);
+//! let run = csql::amrl_q(&lake, &csql::AmrlParams::default(), 0.05, mdp::SensingRule::WithMove, 300, 100, &mut rng);
 //! assert_eq!(run.len(), 300);
 //! let s = csql::CostlySummary::of(&run);
 //! assert!(s.mean_last10 > 0.8, "{s:?}"); // greedy at the end: few measurements, the goal
 //! ```
 
-use mdp::{ActionId, StateId, World};
+use mdp::{ActionId, SensingRule, StateId, World};
 use rand::{Rng, RngExt};
 use serde::{Deserialize, Serialize};
 
@@ -77,22 +77,6 @@ impl Default for AmrlParams {
             measuring: Measuring::Choose,
         }
     }
-}
-
-/// When a measurement chosen at a step is made and paid (specification 6.10).
-///
-/// ```
-/// assert_ne!(csql::SensingRule::WithTheMove, csql::SensingRule::AfterTheOutcome);
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum SensingRule {
-    /// Decided with the move, before its outcome is seen, and paid even when the move
-    /// ends the episode (the published setting).
-    WithTheMove,
-    /// Decided with the move, but made only if the episode goes on: nothing is sensed,
-    /// or paid, once it has ended.
-    AfterTheOutcome,
 }
 
 /// What one episode of a run with priced sensing gave, in reward units.
@@ -277,7 +261,7 @@ impl Tables {
 /// let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions::default()).unwrap();
 /// let run = |seed| {
 ///     let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(seed);
-///     csql::amrl_q(&lake, &Default::default(), 0.05, csql::SensingRule::WithTheMove, 50, 100, &mut rng)
+///     csql::amrl_q(&lake, &Default::default(), 0.05, mdp::SensingRule::WithMove, 50, 100, &mut rng)
 /// };
 /// assert_eq!(run(4), run(4)); // the seed decides everything
 /// ```
@@ -319,7 +303,7 @@ pub fn amrl_q<W: World + ?Sized, R: Rng + ?Sized>(
             e.reward += step.reward;
             // Under the second rule a move that ends the episode is followed by no
             // measurement, and the measuring half learns that nothing was paid.
-            let ended_first = rule == SensingRule::AfterTheOutcome && step.terminated;
+            let ended_first = rule == SensingRule::AfterOutcome && step.terminated;
             let measured = measure && !ended_first;
             let charged = if ended_first { 0.0 } else { price };
             if measured {

@@ -208,7 +208,7 @@ mod tree;
 mod utree;
 mod view;
 
-pub use amrl::{AmrlParams, CostlySummary, Episode, Measuring, SensingRule, amrl_q};
+pub use amrl::{AmrlParams, CostlySummary, Episode, Measuring, amrl_q};
 pub use classify::{Classification, Classify};
 pub use detector::{
     ActionDrop, AnyDrop, Detector, DetectorKind, RateParams, RateTest, RunDetector,

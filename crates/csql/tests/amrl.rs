@@ -1,7 +1,8 @@
 //! AMRL-Q, the active-measurement baseline: its accounting, its two sensing rules, and
 //! that it learns the deterministic lake.
 
-use csql::{AmrlParams, CostlySummary, Episode, Measuring, SensingRule, amrl_q};
+use csql::{AmrlParams, CostlySummary, Episode, Measuring, amrl_q};
+use mdp::SensingRule;
 use mdp::{SensingModel, WorldOptions};
 use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -33,7 +34,7 @@ fn run(world: &mdp::FiniteWorld, rule: SensingRule, seed: u64, episodes: u32) ->
 #[test]
 fn episodes_are_accounted_for() {
     let world = lake(0.5);
-    for rule in [SensingRule::WithTheMove, SensingRule::AfterTheOutcome] {
+    for rule in [SensingRule::WithMove, SensingRule::AfterOutcome] {
         for e in run(&world, rule, 3, 400) {
             assert!(
                 (e.sensing - 0.05 * f64::from(e.measurements)).abs() < 1e-9,
@@ -51,8 +52,8 @@ fn episodes_are_accounted_for() {
 #[test]
 fn the_two_rules_differ_only_on_the_last_move() {
     let world = lake(0.5);
-    let after = run(&world, SensingRule::AfterTheOutcome, 5, 600);
-    let with = run(&world, SensingRule::WithTheMove, 5, 600);
+    let after = run(&world, SensingRule::AfterOutcome, 5, 600);
+    let with = run(&world, SensingRule::WithMove, 5, 600);
     // An episode that ended on a terminal move before the cap: under the second rule at
     // most every move but the last was measured.
     let ended = |e: &&Episode| e.steps < 100;
@@ -69,7 +70,7 @@ fn the_two_rules_differ_only_on_the_last_move() {
 fn it_learns_the_deterministic_lake() {
     let world = lake(0.0);
     for seed in 1..=3 {
-        let episodes = run(&world, SensingRule::WithTheMove, seed, 1000);
+        let episodes = run(&world, SensingRule::WithMove, seed, 1000);
         let s = CostlySummary::of(&episodes);
         assert_eq!(s.mean_last10, 1.0, "seed {seed}: {s:?}");
         assert!(s.mean_all > 0.7 && s.mean_all < 1.0, "seed {seed}: {s:?}");
@@ -92,7 +93,7 @@ fn the_always_measuring_learner_pays_every_move() {
         &world,
         &params,
         0.05,
-        SensingRule::WithTheMove,
+        SensingRule::WithMove,
         1000,
         100,
         &mut rng,

@@ -152,7 +152,8 @@ impl SensingMenu {
 /// assert_ne!(mdp::SensingRule::WithMove, mdp::SensingRule::AfterOutcome);
 /// assert_eq!(mdp::SensingRule::WithMove.name(), "with-move");
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum SensingRule {
     /// Chosen with the move, before its outcome; paid even when the move ends the episode.
     WithMove,
