@@ -9,17 +9,25 @@
 //! a function of those measurements alone, and so is the next selection (the candidates
 //! are the features not yet measured). The index is therefore a tree, built lazily along
 //! the paths objects take: a node is such a sequence of measurements, and it keeps its
-//! attended examples and their [`SplitCounts`], and remembers its decision until they
-//! change. Nodes catch up with the library when a pass visits them (the root with the
-//! examples added since its last visit, a child with those its parent gained since), so a
-//! new example costs a few binary searches per node it reaches instead of a recount. When
+//! attended examples and their class counts (as [`SplitCounts`] keeps them, but in hash
+//! maps), and remembers its decision until they change. Nodes catch up with the library
+//! when a pass visits them (the root with the examples added since its last visit, a child
+//! with those its parent gained since), so a new example costs a few hash look-ups per
+//! pair it has, per node it reaches, instead of a recount. When
 //! a node's selection changes, the children built for the old feature stay, untouched and
 //! costing nothing, until a selection leads back to them. The one example that changes
 //! after it was added (the learner refines the new example during its recheck) is taken
 //! back out of the nodes visited since it was added.
 //!
-//! Selection is scored from the counts by [`InfoCost::select_from_counts`], which shares
-//! its one scoring function with [`InfoCost::select_from`]; prediction, discrimination
+//! Selection is scored from the counts: each node keeps, beside them, the sums of the
+//! `x log2 x` terms that the I^2/C scores are made of, exactly (as integers at a scale of
+//! 2^-52), updated in time independent of the number of classes. From them it bounds, for
+//! every candidate, the score that [`InfoCost::select_from_counts`] (whose one scoring
+//! function [`InfoCost::select_from`] shares) computes in floating point, and runs the
+//! selection's rule over the bounds; where the bounds leave a comparison open, it sorts the
+//! node's counts and scores them by that very function. A selection therefore costs time
+//! in proportion to the features, not to the classes, and is the plain one bit for bit
+//! (the argument is in `src/counts.rs`). Prediction, discrimination
 //! (the same [`Discriminate`] parts, over the same conflicting examples) and updating are
 //! the plain procedure's. The learner therefore measures the same features in the same
 //! order, predicts the same classes, charges the same costs and builds the same library as
@@ -28,15 +36,18 @@
 use rand::Rng;
 
 use crate::attend::{Attention, ObservationAttending};
+use crate::counts::{Fallback, NodeCounts, Terms};
 use crate::discriminate::{CheapestFirst, Discriminate, RandomOrder};
 use crate::example::{Example, Library};
 use crate::learner::{Classified, Outcome, StreamReport};
-use crate::select::{InfoCost, MissingRule, SplitCounts};
+use crate::select::{InfoCost, MissingRule};
 use crate::sensing::{Ledger, Probe, Sensor};
 use crate::types::{ClassId, Cost, CostBlind, FeatureCosts, FeatureId, Value};
 
 #[cfg(doc)]
 use crate::learner::{cs_id3, id3};
+#[cfg(doc)]
+use crate::select::SplitCounts;
 
 /// CS-ID3 or ID3 (by its discrimination part `D` and whether selection is cost-blind)
 /// over an index of the library: the same outcomes, charges and library as the plain
@@ -435,7 +446,7 @@ enum Step {
 struct Node {
     /// Library indices of the attended examples, ascending.
     members: Vec<usize>,
-    counts: SplitCounts,
+    counts: NodeCounts,
     /// The examples below this library index have been looked at.
     synced: usize,
     /// ((measured feature, measured value), child), ascending; a `None` value is a
@@ -459,6 +470,10 @@ struct Tree {
     touched: Vec<NodeId>,
     /// Examples looked at so far, one count per example per node that looked at it.
     visited: u64,
+    /// `x log2 x` terms of the counts, shared by every node.
+    terms: Terms,
+    /// Scratch for selections the exact sums leave open.
+    fallback: Fallback,
 }
 
 impl Tree {
@@ -467,6 +482,8 @@ impl Tree {
             nodes: vec![Node::default()],
             touched: Vec::new(),
             visited: 0,
+            terms: Terms::new(),
+            fallback: Fallback::default(),
         }
     }
 
@@ -477,11 +494,7 @@ impl Tree {
     /// How many examples at `node` are of another class than `label`.
     fn conflicts(&self, node: NodeId, label: ClassId) -> u32 {
         let counts = &self.nodes[node].counts;
-        let own = counts
-            .totals()
-            .binary_search_by_key(&label, |t| t.0)
-            .map_or(0, |k| counts.totals()[k].1);
-        counts.len() - own
+        counts.len() - counts.class_total(label)
     }
 
     /// Figure 2, step 3, from the examples attended at the moment of prediction, those of
@@ -547,7 +560,7 @@ impl Tree {
             let node = &mut self.nodes[n];
             if node.members.last() == Some(&index) {
                 node.members.pop();
-                node.counts.remove(example);
+                node.counts.remove(example, &mut self.terms);
                 node.step = None;
             }
             node.synced = node.synced.min(index);
@@ -562,7 +575,7 @@ impl Tree {
             self.visited += (library.len() - root.synced) as u64;
             for i in root.synced..library.len() {
                 root.members.push(i);
-                root.counts.add(&library[i]);
+                root.counts.add(&library[i], &mut self.terms);
             }
             root.synced = library.len();
             root.step = None;
@@ -580,22 +593,24 @@ impl Tree {
         probe: &Probe<'_, T>,
         cost_blind: bool,
     ) -> Step {
+        let fallback = &mut self.fallback;
         let node = &mut self.nodes[node];
         if let Some(step) = node.step {
             return step;
         }
-        let counts = &node.counts;
-        let step = if let [(class, _)] = counts.totals() {
-            Step::Predict(Some(*class))
+        let counts = &mut node.counts;
+        let step = if let Some(class) = counts.only_class() {
+            Step::Predict(Some(class))
         } else {
             let ledger = probe.ledger();
             let measured = |f| ledger.consulted(f);
+            let rules = select.rules();
             let chosen = if cost_blind {
-                select.select_from_counts(counts, measured, &CostBlind(probe.costs()))
+                counts.select(rules, measured, &CostBlind(probe.costs()), fallback)
             } else {
-                select.select_from_counts(counts, measured, probe.costs())
+                counts.select(rules, measured, probe.costs(), fallback)
             };
-            chosen.map_or(Step::Predict(counts.majority()), Step::Measure)
+            chosen.map_or_else(|| Step::Predict(counts.majority()), Step::Measure)
         };
         node.step = Some(step);
         step
@@ -631,7 +646,7 @@ impl Tree {
         for &i in new {
             if value.is_none() || library[i].get(feature) == value {
                 child.members.push(i);
-                child.counts.add(&library[i]);
+                child.counts.add(&library[i], &mut self.terms);
             }
         }
         if child.members.len() > before {
