@@ -101,24 +101,17 @@ impl Terms {
     }
 }
 
-/// One class at a node: its examples, and how many of them have each feature (ascending
-/// feature, no zero).
-#[derive(Clone, Debug, Default)]
-struct ClassCounts {
-    total: u32,
-    having: Vec<(FeatureId, u32)>,
-}
-
-/// One feature at a node: the counts by value and by (value, class), and the exact sums
-/// of the terms its score is made of.
-#[derive(Clone, Debug, Default)]
+/// One feature at a node: how many examples have it, how many distinct values and (value,
+/// class) pairs they have, and the exact sums of the terms its score is made of.
+#[derive(Clone, Debug)]
 struct FeatureCounts {
+    feature: FeatureId,
     /// Examples having the feature.
     having: u32,
-    /// Examples by value.
-    values: FxMap<Value, u32>,
-    /// Examples by (value, class).
-    runs: FxMap<(Value, ClassId), u32>,
+    /// Distinct values among them.
+    values: u32,
+    /// Distinct (value, class) pairs among them.
+    runs: u32,
     /// Sum over values of g(examples with the value), g = x log2 x scaled by [`SCALE`].
     value_terms: i128,
     /// Sum over (value, class) of g(examples with the value and class).
@@ -130,19 +123,50 @@ struct FeatureCounts {
     having_terms: i128,
 }
 
+impl FeatureCounts {
+    fn new(feature: FeatureId) -> FeatureCounts {
+        FeatureCounts {
+            feature,
+            having: 0,
+            values: 0,
+            runs: 0,
+            value_terms: 0,
+            run_terms: 0,
+            lacking_gap: 0,
+            having_terms: 0,
+        }
+    }
+}
+
 /// The class counts of a set of examples, overall and by each feature's values, with the
 /// exact sums that bound I^2/C scores (see the module docs).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct NodeCounts {
     len: u32,
-    classes: FxMap<ClassId, ClassCounts>,
-    /// By feature index; a feature no counted example has is empty.
+    /// Examples by class.
+    classes: FxMap<ClassId, u32>,
+    /// The features some counted example has, ascending.
     features: Vec<FeatureCounts>,
+    /// Examples by (feature, value).
+    values: FxMap<(FeatureId, Value), u32>,
+    /// Examples by (feature, value, class).
+    runs: FxMap<(FeatureId, Value, ClassId), u32>,
+    /// Examples having the feature, by (feature, class).
+    having: FxMap<(FeatureId, ClassId), u32>,
     /// Sum over classes of g(examples of the class).
     class_terms: i128,
     /// The majority class, while known: kept as examples are added, forgotten when the
     /// majority class loses one.
     majority: Option<ClassId>,
+}
+
+/// Set `map[key]` to `count`, leaving no zero in the map.
+fn set<K: std::hash::Hash + Eq>(map: &mut FxMap<K, u32>, key: K, count: u32) {
+    if count == 0 {
+        map.remove(&key);
+    } else {
+        map.insert(key, count);
+    }
 }
 
 /// `g(t) - g(t - h)`: one class's share of a feature's `lacking_gap`.
@@ -159,7 +183,7 @@ impl NodeCounts {
 
     /// The number of counted examples of `class`.
     pub(crate) fn class_total(&self, class: ClassId) -> u32 {
-        self.classes.get(&class).map_or(0, |c| c.total)
+        self.classes.get(&class).copied().unwrap_or(0)
     }
 
     /// The one class of every counted example, if there is exactly one.
@@ -173,11 +197,7 @@ impl NodeCounts {
 
     /// The number of counted examples whose `feature` is `value`.
     pub(crate) fn having(&self, feature: FeatureId, value: Value) -> u32 {
-        self.features
-            .get(feature.index())
-            .and_then(|f| f.values.get(&value))
-            .copied()
-            .unwrap_or(0)
+        self.values.get(&(feature, value)).copied().unwrap_or(0)
     }
 
     /// The most frequent class, ties to the lowest id, as
@@ -192,7 +212,7 @@ impl NodeCounts {
     fn count_majority(&self) -> Option<ClassId> {
         self.classes
             .iter()
-            .map(|(&class, c)| (c.total, std::cmp::Reverse(class)))
+            .map(|(&class, &total)| (total, std::cmp::Reverse(class)))
             .max()
             .map(|(_, std::cmp::Reverse(class))| class)
     }
@@ -220,19 +240,22 @@ impl NodeCounts {
             );
             self.len -= 1;
         }
-        if let Some(last) = pairs.last()
-            && self.features.len() <= last.0.index()
-        {
-            self.features
-                .resize_with(last.0.index() + 1, FeatureCounts::default);
+        for &(f, _) in pairs {
+            if let Err(k) = self.features.binary_search_by_key(&f, |c| c.feature) {
+                self.features.insert(k, FeatureCounts::new(f));
+            }
         }
         let old_t = self.class_total(class);
         let new_t = step(old_t);
-        self.classes.entry(class).or_default().total = new_t;
+        if new_t == 0 {
+            self.classes.remove(&class);
+        } else {
+            self.classes.insert(class, new_t);
+        }
         self.class_terms += terms.get(new_t) - terms.get(old_t);
         self.majority = match self.majority {
             Some(m) if add && m != class => {
-                let m_total = self.classes.get(&m).map_or(0, |c| c.total);
+                let m_total = self.class_total(m);
                 Some(
                     if (new_t, std::cmp::Reverse(class)) > (m_total, std::cmp::Reverse(m)) {
                         class
@@ -245,73 +268,41 @@ impl NodeCounts {
             None if add && self.len == 1 => Some(class),
             _ => None,
         };
-        let entry = self.classes.entry(class).or_default();
-        // The features of which some example of the class has a value, merged with the
-        // example's: each one's `lacking_gap` term for the class changes with the total
-        // (and, for the example's own features, with the count having it).
-        let having = std::mem::take(&mut entry.having);
-        let mut merged = Vec::with_capacity(having.len() + pairs.len());
-        let (mut i, mut j) = (0, 0);
-        while i < having.len() || j < pairs.len() {
-            let next_having = having.get(i).map(|h| h.0);
-            let next_pair = pairs.get(j).map(|p| p.0);
-            let (feature, old_h, own) = match (next_having, next_pair) {
-                (Some(a), Some(b)) if a == b => {
-                    i += 1;
-                    j += 1;
-                    (a, having[i - 1].1, true)
+        // Every feature of which some example of the class has a value, and the
+        // example's own: each one's `lacking_gap` term for the class changes with the
+        // class's total (and, for the example's own features, with the count having it).
+        let mut own = pairs.iter().peekable();
+        for counts in &mut self.features {
+            let feature = counts.feature;
+            let pair = own.next_if(|p| p.0 == feature);
+            let old_h = self.having.get(&(feature, class)).copied().unwrap_or(0);
+            let Some(&(_, value)) = pair else {
+                // Not the example's: its term changes with the class's total, unless no
+                // example of the class has the feature (g(t) - g(t - 0) = 0 throughout).
+                if old_h > 0 {
+                    counts.lacking_gap += gap(terms, new_t, old_h) - gap(terms, old_t, old_h);
                 }
-                (Some(a), Some(b)) if a < b => {
-                    i += 1;
-                    (a, having[i - 1].1, false)
-                }
-                (Some(a), None) => {
-                    i += 1;
-                    (a, having[i - 1].1, false)
-                }
-                (_, Some(b)) => {
-                    j += 1;
-                    (b, 0, true)
-                }
-                (None, None) => unreachable!("the loop runs while one is left"),
+                continue;
             };
-            let new_h = if own { step(old_h) } else { old_h };
-            let counts = &mut self.features[feature.index()];
+            let new_h = step(old_h);
             counts.lacking_gap += gap(terms, new_t, new_h) - gap(terms, old_t, old_h);
-            if own {
-                counts.having_terms += terms.get(new_h) - terms.get(old_h);
-            }
-            if new_h > 0 {
-                merged.push((feature, new_h));
-            }
-        }
-        if new_t == 0 {
-            debug_assert!(merged.is_empty());
-            self.classes.remove(&class);
-        } else if let Some(entry) = self.classes.get_mut(&class) {
-            entry.having = merged;
-        }
-        for &(f, v) in pairs {
-            let counts = &mut self.features[f.index()];
+            counts.having_terms += terms.get(new_h) - terms.get(old_h);
+            set(&mut self.having, (feature, class), new_h);
             counts.having = step(counts.having);
-            let size = counts.values.entry(v).or_insert(0);
-            let (old, new) = (*size, step(*size));
-            *size = new;
+            let old = self.values.get(&(feature, value)).copied().unwrap_or(0);
+            let new = step(old);
             counts.value_terms += terms.get(new) - terms.get(old);
-            if new == 0 {
-                counts.values.remove(&v);
-            }
-            let run = counts.runs.entry((v, class)).or_insert(0);
-            let (old, new) = (*run, step(*run));
-            *run = new;
+            counts.values = counts.values + u32::from(old == 0) - u32::from(new == 0);
+            set(&mut self.values, (feature, value), new);
+            let key = (feature, value, class);
+            let old = self.runs.get(&key).copied().unwrap_or(0);
+            let new = step(old);
             counts.run_terms += terms.get(new) - terms.get(old);
-            if new == 0 {
-                counts.runs.remove(&(v, class));
-            }
+            counts.runs = counts.runs + u32::from(old == 0) - u32::from(new == 0);
+            set(&mut self.runs, key, new);
         }
-        while self.features.last().is_some_and(|f| f.having == 0) {
-            self.features.pop();
-        }
+        debug_assert!(own.next().is_none());
+        self.features.retain(|c| c.having > 0);
     }
 
     /// [`InfoCost::select_from_counts`](crate::InfoCost::select_from_counts) on these
@@ -356,15 +347,15 @@ impl NodeCounts {
             v as i128
         };
         let mut best: Option<(Bounds, Cost, FeatureId)> = None;
-        for (index, counts) in self.features.iter().enumerate() {
-            let feature = FeatureId(index as u32);
-            if counts.having == 0 || is_measured(feature) {
+        for counts in &self.features {
+            let feature = counts.feature;
+            if is_measured(feature) {
                 continue;
             }
             let Some(cost) = costs.cost(feature) else {
                 continue;
             };
-            let values = counts.values.len() as u32;
+            let values = counts.values;
             let split_ok = match rules.require_split {
                 None => true,
                 Some(crate::attend::Semantics::Observation) => {
@@ -409,7 +400,7 @@ impl NodeCounts {
                 // The plain procedure's additions and subtractions: a sum over every
                 // class (twice with the own-branch rule), one per (value, class) count,
                 // two per value, and a few more.
-                let ops = 2 * classes + counts.runs.len() as u64 + 2 * u64::from(values) + 8;
+                let ops = 2 * classes + u64::from(counts.runs) + 2 * u64::from(values) + 8;
                 Bounds::around(exact as f64 / SCALE, total as f64 / SCALE, ops)?.gain(n)
             };
             let score = gain.score(cost);
@@ -441,22 +432,34 @@ impl NodeCounts {
             having,
             runs,
             spans,
+            sorted,
             ..
         } = fallback;
         totals.clear();
-        totals.extend(self.classes.iter().map(|(&c, k)| (c, k.total)));
+        totals.extend(self.classes.iter().map(|(&c, &k)| (c, k)));
         totals.sort_unstable();
+        let candidate = |f: FeatureId| !is_measured(f) && costs.cost(f).is_some();
+        sorted.clear();
+        sorted.extend(
+            self.runs
+                .iter()
+                .filter(|((f, _, _), _)| candidate(*f))
+                .map(|(&(f, v, c), &k)| (f, v, c, k)),
+        );
+        sorted.sort_unstable();
         runs.clear();
         spans.clear();
-        for (index, counts) in self.features.iter().enumerate() {
-            let feature = FeatureId(index as u32);
-            if counts.having == 0 || is_measured(feature) || costs.cost(feature).is_none() {
-                continue;
+        for &(f, v, c, k) in sorted.iter() {
+            if spans
+                .last()
+                .is_none_or(|span: &(FeatureId, usize, usize)| span.0 != f)
+            {
+                spans.push((f, runs.len(), runs.len()));
             }
-            let start = runs.len();
-            runs.extend(counts.runs.iter().map(|(&(v, c), &k)| (v, c, k)));
-            runs[start..].sort_unstable();
-            spans.push((feature, start, runs.len()));
+            runs.push((v, c, k));
+            if let Some(span) = spans.last_mut() {
+                span.2 = runs.len();
+            }
         }
         let runs = &*runs;
         let features = spans.iter().map(|&(f, a, b)| (f, &runs[a..b]));
@@ -472,6 +475,7 @@ pub(crate) struct Fallback {
     having: Vec<u32>,
     runs: Vec<(Value, ClassId, u32)>,
     spans: Vec<(FeatureId, usize, usize)>,
+    sorted: Vec<(FeatureId, Value, ClassId, u32)>,
     /// Selections the bounds did not decide.
     pub(crate) bounded_undecided: u64,
 }

@@ -445,7 +445,7 @@ enum Step {
 #[derive(Clone, Debug, Default)]
 struct Node {
     /// Library indices of the attended examples, ascending.
-    members: Vec<usize>,
+    members: Vec<u32>,
     counts: NodeCounts,
     /// The examples below this library index have been looked at.
     synced: usize,
@@ -527,7 +527,7 @@ impl Tree {
             conflicting.attend_only(
                 members
                     .iter()
-                    .copied()
+                    .map(|&i| i as usize)
                     .filter(|&i| library[i].class() != label),
             );
             return discriminate.discriminate(library, &ObservationAttending, conflicting, probe);
@@ -558,7 +558,7 @@ impl Tree {
     fn refining(&mut self, index: usize, example: &Example) {
         for &n in &self.touched {
             let node = &mut self.nodes[n];
-            if node.members.last() == Some(&index) {
+            if node.members.last().map(|&i| i as usize) == Some(index) {
                 node.members.pop();
                 node.counts.remove(example, &mut self.terms);
                 node.step = None;
@@ -574,7 +574,9 @@ impl Tree {
         if root.synced < library.len() {
             self.visited += (library.len() - root.synced) as u64;
             for i in root.synced..library.len() {
-                root.members.push(i);
+                // Counts are `u32`, so is the library's size.
+                root.members
+                    .push(u32::try_from(i).expect("fewer than 2^32 examples"));
                 root.counts.add(&library[i], &mut self.terms);
             }
             root.synced = library.len();
@@ -640,13 +642,16 @@ impl Tree {
         };
         let mut child = std::mem::take(&mut self.nodes[id]);
         let parent = &self.nodes[node];
-        let new = &parent.members[parent.members.partition_point(|&i| i < child.synced)..];
+        let new = &parent.members[parent
+            .members
+            .partition_point(|&i| (i as usize) < child.synced)..];
         let before = child.members.len();
         self.visited += new.len() as u64;
         for &i in new {
-            if value.is_none() || library[i].get(feature) == value {
+            let example = &library[i as usize];
+            if value.is_none() || example.get(feature) == value {
                 child.members.push(i);
-                child.counts.add(&library[i], &mut self.terms);
+                child.counts.add(example, &mut self.terms);
             }
         }
         if child.members.len() > before {
