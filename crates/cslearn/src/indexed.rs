@@ -574,9 +574,8 @@ impl Tree {
         if root.synced < library.len() {
             self.visited += (library.len() - root.synced) as u64;
             for i in root.synced..library.len() {
-                // Counts are `u32`, so is the library's size.
-                root.members
-                    .push(u32::try_from(i).expect("fewer than 2^32 examples"));
+                // Counts are `u32`: the index holds fewer than 2^32 examples.
+                root.members.push(i as u32);
                 root.counts.add(&library[i], &mut self.terms);
             }
             root.synced = library.len();
