@@ -28,7 +28,7 @@
 use std::hash::{BuildHasherDefault, Hasher};
 
 use crate::example::Example;
-use crate::select::{Rules, same_score, xlogx};
+use crate::select::{Rules, SplitCounts, same_score, xlogx};
 use crate::types::{ClassId, Cost, Costs, FeatureId, Value};
 
 /// A fast, deterministic hasher for the small integer keys of the counts (the
@@ -141,7 +141,7 @@ impl FeatureCounts {
 /// The class counts of a set of examples, overall and by each feature's values, with the
 /// exact sums that bound I^2/C scores (see the module docs).
 #[derive(Clone, Debug, Default)]
-pub(crate) struct NodeCounts {
+pub(crate) struct Hashed {
     len: u32,
     /// Examples by class.
     classes: FxMap<ClassId, u32>,
@@ -160,6 +160,130 @@ pub(crate) struct NodeCounts {
     majority: Option<ClassId>,
 }
 
+/// How many classes a node's counts may have before they move from sorted vectors to hash
+/// maps with exact sums: below it, sorting and scoring every count is cheaper than keeping
+/// the sums.
+const FEW_CLASSES: usize = 32;
+
+/// The class counts of a node of the index: [`SplitCounts`] while the node has few
+/// classes, [`Hashed`] (with exact sums, see the module docs) once it has had more.
+#[derive(Clone, Debug)]
+pub(crate) enum NodeCounts {
+    Sorted(SplitCounts),
+    Hashed(Box<Hashed>),
+}
+
+impl Default for NodeCounts {
+    fn default() -> NodeCounts {
+        NodeCounts::Sorted(SplitCounts::new())
+    }
+}
+
+impl NodeCounts {
+    /// Counts that keep exact sums from the start, whatever the number of classes (for
+    /// tests of the bounds with few classes).
+    #[cfg(test)]
+    fn hashed() -> NodeCounts {
+        NodeCounts::Hashed(Box::default())
+    }
+
+    /// The number of examples counted.
+    pub(crate) fn len(&self) -> u32 {
+        match self {
+            NodeCounts::Sorted(c) => c.len(),
+            NodeCounts::Hashed(c) => c.len(),
+        }
+    }
+
+    /// The number of counted examples of `class`.
+    pub(crate) fn class_total(&self, class: ClassId) -> u32 {
+        match self {
+            NodeCounts::Sorted(c) => {
+                let totals = c.totals();
+                totals
+                    .binary_search_by_key(&class, |t| t.0)
+                    .map_or(0, |k| totals[k].1)
+            }
+            NodeCounts::Hashed(c) => c.class_total(class),
+        }
+    }
+
+    /// The one class of every counted example, if there is exactly one.
+    pub(crate) fn only_class(&self) -> Option<ClassId> {
+        match self {
+            NodeCounts::Sorted(c) => match c.totals() {
+                [(class, _)] => Some(*class),
+                _ => None,
+            },
+            NodeCounts::Hashed(c) => c.only_class(),
+        }
+    }
+
+    /// The number of counted examples whose `feature` is `value`.
+    pub(crate) fn having(&self, feature: FeatureId, value: Value) -> u32 {
+        match self {
+            NodeCounts::Sorted(c) => c.having(feature, value),
+            NodeCounts::Hashed(c) => c.having(feature, value),
+        }
+    }
+
+    /// The most frequent class, ties to the lowest id, as [`SplitCounts::majority`].
+    pub(crate) fn majority(&mut self) -> Option<ClassId> {
+        match self {
+            NodeCounts::Sorted(c) => c.majority(),
+            NodeCounts::Hashed(c) => c.majority(),
+        }
+    }
+
+    /// Count `example` in.
+    pub(crate) fn add(&mut self, example: &Example, terms: &mut Terms) {
+        match self {
+            NodeCounts::Sorted(c) => {
+                c.add(example);
+                if c.totals().len() > FEW_CLASSES {
+                    *self = NodeCounts::Hashed(Box::new(Hashed::from_sorted(c, terms)));
+                }
+            }
+            NodeCounts::Hashed(c) => c.add(example, terms),
+        }
+    }
+
+    /// Count `example`, counted in before with the same pairs and class, out again.
+    pub(crate) fn remove(&mut self, example: &Example, terms: &mut Terms) {
+        match self {
+            NodeCounts::Sorted(c) => c.remove(example),
+            NodeCounts::Hashed(c) => c.remove(example, terms),
+        }
+    }
+
+    /// [`InfoCost::select_from_counts`](crate::InfoCost::select_from_counts) on these
+    /// counts, under `rules`: the same feature, bit for bit (see the module docs).
+    /// `fallback` is scratch for the cases the bounds leave open.
+    pub(crate) fn select<M, C>(
+        &self,
+        rules: Rules,
+        is_measured: M,
+        costs: &C,
+        fallback: &mut Fallback,
+    ) -> Option<FeatureId>
+    where
+        M: Fn(FeatureId) -> bool,
+        C: Costs + ?Sized,
+    {
+        match self {
+            // `select_from_counts` itself.
+            NodeCounts::Sorted(c) => rules.best(
+                c.totals(),
+                &mut fallback.having,
+                c.features(),
+                is_measured,
+                costs,
+            ),
+            NodeCounts::Hashed(c) => c.select(rules, is_measured, costs, fallback),
+        }
+    }
+}
+
 /// Set `map[key]` to `count`, leaving no zero in the map.
 fn set<K: std::hash::Hash + Eq>(map: &mut FxMap<K, u32>, key: K, count: u32) {
     if count == 0 {
@@ -175,19 +299,73 @@ fn gap(terms: &mut Terms, total: u32, having: u32) -> i128 {
     terms.get(total) - terms.get(total - having)
 }
 
-impl NodeCounts {
+impl Hashed {
+    /// The same counts as `sorted`, with their sums.
+    fn from_sorted(sorted: &SplitCounts, terms: &mut Terms) -> Hashed {
+        let mut hashed = Hashed {
+            len: sorted.len(),
+            ..Hashed::default()
+        };
+        for &(class, total) in sorted.totals() {
+            hashed.classes.insert(class, total);
+            hashed.class_terms += terms.get(total);
+        }
+        let mut by_class: Vec<(ClassId, u32)> = Vec::new();
+        for (feature, runs) in sorted.features() {
+            let mut counts = FeatureCounts::new(feature);
+            by_class.clear();
+            let mut i = 0;
+            while i < runs.len() {
+                let value = runs[i].0;
+                let mut size = 0;
+                while i < runs.len() && runs[i].0 == value {
+                    let (_, class, n) = runs[i];
+                    size += n;
+                    counts.runs += 1;
+                    counts.run_terms += terms.get(n);
+                    hashed.runs.insert((feature, value, class), n);
+                    by_class.push((class, n));
+                    i += 1;
+                }
+                counts.values += 1;
+                counts.value_terms += terms.get(size);
+                counts.having += size;
+                hashed.values.insert((feature, value), size);
+            }
+            by_class.sort_unstable();
+            let mut k = 0;
+            while k < by_class.len() {
+                let class = by_class[k].0;
+                let mut h = 0;
+                while k < by_class.len() && by_class[k].0 == class {
+                    h += by_class[k].1;
+                    k += 1;
+                }
+                let total = sorted
+                    .totals()
+                    .binary_search_by_key(&class, |t| t.0)
+                    .map_or(0, |j| sorted.totals()[j].1);
+                counts.lacking_gap += gap(terms, total, h);
+                counts.having_terms += terms.get(h);
+                hashed.having.insert((feature, class), h);
+            }
+            hashed.features.push(counts);
+        }
+        hashed
+    }
+
     /// The number of examples counted.
-    pub(crate) fn len(&self) -> u32 {
+    fn len(&self) -> u32 {
         self.len
     }
 
     /// The number of counted examples of `class`.
-    pub(crate) fn class_total(&self, class: ClassId) -> u32 {
+    fn class_total(&self, class: ClassId) -> u32 {
         self.classes.get(&class).copied().unwrap_or(0)
     }
 
     /// The one class of every counted example, if there is exactly one.
-    pub(crate) fn only_class(&self) -> Option<ClassId> {
+    fn only_class(&self) -> Option<ClassId> {
         if self.classes.len() == 1 {
             self.classes.keys().next().copied()
         } else {
@@ -196,13 +374,13 @@ impl NodeCounts {
     }
 
     /// The number of counted examples whose `feature` is `value`.
-    pub(crate) fn having(&self, feature: FeatureId, value: Value) -> u32 {
+    fn having(&self, feature: FeatureId, value: Value) -> u32 {
         self.values.get(&(feature, value)).copied().unwrap_or(0)
     }
 
     /// The most frequent class, ties to the lowest id, as
     /// [`SplitCounts::majority`](crate::SplitCounts::majority).
-    pub(crate) fn majority(&mut self) -> Option<ClassId> {
+    fn majority(&mut self) -> Option<ClassId> {
         if self.majority.is_none() {
             self.majority = self.count_majority();
         }
@@ -218,12 +396,12 @@ impl NodeCounts {
     }
 
     /// Count `example` in.
-    pub(crate) fn add(&mut self, example: &Example, terms: &mut Terms) {
+    fn add(&mut self, example: &Example, terms: &mut Terms) {
         self.change(example, terms, true);
     }
 
     /// Count `example`, counted in before with the same pairs and class, out again.
-    pub(crate) fn remove(&mut self, example: &Example, terms: &mut Terms) {
+    fn remove(&mut self, example: &Example, terms: &mut Terms) {
         self.change(example, terms, false);
     }
 
@@ -308,7 +486,7 @@ impl NodeCounts {
     /// [`InfoCost::select_from_counts`](crate::InfoCost::select_from_counts) on these
     /// counts, under `rules`: the same feature, bit for bit (see the module docs).
     /// `fallback` is scratch for the cases the bounds leave open.
-    pub(crate) fn select<M, C>(
+    fn select<M, C>(
         &self,
         rules: Rules,
         is_measured: M,
@@ -636,6 +814,7 @@ mod tests {
         let mut fallback = Fallback::default();
         let mut terms = Terms::new();
         let mut checked = 0;
+        let mut hashed_rounds = 0;
         for round in 0..300 {
             let features = rng.random_range(1..8);
             let values = rng.random_range(1..4);
@@ -645,13 +824,22 @@ mod tests {
             let costs: Vec<Cost> = (0..features)
                 .map(|_| Cost::new(f64::from(rng.random_range(0..4))).unwrap())
                 .collect();
-            let mut counts = NodeCounts::default();
+            // Every other round with sums from the start, whatever the classes; else they
+            // start from sorted vectors and switch past `FEW_CLASSES`.
+            let mut counts = if round % 2 == 0 {
+                NodeCounts::hashed()
+            } else {
+                NodeCounts::default()
+            };
             let mut split = SplitCounts::new();
             all.iter().for_each(|e| {
                 counts.add(e, &mut terms);
                 split.add(e);
                 assert_eq!(counts.majority(), split.majority());
             });
+            if split.totals().len() > FEW_CLASSES {
+                assert!(matches!(counts, NodeCounts::Hashed(_)));
+            }
             // Take some out again.
             for e in all.iter().filter(|_| rng.random_bool(0.3)) {
                 counts.remove(e, &mut terms);
@@ -675,9 +863,13 @@ mod tests {
                 }
             }
             assert_eq!(counts.majority(), split.majority());
-            assert_eq!(counts.count_majority(), split.majority());
+            if let NodeCounts::Hashed(hashed) = &counts {
+                assert_eq!(hashed.count_majority(), split.majority());
+                hashed_rounds += 1;
+            }
         }
         assert!(checked > 1000);
+        assert!(hashed_rounds > 150, "{hashed_rounds}");
         // The bounds decide most selections.
         assert!(
             fallback.bounded_undecided * 2 < checked,
