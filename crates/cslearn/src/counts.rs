@@ -5,7 +5,9 @@
 //! [`InfoCost::select_from_counts`](crate::InfoCost::select_from_counts) scores a feature
 //! by summing a term per (value, class) count and per class, in one fixed order: both cost
 //! time in proportion to the classes, which is most of the work when the classes are as
-//! many as the examples. [`NodeCounts`] keeps its counts in hash maps, and beside them the
+//! many as the examples. [`NodeCounts`] keeps a node's counts as [`SplitCounts`] does
+//! while the node has at most [`FEW_CLASSES`] classes (sorting and scoring every count is
+//! cheap then); past that, in hash maps ([`Hashed`]), and beside them the
 //! sums of `x log2 x` terms that the I^2/C score is made of, kept exactly (every term is a
 //! multiple of 2^-52, so the sums are integers at that scale) and updated in time
 //! independent of the classes as examples come and go.
