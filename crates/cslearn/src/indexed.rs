@@ -9,27 +9,27 @@
 //! a function of those measurements alone, and so is the next selection (the candidates
 //! are the features not yet measured). The index is therefore a tree, built lazily along
 //! the paths objects take: a node is such a sequence of measurements, and it keeps its
-//! attended examples and their class counts (as [`SplitCounts`] keeps them, but in hash
-//! maps), and remembers its decision until they change. Nodes catch up with the library
+//! attended examples and their class counts (as [`SplitCounts`] keeps them while the node
+//! has few classes, in hash maps past that), and remembers its decision until they change. Nodes catch up with the library
 //! when a pass visits them (the root with the examples added since its last visit, a child
-//! with those its parent gained since), so a new example costs a few hash look-ups per
-//! pair it has, per node it reaches, instead of a recount. When
+//! with those its parent gained since), so a new example costs a few look-ups per pair it
+//! has, per node it reaches, instead of a recount. When
 //! a node's selection changes, the children built for the old feature stay, untouched and
 //! costing nothing, until a selection leads back to them. The one example that changes
 //! after it was added (the learner refines the new example during its recheck) is taken
 //! back out of the nodes visited since it was added.
 //!
-//! Selection is scored from the counts: each node keeps, beside them, the sums of the
-//! `x log2 x` terms that the I^2/C scores are made of, exactly (as integers at a scale of
-//! 2^-52), updated in time independent of the number of classes. From them it bounds, for
-//! every candidate, the score that [`InfoCost::select_from_counts`] (whose one scoring
-//! function [`InfoCost::select_from`] shares) computes in floating point, and runs the
-//! selection's rule over the bounds; where the bounds leave a comparison open, it sorts the
-//! node's counts and scores them by that very function. A selection therefore costs time
-//! in proportion to the features, not to the classes, and is the plain one bit for bit
-//! (the argument is in `src/counts.rs`). Prediction, discrimination
-//! (the same [`Discriminate`] parts, over the same conflicting examples) and updating are
-//! the plain procedure's. The learner therefore measures the same features in the same
+//! Selection is scored from the counts. A node of few classes scores them by
+//! [`InfoCost::select_from_counts`], whose one scoring function [`InfoCost::select_from`]
+//! shares. A node of many classes keeps, beside its counts, the sums of the `x log2 x`
+//! terms that the I^2/C scores are made of, exactly (as integers at a scale of 2^-52),
+//! updated in time independent of the number of classes; from them it bounds, for every
+//! candidate, the score that function computes in floating point, and runs the selection's
+//! rule over the bounds; where the bounds leave a comparison open, it sorts the node's
+//! counts and scores them by that very function. A selection there costs time in
+//! proportion to the features, not to the classes, and is the plain one bit for bit (the
+//! argument is in `src/counts.rs`). Prediction, discrimination (the same [`Discriminate`]
+//! parts, over the same conflicting examples) and updating are the plain procedure's. The learner therefore measures the same features in the same
 //! order, predicts the same classes, charges the same costs and builds the same library as
 //! [`cs_id3`] and [`id3`], bit for bit (`tests/indexed.rs` checks this object by object).
 
