@@ -9,34 +9,45 @@
 //! a function of those measurements alone, and so is the next selection (the candidates
 //! are the features not yet measured). The index is therefore a tree, built lazily along
 //! the paths objects take: a node is such a sequence of measurements, and it keeps its
-//! attended examples and their [`SplitCounts`], and remembers its decision until they
-//! change. Nodes catch up with the library when a pass visits them (the root with the
-//! examples added since its last visit, a child with those its parent gained since), so a
-//! new example costs a few binary searches per node it reaches instead of a recount. When
+//! attended examples and their class counts (as [`SplitCounts`] keeps them while the node
+//! has few classes, in hash maps past that), and remembers its decision until they change. Nodes catch up with the library
+//! when a pass visits them (the root with the examples added since its last visit, a child
+//! with those its parent gained since), so a new example costs a few look-ups per pair it
+//! has, per node it reaches, instead of a recount. When
 //! a node's selection changes, the children built for the old feature stay, untouched and
 //! costing nothing, until a selection leads back to them. The one example that changes
 //! after it was added (the learner refines the new example during its recheck) is taken
 //! back out of the nodes visited since it was added.
 //!
-//! Selection is scored from the counts by [`InfoCost::select_from_counts`], which shares
-//! its one scoring function with [`InfoCost::select_from`]; prediction, discrimination
-//! (the same [`Discriminate`] parts, over the same conflicting examples) and updating are
-//! the plain procedure's. The learner therefore measures the same features in the same
+//! Selection is scored from the counts. A node of few classes scores them by
+//! [`InfoCost::select_from_counts`], whose one scoring function [`InfoCost::select_from`]
+//! shares. A node of many classes keeps, beside its counts, the sums of the `x log2 x`
+//! terms that the I^2/C scores are made of, exactly (as integers at a scale of 2^-52),
+//! updated in time independent of the number of classes; from them it bounds, for every
+//! candidate, the score that function computes in floating point, and runs the selection's
+//! rule over the bounds; where the bounds leave a comparison open, it sorts the node's
+//! counts and scores them by that very function. A selection there costs time in
+//! proportion to the features, not to the classes, and is the plain one bit for bit (the
+//! argument is in `src/counts.rs`). Prediction, discrimination (the same [`Discriminate`]
+//! parts, over the same conflicting examples) and updating are the plain procedure's. The learner therefore measures the same features in the same
 //! order, predicts the same classes, charges the same costs and builds the same library as
 //! [`cs_id3`] and [`id3`], bit for bit (`tests/indexed.rs` checks this object by object).
 
 use rand::Rng;
 
 use crate::attend::{Attention, ObservationAttending};
+use crate::counts::{Fallback, NodeCounts, Terms};
 use crate::discriminate::{CheapestFirst, Discriminate, RandomOrder};
 use crate::example::{Example, Library};
 use crate::learner::{Classified, Outcome, StreamReport};
-use crate::select::{InfoCost, MissingRule, SplitCounts};
+use crate::select::{InfoCost, MissingRule};
 use crate::sensing::{Ledger, Probe, Sensor};
 use crate::types::{ClassId, Cost, CostBlind, FeatureCosts, FeatureId, Value};
 
 #[cfg(doc)]
 use crate::learner::{cs_id3, id3};
+#[cfg(doc)]
+use crate::select::SplitCounts;
 
 /// CS-ID3 or ID3 (by its discrimination part `D` and whether selection is cost-blind)
 /// over an index of the library: the same outcomes, charges and library as the plain
@@ -434,8 +445,8 @@ enum Step {
 #[derive(Clone, Debug, Default)]
 struct Node {
     /// Library indices of the attended examples, ascending.
-    members: Vec<usize>,
-    counts: SplitCounts,
+    members: Vec<u32>,
+    counts: NodeCounts,
     /// The examples below this library index have been looked at.
     synced: usize,
     /// ((measured feature, measured value), child), ascending; a `None` value is a
@@ -459,6 +470,10 @@ struct Tree {
     touched: Vec<NodeId>,
     /// Examples looked at so far, one count per example per node that looked at it.
     visited: u64,
+    /// `x log2 x` terms of the counts, shared by every node.
+    terms: Terms,
+    /// Scratch for selections the exact sums leave open.
+    fallback: Fallback,
 }
 
 impl Tree {
@@ -467,6 +482,8 @@ impl Tree {
             nodes: vec![Node::default()],
             touched: Vec::new(),
             visited: 0,
+            terms: Terms::new(),
+            fallback: Fallback::default(),
         }
     }
 
@@ -477,11 +494,7 @@ impl Tree {
     /// How many examples at `node` are of another class than `label`.
     fn conflicts(&self, node: NodeId, label: ClassId) -> u32 {
         let counts = &self.nodes[node].counts;
-        let own = counts
-            .totals()
-            .binary_search_by_key(&label, |t| t.0)
-            .map_or(0, |k| counts.totals()[k].1);
-        counts.len() - own
+        counts.len() - counts.class_total(label)
     }
 
     /// Figure 2, step 3, from the examples attended at the moment of prediction, those of
@@ -514,7 +527,7 @@ impl Tree {
             conflicting.attend_only(
                 members
                     .iter()
-                    .copied()
+                    .map(|&i| i as usize)
                     .filter(|&i| library[i].class() != label),
             );
             return discriminate.discriminate(library, &ObservationAttending, conflicting, probe);
@@ -545,9 +558,9 @@ impl Tree {
     fn refining(&mut self, index: usize, example: &Example) {
         for &n in &self.touched {
             let node = &mut self.nodes[n];
-            if node.members.last() == Some(&index) {
+            if node.members.last().map(|&i| i as usize) == Some(index) {
                 node.members.pop();
-                node.counts.remove(example);
+                node.counts.remove(example, &mut self.terms);
                 node.step = None;
             }
             node.synced = node.synced.min(index);
@@ -561,8 +574,9 @@ impl Tree {
         if root.synced < library.len() {
             self.visited += (library.len() - root.synced) as u64;
             for i in root.synced..library.len() {
-                root.members.push(i);
-                root.counts.add(&library[i]);
+                // Counts are `u32`: the index holds fewer than 2^32 examples.
+                root.members.push(i as u32);
+                root.counts.add(&library[i], &mut self.terms);
             }
             root.synced = library.len();
             root.step = None;
@@ -580,22 +594,24 @@ impl Tree {
         probe: &Probe<'_, T>,
         cost_blind: bool,
     ) -> Step {
+        let fallback = &mut self.fallback;
         let node = &mut self.nodes[node];
         if let Some(step) = node.step {
             return step;
         }
-        let counts = &node.counts;
-        let step = if let [(class, _)] = counts.totals() {
-            Step::Predict(Some(*class))
+        let counts = &mut node.counts;
+        let step = if let Some(class) = counts.only_class() {
+            Step::Predict(Some(class))
         } else {
             let ledger = probe.ledger();
             let measured = |f| ledger.consulted(f);
+            let rules = select.rules();
             let chosen = if cost_blind {
-                select.select_from_counts(counts, measured, &CostBlind(probe.costs()))
+                counts.select(rules, measured, &CostBlind(probe.costs()), fallback)
             } else {
-                select.select_from_counts(counts, measured, probe.costs())
+                counts.select(rules, measured, probe.costs(), fallback)
             };
-            chosen.map_or(Step::Predict(counts.majority()), Step::Measure)
+            chosen.map_or_else(|| Step::Predict(counts.majority()), Step::Measure)
         };
         node.step = Some(step);
         step
@@ -625,13 +641,16 @@ impl Tree {
         };
         let mut child = std::mem::take(&mut self.nodes[id]);
         let parent = &self.nodes[node];
-        let new = &parent.members[parent.members.partition_point(|&i| i < child.synced)..];
+        let new = &parent.members[parent
+            .members
+            .partition_point(|&i| (i as usize) < child.synced)..];
         let before = child.members.len();
         self.visited += new.len() as u64;
         for &i in new {
-            if value.is_none() || library[i].get(feature) == value {
+            let example = &library[i as usize];
+            if value.is_none() || example.get(feature) == value {
                 child.members.push(i);
-                child.counts.add(&library[i]);
+                child.counts.add(example, &mut self.terms);
             }
         }
         if child.members.len() > before {

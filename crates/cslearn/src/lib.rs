@@ -120,8 +120,10 @@
 //! # At scale: the indexed learners
 //!
 //! [`cs_id3_indexed`] and [`id3_indexed`] ([`IndexedLearner`]) are CS-ID3 and ID3 over a
-//! lazily built tree of per-node class counts ([`SplitCounts`]), selecting through
-//! [`InfoCost::select_from_counts`]: the same features measured in the same order, the same
+//! lazily built tree of per-node class counts ([`SplitCounts`] while a node has few classes;
+//! past that, hash maps with exact running sums of the score's terms, which bound
+//! [`InfoCost::select_from_counts`]'s scores, falling back on it where the bounds do not
+//! decide): the same features measured in the same order, the same
 //! predictions, charges and library as [`cs_id3`] and [`id3`], bit for bit
 //! (`tests/indexed.rs`), in time per object that barely grows with the library.
 //! [`stream_dataset`], and so `csrl classify`, uses them. On generated data of 30 features
@@ -194,6 +196,7 @@
 #![cfg_attr(not(test), warn(clippy::unwrap_used, clippy::expect_used))]
 
 mod attend;
+mod counts;
 mod dataset;
 mod discriminate;
 mod error;

@@ -66,7 +66,7 @@ pub struct InfoCost {
 }
 
 /// `x log2 x`, with `0 log 0 = 0`: entropies are sums of these over counts.
-fn xlogx(x: u32) -> f64 {
+pub(crate) fn xlogx(x: u32) -> f64 {
     if x == 0 {
         0.0
     } else {
@@ -77,7 +77,7 @@ fn xlogx(x: u32) -> f64 {
 
 /// Whether two I^2/C scores count as a tie: equal to a relative 1e-9, so that rounding
 /// cannot decide between features that score the same in exact arithmetic.
-fn same_score(a: f64, b: f64) -> bool {
+pub(crate) fn same_score(a: f64, b: f64) -> bool {
     a == b || (a - b).abs() <= 1e-9 * a.abs().max(b.abs())
 }
 
@@ -231,6 +231,14 @@ impl InfoCost {
         rules.best(&self.totals, &mut self.having, features, is_measured, costs)
     }
 
+    /// The scoring settings, for selectors that keep their own counts.
+    pub(crate) fn rules(&self) -> Rules {
+        Rules {
+            missing: self.missing,
+            require_split: self.require_split,
+        }
+    }
+
     /// [`select_from`](InfoCost::select_from) computed from the class counts of the
     /// examples instead of the examples themselves: the same feature, bit for bit, as
     /// `select_from` over the examples that `counts` counted, because both score through
@@ -357,9 +365,9 @@ impl BestScore {
 
 /// The two settings that decide how a split is scored and whether it counts.
 #[derive(Clone, Copy)]
-struct Rules {
-    missing: MissingRule,
-    require_split: Option<Semantics>,
+pub(crate) struct Rules {
+    pub(crate) missing: MissingRule,
+    pub(crate) require_split: Option<Semantics>,
 }
 
 impl Rules {
@@ -367,7 +375,7 @@ impl Rules {
     /// ascending (value, class)), over examples whose class counts are `totals`
     /// (ascending class). The one scoring procedure behind both entry points, so that
     /// counting examples one way or the other cannot change a single bit of a score.
-    fn best<'a, M, C>(
+    pub(crate) fn best<'a, M, C>(
         self,
         totals: &[(ClassId, u32)],
         having: &mut Vec<u32>,

@@ -110,6 +110,54 @@ fn indexed_cs_id3_agrees_on_a_larger_library() {
     check_cs_id3(&costs, &objects, true);
 }
 
+/// A stream with many classes: each label a structured part (two features) times
+/// `spread`, plus a uniform draw below `spread`, so that most classes have a few examples
+/// and some have many; prices as in [`stream`], ties common.
+fn stream_many_classes(
+    seed: u64,
+    rows: usize,
+    features: usize,
+    spread: u32,
+) -> (FeatureCosts, Vec<(Row, ClassId)>) {
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    let values = rng.random_range(2..5u32);
+    let missing = [0.0, 0.05, 0.3][rng.random_range(0..3usize)];
+    let prices = [0.0, 1.0, 1.0, 2.0, 3.0, 7.5];
+    let costs: Vec<f64> = (0..features)
+        .map(|_| prices[rng.random_range(0..prices.len())])
+        .collect();
+    let (a, b) = (rng.random_range(0..features), rng.random_range(0..features));
+    let objects = (0..rows)
+        .map(|_| {
+            let full: Vec<u32> = (0..features).map(|_| rng.random_range(0..values)).collect();
+            let class = (full[a] + values * full[b]) * spread + rng.random_range(0..spread);
+            let row = full
+                .iter()
+                .map(|&v| (!rng.random_bool(missing)).then_some(Value(v)))
+                .collect();
+            (row, ClassId(class))
+        })
+        .collect();
+    (FeatureCosts::from_f64(&costs).unwrap(), objects)
+}
+
+#[test]
+fn indexed_learners_agree_with_hundreds_of_classes() {
+    for seed in 0..8 {
+        // From a few examples per class to about one.
+        let spread = [40, 100, 200, 1000][seed as usize % 4];
+        let features = 3 + (seed as usize % 8);
+        let (costs, objects) = stream_many_classes(3000 + seed, 300, features, spread);
+        let classes: std::collections::BTreeSet<ClassId> = objects.iter().map(|o| o.1).collect();
+        assert!(classes.len() >= 100, "{} classes", classes.len());
+        check_cs_id3(&costs, &objects, seed % 3 != 0);
+        check_id3(&costs, &objects, seed);
+    }
+    // Uniform labels over a thousand classes, thirty features.
+    let (costs, objects) = stream_many_classes(77, 600, 30, 1000);
+    check_cs_id3(&costs, &objects, true);
+}
+
 #[test]
 fn indexed_learners_agree_on_the_heart_data() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/heart-disease");

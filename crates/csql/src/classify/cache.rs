@@ -135,6 +135,8 @@ pub(super) struct Cache {
     live: Vec<bool>,
     touched: Vec<u32>,
     marks: Vec<bool>,
+    /// The candidates of a node that its new child leaves out.
+    excluded: Vec<u32>,
     /// Traversal stack: (node, path length above it, edge into it).
     stack: Vec<(u32, usize, (u32, u32))>,
     path: Path,
@@ -153,6 +155,7 @@ impl Cache {
             live: Vec::new(),
             touched: Vec::new(),
             marks: Vec::new(),
+            excluded: Vec::new(),
             stack: Vec::new(),
             path: Vec::new(),
         }
@@ -447,15 +450,58 @@ impl Cache {
             let (a, b) = self.nodes.split_at_mut(parent as usize);
             (&b[0], &mut a[child as usize])
         };
-        c.cands.extend(p.cands.iter().copied().filter(|&d| {
-            examples[d as usize]
-                .get(FeatureId(feature))
-                .is_none_or(|v| v.0 == code)
-        }));
+        let excluded = &mut self.excluded;
+        excluded.clear();
+        for &d in &p.cands {
+            match examples[d as usize].get(FeatureId(feature)) {
+                Some(v) if v.0 != code => excluded.push(d),
+                _ => c.cands.push(d),
+            }
+        }
         let r = self.rec(parent) + CHILDREN;
         self.table[r + code as usize] = child;
-        self.fill_counts(child, library, path);
+        if self.excluded.len() < self.nodes[child as usize].cands.len() {
+            // Fewer candidates left out than kept: the parent's counts without those.
+            self.counts_from_parent(parent, child, feature, library);
+        } else {
+            self.fill_counts(child, library, path);
+        }
         child
+    }
+
+    /// The counts of `child`, the child of `parent` (which measures `feature`), as
+    /// [`Cache::fill_counts`] would count them: the parent's, without `feature` and
+    /// without the candidates in `self.excluded` (the parent's that the child left out).
+    fn counts_from_parent(&mut self, parent: u32, child: u32, feature: u32, library: &Library) {
+        let k = self.arity;
+        let examples = library.examples();
+        let mut node = std::mem::take(&mut self.nodes[child as usize]);
+        let from = &self.nodes[parent as usize];
+        node.feats.clear();
+        node.vals.clear();
+        node.feats.extend_from_slice(&from.feats);
+        node.vals.extend_from_slice(&from.vals);
+        for &d in &self.excluded {
+            for &(f, v) in examples[d as usize].pairs() {
+                // Features measured on the way are not in the parent's counts.
+                if let Ok(i) = node.feats.binary_search(&f.0) {
+                    node.vals[i * k + v.0 as usize] -= 1;
+                }
+            }
+        }
+        // Drop the measured feature and every block left all zero, keeping the order.
+        let mut kept = 0;
+        for i in 0..node.feats.len() {
+            let block = i * k..(i + 1) * k;
+            if node.feats[i] != feature && node.vals[block.clone()].iter().any(|&c| c > 0) {
+                node.feats[kept] = node.feats[i];
+                node.vals.copy_within(block, kept * k);
+                kept += 1;
+            }
+        }
+        node.feats.truncate(kept);
+        node.vals.truncate(kept * k);
+        self.nodes[child as usize] = node;
     }
 
     /// Count, for a node whose candidates are set, the values of every unmeasured feature.
