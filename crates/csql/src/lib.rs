@@ -197,6 +197,7 @@ mod run;
 mod sensor;
 mod settings;
 mod setup;
+mod stepper;
 mod strategy;
 mod tree;
 #[allow(
@@ -216,7 +217,7 @@ pub use figure::{descriptions_svg, descriptions_table, policy_svg};
 pub use judge::{Judge, Verdict};
 pub use learn::{Judging, Scene};
 pub use learner::{LearnerKind, UTreeParams};
-pub use main_loop::{Agent, LoopParams, TrialRecord};
+pub use main_loop::{Agent, LoopParams, RefineFrom, TrialRecord};
 pub use memory::Remembering;
 pub use navigate::{Navigation, navigate};
 pub use observe::{Flow, KeepTrace, Observer, TracePoint};
@@ -245,6 +246,7 @@ pub use run::{
 pub use sensor::Sensor;
 pub use settings::{MAX_ROWS, MAX_SETTINGS_BYTES, MapSource, NonNegative, RunSettings, TrialCap};
 pub use setup::Setup;
+pub use stepper::{Moment, Sense, StepError, Stepper};
 pub use strategy::{
     Eager, Lazy, Never, RandomMoves, Reaction, Resetting, Strategy, StrategyKind, UnknownStrategy,
 };
