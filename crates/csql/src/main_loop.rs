@@ -217,7 +217,6 @@ impl<P, S> Agent<P, S> {
     }
 }
 
-
 /// Where a refinement reads the value of the feature it adds to a description.
 ///
 /// ```

@@ -257,7 +257,7 @@ fn live<'a, 's>(features: &'a Features, now: StateId, sense: &'s mut dyn Sense) 
 /// assert!(agent.descriptions().len() >= 2);
 /// ```
 pub struct Stepper {
-    agent: Agent<Classify, Box<dyn Strategy + Send>>,
+    agent: Agent<Classify, Box<dyn Strategy + Send + Sync>>,
     features: Features,
     rng: Xoshiro256PlusPlus,
     /// The trial in progress, if any.
@@ -309,10 +309,8 @@ impl Stepper {
         num_actions: usize,
         settings: &RunSettings,
     ) -> Result<Stepper, Error> {
-        let invalid = |value: String, expected: &'static str| Error::InvalidSetting {
-            value,
-            expected,
-        };
+        let invalid =
+            |value: String, expected: &'static str| Error::InvalidSetting { value, expected };
         if prices.len() != readings.len() {
             return Err(invalid(
                 format!("{} prices for {} features", prices.len(), readings.len()),
@@ -320,7 +318,10 @@ impl Stepper {
             ));
         }
         if let Some(p) = prices.iter().find(|p| !(p.is_finite() && **p >= 0.0)) {
-            return Err(invalid(format!("price {p}"), "a finite price of at least 0"));
+            return Err(invalid(
+                format!("price {p}"),
+                "a finite price of at least 0",
+            ));
         }
         if let Some(n) = readings.iter().find(|&&n| n == 0) {
             return Err(invalid(
@@ -471,7 +472,9 @@ impl Stepper {
             None => {
                 self.trials += 1;
                 let live = live(&self.features, StateId(self.here), sense);
-                let t = self.agent.begin_trial(&live, StateId(self.here), self.trials);
+                let t = self
+                    .agent
+                    .begin_trial(&live, StateId(self.here), self.trials);
                 let bad = live.bad.get();
                 self.cost += t.rec.cost;
                 self.fail_on(bad)?;
@@ -567,6 +570,29 @@ impl Stepper {
     /// ```
     pub fn stop(&mut self, why: String) {
         self.stopped.get_or_insert(why);
+    }
+
+    /// Whether an action awaits its [`Stepper::update`] (`act` was called last).
+    ///
+    /// ```
+    /// let s = csql::RunSettings::tan1991("any", csql::StrategyKind::Lazy, 1);
+    /// let mut agent = csql::Stepper::new(&[1.0], &[2], 2, &s).unwrap();
+    /// assert!(!agent.acted());
+    /// agent.act(&mut |_: csql::Moment, _: mdp::Feature| mdp::Reading(0)).unwrap();
+    /// assert!(agent.acted());
+    /// ```
+    pub fn acted(&self) -> bool {
+        self.chosen.is_some()
+    }
+
+    /// Why the stepper stopped, if it did ([`Stepper::stop`], or a reading out of range).
+    ///
+    /// ```
+    /// let s = csql::RunSettings::tan1991("any", csql::StrategyKind::Lazy, 1);
+    /// assert_eq!(csql::Stepper::new(&[1.0], &[2], 2, &s).unwrap().stopped(), None);
+    /// ```
+    pub fn stopped(&self) -> Option<&str> {
+        self.stopped.as_deref()
     }
 
     /// The generator the stepper draws from, for a simulator that draws its starts and

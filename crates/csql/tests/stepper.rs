@@ -11,9 +11,7 @@ fn drive<W: World + ?Sized>(world: &W, stepper: &mut Stepper, trials: u32, max_m
     for _ in 0..trials {
         let mut x = world.sample_start(stepper.rng());
         for moves in 1..=max_moves {
-            let a = stepper
-                .act(&mut |_: Moment, f| world.read(x, f))
-                .unwrap();
+            let a = stepper.act(&mut |_: Moment, f| world.read(x, f)).unwrap();
             let step = world.sample(x, a, stepper.rng());
             let left = x;
             stepper
@@ -40,7 +38,11 @@ fn assert_same<W: World + ?Sized>(world: &W, stepper: &Stepper, report: &RunRepo
     let what = format!("{} {} seed {}", report.map, report.strategy, report.seed);
     assert_eq!(stepper.trials(), report.trials, "{what}");
     assert_eq!(stepper.moves(), report.moves, "{what}");
-    assert_eq!(stepper.cost().to_bits(), report.total_cost.to_bits(), "{what}");
+    assert_eq!(
+        stepper.cost().to_bits(),
+        report.total_cost.to_bits(),
+        "{what}"
+    );
     let last = stepper.last_trial().unwrap();
     let point = report.trace.last().unwrap();
     assert_eq!(
@@ -58,7 +60,11 @@ fn assert_same<W: World + ?Sized>(world: &W, stepper: &Stepper, report: &RunRepo
             .map(|&(f, v)| {
                 let f = mdp::Feature(f);
                 let name = (!grid).then(|| world.feature_name(f));
-                (name, world.reading_name(f, Reading(v)), world.price(f).to_bits())
+                (
+                    name,
+                    world.reading_name(f, Reading(v)),
+                    world.price(f).to_bits(),
+                )
             })
             .collect();
         named.sort();
@@ -105,7 +111,12 @@ fn a_grid_map_learns_as_run_does() {
         let (report, rep) = csql::run_with_representation(&setup, &settings);
         let world = setup.sensed(&settings);
         let mut stepper = stepper_for(&world, &settings);
-        drive(&world, &mut stepper, report.trials, settings.max_moves.get());
+        drive(
+            &world,
+            &mut stepper,
+            report.trials,
+            settings.max_moves.get(),
+        );
         assert_same(&world, &stepper, &report);
         assert_eq!(stepper.representation().len(), rep.len());
         for ((_, a), (_, b)) in stepper.representation().iter().zip(rep.iter()) {
@@ -127,7 +138,12 @@ fn a_finite_world_learns_as_run_does() {
         let report = csql::run(&settings).unwrap();
         let world = mdp::builtin_world(name, &Default::default()).unwrap();
         let mut stepper = stepper_for(&world, &settings);
-        drive(&world, &mut stepper, report.trials, settings.max_moves.get());
+        drive(
+            &world,
+            &mut stepper,
+            report.trials,
+            settings.max_moves.get(),
+        );
         assert_same(&world, &stepper, &report);
     }
 }
@@ -143,7 +159,12 @@ fn slippery_moves_drawn_from_the_same_generator_learn_as_run_does() {
     let mut plain = settings.clone();
     plain.world = Default::default();
     let mut stepper = stepper_for(&world, &plain);
-    drive(&world, &mut stepper, report.trials, settings.max_moves.get());
+    drive(
+        &world,
+        &mut stepper,
+        report.trials,
+        settings.max_moves.get(),
+    );
     assert_same(&world, &stepper, &report);
 }
 
@@ -207,5 +228,8 @@ fn bad_readings_and_calls_out_of_order_are_errors() {
     }
     let e = failed.expect("a decrease refines, then a measurement reads 7");
     assert!(e.to_string().contains("reads 0 to 1"), "{e}");
-    assert!(matches!(stepper.act(&mut ok), Err(csql::StepError::Stopped(_))));
+    assert!(matches!(
+        stepper.act(&mut ok),
+        Err(csql::StepError::Stopped(_))
+    ));
 }
