@@ -22,10 +22,18 @@
 //!    longer match it.
 //! 8. and 9. `x` becomes `y`, until the goal or the move cap.
 //!
+//! # A state machine
+//!
+//! A trial is a state machine: begin (step 1), choose (steps 1 and 7), observe a move's
+//! outcome (steps 2 to 9). [`Agent::run_trial`] drives it with a world, sampling each
+//! outcome between choosing and observing and marking the move that reaches the move cap
+//! truncated; [`crate::Stepper`] lets a caller drive it with an environment of its own.
+//!
 //! # Random draws, in order
 //!
-//! Per trial: one `random_range(0..n)` for the start state. Per move: one uniform `f64`
-//! for Boltzmann selection, or one `random_range(0..4)` for a random move.
+//! Per trial: one `random_range(0..n)` for the start state (drawn by the caller of
+//! `run_trial`). Per move: one uniform `f64` for Boltzmann selection, or one
+//! `random_range(0..4)` for a random move, then whatever the world's sample draws (slip).
 
 use mdp::{ActionId, StateId, World};
 use qlearn::{QTable, RowId, Target};

@@ -103,7 +103,7 @@ def test_refining_from_the_next_state_needs_no_sensor_of_the_past():
             x = nxt
     assert agent.refine_from == "next"
     assert len(agent.descriptions()) > 5
-    assert agent.last_trial()["reached_goal"]
+    assert agent.last_trial()["terminated"]
 
 
 def test_errors_are_exceptions_with_the_rust_message():

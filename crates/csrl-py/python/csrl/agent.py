@@ -202,12 +202,12 @@ class CsQlAgent:
 
     def last_trial(self, current: bool = False) -> Optional[Mapping[str, Union[int, float, bool]]]:
         """What happened in the last trial that ended (or, with ``current=True``, in the
-        trial in progress): ``trial``, ``moves``, ``reached_goal``, ``cost``,
+        trial in progress): ``trial``, ``moves``, ``terminated``, ``cost``,
         ``decreases``, ``refinements``, ``resets``; ``None`` if there is none."""
         t = self._inner.trial(current)
         if t is None:
             return None
-        keys = ("trial", "moves", "reached_goal", "cost", "decreases", "refinements", "resets")
+        keys = ("trial", "moves", "terminated", "cost", "decreases", "refinements", "resets")
         return dict(zip(keys, t))
 
     def __repr__(self) -> str:
