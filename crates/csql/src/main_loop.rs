@@ -215,6 +215,13 @@ impl<P, S> Agent<P, S> {
         self
     }
 
+    /// Empty the journal, keeping its room (for an agent no judge follows).
+    pub(crate) fn clear_journal(&mut self) {
+        self.journal.updated.clear();
+        self.journal.refined.clear();
+        self.journal.reset = false;
+    }
+
     /// Hand over the journal and start a new one.
     pub(crate) fn take_journal(&mut self) -> Journal {
         let fresh = Journal {

@@ -238,7 +238,7 @@ fn live<'a, 's>(features: &'a Features, now: StateId, sense: &'s mut dyn Sense) 
 /// // A corridor of 4 cells, the goal right of the last; one feature: the position.
 /// let settings = RunSettings::tan1991("corridor", StrategyKind::Lazy, 1);
 /// let mut agent = Stepper::new(&[1.0], &[4], 2, &settings).unwrap();
-/// for _ in 0..20 {
+/// for _ in 0..30 {
 ///     let mut pos = 0u32;
 ///     for moves in 1..=100 {
 ///         let a = agent.act(&mut |_: Moment, _: Feature| Reading(pos)).unwrap();
@@ -251,10 +251,11 @@ fn live<'a, 's>(features: &'a Features, now: StateId, sense: &'s mut dyn Sense) 
 ///         pos = next;
 ///     }
 /// }
-/// assert_eq!(agent.trials(), 20);
+/// assert_eq!(agent.trials(), 30);
 /// assert!(agent.cost() > 0.0);
-/// // Position 3 has learned to go right.
-/// assert!(agent.descriptions().len() >= 2);
+/// // Position 3 has a description of its own, and has learned to go right.
+/// let at3 = agent.descriptions().iter().position(|d| d == &[(0, 3)]).unwrap();
+/// assert_eq!(agent.table().greedy(qlearn::RowId(at3 as u32)), mdp::ActionId(1));
 /// ```
 pub struct Stepper {
     agent: Agent<Classify, Box<dyn Strategy + Send + Sync>>,
@@ -268,7 +269,8 @@ pub struct Stepper {
     here: u32,
     trials: u32,
     moves: u64,
-    cost: f64,
+    /// The cost of the trials that ended, summed trial by trial as `csql::run` sums it.
+    closed_cost: f64,
     /// The last trial ended.
     last: Option<TrialRecord>,
     stopped: Option<String>,
@@ -279,7 +281,7 @@ impl std::fmt::Debug for Stepper {
         f.debug_struct("Stepper")
             .field("trials", &self.trials)
             .field("moves", &self.moves)
-            .field("cost", &self.cost)
+            .field("cost", &self.cost())
             .field("descriptions", &self.agent.perception.rows())
             .finish_non_exhaustive()
     }
@@ -386,7 +388,7 @@ impl Stepper {
             here: 0,
             trials: 0,
             moves: 0,
-            cost: 0.0,
+            closed_cost: 0.0,
             last: None,
             stopped: None,
         })
@@ -476,7 +478,6 @@ impl Stepper {
                     .agent
                     .begin_trial(&live, StateId(self.here), self.trials);
                 let bad = live.bad.get();
-                self.cost += t.rec.cost;
                 self.fail_on(bad)?;
                 t
             }
@@ -527,14 +528,15 @@ impl Stepper {
             terminated,
             truncated,
         };
-        let before = t.rec.cost;
         let live = live(&self.features, StateId(next), sense);
         self.agent.observe(&mut t, &live, m, step, &mut self.rng);
         let bad = live.bad.get();
+        // Nobody judges a stepper: what the journal would tell a judge is dropped.
+        self.agent.clear_journal();
         self.here = next;
         self.moves += 1;
-        self.cost += t.rec.cost - before;
         if t.over {
+            self.closed_cost += t.rec.cost;
             self.last = Some(t.rec);
         } else {
             self.trial = Some(t);
@@ -628,14 +630,18 @@ impl Stepper {
         self.moves
     }
 
-    /// Sensing cost charged so far.
+    /// Sensing cost charged so far (the trials ended, summed as `csql::run` sums them,
+    /// then the trial in progress).
     ///
     /// ```
     /// let s = csql::RunSettings::tan1991("any", csql::StrategyKind::Lazy, 1);
     /// assert_eq!(csql::Stepper::new(&[1.0], &[2], 2, &s).unwrap().cost(), 0.0);
     /// ```
     pub fn cost(&self) -> f64 {
-        self.cost
+        match self.trial {
+            Some(t) => self.closed_cost + t.rec.cost,
+            None => self.closed_cost,
+        }
     }
 
     /// What happened in the trial in progress so far (`None` between trials).
