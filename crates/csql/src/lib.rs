@@ -199,6 +199,7 @@ mod run;
 mod sensor;
 mod settings;
 mod setup;
+mod stepper;
 mod strategy;
 mod tree;
 #[allow(
@@ -220,7 +221,7 @@ pub use figure::{descriptions_svg, descriptions_table, policy_svg};
 pub use judge::{Judge, Verdict};
 pub use learn::{Judging, Scene};
 pub use learner::{CsQlSettings, Learner, LearnerKind, UTreeParams};
-pub use main_loop::{Agent, LoopParams, TrialRecord};
+pub use main_loop::{Agent, LoopParams, RefineFrom, TrialRecord};
 pub use memory::Remembering;
 pub use navigate::{Navigation, navigate};
 pub use observe::{Flow, KeepTrace, Observer, TracePoint};
@@ -251,6 +252,7 @@ pub use settings::{
     JudgeSettings, MAX_ROWS, MAX_SETTINGS_BYTES, MapSource, NonNegative, RunSettings, TrialCap,
 };
 pub use setup::Setup;
+pub use stepper::{Moment, Sense, StepError, Stepper};
 pub use strategy::{
     Eager, Lazy, Never, RandomMoves, Reaction, Resetting, Strategy, StrategyKind, UnknownStrategy,
 };

@@ -22,12 +22,20 @@
 //!    longer match it.
 //! 8. and 9. `x` becomes `y`, until the goal or the move cap.
 //!
+//! # A state machine
+//!
+//! A trial is a state machine: begin (step 1), choose (steps 1 and 7), observe a move's
+//! outcome (steps 2 to 9). [`Agent::run_trial`] drives it with a world, sampling each
+//! outcome between choosing and observing and marking the move that reaches the move cap
+//! truncated; [`crate::Stepper`] lets a caller drive it with an environment of its own.
+//!
 //! # Random draws, in order
 //!
-//! Per trial: one `random_range(0..n)` for the start state. Per move: one uniform `f64`
-//! for Boltzmann selection, or one `random_range(0..4)` for a random move.
+//! Per trial: one `random_range(0..n)` for the start state (drawn by the caller of
+//! `run_trial`). Per move: one uniform `f64` for Boltzmann selection, or one
+//! `random_range(0..4)` for a random move, then whatever the world's sample draws (slip).
 
-use mdp::{StateId, World};
+use mdp::{ActionId, StateId, World};
 use qlearn::{QTable, RowId, Target};
 use rand::{Rng, RngExt};
 use serde::Serialize;
@@ -117,6 +125,10 @@ pub struct Agent<P, S> {
     /// What the loop asks after every update: is the description inconsistent? (The
     /// paper's rule, any decrease, unless [`Agent::with_detector`] says otherwise.)
     detector: RunDetector,
+    /// Where a refinement reads its new feature's value (the paper's rule by default).
+    refine_from: RefineFrom,
+    /// Rows waiting for their refinement ([`RefineFrom::NextSensed`] only).
+    waiting: Vec<RowId>,
 }
 
 /// What an agent changed since the oracle's judge last looked, so that the judge
@@ -150,7 +162,41 @@ impl<P, S> Agent<P, S> {
             params,
             journal: Journal::default(),
             detector: RunDetector::default(),
+            refine_from: RefineFrom::StateLeft,
+            waiting: Vec::new(),
         }
+    }
+
+    /// The same agent reading a refinement's new feature where `from` says (the paper's
+    /// [`RefineFrom::StateLeft`] by default).
+    ///
+    /// ```
+    /// use csql::{Agent, Identified, LoopParams, Never, RefineFrom, RunSettings, StrategyKind};
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let params = LoopParams::from(&RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1));
+    /// let agent = Agent::new(Identified::new(&sensed, vec![0.0; 9]), Never, qlearn::QTable::new(4).unwrap(), params)
+    ///     .refining_from(RefineFrom::NextSensed);
+    /// assert_eq!(agent.refine_from(), RefineFrom::NextSensed);
+    /// ```
+    pub fn refining_from(mut self, from: RefineFrom) -> Agent<P, S> {
+        self.refine_from = from;
+        self
+    }
+
+    /// Where a refinement reads its new feature's value.
+    ///
+    /// ```
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let params = csql::LoopParams::from(&csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1));
+    /// let agent = csql::Agent::new(csql::Identified::new(&sensed, vec![0.0; 9]), csql::Never, qlearn::QTable::new(4).unwrap(), params);
+    /// assert_eq!(agent.refine_from(), csql::RefineFrom::StateLeft);
+    /// ```
+    pub fn refine_from(&self) -> RefineFrom {
+        self.refine_from
     }
 
     /// The same agent with another detector of inconsistency.
@@ -169,6 +215,13 @@ impl<P, S> Agent<P, S> {
         self
     }
 
+    /// Empty the journal, keeping its room (for an agent no judge follows).
+    pub(crate) fn clear_journal(&mut self) {
+        self.journal.updated.clear();
+        self.journal.refined.clear();
+        self.journal.reset = false;
+    }
+
     /// Hand over the journal and start a new one.
     pub(crate) fn take_journal(&mut self) -> Journal {
         let fresh = Journal {
@@ -177,6 +230,52 @@ impl<P, S> Agent<P, S> {
         };
         std::mem::replace(&mut self.journal, fresh)
     }
+}
+
+/// Where a refinement reads the value of the feature it adds to a description.
+///
+/// ```
+/// assert_eq!(csql::RefineFrom::default(), csql::RefineFrom::StateLeft);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum RefineFrom {
+    /// The paper's rule: on the state the description was used for, which the agent has
+    /// just left (a world with a model can still read it; so can a sensor that reads an
+    /// observation kept from that step).
+    #[default]
+    StateLeft,
+    /// For sensors that read only the present: the refinement is decided at once (the
+    /// strategy's reset and random moves take effect at once) and the feature is added
+    /// the next time a classification gives the description, valued at that state
+    /// (charged), which then matches the refined description by construction; no
+    /// classification is repeated. A description waiting for its feature waits once,
+    /// however many decreases it shows meanwhile (specification 4.9).
+    NextSensed,
+}
+
+/// A trial in progress: the main loop of the paper's Figure 3 as a state machine that the
+/// caller drives one move at a time ([`Agent::run_trial`] drives it with a world; a
+/// [`crate::Stepper`] with the caller's environment).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Trial {
+    /// The state the agent is in, as the world it senses through names it.
+    state: StateId,
+    /// Its row.
+    row: RowId,
+    /// Random moves left (the random strategy).
+    random_left: u32,
+    /// What happened so far.
+    pub(crate) rec: TrialRecord,
+    /// Whether the trial has ended (at the goal, or cut by the caller).
+    pub(crate) over: bool,
+}
+
+/// A move chosen by [`Agent::choose`], until its outcome is observed.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Move {
+    pub(crate) action: ActionId,
+    /// A uniformly drawn move of the random strategy: its decreases refine nothing.
+    random: bool,
 }
 
 impl<P: Perception, S: Strategy> Agent<P, S> {
@@ -204,7 +303,9 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
     ///
     /// The world is any [`World`]: a grid map sensed around the robot
     /// ([`mdp::SensedGrid`], whose slippery moves draw from `rng`; without slip nothing is
-    /// drawn), or any finite world with priced features.
+    /// drawn), or any finite world with priced features. The trial is the state machine a
+    /// [`crate::Stepper`] exposes, driven by the world: choose, sample the world's outcome
+    /// from the same generator, observe it, until the goal or the move cap.
     pub fn run_trial<W: World + ?Sized, R: Rng + ?Sized>(
         &mut self,
         world: &W,
@@ -212,6 +313,83 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
         trial: u32,
         rng: &mut R,
     ) -> TrialRecord {
+        let mut t = self.begin_trial(world, start, trial);
+        while !t.over {
+            let m = self.choose(&mut t, rng);
+            let mut step = world.sample(t.state, m.action, rng);
+            // The move cap cuts the trial; it does not change the target.
+            step.truncated |= t.rec.moves + 1 >= self.params.max_moves;
+            self.observe(&mut t, world, m, step, rng);
+        }
+        t.rec
+    }
+
+    /// Start a trial in `start`: the paper's step 1, `descrip(x) <- CLASSIFY(x)`
+    /// (charged).
+    pub(crate) fn begin_trial<W: World + ?Sized>(
+        &mut self,
+        world: &W,
+        start: StateId,
+        trial: u32,
+    ) -> Trial {
+        self.strategy.start_trial();
+        let mut rec = TrialRecord {
+            trial,
+            ..TrialRecord::default()
+        };
+        let (row, cost) = self.perception.classify(world, start, &mut self.table);
+        rec.cost += cost;
+        let mut t = Trial {
+            state: start,
+            row,
+            random_left: 0,
+            rec,
+            over: self.params.max_moves == 0,
+        };
+        self.settle(world, &mut t.rec, row, start);
+        t
+    }
+
+    /// Steps 1 and 7: `a <- select-action(descrip(x))`, Boltzmann on its Q values, or
+    /// uniformly during the random moves that follow a random refinement (one draw from
+    /// `rng` either way).
+    pub(crate) fn choose<R: Rng + ?Sized>(&mut self, t: &mut Trial, rng: &mut R) -> Move {
+        let random = t.random_left > 0;
+        let action = if random {
+            t.random_left -= 1;
+            ActionId(rng.random_range(0..self.table.num_actions() as u32))
+        } else {
+            self.table.boltzmann(t.row, self.params.temperature, rng)
+        };
+        Move { action, random }
+    }
+
+    /// Steps 2 to 9 for the outcome `step` of move `m`: classify the state reached
+    /// (unless the move terminated: the goal is never classified), update Q and V, let
+    /// the strategy react to a decrease, and carry on from the state reached. The trial
+    /// is over at the goal or when `step.truncated` (the move cap, or the caller's).
+    pub(crate) fn observe<W: World + ?Sized, R: Rng + ?Sized>(
+        &mut self,
+        t: &mut Trial,
+        world: &W,
+        m: Move,
+        step: mdp::Step,
+        rng: &mut R,
+    ) {
+        let a = m.action;
+        let (x, row_x) = (t.state, t.row);
+        t.rec.moves += 1;
+        // 3. descrip(y) <- CLASSIFY(y); the goal ends the trial unclassified.
+        let next = if step.terminated {
+            None
+        } else {
+            let (row_y, cost) =
+                self.perception
+                    .classify_next(world, row_x, a, step.next, &mut self.table, rng);
+            t.rec.cost += cost;
+            self.settle(world, &mut t.rec, row_y, step.next);
+            Some(row_y)
+        };
         let Agent {
             perception,
             strategy,
@@ -219,99 +397,106 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
             params,
             journal,
             detector,
+            refine_from,
+            waiting,
         } = self;
-        let mut rec = TrialRecord {
-            trial,
-            ..TrialRecord::default()
-        };
-        strategy.start_trial();
-        // 1. x <- the start state, descrip(x) <- CLASSIFY(x).
-        let mut x = start;
-        let (mut row_x, cost) = perception.classify(world, x, table);
-        rec.cost += cost;
-        let mut random_left = 0u32;
-        while rec.moves < params.max_moves {
-            // 1./7. a <- select-action(descrip(x)): Boltzmann on its Q values, or
-            //    uniformly during the random moves that follow a random refinement.
-            let random_move = random_left > 0;
-            let a = if random_move {
-                random_left -= 1;
-                mdp::ActionId(rng.random_range(0..world.num_actions() as u32))
-            } else {
-                table.boltzmann(row_x, params.temperature, rng)
+        let rec = &mut t.rec;
+        // 4./5. Equation 2 for Q(descrip(x), a), then V(descrip(x)).
+        let target = next.map_or(Target::Terminal, Target::Bootstrap);
+        let q_before = table.q(row_x, a);
+        let change = table.update(row_x, a, step.reward, target, params.beta, params.gamma);
+        detector.action_updated(
+            row_x,
+            a,
+            table.q(row_x, a) < q_before - params.decrease_threshold,
+        );
+        journal.updated.push(row_x);
+        perception.updated(row_x, a, step.reward, next, table);
+        let mut row_y = next;
+        // 6. If V(descrip(x)) decreased, descrip(x) is inconsistent (Theorem 2; the
+        //    detector may ask for more evidence): the strategy decides. Decreases
+        //    during random moves never refine anything.
+        let dropped = change.after < change.before - params.decrease_threshold;
+        rec.decreases += u32::from(dropped);
+        if detector.inconsistent(row_x, change, dropped)
+            && !m.random
+            && let Reaction::Refine {
+                reset,
+                random_moves,
+            } = strategy.on_decrease()
+        {
+            // Add the next cheapest feature x lacks, valued at the state x was used for
+            // (charged); or, from a sensor of the present only, at the next state
+            // given the description (which may be the state reached).
+            let valued_at = match refine_from {
+                RefineFrom::StateLeft => Some(x),
+                RefineFrom::NextSensed if next == Some(row_x) => Some(step.next),
+                RefineFrom::NextSensed => {
+                    if !waiting.contains(&row_x) {
+                        waiting.push(row_x);
+                    }
+                    None
+                }
             };
-            // 2. y <- next-state(x, a), r <- reward.
-            // 3. descrip(y) <- CLASSIFY(y); the goal ends the trial unclassified.
-            let step = world.sample(x, a, rng);
-            rec.moves += 1;
-            let next = if step.terminated {
-                None
-            } else {
-                let (row_y, cost) =
-                    perception.classify_next(world, row_x, a, step.next, table, rng);
-                rec.cost += cost;
-                Some(row_y)
-            };
-            // 4./5. Equation 2 for Q(descrip(x), a), then V(descrip(x)).
-            let target = next.map_or(Target::Terminal, Target::Bootstrap);
-            let q_before = table.q(row_x, a);
-            let change = table.update(row_x, a, step.reward, target, params.beta, params.gamma);
-            detector.action_updated(
-                row_x,
-                a,
-                table.q(row_x, a) < q_before - params.decrease_threshold,
-            );
-            journal.updated.push(row_x);
-            perception.updated(row_x, a, step.reward, next, table);
-            let mut row_y = next;
-            // 6. If V(descrip(x)) decreased, descrip(x) is inconsistent (Theorem 2; the
-            //    detector may ask for more evidence): the strategy decides. Decreases
-            //    during random moves never refine anything.
-            let dropped = change.after < change.before - params.decrease_threshold;
-            rec.decreases += u32::from(dropped);
-            if detector.inconsistent(row_x, change, dropped)
-                && !random_move
-                && let Reaction::Refine {
-                    reset,
-                    random_moves,
-                } = strategy.on_decrease()
+            if let Some(s) = valued_at
+                && let Some(cost) = perception.refine(world, row_x, s)
             {
-                // Add the next cheapest feature x lacks, valued at the state x was
-                // used for (charged).
-                if let Some(cost) = perception.refine(world, row_x, x) {
-                    rec.cost += cost;
-                    rec.refinements += 1;
-                    journal.refined.push(row_x);
-                    detector.refined(row_x);
-                }
-                if reset {
-                    table.reset();
-                    detector.reset();
-                    rec.resets += 1;
-                    journal.reset = true;
-                }
-                random_left = random_moves;
-                if let Some(current) = row_y {
-                    // The refined description may no longer match the next state.
-                    let (again, cost) =
-                        perception.classify_again(world, row_x, current, step.next, table);
-                    rec.cost += cost;
-                    row_y = Some(again);
-                }
+                rec.cost += cost;
+                rec.refinements += 1;
+                journal.refined.push(row_x);
+                detector.refined(row_x);
             }
-
-            // 8./9. x <- y, and go on until the goal.
-            match row_y {
-                None => {
-                    rec.reached_goal = true;
-                    break;
-                }
-                Some(r) => {
-                    x = step.next;
-                    row_x = r;
-                }
+            if reset {
+                table.reset();
+                detector.reset();
+                rec.resets += 1;
+                journal.reset = true;
+            }
+            t.random_left = random_moves;
+            if *refine_from == RefineFrom::StateLeft
+                && let Some(current) = row_y
+            {
+                // The refined description may no longer match the next state.
+                let (again, cost) =
+                    perception.classify_again(world, row_x, current, step.next, table);
+                rec.cost += cost;
+                row_y = Some(again);
             }
         }
-        rec
+        // 8./9. x <- y, and go on until the goal.
+        match row_y {
+            None => {
+                rec.reached_goal = true;
+                t.over = true;
+            }
+            Some(r) => {
+                t.state = step.next;
+                t.row = r;
+                t.over = step.truncated;
+            }
+        }
+    }
+
+    /// A description waiting for its feature ([`RefineFrom::NextSensed`]) that state `s`
+    /// was just given gets it now, valued at `s` (charged).
+    fn settle<W: World + ?Sized>(
+        &mut self,
+        world: &W,
+        rec: &mut TrialRecord,
+        row: RowId,
+        s: StateId,
+    ) {
+        if self.waiting.is_empty() {
+            return;
+        }
+        if let Some(i) = self.waiting.iter().position(|&w| w == row) {
+            self.waiting.swap_remove(i);
+            if let Some(cost) = self.perception.refine(world, row, s) {
+                rec.cost += cost;
+                rec.refinements += 1;
+                self.journal.refined.push(row);
+                self.detector.refined(row);
+            }
+        }
     }
 }

@@ -215,7 +215,7 @@ impl StrategyKind {
     /// let mut s = StrategyKind::Random.build(5);
     /// assert_eq!(s.on_decrease(), Reaction::Refine { reset: false, random_moves: 5 });
     /// ```
-    pub fn build(self, random_moves: u32) -> Box<dyn Strategy + Send> {
+    pub fn build(self, random_moves: u32) -> Box<dyn Strategy + Send + Sync> {
         match self {
             StrategyKind::Resetting => Box::new(Resetting),
             StrategyKind::Lazy => Box::new(Lazy::default()),

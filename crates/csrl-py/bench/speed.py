@@ -8,6 +8,9 @@
 2. csrl.run against `csrl run --json` for the same run: the command's wall time less the
    wall time of `csrl --version` (the process start), against csrl.run_json's wall time;
    the best of R interleaved rounds each.
+3. A step of csrl.CsQlAgent (act, then update with a Python sensor of the state reached)
+   on the same 4x4 lake sensed by its factors, its moves drawn by World.sample: the
+   best of R rounds of N steps each, the world's draw included.
 """
 
 import argparse
@@ -45,6 +48,26 @@ def bench_steps(n, repeats):
     return t_lake, t_sensing
 
 
+def agent_steps(n):
+    lake = csrl.World("frozenlake4x4", sensing="factors")
+    readings = lake.readings()
+    agent = csrl.CsQlAgent.for_world(lake, strategy="lazy", seed=1)
+    act, update, sample = agent.act, agent.update, lake.sample
+    x, moves = lake.sample_start(agent), 0
+    start = time.perf_counter()
+    for _ in range(n):
+        a = act(lambda f, s=x: readings[s][f])
+        nxt, reward, terminated = sample(x, a, agent)
+        moves += 1
+        truncated = moves == 100
+        update(reward, terminated, truncated, lambda f, s=nxt: readings[s][f])
+        if terminated or truncated:
+            x, moves = lake.sample_start(agent), 0
+        else:
+            x = nxt
+    return (time.perf_counter() - start) / n
+
+
 def wall(cmd):
     start = time.perf_counter()
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
@@ -78,6 +101,8 @@ def main():
     print(f"FrozenLake-v1 step (unwrapped):   {t_lake * 1e6:.2f} us")
     print(f"SensingEnv step (unwrapped):      {t_sensing * 1e6:.2f} us")
     print(f"SensingEnv / FrozenLake:          {t_sensing / t_lake:.2f}")
+    t_agent = min(agent_steps(args.steps) for _ in range(args.repeats))
+    print(f"CsQlAgent step (Python sensor):   {t_agent * 1e6:.2f} us")
     for world, strategy, seed in [("random:32x32:0.2:1", "lazy", 1), ("frozenlake8x8", "lazy", 1)]:
         start_up, t_cli, t_py = bench_run(args.cli, args.repeats, world, strategy, seed)
         print(

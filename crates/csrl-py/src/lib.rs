@@ -9,6 +9,8 @@
 //!   run checks for Ctrl-C after every trial.
 //! * [`PyWorld`]: a finite world with priced features (`mdp::FiniteWorld`), built from a
 //!   name (the same resolution as `csrl run --world`) or from a world file's JSON.
+//! * [`PyAgent`]: CS-QL stepped from Python ([`csql::Stepper`]), its sensors Python
+//!   callables.
 //! * [`Classifier`]: CS-ID3 or CS-IBL over integer-coded objects, for the scikit-learn
 //!   estimators.
 //!
@@ -16,6 +18,7 @@
 //! (`SettingsError` and `WorldError`, both `ValueError`s; `DataError` for the
 //! classifiers), never a panic.
 
+mod agent;
 mod classifier;
 mod settings;
 mod world;
@@ -24,6 +27,7 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
+pub use agent::PyAgent;
 pub use classifier::Classifier;
 pub use world::PyWorld;
 
@@ -38,6 +42,18 @@ create_exception!(
     WorldError,
     PyValueError,
     "A world or map that cannot be read or built (the message says what and where)."
+);
+create_exception!(
+    csrl,
+    AgentError,
+    pyo3::exceptions::PyRuntimeError,
+    "A CsQlAgent called out of order (act and update alternate), or stopped at an earlier error of its sensor."
+);
+create_exception!(
+    csrl,
+    SensorError,
+    PyValueError,
+    "A sensor's reading that is not an int in its feature's range (the message names the feature)."
 );
 create_exception!(
     csrl,
@@ -234,6 +250,13 @@ fn world_names() -> Vec<&'static str> {
     mdp::builtin_world_names().to_vec()
 }
 
+/// Where `csrl.run` starts Q and V in `world` at discount `gamma` (0 without negative
+/// rewards): `csql::value_floor`.
+#[pyfunction]
+fn value_floor(world: PyRef<'_, PyWorld>, gamma: f64) -> f64 {
+    csql::value_floor(&world.world, gamma)
+}
+
 /// The compiled part of the `csrl` package.
 #[pymodule]
 fn _csrl(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -241,6 +264,8 @@ fn _csrl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SettingsError", py.get_type::<SettingsError>())?;
     m.add("WorldError", py.get_type::<WorldError>())?;
     m.add("DataError", py.get_type::<DataError>())?;
+    m.add("AgentError", py.get_type::<AgentError>())?;
+    m.add("SensorError", py.get_type::<SensorError>())?;
     m.add_function(wrap_pyfunction!(run_json, m)?)?;
     m.add_function(wrap_pyfunction!(resolve_settings, m)?)?;
     m.add_function(wrap_pyfunction!(settings_toml, m)?)?;
@@ -249,6 +274,8 @@ fn _csrl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(world_names, m)?)?;
     m.add_class::<PyWorld>()?;
     m.add_class::<Classifier>()?;
+    m.add_class::<PyAgent>()?;
+    m.add_function(wrap_pyfunction!(value_floor, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

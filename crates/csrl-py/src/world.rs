@@ -174,6 +174,38 @@ impl PyWorld {
             .collect())
     }
 
+    /// Draw a trial's start state from `rng`'s generator (a `CsQlAgent`'s: the world's
+    /// draws and the agent's then come from one stream, in `csrl.run`'s order).
+    fn sample_start(&self, rng: &Bound<'_, crate::PyAgent>) -> u32 {
+        self.world.sample_start(rng.borrow_mut().stepper.rng()).0
+    }
+
+    /// Draw an outcome of action `a` in state `s` from `rng`'s generator (a
+    /// `CsQlAgent`'s): `(next, reward, terminated)`.
+    fn sample(
+        &self,
+        s: u32,
+        a: u32,
+        rng: &Bound<'_, crate::PyAgent>,
+    ) -> PyResult<(u32, f64, bool)> {
+        let n = self.world.num_states();
+        if s as usize >= n
+            || a as usize >= self.world.num_actions()
+            || self.world.is_terminal(mdp::StateId(s))
+        {
+            return Err(crate::WorldError::new_err(format!(
+                "state {s}, action {a}: the world has {n} states (sampled only where not terminal) and {} actions",
+                self.world.num_actions()
+            )));
+        }
+        let step = self.world.sample(
+            mdp::StateId(s),
+            mdp::ActionId(a),
+            rng.borrow_mut().stepper.rng(),
+        );
+        Ok((step.next.0, step.reward, step.terminated))
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "csrl.World({:?}: {} states, {} actions, {} features)",

@@ -3,6 +3,8 @@
 The learning runs in Rust; this package gives it Python's shapes:
 
 * :func:`run` -- one CS-QL run (or a baseline), the same JSON object as ``csrl run --json``.
+* :class:`CsQlAgent` -- CS-QL stepped from Python, for environments without a published
+  model: it asks a sensor for the features it measures and returns an action.
 * :class:`World` -- a finite world with priced features: built-in worlds and maps by name,
   world files, your own arrays, and Gymnasium's toy-text environments.
 * :mod:`csrl.gym` -- ``SensingEnv``, a Gymnasium environment where sensing has a price
@@ -10,8 +12,9 @@ The learning runs in Rust; this package gives it Python's shapes:
 * :mod:`csrl.sklearn` -- ``CsId3Classifier`` and ``CsIblClassifier``, scikit-learn
   estimators that pay for what they measure.
 
-Errors are Python exceptions carrying the Rust message: :class:`SettingsError` and
-:class:`WorldError` are ``ValueError``\\ s.
+Errors are Python exceptions carrying the Rust message: :class:`SettingsError`,
+:class:`WorldError` and :class:`SensorError` are ``ValueError``\\ s, :class:`AgentError`
+a ``RuntimeError``.
 
 >>> import csrl
 >>> report = csrl.run(world="tan3x3", strategy="lazy", seed=1)
@@ -31,13 +34,25 @@ import os
 from typing import Any, Mapping, Optional, Union
 
 from . import _csrl
-from ._csrl import DataError, SettingsError, WorldError, dumps, map_names, world_names
+from ._csrl import (
+    AgentError,
+    DataError,
+    SensorError,
+    SettingsError,
+    WorldError,
+    dumps,
+    map_names,
+    world_names,
+)
 from .world import World
 
 __version__: str = _csrl.__version__
 
 __all__ = [
+    "AgentError",
+    "CsQlAgent",
     "DataError",
+    "SensorError",
     "SettingsError",
     "World",
     "WorldError",
@@ -46,6 +61,7 @@ __all__ = [
     "resolve_settings",
     "run",
     "run_json",
+    "value_floor",
     "world_names",
 ]
 
@@ -177,3 +193,19 @@ def resolve_settings(
             predict_sensing=predict_sensing,
         )
     )
+
+
+def value_floor(world: World, gamma: float = 0.9) -> float:
+    """Where :func:`csrl.run` starts Q and V in ``world`` at discount ``gamma``: the value
+    of earning the worst state's best sure reward forever, 0 in worlds without negative
+    rewards (``docs/specification.md``, 1.11).
+
+    >>> import csrl
+    >>> csrl.value_floor(csrl.World("frozenlake4x4")), round(csrl.value_floor(csrl.World("taxi")), 6)
+    (0.0, -10.0)
+    """
+    return _csrl.value_floor(world._inner, float(gamma))
+
+
+# After the names above: the agent's module reads `_settings_text` and `resolve_settings`.
+from .agent import CsQlAgent  # noqa: E402

@@ -395,6 +395,34 @@ class World:
         """Where trials start: ``(probability, state)`` pairs."""
         return self._inner.start()
 
+    def sample_start(self, rng: Any) -> int:
+        """Draw a trial's start state from the generator of ``rng``, a
+        :class:`csrl.CsQlAgent`: with :meth:`sample`, a simulator whose draws and the
+        agent's come from one stream in :func:`csrl.run`'s order (one draw for the start,
+        then per move the agent's draw and the outcome's), so that the agent learns what
+        :func:`csrl.run` learns for the same seed.
+
+        >>> import csrl
+        >>> w = csrl.World("tan3x3")
+        >>> agent = csrl.CsQlAgent.for_world(w, seed=1)
+        >>> w.sample_start(agent) in w.states()
+        True
+        """
+        return self._inner.sample_start(rng._inner)
+
+    def sample(self, state: int, action: int, rng: Any) -> tuple:
+        """Draw an outcome of ``action`` in the non-terminal ``state`` from the generator
+        of ``rng``, a :class:`csrl.CsQlAgent` (see :meth:`sample_start`): ``(next,
+        reward, terminated)``.
+
+        >>> import csrl
+        >>> w = csrl.World("frozenlake4x4")
+        >>> agent = csrl.CsQlAgent.for_world(w, seed=1)
+        >>> w.sample(0, 2, agent)  # right, on ice that does not slip
+        (1, 0.0, False)
+        """
+        return self._inner.sample(state, action, rng._inner)
+
     def optimal_values(self, gamma: float = 0.9) -> list:
         """The optimal value of every state at discount ``gamma``."""
         return self._inner.optimal_values(gamma)
