@@ -404,40 +404,40 @@ fn write_report(results: &[JobResult], dir: &Path, md_name: &str) -> Result<()> 
         );
         for r in rows.iter().filter(|r| r.rule == rule) {
             let episodes = r.runs[0].summary.episodes;
-            let cells = [
+            let means = [
                 r.mean(|s| s.mean_all),
                 r.mean(|s| s.mean_last10),
                 r.mean(|s| s.sensing_per_episode),
                 r.mean(|s| s.steps_per_episode),
                 r.mean(|s| s.success),
             ];
+            let key = [
+                r.world.to_string(),
+                r.dynamics.name().to_string(),
+                r.price.to_string(),
+                r.learner.name().to_string(),
+                r.runs.len().to_string(),
+                episodes.to_string(),
+            ];
+            // The CSV at full precision; the table rounded as each column reads best.
+            let exact = means.iter().map(f64::to_string);
             let _ = writeln!(
                 csv,
-                "{},{},{},{},{},{episodes},{},{},{},{},{}",
-                r.world,
-                r.dynamics.name(),
-                r.price,
-                r.learner.name(),
-                r.runs.len(),
-                cells[0],
-                cells[1],
-                cells[2],
-                cells[3],
-                cells[4]
+                "{}",
+                key.iter()
+                    .cloned()
+                    .chain(exact)
+                    .collect::<Vec<_>>()
+                    .join(",")
             );
+            let shown = means
+                .iter()
+                .zip([3, 3, 2, 2, 3])
+                .map(|(m, digits)| format!("{m:.digits$}"));
             let _ = writeln!(
                 md,
-                "| {} | {} | {} | {} | {} | {episodes} | {:.3} | {:.3} | {:.2} | {:.2} | {:.3} |",
-                r.world,
-                r.dynamics.name(),
-                r.price,
-                r.learner.name(),
-                r.runs.len(),
-                cells[0],
-                cells[1],
-                cells[2],
-                cells[3],
-                cells[4]
+                "| {} |",
+                key.into_iter().chain(shown).collect::<Vec<_>>().join(" | ")
             );
         }
         crate::files::write_atomic(&dir.join(csv_name), csv)?;
