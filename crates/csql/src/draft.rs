@@ -116,24 +116,32 @@ pub struct SettingsDraft {
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
-#[allow(missing_docs)] // each field is documented where it lives, in `Extensions` or `JudgeSettings`
 pub struct ExtensionsTable {
+    /// `detector` ([`Extensions::detector`]).
     #[serde(skip_serializing_if = "is_default")]
     pub detector: DetectorKind,
+    /// `rate` ([`Extensions::rate`]).
     #[serde(skip_serializing_if = "is_default")]
     pub rate: RateParams,
+    /// `matching` ([`Extensions::matching`]).
     #[serde(skip_serializing_if = "is_default")]
     pub matching: Matching,
+    /// `confirm_new` ([`Extensions::confirm_new`]).
     #[serde(skip_serializing_if = "is_one")]
     pub confirm_new: u32,
+    /// `reads` ([`Extensions::reads`]).
     #[serde(skip_serializing_if = "is_one")]
     pub reads: u32,
+    /// `memory` ([`Extensions::memory`]).
     #[serde(skip_serializing_if = "is_default")]
     pub memory: u32,
+    /// `judge_by_quality` ([`JudgeSettings::judge_by_quality`]).
     #[serde(skip_serializing_if = "is_default")]
     pub judge_by_quality: bool,
+    /// `quality_every` ([`JudgeSettings::quality_every`]).
     #[serde(skip_serializing_if = "is_default_every")]
     pub quality_every: u32,
+    /// `quality_patience` ([`JudgeSettings::quality_patience`]).
     #[serde(skip_serializing_if = "is_default_patience")]
     pub quality_patience: u32,
 }
