@@ -21,6 +21,7 @@
 //! ```
 
 use mdp::{ActionId, SensingRule, StateId, World};
+use qlearn::{Discount, Epsilon, LearningRate, QTable, RowId, Target};
 use rand::{Rng, RngExt};
 use serde::{Deserialize, Serialize};
 
@@ -29,21 +30,22 @@ use serde::{Deserialize, Serialize};
 ///
 /// ```
 /// let p = csql::AmrlParams::default();
-/// assert_eq!((p.learning_rate, p.epsilon, p.discount, p.measure_bias, p.greedy_share), (0.3, 0.1, 0.95, 0.1, 0.1));
+/// assert_eq!((p.learning_rate.get(), p.epsilon.get(), p.discount.get()), (0.3, 0.1, 0.95));
+/// assert_eq!((p.measure_bias, p.greedy_share), (0.1, 0.1));
 /// assert_eq!(p.measuring, csql::Measuring::Choose);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct AmrlParams {
     /// The learning rate of the Q update (0.3).
-    pub learning_rate: f64,
+    pub learning_rate: LearningRate,
     /// The probability of a uniformly random (action, measure) pair (0.1).
-    pub epsilon: f64,
+    pub epsilon: Epsilon,
     /// The discount of the Q update (0.95).
-    pub discount: f64,
+    pub discount: Discount,
     /// The initial value of every `Q(s, a, measure)`; `Q(s, a, no measure)` starts at 0
     /// (0.1).
     pub measure_bias: f64,
-    /// The share of the last episodes played greedily (0.1).
+    /// The share of the last episodes played greedily (0.1; taken within `[0, 1]`).
     pub greedy_share: f64,
     /// Whether the agent chooses to measure (AMRL-Q) or measures at every step.
     pub measuring: Measuring,
@@ -69,9 +71,9 @@ pub enum Measuring {
 impl Default for AmrlParams {
     fn default() -> AmrlParams {
         AmrlParams {
-            learning_rate: 0.3,
-            epsilon: 0.1,
-            discount: 0.95,
+            learning_rate: LearningRate::new(0.3).expect("in (0, 1]"),
+            epsilon: Epsilon::new(0.1).expect("in [0, 1]"),
+            discount: Discount::new(0.95).expect("in [0, 1)"),
             measure_bias: 0.1,
             greedy_share: 0.1,
             measuring: Measuring::Choose,
@@ -165,65 +167,61 @@ impl CostlySummary {
 /// Measuring or not, the second half of AMRL-Q's pair.
 const PAIRS: usize = 2;
 
-/// AMRL-Q's tables: `Q(s, a, m)` and the counts of measured transitions.
+/// AMRL-Q's tables: `Q(s, a, m)` as a [`QTable`] with a row per state and a column per
+/// pair (`2a + m`), and the counts of measured transitions.
 struct Tables {
+    q: QTable,
     actions: usize,
     states: usize,
-    /// `q[(s * actions + a) * 2 + m]`.
-    q: Vec<f64>,
     /// `counts[(s * actions + a) * states + s']`.
     counts: Vec<u32>,
 }
 
+/// A learning rate of 1: an update that sets its target exactly.
+fn exactly() -> LearningRate {
+    LearningRate::new(1.0).expect("1 is a learning rate")
+}
+
 impl Tables {
-    fn new(states: usize, actions: usize, bias: f64) -> Tables {
-        let mut q = vec![0.0; states * actions * PAIRS];
-        for pair in q.chunks_mut(PAIRS) {
-            pair[1] = bias;
+    fn new(states: usize, actions: usize, bias: f64, discount: Discount) -> Tables {
+        let mut q =
+            QTable::with_rows(actions * PAIRS, states).expect("a world has at least one action");
+        for s in 0..states {
+            for a in 0..actions {
+                q.update(
+                    row(StateId(s as u32)),
+                    pair(a, true),
+                    bias,
+                    Target::Terminal,
+                    exactly(),
+                    discount,
+                );
+            }
         }
         Tables {
+            q,
             actions,
             states,
-            q,
             counts: vec![0; states * actions * states],
         }
     }
 
-    fn row(&self, s: StateId) -> &[f64] {
-        let w = self.actions * PAIRS;
-        let s = s.index();
-        &self.q[s * w..(s + 1) * w]
-    }
-
     /// The greedy (action, measure) pair: the first maximum, actions first.
     fn greedy(&self, s: StateId) -> (usize, bool) {
-        let row = self.row(s);
-        let mut best = 0;
-        for (i, &v) in row.iter().enumerate() {
-            if v > row[best] {
-                best = i;
-            }
-        }
+        let best = self.q.greedy(row(s)).index();
         (best / PAIRS, best % PAIRS == 1)
     }
 
     /// The greedy action among the measuring halves: the first maximum.
     fn greedy_measured(&self, s: StateId) -> usize {
-        let row = self.row(s);
+        let q = self.q.q_row(row(s));
         let mut best = 0;
         for a in 1..self.actions {
-            if row[a * PAIRS + 1] > row[best * PAIRS + 1] {
+            if q[a * PAIRS + 1] > q[best * PAIRS + 1] {
                 best = a;
             }
         }
         best
-    }
-
-    fn max(&self, s: StateId) -> f64 {
-        self.row(s)
-            .iter()
-            .copied()
-            .fold(f64::NEG_INFINITY, f64::max)
     }
 
     /// The most often measured outcome of `(s, a)`, the lowest state first among equals
@@ -244,12 +242,30 @@ impl Tables {
         self.counts[(s.index() * self.actions + a) * self.states + next.index()] += 1;
     }
 
-    /// Both halves of `(s, a)` learn from one step.
-    fn learn(&mut self, s: StateId, a: usize, target: f64, price: f64, rate: f64) {
-        let at = (s.index() * self.actions + a) * PAIRS;
-        self.q[at] += rate * (target - self.q[at]);
-        self.q[at + 1] += rate * (target - price - self.q[at + 1]);
+    /// Both halves of `(s, a)` learn from one step toward `target`, the measuring half
+    /// less `price`.
+    fn learn(&mut self, s: StateId, a: usize, target: f64, price: f64, p: &AmrlParams) {
+        for (measure, goal) in [(false, target), (true, target - price)] {
+            self.q.update(
+                row(s),
+                pair(a, measure),
+                goal,
+                Target::Terminal,
+                p.learning_rate,
+                p.discount,
+            );
+        }
     }
+}
+
+/// The table's row of state `s`.
+fn row(s: StateId) -> RowId {
+    RowId(s.0)
+}
+
+/// The table's column of action `a` measured or not.
+fn pair(a: usize, measure: bool) -> ActionId {
+    ActionId((a * PAIRS + usize::from(measure)) as u32)
 }
 
 /// Run AMRL-Q for `episodes` episodes of at most `max_moves` moves in `world`, measuring
@@ -275,8 +291,14 @@ pub fn amrl_q<W: World + ?Sized, R: Rng + ?Sized>(
     rng: &mut R,
 ) -> Vec<Episode> {
     let actions = world.num_actions();
-    let mut t = Tables::new(world.num_states(), actions, params.measure_bias);
-    let greedy_from = episodes - (f64::from(episodes) * params.greedy_share).round() as u32;
+    let mut t = Tables::new(
+        world.num_states(),
+        actions,
+        params.measure_bias,
+        params.discount,
+    );
+    let greedy_share = params.greedy_share.clamp(0.0, 1.0);
+    let greedy_from = episodes - (f64::from(episodes) * greedy_share).round() as u32;
     let mut out = Vec::with_capacity(episodes as usize);
     for episode in 0..episodes {
         let greedy = episode >= greedy_from;
@@ -291,7 +313,7 @@ pub fn amrl_q<W: World + ?Sized, R: Rng + ?Sized>(
             reached_goal: false,
         };
         for _ in 0..max_moves {
-            let exploit = greedy || !rng.random_bool(params.epsilon);
+            let exploit = greedy || !rng.random_bool(params.epsilon.get());
             let (a, measure) = match (params.measuring, exploit) {
                 (Measuring::Choose, true) => t.greedy(believed),
                 (Measuring::Choose, false) => (rng.random_range(0..actions), rng.random_bool(0.5)),
@@ -319,15 +341,9 @@ pub fn amrl_q<W: World + ?Sized, R: Rng + ?Sized>(
             let future = if step.terminated {
                 0.0
             } else {
-                params.discount * t.max(next)
+                params.discount.get() * t.q.v(row(next))
             };
-            t.learn(
-                believed,
-                a,
-                step.reward + future,
-                charged,
-                params.learning_rate,
-            );
+            t.learn(believed, a, step.reward + future, charged, params);
             truth = step.next;
             believed = next;
             if step.terminated {
