@@ -140,6 +140,10 @@
 #![deny(missing_docs)]
 #![cfg_attr(not(test), warn(clippy::unwrap_used, clippy::expect_used))]
 
+#[allow(
+    clippy::expect_used,
+    reason = "constants: the published parameters and a learning rate of 1 are valid by their types' checks (the defaults' doc test builds them); a world has an action"
+)]
 mod amrl;
 mod audit;
 #[allow(
