@@ -286,6 +286,14 @@ impl Classify {
         self
     }
 
+    /// CLASSIFY as CS-QL's extensions of a run set it: their matching, confirmation and
+    /// repeated reads.
+    pub(crate) fn with_extensions(self, e: &crate::extensions::Extensions) -> Classify {
+        self.with_matching(e.matching)
+            .with_confirmation(e.confirm_new)
+            .with_reads(e.reads)
+    }
+
     /// The description that agrees best with a measurement: the most features with the
     /// measured value less those with another value (features not measured count for
     /// neither); ties go to the lowest id. `None` with no description.

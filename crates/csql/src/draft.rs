@@ -476,22 +476,20 @@ impl SettingsDraft {
                 why,
             })
         };
+        if kind != LearnerKind::UTree && self.u_tree.is_some_and(|p| !p.is_default()) {
+            return conflict(
+                "[u_tree] settings".to_string(),
+                "[u_tree] tunes learner = \"u-tree\"",
+            );
+        }
         let learner = match kind {
-            LearnerKind::CsQl => {
-                if self.u_tree.is_some_and(|p| !p.is_default()) {
-                    return conflict(
-                        "[u_tree] settings".to_string(),
-                        "[u_tree] tunes learner = \"u-tree\"",
-                    );
-                }
-                Learner::CsQl(CsQlSettings {
-                    strategy: self.strategy.unwrap_or(StrategyKind::Resetting),
-                    random_moves: self.random_moves.unwrap_or(PAPER_RANDOM_MOVES),
-                    predict_sensing: self.predict_sensing.unwrap_or_default(),
-                    prediction: self.prediction.unwrap_or_default(),
-                    extensions,
-                })
-            }
+            LearnerKind::CsQl => Learner::CsQl(CsQlSettings {
+                strategy: self.strategy.unwrap_or(StrategyKind::Resetting),
+                random_moves: self.random_moves.unwrap_or(PAPER_RANDOM_MOVES),
+                predict_sensing: self.predict_sensing.unwrap_or_default(),
+                prediction: self.prediction.unwrap_or_default(),
+                extensions,
+            }),
             LearnerKind::UTree | LearnerKind::FullSensing => {
                 let why =
                     "it is a setting of CS-QL, and the baselines have none of CS-QL's settings";
@@ -511,16 +509,9 @@ impl SettingsDraft {
                 if !given.is_empty() {
                     return conflict(format!("[extensions] {}", given.join(", ")), why);
                 }
-                if kind == LearnerKind::UTree {
-                    Learner::UTree(self.u_tree.unwrap_or_default())
-                } else {
-                    if self.u_tree.is_some_and(|p| !p.is_default()) {
-                        return conflict(
-                            "[u_tree] settings".to_string(),
-                            "[u_tree] tunes learner = \"u-tree\"",
-                        );
-                    }
-                    Learner::FullSensing
+                match kind {
+                    LearnerKind::UTree => Learner::UTree(self.u_tree.unwrap_or_default()),
+                    _ => Learner::FullSensing,
                 }
             }
         };

@@ -72,6 +72,20 @@ impl From<&RunSettings> for LoopParams {
     }
 }
 
+/// The agent of a run: `perception`, `strategy` and `table` with the run's loop
+/// parameters and CS-QL's detector (the paper's for a baseline).
+pub(crate) fn agent_of<P, S>(
+    perception: P,
+    strategy: S,
+    table: qlearn::QTable,
+    settings: &RunSettings,
+) -> Agent<P, S> {
+    let extensions = settings.extensions();
+    Agent::new(perception, strategy, table, LoopParams::from(settings)).with_detector(
+        crate::detector::RunDetector::new(extensions.detector, extensions.rate),
+    )
+}
+
 /// Who decides when a run has learned.
 ///
 /// ```

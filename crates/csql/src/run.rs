@@ -7,11 +7,10 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 
 use crate::audit::Audited;
 use crate::classify::Classify;
-use crate::detector::RunDetector;
 use crate::error::Error;
 use crate::learn::{Scene, learn};
 use crate::learner::Learner;
-use crate::main_loop::{Agent, LoopParams};
+use crate::main_loop::Agent;
 use crate::memory::Remembering;
 use crate::navigate::navigate;
 use crate::observe::{KeepTrace, Observer};
@@ -193,9 +192,7 @@ fn run_classify<W: World + ?Sized>(
     let extensions = settings.extensions();
     let classify = classify
         .with_noise(settings.world.sensor_noise, sensor_rng)
-        .with_matching(extensions.matching)
-        .with_confirmation(extensions.confirm_new)
-        .with_reads(extensions.reads);
+        .with_extensions(&extensions);
     let (q, predicting) = match &settings.learner {
         Learner::FullSensing => {
             let perception = FullView::new(scene.world);
@@ -306,16 +303,12 @@ fn new_agent<W: World + ?Sized, P, S>(
     perception: P,
     strategy: S,
 ) -> Agent<P, S> {
-    Agent::new(
+    crate::learn::agent_of(
         perception,
         strategy,
         QTable::new(world.num_actions())
             .and_then(|t| t.starting_at(crate::quality::value_floor(world, settings.gamma.get())))
             .expect("a world has at least one action, and a finite floor of its returns"),
-        LoopParams::from(settings),
+        settings,
     )
-    .with_detector(RunDetector::new(
-        settings.extensions().detector,
-        settings.extensions().rate,
-    ))
 }

@@ -35,9 +35,8 @@ use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 use crate::classify::Classify;
-use crate::detector::RunDetector;
 use crate::error::Error;
-use crate::main_loop::{Agent, LoopParams, Move, RefineFrom, Trial, TrialRecord};
+use crate::main_loop::{Agent, Move, RefineFrom, Trial, TrialRecord};
 use crate::perception::Perception;
 use crate::predict::level::PredictSensing;
 use crate::representation::Representation;
@@ -364,17 +363,9 @@ impl Stepper {
             .map_err(|_| invalid(format!("{num_actions} actions"), "at least one action"))?;
         let mut nothing = |_: Moment, _: Feature| Reading(0);
         let probe = live(&features, StateId(0), &mut nothing);
-        let classify = Classify::new(&probe)
-            .with_matching(q.extensions.matching)
-            .with_confirmation(q.extensions.confirm_new)
-            .with_reads(q.extensions.reads);
-        let agent = Agent::new(
-            classify,
-            q.strategy.build(q.random_moves),
-            table,
-            LoopParams::from(settings),
-        )
-        .with_detector(RunDetector::new(q.extensions.detector, q.extensions.rate));
+        let classify = Classify::new(&probe).with_extensions(&q.extensions);
+        let agent =
+            crate::learn::agent_of(classify, q.strategy.build(q.random_moves), table, settings);
         Ok(Stepper {
             agent,
             features,
