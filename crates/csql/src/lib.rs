@@ -148,6 +148,11 @@ mod amrl;
 mod audit;
 #[allow(
     clippy::expect_used,
+    reason = "internal invariants: a node is of the plan just built"
+)]
+mod belief;
+#[allow(
+    clippy::expect_used,
     reason = "internal invariants: feature spaces hold valid costs; a node with counts has a candidate feature"
 )]
 mod classify;
@@ -214,6 +219,7 @@ mod utree;
 mod view;
 
 pub use amrl::{AmrlParams, CostlySummary, Episode, Measuring, amrl_q};
+pub use belief::{BeliefParams, belief_planning};
 pub use classify::{Classification, Classify};
 pub use detector::{
     ActionDrop, AnyDrop, Detector, DetectorKind, RateParams, RateTest, RunDetector,

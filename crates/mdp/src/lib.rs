@@ -90,6 +90,7 @@
 #![deny(missing_docs)]
 #![cfg_attr(not(test), warn(clippy::unwrap_used, clippy::expect_used))]
 
+mod belief;
 mod builtin;
 mod error;
 mod finite;
@@ -109,6 +110,7 @@ mod tabular;
 mod world;
 mod worlds;
 
+pub use belief::{BeliefPlan, CostlyModel, Decision, ModelParts, NodeId, PlanOptions};
 pub use builtin::{builtin, builtin_names};
 pub use error::{MapError, MdpError, Position};
 pub use finite::{

@@ -73,9 +73,7 @@
 //! assert!((apart.value - 0.95).abs() < 1e-9);
 //! ```
 
-use std::collections::BTreeMap;
-
-use crate::process::{ActionId, StateId};
+use crate::belief::{CostlyModel, PlanOptions, solve};
 use crate::sensing::Feature;
 use crate::world::{Sensors, World};
 
@@ -250,7 +248,7 @@ pub enum ReferenceError {
     },
 }
 
-fn bad(what: &'static str, problem: impl Into<String>) -> ReferenceError {
+pub(crate) fn bad(what: &'static str, problem: impl Into<String>) -> ReferenceError {
     ReferenceError::BadSetting {
         what,
         problem: problem.into(),
@@ -413,129 +411,14 @@ pub fn reference_points<W: World>(
     })
 }
 
-/// The world's model, read once: merged outcomes, expected rewards, readings.
-struct Model {
-    n: usize,
-    na: usize,
-    terminal: Vec<bool>,
-    /// Expected reward of `(s, a)`, at `s * na + a`.
-    reward: Vec<f64>,
-    /// Non-terminal next states of `(s, a)` with their probabilities, sorted by state.
-    next: Vec<Vec<(u32, f64)>>,
-    prices: Vec<f64>,
-    /// What feature `f` reads in state `s`, at `s * nf + f`.
-    readings: Vec<u32>,
-    start: Vec<(f64, u32)>,
-}
-
-impl Model {
-    fn read<W: World>(world: &W) -> Result<Model, ReferenceError> {
-        let n = world.num_states();
-        let na = world.num_actions();
-        if n == 0 || na == 0 {
-            return Err(ReferenceError::BadWorld(
-                "it has no states or no actions".to_string(),
-            ));
-        }
-        let terminal: Vec<bool> = (0..n)
-            .map(|s| world.is_terminal(StateId(s as u32)))
-            .collect();
-        let mut reward = vec![0.0; n * na];
-        let mut next = vec![Vec::new(); n * na];
-        let mut out = Vec::new();
-        for s in 0..n {
-            if terminal[s] {
-                continue;
-            }
-            for a in 0..na {
-                world.outcomes(StateId(s as u32), ActionId(a as u32), &mut out);
-                let mut merged: BTreeMap<u32, f64> = BTreeMap::new();
-                let mut r = 0.0;
-                for (p, step) in &out {
-                    if !(p.is_finite() && *p >= 0.0 && step.reward.is_finite()) {
-                        return Err(ReferenceError::BadWorld(format!(
-                            "state {s}, action {a}: an outcome has probability {p} and reward {}",
-                            step.reward
-                        )));
-                    }
-                    if step.next.index() >= n {
-                        return Err(ReferenceError::BadWorld(format!(
-                            "state {s}, action {a} leads to state {}, which does not exist",
-                            step.next
-                        )));
-                    }
-                    r += p * step.reward;
-                    if !step.terminated && !terminal[step.next.index()] && *p > 0.0 {
-                        *merged.entry(step.next.0).or_insert(0.0) += p;
-                    }
-                }
-                reward[s * na + a] = r;
-                next[s * na + a] = merged.into_iter().collect();
-            }
-        }
-        let nf = world.num_features();
-        let prices: Vec<f64> = (0..nf).map(|f| world.price(Feature(f as u32))).collect();
-        if let Some((f, p)) = prices
-            .iter()
-            .enumerate()
-            .find(|(_, p)| !(p.is_finite() && **p >= 0.0))
-        {
-            return Err(ReferenceError::BadWorld(format!(
-                "feature {f} has price {p}; prices must be finite and >= 0"
-            )));
-        }
-        let mut readings = Vec::with_capacity(n * nf);
-        for s in 0..n {
-            for f in 0..nf {
-                readings.push(world.read(StateId(s as u32), Feature(f as u32)).0);
-            }
-        }
-        let mut start = Vec::new();
-        for (p, s) in world.start_distribution() {
-            if s.index() >= n || terminal[s.index()] || !(p.is_finite() && p >= 0.0) {
-                return Err(ReferenceError::BadWorld(format!(
-                    "the start distribution has ({p}, {s}): a start must be a non-terminal state with a probability"
-                )));
-            }
-            if p > 0.0 {
-                start.push((p, s.0));
-            }
-        }
-        if start.is_empty() {
-            return Err(ReferenceError::BadWorld(
-                "the start distribution is empty".to_string(),
-            ));
-        }
-        Ok(Model {
-            n,
-            na,
-            terminal,
-            reward,
-            next,
-            prices,
-            readings,
-            start,
-        })
-    }
-
-    fn pair(&self, s: u32, a: usize) -> usize {
-        s as usize * self.na + a
-    }
-
-    /// The expected value over the start distribution of a per-state value.
-    fn at_start(&self, v: impl Fn(u32) -> f64) -> f64 {
-        self.start.iter().map(|&(p, s)| p * v(s)).sum()
-    }
-}
-
-fn check_horizon(options: &ReferenceOptions) -> Result<(), ReferenceError> {
+pub(crate) fn check_horizon(options: &ReferenceOptions) -> Result<(), ReferenceError> {
     if options.horizon == 0 {
         return Err(bad("horizon", "0 moves; an episode needs at least one"));
     }
     Ok(())
 }
 
-fn check_menu(menu: SensingMenu) -> Result<(), ReferenceError> {
+pub(crate) fn check_menu(menu: SensingMenu) -> Result<(), ReferenceError> {
     if let SensingMenu::Whole { price } = menu
         && !(price.is_finite() && price >= 0.0)
     {
@@ -565,7 +448,7 @@ pub fn always_measuring<W: World>(
 ) -> Result<f64, ReferenceError> {
     check_horizon(options)?;
     check_menu(menu)?;
-    let m = Model::read(world)?;
+    let m = CostlyModel::of(world)?;
     let c = match menu {
         SensingMenu::Whole { price } => price,
         SensingMenu::Features => m.prices.iter().sum(),
@@ -587,12 +470,12 @@ pub fn free_sensing<W: World>(
     options: &ReferenceOptions,
 ) -> Result<f64, ReferenceError> {
     check_horizon(options)?;
-    let m = Model::read(world)?;
+    let m = CostlyModel::of(world)?;
     Ok(measured(&m, 0.0, SensingRule::WithMove, options.horizon))
 }
 
 /// Backward induction over the states, the state measured at `c` after every move.
-fn measured(m: &Model, c: f64, rule: SensingRule, horizon: u32) -> f64 {
+fn measured(m: &CostlyModel, c: f64, rule: SensingRule, horizon: u32) -> f64 {
     // v[s]: the value with h moves left, from a known state s.
     let mut v = vec![0.0; m.n];
     let mut w = vec![0.0; m.n];
@@ -655,7 +538,7 @@ pub fn open_loop<W: World>(
     if options.max_plans == 0 {
         return Err(bad("max_plans", "0; at least one plan must be kept"));
     }
-    let m = Model::read(world)?;
+    let m = CostlyModel::of(world)?;
     let live: Vec<u32> = (0..m.n as u32)
         .filter(|&s| !m.terminal[s as usize])
         .collect();
@@ -749,109 +632,6 @@ fn compare(a: &[f64], b: &[f64]) -> std::cmp::Ordering {
         .unwrap_or(std::cmp::Ordering::Equal)
 }
 
-/// A belief: `(state, probability)` sorted by state, summing to 1.
-type Belief = Vec<(u32, f64)>;
-/// A belief's key: probabilities rounded to multiples of [`BELIEF_QUANTUM`].
-type Key = Vec<(u32, u64)>;
-
-fn key(b: &[(u32, f64)]) -> Key {
-    b.iter()
-        .map(|&(s, p)| (s, (p / BELIEF_QUANTUM).round() as u64))
-        .collect()
-}
-
-/// Normalise a sub-distribution sorted by state; its mass.
-fn normalise(mut b: Belief) -> (f64, Belief) {
-    let total: f64 = b.iter().map(|x| x.1).sum();
-    for x in &mut b {
-        x.1 /= total;
-    }
-    (total, b)
-}
-
-/// A probe: one thing that can be measured, with its price and what each state reads.
-struct Probe {
-    price: f64,
-    /// `None`: the state itself (the whole state).
-    feature: Option<usize>,
-}
-
-impl Probe {
-    fn read(&self, m: &Model, s: u32) -> u32 {
-        match self.feature {
-            None => s,
-            Some(f) => m.readings[s as usize * m.prices.len() + f],
-        }
-    }
-}
-
-/// Split a sub-distribution (sorted by state) by what the probes in `set` read: the
-/// parts' masses (of the whole) and normalised beliefs, in the order of the readings.
-fn split(m: &Model, probes: &[Probe], set: &[usize], b: &[(u32, f64)]) -> Vec<(f64, Belief)> {
-    if set.is_empty() {
-        return vec![normalise(b.to_vec())];
-    }
-    let mut parts: BTreeMap<Vec<u32>, Belief> = BTreeMap::new();
-    for &(s, p) in b {
-        let r: Vec<u32> = set.iter().map(|&j| probes[j].read(m, s)).collect();
-        parts.entry(r).or_default().push((s, p));
-    }
-    parts.into_values().map(normalise).collect()
-}
-
-/// One choice at a node: an immediate reward (net of prices) and weighted children.
-struct Choice {
-    reward: f64,
-    children: Vec<(f64, usize)>,
-}
-
-#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-enum Kind {
-    /// The agent chooses a move (and, under the rule with the move, what to measure).
-    Act,
-    /// Under the rule after the outcome: the agent chooses to measure one more probe or
-    /// to stop and act.
-    Sense,
-}
-
-struct Graph {
-    keys: BTreeMap<(Kind, Key, u32), usize>,
-    /// The beliefs not yet expanded (an expanded one is emptied to save memory).
-    beliefs: Vec<Belief>,
-    /// How many states each belief has.
-    sizes: Vec<usize>,
-    kinds: Vec<Kind>,
-    counts: Vec<u32>,
-    choices: Vec<Vec<Choice>>,
-    cap: usize,
-    k_text: String,
-}
-
-impl Graph {
-    /// The node of a belief with its count of uncertain steps (0 if certain).
-    fn node(&mut self, kind: Kind, b: Belief, count: u32) -> Result<usize, ReferenceError> {
-        let count = if b.len() == 1 { 0 } else { count };
-        let k = (kind, key(&b), count);
-        if let Some(&i) = self.keys.get(&k) {
-            return Ok(i);
-        }
-        if self.beliefs.len() >= self.cap {
-            return Err(ReferenceError::TooManyBeliefs {
-                cap: self.cap,
-                k: self.k_text.clone(),
-            });
-        }
-        let i = self.beliefs.len();
-        self.keys.insert(k, i);
-        self.sizes.push(b.len());
-        self.beliefs.push(b);
-        self.kinds.push(kind);
-        self.counts.push(count);
-        self.choices.push(Vec::new());
-        Ok(i)
-    }
-}
-
 /// The best expected costed return of a policy that may measure or not at each step,
 /// with at most [`ReferenceOptions::max_uncertain`] uncertain steps in a row: value
 /// iteration over the beliefs such policies reach (see [`reference_points`]).
@@ -908,7 +688,8 @@ pub fn sensing_ceiling<W: World>(
     search(world, menu, rule, options, true)
 }
 
-/// The search of [`best_sensing`]; with `reveal`, that of [`sensing_ceiling`].
+/// The search of [`best_sensing`]; with `reveal`, that of [`sensing_ceiling`]: the graph
+/// of beliefs from the start states, valued at the start.
 fn search<W: World>(
     world: &W,
     menu: SensingMenu,
@@ -918,197 +699,31 @@ fn search<W: World>(
 ) -> Result<BestSensing, ReferenceError> {
     check_horizon(options)?;
     check_menu(menu)?;
-    if options.max_beliefs == 0 {
-        return Err(bad("max_beliefs", "0; at least one belief is needed"));
-    }
-    let m = Model::read(world)?;
-    let probes: Vec<Probe> = match menu {
-        SensingMenu::Whole { price } => vec![Probe {
-            price,
-            feature: None,
-        }],
-        SensingMenu::Features => (0..m.prices.len())
-            .map(|f| Probe {
-                price: m.prices[f],
-                feature: Some(f),
-            })
-            .collect(),
+    let m = CostlyModel::of(world)?;
+    let roots: Vec<u32> = m.start.iter().map(|&(_, s)| s).collect();
+    let plan = PlanOptions {
+        menu,
+        rule,
+        search: *options,
+        move_cost: 0.0,
     };
-    if rule == SensingRule::WithMove && probes.len() > MAX_MENU_FEATURES {
-        return Err(bad(
-            "sensing menu",
-            format!(
-                "{} features; with the move at most {MAX_MENU_FEATURES} are tried in every subset (measure the whole state instead)",
-                probes.len()
-            ),
-        ));
-    }
-    // No run has more uncertain steps in a row than moves.
-    let k_max = options
-        .max_uncertain
-        .unwrap_or(u32::MAX)
-        .min(options.horizon);
-    let mut g = Graph {
-        keys: BTreeMap::new(),
-        beliefs: Vec::new(),
-        sizes: Vec::new(),
-        kinds: Vec::new(),
-        counts: Vec::new(),
-        choices: Vec::new(),
-        cap: options.max_beliefs,
-        k_text: options
-            .max_uncertain
-            .map_or("unbounded".to_string(), |k| k.to_string()),
-    };
-    // Every subset of the probes, with the move only (at most MAX_MENU_FEATURES of them).
-    let subsets: Vec<Vec<usize>> = match rule {
-        SensingRule::WithMove => (0..1usize << probes.len())
-            .map(|mask| (0..probes.len()).filter(|j| mask >> j & 1 == 1).collect())
-            .collect(),
-        SensingRule::AfterOutcome => Vec::new(),
-    };
-    let mut starts = Vec::new();
-    for &(p, s) in &m.start {
-        starts.push((p, g.node(Kind::Act, vec![(s, 1.0)], 0)?));
-    }
-    let mut i = 0;
-    while i < g.beliefs.len() {
-        let b = std::mem::take(&mut g.beliefs[i]);
-        let count = g.counts[i];
-        let next_count = count.saturating_add(1);
-        let mut choices = Vec::new();
-        match g.kinds[i] {
-            Kind::Act => {
-                for a in 0..m.na {
-                    let mut reward = 0.0;
-                    let mut next: BTreeMap<u32, f64> = BTreeMap::new();
-                    for &(s, p) in &b {
-                        let pair = m.pair(s, a);
-                        reward += p * m.reward[pair];
-                        for &(t, q) in &m.next[pair] {
-                            *next.entry(t).or_insert(0.0) += p * q;
-                        }
-                    }
-                    let next: Belief = next.into_iter().filter(|x| x.1 > 0.0).collect();
-                    match rule {
-                        SensingRule::WithMove => {
-                            'subset: for set in &subsets {
-                                let price: f64 = set.iter().map(|&j| probes[j].price).sum();
-                                let mut children = Vec::new();
-                                if !next.is_empty() {
-                                    for (w, part) in split(&m, &probes, set, &next) {
-                                        if part.len() > 1 && count >= k_max {
-                                            if !reveal {
-                                                continue 'subset;
-                                            }
-                                            // The relaxation: the state is told, free.
-                                            for &(s, p) in &part {
-                                                let point = g.node(Kind::Act, vec![(s, 1.0)], 0)?;
-                                                children.push((w * p, point));
-                                            }
-                                            continue;
-                                        }
-                                        children.push((w, g.node(Kind::Act, part, next_count)?));
-                                    }
-                                }
-                                choices.push(Choice {
-                                    reward: reward - price,
-                                    children,
-                                });
-                            }
-                        }
-                        SensingRule::AfterOutcome => {
-                            let mut children = Vec::new();
-                            if !next.is_empty() {
-                                let (w, part) = normalise(next);
-                                children.push((w, g.node(Kind::Sense, part, next_count)?));
-                            }
-                            choices.push(Choice { reward, children });
-                        }
-                    }
-                }
-            }
-            Kind::Sense => {
-                // Stop and act: allowed when certain or within the bound.
-                if b.len() == 1 || count <= k_max {
-                    let act = g.node(Kind::Act, b.clone(), count)?;
-                    choices.push(Choice {
-                        reward: 0.0,
-                        children: vec![(1.0, act)],
-                    });
-                } else if reveal {
-                    // The relaxation: past the bound the state is told, free.
-                    let mut children = Vec::new();
-                    for &(s, p) in &b {
-                        children.push((p, g.node(Kind::Act, vec![(s, 1.0)], 0)?));
-                    }
-                    choices.push(Choice {
-                        reward: 0.0,
-                        children,
-                    });
-                }
-                for j in 0..probes.len() {
-                    let parts = split(&m, &probes, &[j], &b);
-                    if parts.len() < 2 {
-                        continue; // reads alike on every state of the belief: no news
-                    }
-                    let mut children = Vec::new();
-                    for (w, part) in parts {
-                        children.push((w, g.node(Kind::Sense, part, count)?));
-                    }
-                    choices.push(Choice {
-                        reward: -probes[j].price,
-                        children,
-                    });
-                }
-            }
-        }
-        g.choices[i] = choices;
-        i += 1;
-    }
-    let n = g.beliefs.len();
-    // Sense nodes in order of support size, so that a probe's parts (smaller) come first.
-    let mut sense_order: Vec<usize> = (0..n).filter(|&i| g.kinds[i] == Kind::Sense).collect();
-    sense_order.sort_by_key(|&i| (g.sizes[i], i));
-    let act_nodes: Vec<usize> = (0..n).filter(|&i| g.kinds[i] == Kind::Act).collect();
-    let value_of = |c: &Choice, v: &[f64]| -> f64 {
-        c.reward + c.children.iter().map(|&(w, j)| w * v[j]).sum::<f64>()
-    };
-    let best_of = |cs: &[Choice], v: &[f64]| -> f64 {
-        cs.iter()
-            .map(|c| value_of(c, v))
-            .fold(f64::NEG_INFINITY, f64::max)
-    };
-    // prev: values with h - 1 moves left (0 moves left: 0 everywhere, nothing sensed).
-    let mut prev = vec![0.0; n];
-    let mut cur = vec![0.0; n];
-    let mut converged_at = options.horizon;
-    for h in 1..=options.horizon {
-        for &i in &act_nodes {
-            cur[i] = best_of(&g.choices[i], &prev);
-        }
-        if rule == SensingRule::AfterOutcome {
-            // A sense node with h moves left acts now (an act node at h) or probes (sense
-            // nodes at h). Act nodes read sense nodes with h - 1 moves left, so `cur`
-            // must hold them: act values were computed from `prev`, now sense values.
-            for &i in &sense_order {
-                cur[i] = best_of(&g.choices[i], &cur);
-            }
-        }
-        let same = cur == prev;
-        std::mem::swap(&mut prev, &mut cur);
-        if same {
-            converged_at = h;
-            break;
-        }
-    }
-    let value: f64 = starts.iter().map(|&(p, i)| p * prev[i]).sum();
+    let solved = solve(&m, &plan, &roots, reveal, false)?;
+    let value: f64 = m
+        .start
+        .iter()
+        .zip(&solved.roots)
+        .map(|(&(p, _), &i)| p * solved.values[i])
+        .sum();
     if value == f64::NEG_INFINITY || value.is_nan() {
+        let k_max = options
+            .max_uncertain
+            .unwrap_or(u32::MAX)
+            .min(options.horizon);
         return Err(ReferenceError::Infeasible { k: k_max });
     }
     Ok(BestSensing {
         value,
-        beliefs: n,
-        converged_at,
+        beliefs: solved.values.len(),
+        converged_at: solved.converged_at,
     })
 }

@@ -1,0 +1,617 @@
+//! Sensing by belief (specification 6.12): an agent that learns a model of the world from
+//! what it measures, plans over the beliefs that model lets it reach, and after each move
+//! senses nothing, or only the features that separate the states it may be in, when the
+//! plan says that is worth its price.
+//!
+//! * **The model.** Counts of the transitions from a known state: the next state when it
+//!   is known (measured, or the only one the model allows after the readings), or the
+//!   end of the episode with its reward. A pair tried `n` times has the empirical
+//!   outcomes with weight `n / (n + prior)` and, with the rest, an optimistic outcome
+//!   that ends the episode with reward `optimism` (so untried pairs are worth trying);
+//!   from `trust` tries on, the empirical outcomes alone.
+//! * **The plan.** An [`mdp::BeliefPlan`] over that model from every state known so far:
+//!   the best choice of a move and of the features to measure (each at its price, in
+//!   reward units) at every belief reachable with at most `max_uncertain` uncertain
+//!   steps in a row. A pair tried fewer than `trust` times must be followed by a
+//!   measurement of every feature, so that the agent learns it. The plan is rebuilt,
+//!   when the agent knows its state, after the model has changed enough (a pair's count
+//!   reached a power of two or `trust`, a state was seen for the first time, or a pair
+//!   lost its trust), or when it lacks the state.
+//! * **A wrong belief.** When something happens that the model gives probability zero (a
+//!   reading no state of the belief gives, an end of episode it did not allow, or none
+//!   where it foresaw one), every pair used since the agent last knew its state must be
+//!   measured again `trust` times; the agent then measures every feature with its next
+//!   move (or at once, when sensing follows the outcome) and moves on from what it read.
+//!   So a wrong belief lasts until the first observation that contradicts it.
+//!
+//! ```
+//! use rand::SeedableRng;
+//! let o = mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), factor_costs: Some(vec![0.025, 0.025]), ..Default::default() };
+//! let lake = mdp::builtin_world("frozenlake4x4", &o).unwrap();
+//! let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
+//! let run = csql::belief_planning(&lake, &csql::BeliefParams::default(), mdp::SensingRule::WithMove, 200, 100, &mut rng).unwrap();
+//! let s = csql::CostlySummary::of(&run);
+//! assert_eq!(s.mean_last10, 1.0); // the goal, and nothing measured
+//! ```
+
+use std::collections::BTreeMap;
+
+use mdp::{
+    ActionId, BeliefPlan, CostlyModel, Decision, Feature, ModelParts, NodeId, PlanOptions,
+    ReferenceError, ReferenceOptions, SensingMenu, SensingRule, StateId, World,
+};
+use rand::Rng;
+use serde::Serialize;
+
+use crate::amrl::Episode;
+
+/// The settings of [`belief_planning`].
+///
+/// ```
+/// let p = csql::BeliefParams::default();
+/// assert_eq!((p.max_uncertain, p.trust, p.prior, p.optimism), (7, 4, 3.0, 1.0));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct BeliefParams {
+    /// `K`: the most steps in a row after which the agent may be uncertain of its state (7).
+    pub max_uncertain: u32,
+    /// Tries of a pair after which it may be taken without measuring what follows (4).
+    pub trust: u32,
+    /// The weight of the optimistic outcome against a pair's tries (3).
+    pub prior: f64,
+    /// The reward of the optimistic outcome, in reward units (1, FrozenLake's goal).
+    pub optimism: f64,
+    /// Reward units per unit of a feature's cost (1: the world's costs are prices).
+    pub price_scale: f64,
+    /// Measure the whole state at once (the sum of the prices) rather than features apart.
+    pub whole_state: bool,
+    /// The most beliefs a plan may have; a plan that would have more is built with a
+    /// lower `K`, kept for the rest of the run (5,000).
+    pub max_beliefs: usize,
+    /// A price per move in the plan, in reward units, so that it does not wander between
+    /// choices of equal value (1e-6).
+    pub move_cost: f64,
+}
+
+impl Default for BeliefParams {
+    fn default() -> BeliefParams {
+        BeliefParams {
+            max_uncertain: 7,
+            trust: 4,
+            prior: 3.0,
+            optimism: 1.0,
+            price_scale: 1.0,
+            whole_state: false,
+            max_beliefs: 5_000,
+            move_cost: 1e-6,
+        }
+    }
+}
+
+/// What the agent has counted of one pair (a state and an action).
+#[derive(Clone, Debug, Default)]
+struct Counts {
+    tries: u32,
+    /// Tries that went on, by next state.
+    next: BTreeMap<u32, u32>,
+    /// The sum of the rewards of every try.
+    reward: f64,
+    /// Tries from which on the pair may go unmeasured.
+    trusted_at: u32,
+}
+
+struct Learner<'w, W: World + ?Sized> {
+    world: &'w W,
+    params: BeliefParams,
+    rule: SensingRule,
+    max_moves: u32,
+    counts: Vec<Counts>,
+    known: Vec<bool>,
+    /// Whether the model changed enough since the plan was built.
+    stale: bool,
+    plan: Option<BeliefPlan>,
+    prices: Vec<f64>,
+    /// The bound `K` of the plans, lowered for the rest of the run when a plan passes
+    /// the cap on beliefs.
+    k: u32,
+}
+
+/// Run `episodes` episodes of sensing by belief (see the [module](self)) and return what
+/// each gave; `max_moves` caps an episode (and is the plan's horizon).
+///
+/// # Errors
+/// A world or a setting the plan cannot use ([`ReferenceError`]), such as more than
+/// [`mdp::MAX_MENU_FEATURES`] features measured apart.
+///
+/// ```
+/// use rand::SeedableRng;
+/// let o = mdp::WorldOptions { slide: 0.5, sensing: Some(mdp::SensingModel::Factors), factor_costs: Some(vec![0.025, 0.025]), ..Default::default() };
+/// let lake = mdp::builtin_world("frozenlake4x4", &o).unwrap();
+/// let run = |seed| {
+///     let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(seed);
+///     csql::belief_planning(&lake, &Default::default(), mdp::SensingRule::WithMove, 30, 100, &mut rng).unwrap()
+/// };
+/// assert_eq!(run(3), run(3)); // the seed decides everything
+/// ```
+pub fn belief_planning<W: World + ?Sized, R: Rng + ?Sized>(
+    world: &W,
+    params: &BeliefParams,
+    rule: SensingRule,
+    episodes: u32,
+    max_moves: u32,
+    rng: &mut R,
+) -> Result<Vec<Episode>, ReferenceError> {
+    check(params, max_moves)?;
+    let n = world.num_states();
+    let na = world.num_actions();
+    let prices: Vec<f64> = (0..world.num_features())
+        .map(|f| world.price(Feature(f as u32)) * params.price_scale)
+        .collect();
+    let mut l = Learner {
+        world,
+        params: *params,
+        rule,
+        max_moves,
+        counts: vec![
+            Counts {
+                trusted_at: params.trust,
+                ..Counts::default()
+            };
+            n * na
+        ],
+        known: vec![false; n],
+        stale: true,
+        plan: None,
+        prices,
+        k: params.max_uncertain,
+    };
+    for (_, s) in world.start_distribution() {
+        l.known[s.index()] = true;
+    }
+    let mut out = Vec::with_capacity(episodes as usize);
+    for _ in 0..episodes {
+        out.push(l.episode(rng)?);
+    }
+    Ok(out)
+}
+
+fn check(p: &BeliefParams, max_moves: u32) -> Result<(), ReferenceError> {
+    let bad = |what: &'static str, problem: String| ReferenceError::BadSetting { what, problem };
+    if max_moves == 0 {
+        return Err(bad("max_moves", "0; an episode needs a move".into()));
+    }
+    if p.trust == 0 {
+        return Err(bad(
+            "trust",
+            "0; a pair is trusted after at least one try".into(),
+        ));
+    }
+    for (what, v) in [
+        ("prior", p.prior),
+        ("price_scale", p.price_scale),
+        ("move_cost", p.move_cost),
+    ] {
+        if !(v.is_finite() && v >= 0.0) {
+            return Err(bad(what, format!("{v}; it must be finite and >= 0")));
+        }
+    }
+    if p.prior == 0.0 {
+        return Err(bad(
+            "prior",
+            "0; the optimistic outcome needs a weight".into(),
+        ));
+    }
+    if !p.optimism.is_finite() {
+        return Err(bad(
+            "optimism",
+            format!("{}; it must be finite", p.optimism),
+        ));
+    }
+    if p.max_beliefs == 0 {
+        return Err(bad("max_beliefs", "0; a plan needs a belief".into()));
+    }
+    Ok(())
+}
+
+/// Where the agent is in its plan.
+enum Place {
+    /// At a node of the plan.
+    Node(NodeId),
+    /// Off the plan: the states that agree with what it last read (or every state).
+    Lost(Vec<u32>),
+}
+
+impl<W: World + ?Sized> Learner<'_, W> {
+    fn na(&self) -> usize {
+        self.world.num_actions()
+    }
+
+    /// The model the counts give.
+    fn model(&self) -> Result<CostlyModel, ReferenceError> {
+        let w = self.world;
+        let n = w.num_states();
+        let nf = w.num_features();
+        let p = &self.params;
+        let mut reward = Vec::with_capacity(self.counts.len());
+        let mut next = Vec::with_capacity(self.counts.len());
+        let mut must_measure = Vec::with_capacity(self.counts.len());
+        for c in &self.counts {
+            let tries = f64::from(c.tries);
+            let (weight, rest) = if c.tries >= p.trust {
+                (1.0 / tries, 0.0)
+            } else {
+                (1.0 / (tries + p.prior), p.prior / (tries + p.prior))
+            };
+            reward.push(c.reward * weight + rest * p.optimism);
+            next.push(
+                c.next
+                    .iter()
+                    .map(|(&t, &k)| (t, f64::from(k) * weight))
+                    .collect(),
+            );
+            must_measure.push(c.tries < c.trusted_at);
+        }
+        let mut readings = Vec::with_capacity(n * nf);
+        for s in 0..n {
+            for f in 0..nf {
+                readings.push(w.read(StateId(s as u32), Feature(f as u32)).0);
+            }
+        }
+        CostlyModel::from_parts(ModelParts {
+            num_actions: self.na(),
+            terminal: (0..n).map(|s| w.is_terminal(StateId(s as u32))).collect(),
+            reward,
+            next,
+            must_measure,
+            prices: self.prices.clone(),
+            readings,
+            start: w
+                .start_distribution()
+                .into_iter()
+                .map(|(q, s)| (q, s.0))
+                .collect(),
+        })
+    }
+
+    /// Rebuild the plan from every known state, lowering `K` until it fits the cap.
+    fn replan(&mut self) -> Result<(), ReferenceError> {
+        let model = self.model()?;
+        let roots: Vec<StateId> = (0..self.known.len())
+            .filter(|&s| self.known[s])
+            .map(|s| StateId(s as u32))
+            .collect();
+        let menu = if self.params.whole_state {
+            SensingMenu::Whole {
+                price: self.prices.iter().sum(),
+            }
+        } else {
+            SensingMenu::Features
+        };
+        loop {
+            let k = self.k;
+            let options = PlanOptions {
+                menu,
+                rule: self.rule,
+                search: ReferenceOptions {
+                    horizon: self.max_moves,
+                    max_uncertain: Some(k),
+                    max_beliefs: self.params.max_beliefs,
+                    ..ReferenceOptions::default()
+                },
+                move_cost: self.params.move_cost,
+            };
+            match BeliefPlan::build(&model, &options, &roots) {
+                Ok(plan) => {
+                    self.plan = Some(plan);
+                    self.stale = false;
+                    return Ok(());
+                }
+                Err(ReferenceError::TooManyBeliefs { .. }) if k > 0 => self.k -= 1,
+                Err(e) => return Err(e),
+            }
+        }
+    }
+
+    fn pair(&self, s: u32, a: ActionId) -> usize {
+        s as usize * self.na() + a.index()
+    }
+
+    /// Count a try of `(s, a)`: the next state (`None`: the episode ended) and reward.
+    fn count(&mut self, s: u32, a: ActionId, next: Option<u32>, reward: f64) {
+        let i = self.pair(s, a);
+        let trust = self.params.trust;
+        let c = &mut self.counts[i];
+        c.tries = c.tries.saturating_add(1);
+        c.reward += reward;
+        if let Some(t) = next {
+            *c.next.entry(t).or_insert(0) += 1;
+        }
+        if c.tries.is_power_of_two() || c.tries == trust || c.tries == c.trusted_at {
+            self.stale = true;
+        }
+        if let Some(t) = next
+            && !self.known[t as usize]
+        {
+            self.known[t as usize] = true;
+            self.stale = true;
+        }
+    }
+
+    /// Every pair used since the agent last knew its state (from every state it may
+    /// have been in) must be measured again.
+    fn distrust(&mut self, path: &[(Vec<u32>, ActionId)]) {
+        for (states, a) in path {
+            for &s in states {
+                let i = self.pair(s, *a);
+                let c = &mut self.counts[i];
+                c.trusted_at = c.tries.saturating_add(self.params.trust);
+                self.stale = true;
+            }
+        }
+    }
+
+    /// The states the agent may be in at a place.
+    fn states(&self, place: &Place) -> Vec<u32> {
+        match place {
+            Place::Node(n) => self
+                .plan
+                .as_ref()
+                .expect("a node is of a plan")
+                .belief(*n)
+                .iter()
+                .map(|x| x.0.0)
+                .collect(),
+            Place::Lost(states) => states.clone(),
+        }
+    }
+
+    /// The states that read as `truth` does on every feature.
+    fn agreeing(&self, truth: StateId, features: &[usize]) -> Vec<u32> {
+        let w = self.world;
+        (0..w.num_states() as u32)
+            .filter(|&s| !w.is_terminal(StateId(s)))
+            .filter(|&s| {
+                features.iter().all(|&f| {
+                    let f = Feature(f as u32);
+                    w.read(StateId(s), f) == w.read(truth, f)
+                })
+            })
+            .collect()
+    }
+
+    fn all_features(&self) -> Vec<usize> {
+        (0..self.prices.len()).collect()
+    }
+
+    /// The price of a set of probes of the plan's menu, and the features they read.
+    fn probes(&self, mask: u32) -> (f64, Vec<usize>) {
+        if self.params.whole_state {
+            if mask == 0 {
+                (0.0, Vec::new())
+            } else {
+                (self.prices.iter().sum(), self.all_features())
+            }
+        } else {
+            let f: Vec<usize> = (0..self.prices.len())
+                .filter(|j| mask >> j & 1 == 1)
+                .collect();
+            (f.iter().map(|&j| self.prices[j]).sum(), f)
+        }
+    }
+
+    /// Off the plan: the move that is best on average over `states` by the values of
+    /// their points (0 where a state has none).
+    fn fallback(&self, states: &[u32]) -> ActionId {
+        let plan = self.plan.as_ref();
+        let value = |s: u32| {
+            plan.and_then(|p| p.point(StateId(s)).map(|n| p.value(n)))
+                .unwrap_or(0.0)
+        };
+        let mut best = (ActionId(0), f64::NEG_INFINITY);
+        for a in 0..self.na() {
+            let a = ActionId(a as u32);
+            let q: f64 = states
+                .iter()
+                .map(|&s| {
+                    let c = &self.counts[self.pair(s, a)];
+                    if c.tries == 0 {
+                        return self.params.optimism;
+                    }
+                    let on: f64 = c.next.iter().map(|(&t, &k)| f64::from(k) * value(t)).sum();
+                    (c.reward + on) / f64::from(c.tries)
+                })
+                .sum();
+            if q > best.1 {
+                best = (a, q);
+            }
+        }
+        best.0
+    }
+
+    /// Where a known state puts the agent (rebuilding the plan if it is stale).
+    fn at(&mut self, s: u32) -> Result<Place, ReferenceError> {
+        let missing = self
+            .plan
+            .as_ref()
+            .is_none_or(|p| p.point(StateId(s)).is_none());
+        if missing || self.stale {
+            self.known[s as usize] = true;
+            self.replan()?;
+        }
+        let plan = self.plan.as_ref().expect("just built");
+        Ok(match plan.point(StateId(s)) {
+            Some(n) => Place::Node(n),
+            None => Place::Lost(vec![s]),
+        })
+    }
+
+    fn episode<R: Rng + ?Sized>(&mut self, rng: &mut R) -> Result<Episode, ReferenceError> {
+        let w = self.world;
+        let mut e = Episode {
+            reward: 0.0,
+            sensing: 0.0,
+            measurements: 0,
+            steps: 0,
+            reached_goal: false,
+        };
+        let mut truth = w.sample_start(rng);
+        let mut place = self.at(truth.0)?;
+        // The moves since the agent last knew its state, from that state.
+        let mut path: Vec<(Vec<u32>, ActionId)> = Vec::new();
+        let mut from: Option<u32> = Some(truth.0);
+        while e.steps < self.max_moves {
+            // Choose: a node of the plan's choice, or off the plan a fallback move that
+            // measures every feature.
+            let (action, mask, choice) = match &place {
+                Place::Node(node) => {
+                    let plan = self.plan.as_ref().expect("a node is of a plan");
+                    match plan.decide(*node) {
+                        Some((c, Decision::Move { action, measure })) => (action, measure, Some(c)),
+                        _ => (self.fallback(&self.states(&place)), u32::MAX, None),
+                    }
+                }
+                Place::Lost(states) => (self.fallback(states), u32::MAX, None),
+            };
+            let step = w.sample(truth, action, rng);
+            e.steps += 1;
+            e.reward += step.reward;
+            let ended = step.terminated || w.is_terminal(step.next);
+            path.push((self.states(&place), action));
+            // What is read: with the move, whatever happens; after it, only if it goes on.
+            let (price, features) = if mask == u32::MAX {
+                (self.prices.iter().sum(), self.all_features())
+            } else {
+                self.probes(mask)
+            };
+            let read_now = match self.rule {
+                SensingRule::WithMove => true,
+                SensingRule::AfterOutcome => !ended && (mask != 0),
+            };
+            if read_now && !features.is_empty() {
+                e.sensing += price;
+                e.measurements += match self.rule {
+                    SensingRule::WithMove => 1,
+                    SensingRule::AfterOutcome => features.len() as u32,
+                };
+            }
+            let from_state = from;
+            if ended {
+                if let Some(s) = from_state {
+                    self.count(s, action, None, step.reward);
+                }
+                // Did the model allow the end? (Counted above, so less one try.)
+                if let Place::Node(_) = place {
+                    let trust = self.params.trust;
+                    let may_end = self.states(&place).iter().any(|&s| {
+                        let c = &self.counts[self.pair(s, action)];
+                        let before = c.tries - u32::from(from_state == Some(s));
+                        before < trust || c.next.values().sum::<u32>() < before
+                    });
+                    if !may_end {
+                        self.distrust(&path);
+                    }
+                }
+                e.reached_goal = step.reward > 0.0;
+                return Ok(e);
+            }
+            truth = step.next;
+            // Where the move and the readings put the agent.
+            let followed = match (&place, choice) {
+                (Place::Node(node), Some(c)) => {
+                    let plan = self.plan.as_ref().expect("a node is of a plan");
+                    plan.follow(*node, c, |f| match f {
+                        None => truth.0,
+                        Some(f) => w.read(truth, f).0,
+                    })
+                }
+                _ => None,
+            };
+            let mut next_place = match followed {
+                Some(n) => Place::Node(n),
+                None => {
+                    if choice.is_some() {
+                        // The model gave what happened probability zero.
+                        self.distrust(&path);
+                    }
+                    Place::Lost(self.agreeing(truth, if read_now { &features } else { &[] }))
+                }
+            };
+            // After the outcome: measure one probe at a time while the plan says so.
+            if self.rule == SensingRule::AfterOutcome {
+                next_place = self.sense_after(next_place, truth, &mut e, &path);
+            }
+            // Certain now?
+            let certain = match &next_place {
+                Place::Node(n) => {
+                    let b = self.plan.as_ref().expect("a node is of a plan").belief(*n);
+                    (b.len() == 1).then(|| b[0].0.0)
+                }
+                Place::Lost(states) => (states.len() == 1).then(|| states[0]),
+            };
+            match certain {
+                Some(t) => {
+                    if let Some(s) = from_state {
+                        self.count(s, action, Some(t), step.reward);
+                    }
+                    from = Some(t);
+                    path.clear();
+                    place = self.at(t)?;
+                }
+                None => {
+                    from = None;
+                    place = next_place;
+                }
+            }
+        }
+        Ok(e)
+    }
+
+    /// Under the rule after the outcome: follow the plan's sense nodes, reading one probe
+    /// at a time; off the plan (or on a contradiction), read every feature at once.
+    fn sense_after(
+        &mut self,
+        mut place: Place,
+        truth: StateId,
+        e: &mut Episode,
+        path: &[(Vec<u32>, ActionId)],
+    ) -> Place {
+        let w = self.world;
+        if let Place::Lost(states) = &place
+            && states.len() == 1
+        {
+            return place;
+        }
+        while let Place::Node(node) = place {
+            let plan = self.plan.as_ref().expect("a node is of a plan");
+            match plan.decide(node) {
+                Some((c, Decision::Act)) => match plan.follow(node, c, |_| 0) {
+                    Some(n) => return Place::Node(n),
+                    None => break,
+                },
+                Some((c, Decision::Measure(j))) => {
+                    let (price, features) = self.probes(1 << j);
+                    e.sensing += price;
+                    e.measurements += features.len() as u32;
+                    match plan.follow(node, c, |f| match f {
+                        None => truth.0,
+                        Some(f) => w.read(truth, f).0,
+                    }) {
+                        Some(n) => place = Place::Node(n),
+                        None => {
+                            self.distrust(path);
+                            break;
+                        }
+                    }
+                }
+                // An act node (reached after a forced measurement) or no choice.
+                Some((_, Decision::Move { .. })) => return Place::Node(node),
+                None => break,
+            }
+        }
+        // Lost: read every feature now.
+        let all = self.all_features();
+        e.sensing += self.prices.iter().sum::<f64>();
+        e.measurements += all.len() as u32;
+        Place::Lost(self.agreeing(truth, &all))
+    }
+}

@@ -1,0 +1,983 @@
+//! Plans over beliefs for costly sensing: the finite graph of beliefs an agent reaches
+//! when at most `K` steps in a row leave it uncertain of the state, and the best choice
+//! (a move, what to measure) at each of them, found by finite-horizon value iteration.
+//!
+//! The model is a [`CostlyModel`]: a world's dynamics, rewards and readings read once
+//! ([`CostlyModel::of`]), or tables an agent has learned ([`CostlyModel::from_parts`]).
+//! [`best_sensing`](crate::best_sensing) and [`sensing_ceiling`](crate::sensing_ceiling)
+//! value the start of a world's model; a [`BeliefPlan`] keeps the whole graph, so that an
+//! agent can follow it step by step: [`BeliefPlan::point`] for a known state,
+//! [`BeliefPlan::decide`] for the best choice, [`BeliefPlan::follow`] for the belief the
+//! readings lead to (specification 6.12).
+//!
+//! ```
+//! use mdp::{BeliefPlan, CostlyModel, Decision, PlanOptions, SensingMenu, StateId};
+//! let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() }).unwrap();
+//! let model = CostlyModel::of(&lake).unwrap();
+//! let opts = PlanOptions { menu: SensingMenu::Whole { price: 0.05 }, ..PlanOptions::default() };
+//! let plan = BeliefPlan::build(&model, &opts, &[StateId(0)]).unwrap();
+//! let start = plan.point(StateId(0)).unwrap();
+//! assert!((plan.value(start) - 1.0).abs() < 1e-12); // deterministic: never measure
+//! let (_, Decision::Move { measure, .. }) = plan.decide(start).unwrap() else { panic!() };
+//! assert_eq!(measure, 0);
+//! ```
+
+use std::collections::BTreeMap;
+
+use crate::process::{ActionId, StateId};
+use crate::reference::{
+    BELIEF_QUANTUM, MAX_MENU_FEATURES, ReferenceError, ReferenceOptions, SensingMenu, SensingRule,
+    bad, check_horizon, check_menu,
+};
+use crate::sensing::Feature;
+use crate::world::World;
+
+/// How far a pair's next-state probabilities may sum above 1 (rounding).
+const SUM_TOLERANCE: f64 = 1e-9;
+
+/// A model for costly sensing: for every non-terminal state and action the expected
+/// reward and the non-terminal next states with their probabilities (the rest of the
+/// mass ends the episode), what each feature reads in each state and its price (reward
+/// units), the start distribution, and the pairs after which an agent must measure
+/// every feature.
+///
+/// ```
+/// let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() }).unwrap();
+/// let m = mdp::CostlyModel::of(&lake).unwrap();
+/// assert_eq!((m.num_states(), m.num_actions()), (16, 4));
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct CostlyModel {
+    pub(crate) n: usize,
+    pub(crate) na: usize,
+    pub(crate) terminal: Vec<bool>,
+    /// Expected reward of `(s, a)`, at `s * na + a`.
+    pub(crate) reward: Vec<f64>,
+    /// Non-terminal next states of `(s, a)` with their probabilities, sorted by state.
+    pub(crate) next: Vec<Vec<(u32, f64)>>,
+    /// Whether `(s, a)` may be taken only with `s` known, every feature measured after.
+    pub(crate) must_measure: Vec<bool>,
+    pub(crate) prices: Vec<f64>,
+    /// What feature `f` reads in state `s`, at `s * nf + f`.
+    pub(crate) readings: Vec<u32>,
+    pub(crate) start: Vec<(f64, u32)>,
+}
+
+/// The tables of a [`CostlyModel`] given by hand ([`CostlyModel::from_parts`]); pairs are
+/// indexed `s * num_actions + a`.
+///
+/// ```
+/// // One state, one action that ends the episode with reward 1.
+/// let parts = mdp::ModelParts {
+///     num_actions: 1,
+///     terminal: vec![false],
+///     reward: vec![1.0],
+///     next: vec![vec![]],
+///     must_measure: vec![false],
+///     prices: vec![0.5],
+///     readings: vec![0],
+///     start: vec![(1.0, 0)],
+/// };
+/// assert!(mdp::CostlyModel::from_parts(parts).is_ok());
+/// ```
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ModelParts {
+    /// Actions in every state.
+    pub num_actions: usize,
+    /// Whether each state is terminal (its length is the number of states).
+    pub terminal: Vec<bool>,
+    /// The expected reward of each pair (ignored for terminal states).
+    pub reward: Vec<f64>,
+    /// Each pair's non-terminal next states `(state, probability)`, sorted by state, the
+    /// probabilities summing to at most 1 (the rest ends the episode).
+    pub next: Vec<Vec<(u32, f64)>>,
+    /// The pairs an agent may take only from the state known for certain, and after
+    /// which it measures every feature (pairs it has not learned yet).
+    pub must_measure: Vec<bool>,
+    /// Each feature's price, in reward units.
+    pub prices: Vec<f64>,
+    /// What feature `f` reads in state `s`, at `s * prices.len() + f`.
+    pub readings: Vec<u32>,
+    /// The start distribution `(probability, state)`.
+    pub start: Vec<(f64, u32)>,
+}
+
+impl CostlyModel {
+    /// The model of a world: its outcomes merged, rewards averaged, readings and prices.
+    ///
+    /// ```
+    /// let w = mdp::builtin_world("frozenlake8x8", &mdp::WorldOptions::default()).unwrap();
+    /// assert_eq!(mdp::CostlyModel::of(&w).unwrap().num_states(), 64);
+    /// ```
+    pub fn of<W: World>(world: &W) -> Result<CostlyModel, ReferenceError> {
+        let n = world.num_states();
+        let na = world.num_actions();
+        if n == 0 || na == 0 {
+            return Err(ReferenceError::BadWorld(
+                "it has no states or no actions".to_string(),
+            ));
+        }
+        let terminal: Vec<bool> = (0..n)
+            .map(|s| world.is_terminal(StateId(s as u32)))
+            .collect();
+        let mut reward = vec![0.0; n * na];
+        let mut next = vec![Vec::new(); n * na];
+        let mut out = Vec::new();
+        for s in 0..n {
+            if terminal[s] {
+                continue;
+            }
+            for a in 0..na {
+                world.outcomes(StateId(s as u32), ActionId(a as u32), &mut out);
+                let mut merged: BTreeMap<u32, f64> = BTreeMap::new();
+                let mut r = 0.0;
+                for (p, step) in &out {
+                    if !(p.is_finite() && *p >= 0.0 && step.reward.is_finite()) {
+                        return Err(ReferenceError::BadWorld(format!(
+                            "state {s}, action {a}: an outcome has probability {p} and reward {}",
+                            step.reward
+                        )));
+                    }
+                    if step.next.index() >= n {
+                        return Err(ReferenceError::BadWorld(format!(
+                            "state {s}, action {a} leads to state {}, which does not exist",
+                            step.next
+                        )));
+                    }
+                    r += p * step.reward;
+                    if !step.terminated && !terminal[step.next.index()] && *p > 0.0 {
+                        *merged.entry(step.next.0).or_insert(0.0) += p;
+                    }
+                }
+                reward[s * na + a] = r;
+                next[s * na + a] = merged.into_iter().collect();
+            }
+        }
+        let nf = world.num_features();
+        let prices: Vec<f64> = (0..nf).map(|f| world.price(Feature(f as u32))).collect();
+        let mut readings = Vec::with_capacity(n * nf);
+        for s in 0..n {
+            for f in 0..nf {
+                readings.push(world.read(StateId(s as u32), Feature(f as u32)).0);
+            }
+        }
+        let start = world
+            .start_distribution()
+            .into_iter()
+            .map(|(p, s)| (p, s.0))
+            .collect();
+        CostlyModel::from_parts(ModelParts {
+            num_actions: na,
+            terminal,
+            reward,
+            next,
+            must_measure: vec![false; n * na],
+            prices,
+            readings,
+            start,
+        })
+    }
+
+    /// A model from its tables, each checked: lengths, probabilities, prices, states.
+    ///
+    /// ```
+    /// let bad = mdp::ModelParts { num_actions: 1, terminal: vec![false], ..Default::default() };
+    /// let err = mdp::CostlyModel::from_parts(bad).unwrap_err();
+    /// assert!(err.to_string().contains("reward"), "{err}");
+    /// ```
+    pub fn from_parts(parts: ModelParts) -> Result<CostlyModel, ReferenceError> {
+        let ModelParts {
+            num_actions: na,
+            terminal,
+            reward,
+            next,
+            must_measure,
+            prices,
+            readings,
+            start,
+        } = parts;
+        let n = terminal.len();
+        let world = |text: String| ReferenceError::BadWorld(text);
+        if n == 0 || na == 0 {
+            return Err(world("it has no states or no actions".to_string()));
+        }
+        let pairs = n * na;
+        for (name, len) in [
+            ("reward", reward.len()),
+            ("next", next.len()),
+            ("must_measure", must_measure.len()),
+        ] {
+            if len != pairs {
+                return Err(world(format!(
+                    "{name} has {len} entries for {pairs} pairs of a state and an action"
+                )));
+            }
+        }
+        if readings.len() != n * prices.len() {
+            return Err(world(format!(
+                "readings has {} entries for {n} states and {} features",
+                readings.len(),
+                prices.len()
+            )));
+        }
+        if let Some((f, p)) = prices
+            .iter()
+            .enumerate()
+            .find(|(_, p)| !(p.is_finite() && **p >= 0.0))
+        {
+            return Err(world(format!(
+                "feature {f} has price {p}; prices must be finite and >= 0"
+            )));
+        }
+        for i in 0..pairs {
+            let (s, a) = (i / na, i % na);
+            if terminal[s] {
+                continue;
+            }
+            if !reward[i].is_finite() {
+                return Err(world(format!(
+                    "state {s}, action {a}: reward {}",
+                    reward[i]
+                )));
+            }
+            let mut sum = 0.0;
+            let mut last = None;
+            for &(t, p) in &next[i] {
+                if t as usize >= n || terminal[t as usize] {
+                    return Err(world(format!(
+                        "state {s}, action {a} goes on to state {t}, which is not a non-terminal state"
+                    )));
+                }
+                if !(p.is_finite() && p > 0.0) || last.is_some_and(|l| l >= t) {
+                    return Err(world(format!(
+                        "state {s}, action {a}: next states must be sorted, each once, with probabilities > 0 (state {t}, {p})"
+                    )));
+                }
+                last = Some(t);
+                sum += p;
+            }
+            if sum > 1.0 + SUM_TOLERANCE {
+                return Err(world(format!(
+                    "state {s}, action {a}: next-state probabilities sum to {sum} > 1"
+                )));
+            }
+        }
+        let mut kept = Vec::new();
+        for (p, s) in start {
+            if s as usize >= n || terminal[s as usize] || !(p.is_finite() && p >= 0.0) {
+                return Err(world(format!(
+                    "the start distribution has ({p}, {s}): a start must be a non-terminal state with a probability"
+                )));
+            }
+            if p > 0.0 {
+                kept.push((p, s));
+            }
+        }
+        if kept.is_empty() {
+            return Err(world("the start distribution is empty".to_string()));
+        }
+        Ok(CostlyModel {
+            n,
+            na,
+            terminal,
+            reward,
+            next,
+            must_measure,
+            prices,
+            readings,
+            start: kept,
+        })
+    }
+
+    /// Its states.
+    ///
+    /// ```
+    /// let w = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() }).unwrap();
+    /// assert_eq!(mdp::CostlyModel::of(&w).unwrap().num_states(), 16);
+    /// ```
+    pub fn num_states(&self) -> usize {
+        self.n
+    }
+
+    /// Its actions.
+    ///
+    /// ```
+    /// let w = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() }).unwrap();
+    /// assert_eq!(mdp::CostlyModel::of(&w).unwrap().num_actions(), 4);
+    /// ```
+    pub fn num_actions(&self) -> usize {
+        self.na
+    }
+
+    pub(crate) fn pair(&self, s: u32, a: usize) -> usize {
+        s as usize * self.na + a
+    }
+
+    /// The expected value over the start distribution of a per-state value.
+    pub(crate) fn at_start(&self, v: impl Fn(u32) -> f64) -> f64 {
+        self.start.iter().map(|&(p, s)| p * v(s)).sum()
+    }
+
+    fn probes(&self, menu: SensingMenu) -> Vec<Probe> {
+        match menu {
+            SensingMenu::Whole { price } => vec![Probe {
+                price,
+                feature: None,
+            }],
+            SensingMenu::Features => (0..self.prices.len())
+                .map(|f| Probe {
+                    price: self.prices[f],
+                    feature: Some(f),
+                })
+                .collect(),
+        }
+    }
+}
+
+/// A belief: `(state, probability)` sorted by state, summing to 1.
+type Belief = Vec<(u32, f64)>;
+/// A belief's key: probabilities rounded to multiples of [`BELIEF_QUANTUM`].
+type Key = Vec<(u32, u64)>;
+
+fn key(b: &[(u32, f64)]) -> Key {
+    b.iter()
+        .map(|&(s, p)| (s, (p / BELIEF_QUANTUM).round() as u64))
+        .collect()
+}
+
+/// Normalise a sub-distribution sorted by state; its mass.
+fn normalise(mut b: Belief) -> (f64, Belief) {
+    let total: f64 = b.iter().map(|x| x.1).sum();
+    for x in &mut b {
+        x.1 /= total;
+    }
+    (total, b)
+}
+
+/// A probe: one thing that can be measured, with its price and what each state reads.
+#[derive(Clone, Copy, Debug)]
+struct Probe {
+    price: f64,
+    /// `None`: the state itself (the whole state).
+    feature: Option<usize>,
+}
+
+impl Probe {
+    fn read(&self, m: &CostlyModel, s: u32) -> u32 {
+        match self.feature {
+            None => s,
+            Some(f) => m.readings[s as usize * m.prices.len() + f],
+        }
+    }
+}
+
+/// The probes of a bit set over the menu.
+fn members(mask: u32, probes: usize) -> impl Iterator<Item = usize> {
+    (0..probes).filter(move |j| mask >> j & 1 == 1)
+}
+
+/// Split a sub-distribution (sorted by state) by what the probes in `mask` read: the
+/// parts' masses (of the whole) and normalised beliefs, in the order of the readings.
+fn split(m: &CostlyModel, probes: &[Probe], mask: u32, b: &[(u32, f64)]) -> Vec<(f64, Belief)> {
+    if mask == 0 {
+        return vec![normalise(b.to_vec())];
+    }
+    let mut parts: BTreeMap<Vec<u32>, Belief> = BTreeMap::new();
+    for &(s, p) in b {
+        let r: Vec<u32> = members(mask, probes.len())
+            .map(|j| probes[j].read(m, s))
+            .collect();
+        parts.entry(r).or_default().push((s, p));
+    }
+    parts.into_values().map(normalise).collect()
+}
+
+/// What an agent does at a node of a [`BeliefPlan`].
+///
+/// ```
+/// let d = mdp::Decision::Move { action: mdp::ActionId(2), measure: 0b11 };
+/// assert_ne!(d, mdp::Decision::Act);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Decision {
+    /// Make this move. Under [`SensingRule::WithMove`], measure the probes of the bit set
+    /// `measure` with it (bit `j` is probe `j` of the menu: feature `j`, or the whole
+    /// state for [`SensingMenu::Whole`]). Under [`SensingRule::AfterOutcome`], `measure`
+    /// is 0, or every probe when the pair must be measured (then every probe is read if
+    /// the episode goes on).
+    Move {
+        /// The action.
+        action: ActionId,
+        /// The probes measured, as a bit set over the menu.
+        measure: u32,
+    },
+    /// Under [`SensingRule::AfterOutcome`]: measure probe `j` now.
+    Measure(usize),
+    /// Under [`SensingRule::AfterOutcome`]: measure nothing more and choose a move.
+    Act,
+}
+
+/// One choice at a node: what it is, an immediate reward (net of prices) and weighted
+/// children.
+struct Choice {
+    decision: Decision,
+    reward: f64,
+    children: Vec<(f64, usize)>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+enum Kind {
+    /// The agent chooses a move (and, under the rule with the move, what to measure).
+    Act,
+    /// Under the rule after the outcome: the agent chooses to measure one more probe or
+    /// to stop and act.
+    Sense,
+}
+
+pub(crate) struct Graph {
+    keys: BTreeMap<(Kind, Key, u32), usize>,
+    /// The beliefs (an expanded one is emptied unless they are kept).
+    beliefs: Vec<Belief>,
+    /// A state of each belief, which stands for its readings.
+    first: Vec<u32>,
+    /// How many states each belief has.
+    sizes: Vec<usize>,
+    kinds: Vec<Kind>,
+    counts: Vec<u32>,
+    choices: Vec<Vec<Choice>>,
+    cap: usize,
+    k_text: String,
+}
+
+impl Graph {
+    /// The node of a belief with its count of uncertain steps (0 if certain).
+    fn node(&mut self, kind: Kind, b: Belief, count: u32) -> Result<usize, ReferenceError> {
+        let count = if b.len() == 1 { 0 } else { count };
+        let k = (kind, key(&b), count);
+        if let Some(&i) = self.keys.get(&k) {
+            return Ok(i);
+        }
+        if self.beliefs.len() >= self.cap {
+            return Err(ReferenceError::TooManyBeliefs {
+                cap: self.cap,
+                k: self.k_text.clone(),
+            });
+        }
+        let i = self.beliefs.len();
+        self.keys.insert(k, i);
+        self.sizes.push(b.len());
+        self.first.push(b[0].0);
+        self.beliefs.push(b);
+        self.kinds.push(kind);
+        self.counts.push(count);
+        self.choices.push(Vec::new());
+        Ok(i)
+    }
+}
+
+/// The graph of beliefs reachable from the point beliefs of `roots` and its values.
+pub(crate) struct Solved {
+    pub(crate) graph: Graph,
+    pub(crate) roots: Vec<usize>,
+    pub(crate) values: Vec<f64>,
+    pub(crate) converged_at: u32,
+}
+
+/// Build the graph of beliefs from `roots` and solve it (see
+/// [`best_sensing`](crate::best_sensing)); with `reveal`, the relaxation of
+/// [`sensing_ceiling`](crate::sensing_ceiling). With `keep`, every belief stays in the
+/// graph (for a [`BeliefPlan`]).
+pub(crate) fn solve(
+    m: &CostlyModel,
+    plan: &PlanOptions,
+    roots: &[u32],
+    reveal: bool,
+    keep: bool,
+) -> Result<Solved, ReferenceError> {
+    let PlanOptions {
+        menu,
+        rule,
+        search: ref options,
+        move_cost,
+    } = *plan;
+    check_horizon(options)?;
+    check_menu(menu)?;
+    if !(move_cost.is_finite() && move_cost >= 0.0) {
+        return Err(bad(
+            "move_cost",
+            format!("{move_cost}; it must be finite and >= 0"),
+        ));
+    }
+    if options.max_beliefs == 0 {
+        return Err(bad("max_beliefs", "0; at least one belief is needed"));
+    }
+    let probes = m.probes(menu);
+    if rule == SensingRule::WithMove && probes.len() > MAX_MENU_FEATURES {
+        return Err(bad(
+            "sensing menu",
+            format!(
+                "{} features; with the move at most {MAX_MENU_FEATURES} are tried in every subset (measure the whole state instead)",
+                probes.len()
+            ),
+        ));
+    }
+    let all: u32 = if probes.is_empty() {
+        0
+    } else {
+        u32::MAX >> (32 - probes.len())
+    };
+    let all_price: f64 = probes.iter().map(|p| p.price).sum();
+    // No run has more uncertain steps in a row than moves.
+    let k_max = options
+        .max_uncertain
+        .unwrap_or(u32::MAX)
+        .min(options.horizon);
+    let mut g = Graph {
+        keys: BTreeMap::new(),
+        beliefs: Vec::new(),
+        first: Vec::new(),
+        sizes: Vec::new(),
+        kinds: Vec::new(),
+        counts: Vec::new(),
+        choices: Vec::new(),
+        cap: options.max_beliefs,
+        k_text: options
+            .max_uncertain
+            .map_or("unbounded".to_string(), |k| k.to_string()),
+    };
+    // Every subset of the probes, with the move only (at most MAX_MENU_FEATURES of them).
+    let subsets: Vec<u32> = match rule {
+        SensingRule::WithMove => (0..=all).collect(),
+        SensingRule::AfterOutcome => Vec::new(),
+    };
+    let mut starts = Vec::new();
+    for &s in roots {
+        if s as usize >= m.n || m.terminal[s as usize] {
+            return Err(ReferenceError::BadWorld(format!(
+                "state {s} cannot be a root: it is not a non-terminal state"
+            )));
+        }
+        starts.push(g.node(Kind::Act, vec![(s, 1.0)], 0)?);
+    }
+    let mut i = 0;
+    while i < g.beliefs.len() {
+        let b = std::mem::take(&mut g.beliefs[i]);
+        let count = g.counts[i];
+        let next_count = count.saturating_add(1);
+        let mut choices = Vec::new();
+        match g.kinds[i] {
+            Kind::Act => {
+                for a in 0..m.na {
+                    let mut reward = -move_cost;
+                    let mut forced = false;
+                    let mut next: BTreeMap<u32, f64> = BTreeMap::new();
+                    for &(s, p) in &b {
+                        let pair = m.pair(s, a);
+                        reward += p * m.reward[pair];
+                        forced |= m.must_measure[pair];
+                        for &(t, q) in &m.next[pair] {
+                            *next.entry(t).or_insert(0.0) += p * q;
+                        }
+                    }
+                    let next: Belief = next.into_iter().filter(|x| x.1 > 0.0).collect();
+                    let action = ActionId(a as u32);
+                    if forced && b.len() > 1 {
+                        continue; // such a pair is taken from a known state only
+                    }
+                    if forced {
+                        // Every probe is read after the move (under the other rule, if
+                        // the episode goes on).
+                        let mut children = Vec::new();
+                        let mut going_on = 0.0;
+                        if !next.is_empty() {
+                            for (w, part) in split(m, &probes, all, &next) {
+                                going_on += w;
+                                children.push((w, g.node(Kind::Act, part, next_count)?));
+                            }
+                        }
+                        let price = match rule {
+                            SensingRule::WithMove => all_price,
+                            SensingRule::AfterOutcome => going_on * all_price,
+                        };
+                        choices.push(Choice {
+                            decision: Decision::Move {
+                                action,
+                                measure: all,
+                            },
+                            reward: reward - price,
+                            children,
+                        });
+                        continue;
+                    }
+                    match rule {
+                        SensingRule::WithMove => {
+                            'subset: for &set in &subsets {
+                                let price: f64 =
+                                    members(set, probes.len()).map(|j| probes[j].price).sum();
+                                let mut children = Vec::new();
+                                if !next.is_empty() {
+                                    for (w, part) in split(m, &probes, set, &next) {
+                                        if part.len() > 1 && count >= k_max {
+                                            if !reveal {
+                                                continue 'subset;
+                                            }
+                                            // The relaxation: the state is told, free.
+                                            for &(s, p) in &part {
+                                                let point = g.node(Kind::Act, vec![(s, 1.0)], 0)?;
+                                                children.push((w * p, point));
+                                            }
+                                            continue;
+                                        }
+                                        children.push((w, g.node(Kind::Act, part, next_count)?));
+                                    }
+                                }
+                                choices.push(Choice {
+                                    decision: Decision::Move {
+                                        action,
+                                        measure: set,
+                                    },
+                                    reward: reward - price,
+                                    children,
+                                });
+                            }
+                        }
+                        SensingRule::AfterOutcome => {
+                            let mut children = Vec::new();
+                            if !next.is_empty() {
+                                let (w, part) = normalise(next);
+                                children.push((w, g.node(Kind::Sense, part, next_count)?));
+                            }
+                            choices.push(Choice {
+                                decision: Decision::Move { action, measure: 0 },
+                                reward,
+                                children,
+                            });
+                        }
+                    }
+                }
+            }
+            Kind::Sense => {
+                // Stop and act: allowed when certain or within the bound.
+                if b.len() == 1 || count <= k_max {
+                    let act = g.node(Kind::Act, b.clone(), count)?;
+                    choices.push(Choice {
+                        decision: Decision::Act,
+                        reward: 0.0,
+                        children: vec![(1.0, act)],
+                    });
+                } else if reveal {
+                    // The relaxation: past the bound the state is told, free.
+                    let mut children = Vec::new();
+                    for &(s, p) in &b {
+                        children.push((p, g.node(Kind::Act, vec![(s, 1.0)], 0)?));
+                    }
+                    choices.push(Choice {
+                        decision: Decision::Act,
+                        reward: 0.0,
+                        children,
+                    });
+                }
+                for (j, probe) in probes.iter().enumerate() {
+                    let parts = split(m, &probes, 1 << j, &b);
+                    if parts.len() < 2 {
+                        continue; // reads alike on every state of the belief: no news
+                    }
+                    let mut children = Vec::new();
+                    for (w, part) in parts {
+                        children.push((w, g.node(Kind::Sense, part, count)?));
+                    }
+                    choices.push(Choice {
+                        decision: Decision::Measure(j),
+                        reward: -probe.price,
+                        children,
+                    });
+                }
+            }
+        }
+        g.choices[i] = choices;
+        if keep {
+            g.beliefs[i] = b;
+        }
+        i += 1;
+    }
+    let n = g.beliefs.len();
+    // Sense nodes in order of support size, so that a probe's parts (smaller) come first.
+    let mut sense_order: Vec<usize> = (0..n).filter(|&i| g.kinds[i] == Kind::Sense).collect();
+    sense_order.sort_by_key(|&i| (g.sizes[i], i));
+    let act_nodes: Vec<usize> = (0..n).filter(|&i| g.kinds[i] == Kind::Act).collect();
+    // prev: values with h - 1 moves left (0 moves left: 0 everywhere, nothing sensed).
+    let mut prev = vec![0.0; n];
+    let mut cur = vec![0.0; n];
+    let mut converged_at = options.horizon;
+    for h in 1..=options.horizon {
+        for &i in &act_nodes {
+            cur[i] = best_of(&g.choices[i], &prev);
+        }
+        if rule == SensingRule::AfterOutcome {
+            // A sense node with h moves left acts now (an act node at h) or probes (sense
+            // nodes at h). Act nodes read sense nodes with h - 1 moves left, so `cur`
+            // must hold them: act values were computed from `prev`, now sense values.
+            for &i in &sense_order {
+                cur[i] = best_of(&g.choices[i], &cur);
+            }
+        }
+        let same = cur == prev;
+        std::mem::swap(&mut prev, &mut cur);
+        if same {
+            converged_at = h;
+            break;
+        }
+    }
+    Ok(Solved {
+        graph: g,
+        roots: starts,
+        values: prev,
+        converged_at,
+    })
+}
+
+fn value_of(c: &Choice, v: &[f64]) -> f64 {
+    c.reward + c.children.iter().map(|&(w, j)| w * v[j]).sum::<f64>()
+}
+
+/// The best value of the choices (`-inf` for none).
+fn best_of(cs: &[Choice], v: &[f64]) -> f64 {
+    cs.iter()
+        .map(|c| value_of(c, v))
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// What a [`BeliefPlan`] is built for: the sensing menu and rule, the search's bounds,
+/// and a price per move.
+///
+/// ```
+/// let o = mdp::PlanOptions::default();
+/// assert_eq!((o.menu, o.rule, o.move_cost), (mdp::SensingMenu::Features, mdp::SensingRule::WithMove, 0.0));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlanOptions {
+    /// What may be measured.
+    pub menu: SensingMenu,
+    /// When sensing is decided.
+    pub rule: SensingRule,
+    /// The horizon, the bound `K` on uncertain steps in a row, the cap on beliefs.
+    pub search: ReferenceOptions,
+    /// A price per move, in reward units (finite, at least 0): a small one makes the
+    /// plan end an episode sooner where that costs nothing else, so that a plan followed
+    /// step by step does not wander between choices of equal value.
+    pub move_cost: f64,
+}
+
+impl Default for PlanOptions {
+    fn default() -> PlanOptions {
+        PlanOptions {
+            menu: SensingMenu::Features,
+            rule: SensingRule::WithMove,
+            search: ReferenceOptions::default(),
+            move_cost: 0.0,
+        }
+    }
+}
+
+/// A node of a [`BeliefPlan`]: a belief, whether the agent is to move or to sense, and
+/// its count of uncertain steps in a row.
+///
+/// ```
+/// let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() }).unwrap();
+/// let model = mdp::CostlyModel::of(&lake).unwrap();
+/// let plan = mdp::BeliefPlan::build(&model, &Default::default(), &[mdp::StateId(0)]).unwrap();
+/// let node: mdp::NodeId = plan.point(mdp::StateId(0)).unwrap();
+/// assert_eq!(plan.belief(node), &[(mdp::StateId(0), 1.0)]);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct NodeId(pub usize);
+
+/// The best policy within `K` uncertain steps in a row over a [`CostlyModel`], from a
+/// set of known states: every belief it reaches, with its value and best choice.
+///
+/// Values are those of the finite-horizon problem of [`ReferenceOptions::horizon`] moves
+/// (the stationary choice of an episode's first move); ties between choices go to the
+/// first in the order of the actions, then of the probe sets as numbers.
+pub struct BeliefPlan {
+    solved: Solved,
+    states: Vec<(StateId, f64)>,
+    /// Offsets of each node's belief in `states`.
+    offsets: Vec<usize>,
+    /// The point node of each root state.
+    points: BTreeMap<u32, usize>,
+    probe_features: Vec<Option<usize>>,
+    /// The model's readings, `s * features + f`.
+    readings: Vec<u32>,
+    features: usize,
+}
+
+impl BeliefPlan {
+    /// The plan from the point beliefs of `roots` (each must be a non-terminal state).
+    ///
+    /// # Errors
+    /// Those of [`best_sensing`](crate::best_sensing): a bad setting, a root that cannot
+    /// be one, more beliefs than [`ReferenceOptions::max_beliefs`].
+    ///
+    /// ```
+    /// use mdp::{BeliefPlan, CostlyModel, PlanOptions, ReferenceOptions, SensingMenu, StateId};
+    /// let o = mdp::WorldOptions { slide: 0.5, ..Default::default() };
+    /// let lake = mdp::builtin_world("frozenlake4x4", &o).unwrap();
+    /// let m = CostlyModel::of(&lake).unwrap();
+    /// let search = ReferenceOptions { max_uncertain: Some(2), ..Default::default() };
+    /// let opts = PlanOptions { menu: SensingMenu::Whole { price: 0.05 }, search, ..PlanOptions::default() };
+    /// let plan = BeliefPlan::build(&m, &opts, &[StateId(0)]).unwrap();
+    /// assert!((plan.value(plan.point(StateId(0)).unwrap()) - 0.90).abs() < 1e-9);
+    /// ```
+    pub fn build(
+        model: &CostlyModel,
+        options: &PlanOptions,
+        roots: &[StateId],
+    ) -> Result<BeliefPlan, ReferenceError> {
+        let roots: Vec<u32> = roots.iter().map(|s| s.0).collect();
+        let solved = solve(model, options, &roots, false, true)?;
+        let menu = options.menu;
+        let mut states = Vec::new();
+        let mut offsets = Vec::with_capacity(solved.graph.beliefs.len() + 1);
+        for b in &solved.graph.beliefs {
+            offsets.push(states.len());
+            states.extend(b.iter().map(|&(s, p)| (StateId(s), p)));
+        }
+        offsets.push(states.len());
+        let points = roots
+            .iter()
+            .zip(&solved.roots)
+            .map(|(&s, &i)| (s, i))
+            .collect();
+        Ok(BeliefPlan {
+            probe_features: model.probes(menu).iter().map(|p| p.feature).collect(),
+            solved,
+            states,
+            offsets,
+            points,
+            readings: model.readings.clone(),
+            features: model.prices.len(),
+        })
+    }
+
+    /// The node of a root state known for certain (`None` if it was not a root).
+    ///
+    /// ```
+    /// # let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() }).unwrap();
+    /// # let model = mdp::CostlyModel::of(&lake).unwrap();
+    /// let plan = mdp::BeliefPlan::build(&model, &Default::default(), &[mdp::StateId(0)]).unwrap();
+    /// assert!(plan.point(mdp::StateId(1)).is_none());
+    /// ```
+    pub fn point(&self, s: StateId) -> Option<NodeId> {
+        self.points.get(&s.0).map(|&i| NodeId(i))
+    }
+
+    /// How many nodes the plan has.
+    ///
+    /// ```
+    /// # let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() }).unwrap();
+    /// # let model = mdp::CostlyModel::of(&lake).unwrap();
+    /// let plan = mdp::BeliefPlan::build(&model, &Default::default(), &[mdp::StateId(0)]).unwrap();
+    /// assert_eq!(plan.nodes(), 11);
+    /// ```
+    pub fn nodes(&self) -> usize {
+        self.solved.values.len()
+    }
+
+    /// The belief of a node: `(state, probability)`, sorted by state.
+    ///
+    /// ```
+    /// # let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() }).unwrap();
+    /// # let model = mdp::CostlyModel::of(&lake).unwrap();
+    /// # let plan = mdp::BeliefPlan::build(&model, &Default::default(), &[mdp::StateId(0)]).unwrap();
+    /// let start = plan.point(mdp::StateId(0)).unwrap();
+    /// assert_eq!(plan.belief(start).len(), 1);
+    /// ```
+    pub fn belief(&self, node: NodeId) -> &[(StateId, f64)] {
+        &self.states[self.offsets[node.0]..self.offsets[node.0 + 1]]
+    }
+
+    /// The expected costed return of the plan from a node.
+    ///
+    /// ```
+    /// # let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() }).unwrap();
+    /// # let model = mdp::CostlyModel::of(&lake).unwrap();
+    /// let plan = mdp::BeliefPlan::build(&model, &Default::default(), &[mdp::StateId(14)]).unwrap();
+    /// assert_eq!(plan.value(plan.point(mdp::StateId(14)).unwrap()), 1.0); // the goal is next door
+    /// ```
+    pub fn value(&self, node: NodeId) -> f64 {
+        self.solved.values[node.0]
+    }
+
+    /// The best choice at a node (its index among the node's choices, and what it is);
+    /// `None` when the node has no choice (no probe tells its states apart and the bound
+    /// forbids acting uncertain).
+    ///
+    /// ```
+    /// # let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() }).unwrap();
+    /// # let model = mdp::CostlyModel::of(&lake).unwrap();
+    /// let opts = mdp::PlanOptions { move_cost: 1e-6, ..Default::default() };
+    /// let plan = mdp::BeliefPlan::build(&model, &opts, &[mdp::StateId(14)]).unwrap();
+    /// let (_, d) = plan.decide(plan.point(mdp::StateId(14)).unwrap()).unwrap();
+    /// assert_eq!(d, mdp::Decision::Move { action: mdp::ActionId(2), measure: 0 }); // right
+    /// ```
+    pub fn decide(&self, node: NodeId) -> Option<(usize, Decision)> {
+        let v = &self.solved.values;
+        let mut best: Option<(usize, f64)> = None;
+        for (c, choice) in self.solved.graph.choices[node.0].iter().enumerate() {
+            let q = value_of(choice, v);
+            if best.is_none_or(|(_, b)| q > b) {
+                best = Some((c, q));
+            }
+        }
+        best.map(|(c, _)| (c, self.solved.graph.choices[node.0][c].decision))
+    }
+
+    /// The node a choice leads to, given what the probes it measured read in the state
+    /// reached (`read(probe)`: feature `j`'s reading, or for the whole state its index).
+    /// `None` when no belief of the plan agrees with the readings (the model was wrong),
+    /// or the choice ends every episode.
+    ///
+    /// ```
+    /// use mdp::{Decision, StateId};
+    /// # let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() }).unwrap();
+    /// # let model = mdp::CostlyModel::of(&lake).unwrap();
+    /// let plan = mdp::BeliefPlan::build(&model, &Default::default(), &[StateId(0)]).unwrap();
+    /// let start = plan.point(StateId(0)).unwrap();
+    /// let (c, _) = plan.decide(start).unwrap();
+    /// let next = plan.follow(start, c, |_| unreachable!("nothing measured")).unwrap();
+    /// assert_eq!(plan.belief(next).len(), 1);
+    /// ```
+    pub fn follow(
+        &self,
+        node: NodeId,
+        choice: usize,
+        mut read: impl FnMut(Option<Feature>) -> u32,
+    ) -> Option<NodeId> {
+        let choice = self.solved.graph.choices[node.0].get(choice)?;
+        let mask = match choice.decision {
+            Decision::Move { measure, .. } => measure,
+            Decision::Measure(j) => 1 << j,
+            Decision::Act => 0,
+        };
+        if mask == 0 {
+            // Nothing read: one belief, unless the episode ends.
+            return choice.children.first().map(|&(_, j)| NodeId(j));
+        }
+        let probes: Vec<usize> = members(mask, self.probe_features.len()).collect();
+        let wanted: Vec<u32> = probes
+            .iter()
+            .map(|&j| read(self.probe_features[j].map(|f| Feature(f as u32))))
+            .collect();
+        choice.children.iter().find_map(|&(_, j)| {
+            let s = self.solved.graph.first[j];
+            let agree = probes
+                .iter()
+                .zip(&wanted)
+                .all(|(&p, &w)| match self.probe_features[p] {
+                    None => s == w,
+                    Some(f) => self.readings[s as usize * self.features + f] == w,
+                });
+            agree.then_some(NodeId(j))
+        })
+    }
+}

@@ -1,0 +1,207 @@
+//! Plans over beliefs: the plan's value at the start is the reference search's, its
+//! choices can be followed step by step, a learned model's tables are checked, and a
+//! pair that must be measured is taken from a known state only.
+
+use mdp::{
+    ActionId, BeliefPlan, CostlyModel, Decision, ModelParts, PlanOptions, ReferenceOptions,
+    SensingMenu, SensingModel, SensingRule, Sensors, StateId, StochasticMdp, WorldOptions,
+    best_sensing, builtin_world,
+};
+
+fn lake(slide: f64) -> mdp::FiniteWorld {
+    builtin_world(
+        "frozenlake4x4",
+        &WorldOptions {
+            slide,
+            sensing: Some(SensingModel::Factors),
+            factor_costs: Some(vec![0.025, 0.025]),
+            ..Default::default()
+        },
+    )
+    .unwrap()
+}
+
+#[test]
+fn the_plan_values_the_start_as_the_reference_search_does() {
+    let w = lake(0.5);
+    let m = CostlyModel::of(&w).unwrap();
+    for menu in [SensingMenu::Features, SensingMenu::Whole { price: 0.05 }] {
+        for rule in [SensingRule::WithMove, SensingRule::AfterOutcome] {
+            for k in [0, 1, 3] {
+                let search = ReferenceOptions {
+                    max_uncertain: Some(k),
+                    ..Default::default()
+                };
+                let best = best_sensing(&w, menu, rule, &search).unwrap();
+                let o = PlanOptions {
+                    menu,
+                    rule,
+                    search,
+                    move_cost: 0.0,
+                };
+                let plan = BeliefPlan::build(&m, &o, &[StateId(0)]).unwrap();
+                let v = plan.value(plan.point(StateId(0)).unwrap());
+                assert_eq!(v, best.value, "{menu:?} {rule:?} K = {k}");
+                assert_eq!(plan.nodes(), best.beliefs, "{menu:?} {rule:?} K = {k}");
+            }
+        }
+    }
+}
+
+/// Follow the plan in the true world from the start, exactly (every outcome weighted):
+/// the expected costed return of following it (less its price per move) equals its
+/// value. The price per move keeps the plan from wandering between equal choices.
+#[test]
+fn following_the_plan_step_by_step_earns_its_value() {
+    let w = lake(0.5);
+    let m = CostlyModel::of(&w).unwrap();
+    let o = PlanOptions {
+        search: ReferenceOptions {
+            horizon: 30,
+            max_uncertain: Some(3),
+            ..Default::default()
+        },
+        move_cost: 1e-6,
+        ..Default::default()
+    };
+    let plan = BeliefPlan::build(&m, &o, &[StateId(0)]).unwrap();
+    let start = plan.point(StateId(0)).unwrap();
+    // (probability, true state, node, moves left)
+    let mut frontier = vec![(1.0, 0u32, start, 30u32)];
+    let mut total = 0.0;
+    let mut out = Vec::new();
+    while let Some((p, s, node, left)) = frontier.pop() {
+        if left == 0 {
+            continue;
+        }
+        let (c, Decision::Move { action, measure }) = plan.decide(node).unwrap() else {
+            panic!("with the move every choice is a move")
+        };
+        let price = 0.025 * f64::from(measure.count_ones()) + 1e-6;
+        total -= p * price;
+        w.outcomes(StateId(s), action, &mut out);
+        for (q, step) in out.clone() {
+            if q == 0.0 {
+                continue;
+            }
+            total += p * q * step.reward;
+            if step.terminated || w.is_terminal(step.next) {
+                continue;
+            }
+            let t = step.next;
+            let next = plan
+                .follow(node, c, |f| w.read(t, f.unwrap()).0)
+                .expect("the true model never contradicts its plan");
+            assert!(plan.belief(next).iter().any(|&(x, _)| x == t));
+            frontier.push((p * q, t.0, next, left - 1));
+        }
+    }
+    assert!(
+        (total - plan.value(start)).abs() < 1e-7,
+        "{total} vs {}",
+        plan.value(start)
+    );
+    assert!((plan.value(start) - 0.95).abs() < 1e-4); // the reference figure, less moves
+}
+
+fn one_state(must_measure: bool) -> ModelParts {
+    // States 0 and 1 read alike on feature 0 and apart on feature 1; action 0 from
+    // either goes to 0 or 1 with equal odds, action 1 ends the episode with reward 1.
+    ModelParts {
+        num_actions: 2,
+        terminal: vec![false, false],
+        reward: vec![0.0, 1.0, 0.0, 1.0],
+        next: vec![
+            vec![(0, 0.5), (1, 0.5)],
+            vec![],
+            vec![(0, 0.5), (1, 0.5)],
+            vec![],
+        ],
+        must_measure: vec![false, must_measure, false, false],
+        prices: vec![0.1, 0.2],
+        readings: vec![0, 0, 0, 1],
+        start: vec![(1.0, 0)],
+    }
+}
+
+#[test]
+fn a_pair_that_must_be_measured_is_taken_from_a_known_state_only() {
+    let o = PlanOptions {
+        search: ReferenceOptions {
+            horizon: 3,
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    // Free to act on the belief: stay (action 0), unmeasured, then end with reward 1.
+    let free = BeliefPlan::build(
+        &CostlyModel::from_parts(one_state(false)).unwrap(),
+        &o,
+        &[StateId(1)],
+    )
+    .unwrap();
+    let at1 = free.point(StateId(1)).unwrap();
+    assert_eq!(free.value(at1), 1.0);
+    // Pair (0, 1) must be measured: from the belief {0, 1} action 1 is not allowed, so
+    // the plan ends at once from 1 (action 1 there is free).
+    let forced = BeliefPlan::build(
+        &CostlyModel::from_parts(one_state(true)).unwrap(),
+        &o,
+        &[StateId(0), StateId(1)],
+    )
+    .unwrap();
+    let at0 = forced.point(StateId(0)).unwrap();
+    // From 0 known, action 1 is allowed, and every feature is paid with it.
+    assert_eq!(
+        forced.decide(at0).unwrap().1,
+        Decision::Move {
+            action: ActionId(1),
+            measure: 0b11
+        }
+    );
+    assert!((forced.value(at0) - (1.0 - 0.3)).abs() < 1e-12);
+}
+
+#[test]
+fn bad_tables_are_refused_with_where() {
+    type Spoil = Box<dyn Fn(&mut ModelParts)>;
+    let cases: Vec<(Spoil, &str)> = vec![
+        (
+            Box::new(|p| p.reward.pop().map(drop).unwrap_or(())),
+            "reward has 3 entries",
+        ),
+        (Box::new(|p| p.next[0] = vec![(1, 0.5), (0, 0.5)]), "sorted"),
+        (Box::new(|p| p.next[0] = vec![(0, 0.8), (1, 0.8)]), "sum to"),
+        (Box::new(|p| p.next[0] = vec![(5, 1.0)]), "state 5"),
+        (
+            Box::new(|p| p.prices[1] = f64::NAN),
+            "feature 1 has price NaN",
+        ),
+        (
+            Box::new(|p| p.readings.pop().map(drop).unwrap_or(())),
+            "readings has 3 entries",
+        ),
+        (Box::new(|p| p.start = vec![(1.0, 7)]), "start"),
+        (
+            Box::new(|p| p.reward[1] = f64::INFINITY),
+            "state 0, action 1: reward inf",
+        ),
+    ];
+    for (spoil, wanted) in cases {
+        let mut p = one_state(false);
+        spoil(&mut p);
+        let err = CostlyModel::from_parts(p).unwrap_err().to_string();
+        assert!(err.contains(wanted), "{err} lacks {wanted}");
+    }
+    let m = CostlyModel::from_parts(one_state(false)).unwrap();
+    let err = BeliefPlan::build(&m, &PlanOptions::default(), &[StateId(9)])
+        .err()
+        .unwrap();
+    assert!(err.to_string().contains("state 9"), "{err}");
+    let o = PlanOptions {
+        move_cost: -1.0,
+        ..Default::default()
+    };
+    let err = BeliefPlan::build(&m, &o, &[StateId(0)]).err().unwrap();
+    assert!(err.to_string().contains("move_cost"), "{err}");
+}
