@@ -110,6 +110,71 @@ impl Node {
     }
 }
 
+/// Dense per-feature counts where a node's counts are built: a block of the cache's arity
+/// per feature, all zero but for the features in `touched`.
+#[derive(Clone, Debug, Default)]
+struct Tally {
+    counts: Vec<u32>,
+    /// Which features have a block in use.
+    live: Vec<bool>,
+    /// The features in use, in the order they were first counted.
+    touched: Vec<u32>,
+}
+
+impl Tally {
+    /// Put feature `f`'s block in use (blocks of `k` counts).
+    fn open(&mut self, f: usize, k: usize) {
+        if f >= self.live.len() {
+            self.live.resize(f + 1, false);
+            self.counts.resize((f + 1) * k, 0);
+        }
+        if !self.live[f] {
+            self.live[f] = true;
+            self.touched.push(f as u32);
+        }
+    }
+
+    /// Count one more candidate requiring reading `v` of feature `f`.
+    fn add_one(&mut self, f: usize, v: usize, k: usize) {
+        debug_assert!(v < k, "a reading beyond its feature's range");
+        self.open(f, k);
+        self.counts[f * k + v] += 1;
+    }
+
+    /// Count the candidates of `block` (the counts of feature `f`'s readings).
+    fn add_block(&mut self, f: usize, block: &[u32]) {
+        let k = block.len();
+        self.open(f, k);
+        self.counts[f * k..(f + 1) * k].copy_from_slice(block);
+    }
+
+    /// Count one candidate fewer requiring reading `v` of feature `f`, if `f` is in use.
+    fn take_one(&mut self, f: usize, v: usize, k: usize) {
+        if self.live.get(f).copied().unwrap_or(false) {
+            self.counts[f * k + v] -= 1;
+        }
+    }
+
+    /// Move the counts to `node`, in feature order and without all-zero blocks, leaving
+    /// every block clear.
+    fn store(&mut self, node: &mut Node, k: usize) {
+        self.touched.sort_unstable();
+        node.feats.clear();
+        node.vals.clear();
+        for &f in &self.touched {
+            let f = f as usize;
+            let block = &mut self.counts[f * k..(f + 1) * k];
+            if block.iter().any(|&c| c > 0) {
+                node.feats.push(f as u32);
+                node.vals.extend_from_slice(block);
+                block.fill(0);
+            }
+            self.live[f] = false;
+        }
+        self.touched.clear();
+    }
+}
+
 /// Features measured on the way to a node, with their values.
 type Path = Vec<(u32, u32)>;
 
@@ -121,7 +186,7 @@ fn on_path(path: &[(u32, u32)], feature: u32) -> Option<u32> {
 #[derive(Clone, Debug)]
 pub(super) struct Cache {
     /// How many readings a feature may have (the largest over the world's features):
-    /// the stride of `children`, of a node's counts and of `scratch`.
+    /// the stride of `children` and of a node's counts.
     arity: usize,
     /// One record of `CHILDREN + arity` words per node (see [`STEP_TAG`]).
     table: Vec<u32>,
@@ -129,11 +194,8 @@ pub(super) struct Cache {
     free: Vec<u32>,
     /// `x log2 x` for every count seen so far, computed as cslearn computes it.
     xlogx: Vec<f64>,
-    /// Dense per-feature scratch for building a node's counts (`arity` per feature).
-    scratch: Vec<u32>,
-    /// Which features of `scratch` hold counts.
-    live: Vec<bool>,
-    touched: Vec<u32>,
+    /// Where a node's counts are built.
+    tally: Tally,
     marks: Vec<bool>,
     /// The candidates of a node that its new child leaves out.
     excluded: Vec<u32>,
@@ -151,9 +213,7 @@ impl Cache {
             nodes: Vec::new(),
             free: Vec::new(),
             xlogx: Vec::new(),
-            scratch: Vec::new(),
-            live: Vec::new(),
-            touched: Vec::new(),
+            tally: Tally::default(),
             marks: Vec::new(),
             excluded: Vec::new(),
             stack: Vec::new(),
@@ -474,34 +534,20 @@ impl Cache {
     /// without the candidates in `self.excluded` (the parent's that the child left out).
     fn counts_from_parent(&mut self, parent: u32, child: u32, feature: u32, library: &Library) {
         let k = self.arity;
-        let examples = library.examples();
-        let mut node = std::mem::take(&mut self.nodes[child as usize]);
         let from = &self.nodes[parent as usize];
-        node.feats.clear();
-        node.vals.clear();
-        node.feats.extend_from_slice(&from.feats);
-        node.vals.extend_from_slice(&from.vals);
+        for (&f, block) in from.feats.iter().zip(from.vals.chunks_exact(k)) {
+            if f != feature {
+                self.tally.add_block(f as usize, block);
+            }
+        }
+        let examples = library.examples();
         for &d in &self.excluded {
             for &(f, v) in examples[d as usize].pairs() {
-                // Features measured on the way are not in the parent's counts.
-                if let Ok(i) = node.feats.binary_search(&f.0) {
-                    node.vals[i * k + v.0 as usize] -= 1;
-                }
+                // Only the parent's features count: those measured on the way do not.
+                self.tally.take_one(f.0 as usize, v.0 as usize, k);
             }
         }
-        // Drop the measured feature and every block left all zero, keeping the order.
-        let mut kept = 0;
-        for i in 0..node.feats.len() {
-            let block = i * k..(i + 1) * k;
-            if node.feats[i] != feature && node.vals[block.clone()].iter().any(|&c| c > 0) {
-                node.feats[kept] = node.feats[i];
-                node.vals.copy_within(block, kept * k);
-                kept += 1;
-            }
-        }
-        node.feats.truncate(kept);
-        node.vals.truncate(kept * k);
-        self.nodes[child as usize] = node;
+        self.tally.store(&mut self.nodes[child as usize], k);
     }
 
     /// Count, for a node whose candidates are set, the values of every unmeasured feature.
@@ -511,41 +557,18 @@ impl Cache {
             self.mark(f.0, true);
         }
         let k = self.arity;
-        let node = &self.nodes[at as usize];
-        for &d in &node.cands {
+        for &d in &self.nodes[at as usize].cands {
             for &(f, v) in examples[d as usize].pairs() {
                 let f = f.0 as usize;
-                if f >= self.live.len() {
-                    self.live.resize(f + 1, false);
-                    self.scratch.resize((f + 1) * k, 0);
+                if !self.marks.get(f).copied().unwrap_or(false) {
+                    self.tally.add_one(f, v.0 as usize, k);
                 }
-                if self.marks.get(f).copied().unwrap_or(false) {
-                    continue;
-                }
-                if !self.live[f] {
-                    self.live[f] = true;
-                    self.touched.push(f as u32);
-                }
-                debug_assert!((v.0 as usize) < k, "a reading beyond its feature's range");
-                self.scratch[f * k + v.0 as usize] += 1;
             }
         }
-        self.touched.sort_unstable();
-        let node = &mut self.nodes[at as usize];
-        node.feats.clear();
-        node.vals.clear();
-        for &f in &self.touched {
-            let f = f as usize;
-            node.feats.push(f as u32);
-            node.vals
-                .extend_from_slice(&self.scratch[f * k..(f + 1) * k]);
-            self.scratch[f * k..(f + 1) * k].fill(0);
-            self.live[f] = false;
-        }
-        self.touched.clear();
         for &(f, _) in path {
             self.mark(f.0, false);
         }
+        self.tally.store(&mut self.nodes[at as usize], k);
     }
 
     fn mark(&mut self, feature: u32, on: bool) {
