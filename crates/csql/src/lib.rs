@@ -151,6 +151,7 @@ mod audit;
     reason = "internal invariants: feature spaces hold valid costs; a node with counts has a candidate feature"
 )]
 mod classify;
+mod costly;
 mod detector;
 mod draft;
 mod error;
@@ -215,6 +216,7 @@ mod view;
 
 pub use amrl::{AmrlParams, CostlySummary, Episode, Measuring, amrl_q};
 pub use classify::{Classification, Classify};
+pub use costly::costed_episodes;
 pub use detector::{
     ActionDrop, AnyDrop, Detector, DetectorKind, RateParams, RateTest, RunDetector,
 };
