@@ -30,14 +30,16 @@ use qlearn::QTable;
 use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
-use crate::amrl::Episode;
+use serde::Serialize;
+
+use crate::amrl::{CostlySummary, Episode};
 use crate::classify::Classify;
 use crate::error::Error;
 use crate::learner::Learner;
 use crate::main_loop::Agent;
 use crate::perception::{FullView, Perception};
 use crate::predict::level::PredictSensing;
-use crate::settings::RunSettings;
+use crate::settings::{CostlySettings, RunSettings};
 use crate::strategy::{Never, Strategy};
 
 /// What a perception would read classifying a state, learning nothing: the charge of a
@@ -144,6 +146,130 @@ pub fn costed_episodes<W: World + ?Sized>(
             "they are scored for cs-ql, full-sensing and amrl-q",
         )),
     }
+}
+
+/// A run's trials scored by their costed return: what a report carries when the settings
+/// price sensing (`[costly]`).
+///
+/// ```
+/// let e = |r: f64| csql::Episode { reward: r, sensing: 0.1, measurements: 2, steps: 3, reached_goal: r > 0.0 };
+/// let c = csql::CostedRun::of(csql::CostlySettings::new(0.05), &[e(0.0), e(1.0)]);
+/// assert_eq!(c.returns.len(), 2);
+/// assert!((c.returns[1] - 0.9).abs() < 1e-12 && (c.summary.mean_all - 0.4).abs() < 1e-12);
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CostedRun {
+    /// Reward units per unit of sensing cost.
+    pub price: f64,
+    /// When sensing was decided.
+    pub rule: SensingRule,
+    /// The costed return of every episode (trial), in order.
+    pub returns: Vec<f64>,
+    /// The episodes summed up.
+    pub summary: CostlySummary,
+}
+
+impl CostedRun {
+    /// The costed returns and summary of `episodes`, scored under `costly`.
+    ///
+    /// ```
+    /// let c = csql::CostedRun::of(csql::CostlySettings::new(0.05), &[]);
+    /// assert_eq!(c.summary.episodes, 0);
+    /// ```
+    pub fn of(costly: CostlySettings, episodes: &[Episode]) -> CostedRun {
+        CostedRun {
+            price: costly.price,
+            rule: costly.rule,
+            returns: episodes.iter().map(Episode::costed_return).collect(),
+            summary: CostlySummary::of(episodes),
+        }
+    }
+}
+
+/// The costed run of `trials` trials of the learner of `settings` in `world`, when the
+/// settings price sensing (`None` otherwise): what `csql::run` attaches to its report.
+pub(crate) fn costed_run<W: World + ?Sized>(
+    world: &W,
+    settings: &RunSettings,
+    trials: u32,
+) -> Result<Option<CostedRun>, Error> {
+    let Some(c) = settings.costly else {
+        return Ok(None);
+    };
+    let episodes = costed_episodes(world, settings, c.rule, c.price, trials)?;
+    Ok(Some(CostedRun::of(c, &episodes)))
+}
+
+/// What `csrl run --learner amrl-q` reports: AMRL-Q played for `max_trials` episodes,
+/// each scored by its costed return.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct AmrlReport {
+    /// The world's name.
+    pub map: String,
+    /// `amrl-q`.
+    pub learner: crate::LearnerKind,
+    /// The seed of the run's generator.
+    pub seed: u64,
+    /// The price of measuring the whole state, in reward units: `[costly] price` times
+    /// the sum of the world's feature costs.
+    pub whole_state_price: f64,
+    /// Every episode's costed return, and their summary.
+    pub costly: CostedRun,
+    /// The settings.
+    pub settings: RunSettings,
+}
+
+/// AMRL-Q with the parameters of `settings` (`[amrl_q]`) in `world` (named `name`), for
+/// `max_trials` episodes of at most `max_moves` moves, measuring the whole state at
+/// `[costly] price` times the sum of the world's feature costs, under `[costly] rule`,
+/// from one generator seeded with `seed`: exactly [`crate::amrl_q`] with those
+/// arguments.
+///
+/// ```
+/// let mut s = csql::RunSettings::tan1991("frozenlake4x4", csql::StrategyKind::Lazy, 3)
+///     .with_learner(csql::LearnerKind::AmrlQ);
+/// s.costly = Some(csql::CostlySettings::new(0.025));
+/// s.max_trials = csql::TrialCap::new(300).unwrap();
+/// let options = mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() };
+/// let lake = mdp::builtin_world("frozenlake4x4", &options).unwrap();
+/// let r = csql::amrl_report(&lake, "frozenlake4x4", &s).unwrap();
+/// assert_eq!((r.costly.returns.len(), r.whole_state_price), (300, 0.05));
+/// ```
+pub fn amrl_report<W: World + ?Sized>(
+    world: &W,
+    name: &str,
+    settings: &RunSettings,
+) -> Result<AmrlReport, Error> {
+    settings.validate()?;
+    let (Learner::AmrlQ(params), Some(costly)) = (&settings.learner, settings.costly) else {
+        return Err(Error::Conflict {
+            first: format!("learner = {}", settings.learner.kind()),
+            second: "an AMRL-Q report".to_string(),
+            why: "it needs learner = amrl-q and [costly] price",
+        });
+    };
+    let whole: f64 = (0..world.num_features() as u32)
+        .map(|f| world.price(mdp::Feature(f)))
+        .sum();
+    let whole_state_price = costly.price * whole;
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
+    let episodes = crate::amrl::amrl_q(
+        world,
+        params,
+        whole_state_price,
+        costly.rule,
+        settings.max_trials.get(),
+        settings.max_moves.get(),
+        &mut rng,
+    );
+    Ok(AmrlReport {
+        map: name.to_string(),
+        learner: crate::LearnerKind::AmrlQ,
+        seed: settings.seed,
+        whole_state_price,
+        costly: CostedRun::of(costly, &episodes),
+        settings: settings.clone(),
+    })
 }
 
 /// One call of [`costed_episodes`], its arguments checked.

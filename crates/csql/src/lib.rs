@@ -216,11 +216,11 @@ mod view;
 
 pub use amrl::{AmrlParams, CostlySummary, Episode, Measuring, amrl_q};
 pub use classify::{Classification, Classify};
-pub use costly::costed_episodes;
+pub use costly::{AmrlReport, CostedRun, amrl_report, costed_episodes};
 pub use detector::{
     ActionDrop, AnyDrop, Detector, DetectorKind, RateParams, RateTest, RunDetector,
 };
-pub use draft::{DEFAULT_MAP, ExtensionsTable, SettingsDraft};
+pub use draft::{CostlyTable, DEFAULT_MAP, ExtensionsTable, SettingsDraft};
 pub use error::{Error, SettingsProblem};
 pub use extensions::{Extensions, Matching, WorldExtras};
 pub use figure::{descriptions_svg, descriptions_table, policy_svg};
@@ -255,7 +255,8 @@ pub use run::{
 };
 pub use sensor::Sensor;
 pub use settings::{
-    JudgeSettings, MAX_ROWS, MAX_SETTINGS_BYTES, MapSource, NonNegative, RunSettings, TrialCap,
+    CostlySettings, JudgeSettings, MAX_ROWS, MAX_SETTINGS_BYTES, MapSource, NonNegative,
+    RunSettings, TrialCap,
 };
 pub use setup::Setup;
 pub use stepper::{Moment, Sense, StepError, Stepper};
