@@ -202,6 +202,21 @@ pub(crate) fn costed_run<W: World + ?Sized>(
 
 /// What `csrl run --learner amrl-q` reports: AMRL-Q played for `max_trials` episodes,
 /// each scored by its costed return.
+///
+/// ```
+/// let mut s = csql::SettingsDraft::from_toml("learner = \"amrl-q\"\nmax_trials = 20\n[costly]\nprice = 0.5", "f")
+///     .unwrap()
+///     .build()
+///     .unwrap();
+/// let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions::default()).unwrap();
+/// let r: csql::AmrlReport = csql::amrl_report(&lake, "frozenlake4x4", &s).unwrap();
+/// let json = serde_json::to_value(&r).unwrap();
+/// assert_eq!(json["learner"], "amrl-q");
+/// assert_eq!(json["settings"]["costly"]["rule"], "with-move");
+/// // Not a learner of `csql::run`.
+/// s.map = "frozenlake4x4".into();
+/// assert!(csql::run(&s).unwrap_err().to_string().contains("learner = amrl-q"));
+/// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct AmrlReport {
     /// The world's name.
