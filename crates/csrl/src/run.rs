@@ -60,7 +60,8 @@ pub struct RunArgs {
     /// config's `[costly] rule`, else with-move).
     #[arg(long, value_parser = parse_rule)]
     sensing_rule: Option<mdp::SensingRule>,
-    /// Stop an unconverged run after this many trials.
+    /// Stop an unconverged run after this many trials (amrl-q: the number of episodes
+    /// it plays).
     #[arg(long)]
     max_trials: Option<csql::TrialCap>,
     /// Exit with code 3 if the run does not converge, or, for a run judged by the policy
