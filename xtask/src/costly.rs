@@ -15,9 +15,10 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Result, anyhow, bail};
 use clap::Args;
-use csql::{AmrlParams, CostlySummary, Episode, Measuring};
+use csql::{AmrlParams, CostlySummary, Episode, LearnerKind, Measuring, RunSettings, StrategyKind};
 use mdp::{FiniteWorld, SensingModel, SensingRule, WorldOptions};
 use plotters::prelude::*;
+use qlearn::MoveCap;
 use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 use serde::{Deserialize, Serialize};
@@ -114,17 +115,139 @@ pub enum Learner {
     /// The same Q-learning measuring the whole state at every step
     /// (`csql::Measuring::Always`).
     AlwaysMeasuring,
+    /// CS-QL with the resetting strategy and the paper's settings otherwise
+    /// (`csql::costed_episodes`).
+    CsQl,
+    /// Q-learning sensing every feature at every step, in CS-QL's main loop
+    /// (`csql::costed_episodes` with `learner = "full-sensing"`).
+    FullSensing,
 }
 
 impl Learner {
-    const ALL: [Learner; 2] = [Learner::AmrlQ, Learner::AlwaysMeasuring];
+    const ALL: [Learner; 4] = [
+        Learner::AmrlQ,
+        Learner::AlwaysMeasuring,
+        Learner::CsQl,
+        Learner::FullSensing,
+    ];
 
     fn name(self) -> &'static str {
         match self {
             Learner::AmrlQ => "amrl-q",
             Learner::AlwaysMeasuring => "always-measuring",
+            Learner::CsQl => "cs-ql",
+            Learner::FullSensing => "full-sensing",
         }
     }
+
+    /// The learner's colour in the figures.
+    fn colour(self) -> RGBColor {
+        match self {
+            Learner::AmrlQ => RGBColor(0, 0, 0),
+            Learner::AlwaysMeasuring => RGBColor(150, 150, 150),
+            Learner::CsQl => RGBColor(31, 119, 180),
+            Learner::FullSensing => RGBColor(230, 120, 20),
+        }
+    }
+
+    /// One run of `episodes` episodes of at most `max_moves` moves on `lake`, each
+    /// coordinate at `price`, seeded with `seed`.
+    fn play(
+        self,
+        lake: &FiniteWorld,
+        world: &str,
+        price: f64,
+        rule: SensingRule,
+        (episodes, max_moves): (u32, u32),
+        seed: u64,
+    ) -> Result<Vec<Episode>> {
+        match self {
+            Learner::AmrlQ => Ok(amrl(
+                lake,
+                Measuring::Choose,
+                price,
+                rule,
+                episodes,
+                max_moves,
+                seed,
+            )),
+            Learner::AlwaysMeasuring => Ok(amrl(
+                lake,
+                Measuring::Always,
+                price,
+                rule,
+                episodes,
+                max_moves,
+                seed,
+            )),
+            Learner::CsQl => cs_ql(
+                lake,
+                LearnerKind::CsQl,
+                world,
+                price,
+                rule,
+                (episodes, max_moves),
+                seed,
+            ),
+            Learner::FullSensing => cs_ql(
+                lake,
+                LearnerKind::FullSensing,
+                world,
+                price,
+                rule,
+                (episodes, max_moves),
+                seed,
+            ),
+        }
+    }
+}
+
+/// AMRL-Q or the always-measuring learner, measuring the whole state: every coordinate
+/// at once.
+fn amrl(
+    lake: &FiniteWorld,
+    measuring: Measuring,
+    price: f64,
+    rule: SensingRule,
+    episodes: u32,
+    max_moves: u32,
+    seed: u64,
+) -> Vec<Episode> {
+    let params = AmrlParams {
+        measuring,
+        ..AmrlParams::default()
+    };
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    csql::amrl_q(
+        lake,
+        &params,
+        2.0 * price,
+        rule,
+        episodes,
+        max_moves,
+        &mut rng,
+    )
+}
+
+/// CS-QL (the resetting strategy) or full sensing, with the paper's settings and the
+/// lake's move cap; each coordinate costs 1 and is priced `price` reward units.
+fn cs_ql(
+    lake: &FiniteWorld,
+    kind: LearnerKind,
+    world: &str,
+    price: f64,
+    rule: SensingRule,
+    (episodes, max_moves): (u32, u32),
+    seed: u64,
+) -> Result<Vec<Episode>> {
+    let mut settings = RunSettings::tan1991(world, StrategyKind::Resetting, seed);
+    if kind != LearnerKind::CsQl {
+        settings = settings.with_learner(kind);
+    }
+    settings.max_moves = MoveCap::new(u64::from(max_moves))?;
+    Ok(csql::costed_episodes(
+        lake, &settings, rule, price, episodes,
+    )?)
 }
 
 /// What the job list is: shards of one list agree on it.
@@ -235,25 +358,9 @@ fn run_job(
     let (world, episodes, max_moves) = WORLDS[j.world];
     let lake = &lakes[&(j.world, j.dynamics)];
     let seed = def.seed + j.run;
-    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
-    let measuring = match j.learner {
-        Learner::AmrlQ => Measuring::Choose,
-        Learner::AlwaysMeasuring => Measuring::Always,
-    };
-    let params = AmrlParams {
-        measuring,
-        ..AmrlParams::default()
-    };
-    // Both measure the whole state: every coordinate at once.
-    let run: Vec<Episode> = csql::amrl_q(
-        lake,
-        &params,
-        2.0 * j.price,
-        j.rule,
-        episodes,
-        max_moves,
-        &mut rng,
-    );
+    let run = j
+        .learner
+        .play(lake, world, j.price, j.rule, (episodes, max_moves), seed)?;
     Ok(JobResult {
         id,
         world: world.to_string(),
@@ -460,7 +567,13 @@ fn draw(path: &Path, world: &str, rows: &[Row<'_>]) -> Result<()> {
     let plot_err = |e: &dyn std::fmt::Display| anyhow!("drawing {}: {e}", path.display());
     let mut svg = String::new();
     let (pw, ph) = (520_u32, 380_u32);
-    let base = SVGBackend::with_string(&mut svg, (pw * 3, ph + 50)).into_drawing_area();
+    // The legend below the panels: a column per learner, a row per price.
+    let learners: Vec<Learner> = Learner::ALL
+        .into_iter()
+        .filter(|l| rows.iter().any(|r| r.world == world && r.learner == *l))
+        .collect();
+    let legend_h = 30 + 22 * PRICES.len() as u32;
+    let base = SVGBackend::with_string(&mut svg, (pw * 3, ph + 50 + legend_h)).into_drawing_area();
     base.fill(&WHITE).map_err(|e| plot_err(&e))?;
     let root = base
         .titled(
@@ -470,9 +583,9 @@ fn draw(path: &Path, world: &str, rows: &[Row<'_>]) -> Result<()> {
             ("sans-serif", 20),
         )
         .map_err(|e| plot_err(&e))?;
-    let panels = root.split_evenly((1, 3));
-    let grey = RGBColor(140, 140, 140);
-    for (i, (panel, dynamics)) in panels.iter().zip(Dynamics::ALL).enumerate() {
+    let (top, legend) = root.split_vertically(ph + 20);
+    let panels = top.split_evenly((1, 3));
+    for (panel, dynamics) in panels.iter().zip(Dynamics::ALL) {
         let lines: Vec<&Row<'_>> = rows
             .iter()
             .filter(|r| {
@@ -507,62 +620,86 @@ fn draw(path: &Path, world: &str, rows: &[Row<'_>]) -> Result<()> {
             .map_err(|e| plot_err(&e))?;
         // AMRL-Q plays its last 10% of episodes greedily.
         let greedy = episodes * 0.9;
-        let dashes = RGBColor(120, 120, 120);
         chart
             .draw_series(DashedLineSeries::new(
                 vec![(greedy, low), (greedy, 1.05)],
                 4,
                 4,
-                dashes.stroke_width(1),
+                GREEDY.stroke_width(1),
             ))
-            .map_err(|e| plot_err(&e))?
-            .label("last 10% of episodes: greedy")
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 24, y)], dashes.stroke_width(1))
-            });
-        // Colour by price, stroke by learner: AMRL-Q solid, always measuring dashed.
+            .map_err(|e| plot_err(&e))?;
+        // Colour by learner, stroke by price: solid at the lower price, dashed at the
+        // higher.
         for line in &lines {
-            let colour = if line.price == PRICES[0] { BLACK } else { grey };
-            let style = colour.stroke_width(2);
+            let style = line.learner.colour().stroke_width(2);
             let points: Vec<(f64, f64)> = line
                 .curve()
                 .iter()
                 .enumerate()
                 .map(|(b, &y)| (((b as f64) + 0.5) * BLOCK as f64, y))
                 .collect();
-            let label = format!("{}, {} per coordinate", line.learner.name(), line.price);
-            let drawn = match line.learner {
-                Learner::AmrlQ => chart.draw_series(LineSeries::new(points, style)),
-                Learner::AlwaysMeasuring => {
-                    chart.draw_series(DashedLineSeries::new(points, 6, 4, style))
-                }
+            let dashed = line.price != PRICES[0];
+            if dashed {
+                chart.draw_series(DashedLineSeries::new(points, 6, 4, style))
+            } else {
+                chart.draw_series(LineSeries::new(points, style))
             }
             .map_err(|e| plot_err(&e))?;
-            let dashed = line.learner == Learner::AlwaysMeasuring;
-            drawn.label(label).legend(move |(x, y)| {
-                if dashed {
-                    PathElement::new(vec![(x, y), (x + 8, y)], style)
-                } else {
-                    PathElement::new(vec![(x, y), (x + 24, y)], style)
-                }
-            });
-        }
-        if i == 0 {
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::LowerRight)
-                .background_style(WHITE.mix(0.9))
-                .border_style(RGBColor(150, 150, 150))
-                .label_font(("sans-serif", 13))
-                .draw()
-                .map_err(|e| plot_err(&e))?;
         }
     }
+    draw_legend(&legend, &learners, pw * 3).map_err(|e| plot_err(&e))?;
     root.present().map_err(|e| plot_err(&e))?;
     drop(panels);
+    drop(top);
+    drop(legend);
     drop(root);
     drop(base);
     crate::files::write_atomic(path, svg)
+}
+
+/// The dashed line where AMRL-Q's greedy last tenth begins.
+const GREEDY: RGBColor = RGBColor(120, 120, 120);
+
+/// The figure's legend in `area` (`width` wide): a column per learner, a line per price
+/// (solid at the lower, dashed at the higher), and the greedy tenth's marker.
+fn draw_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    learners: &[Learner],
+    width: u32,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let font = ("sans-serif", 14).into_font().color(&BLACK);
+    let columns = learners.len() as i32 + 1;
+    let column = width as i32 / columns;
+    let sample = |x: i32, y: i32, colour: RGBColor, dashed: bool, width: u32| {
+        let style = colour.stroke_width(width);
+        if dashed {
+            (0..4)
+                .map(|k| PathElement::new(vec![(x + 9 * k, y), (x + 9 * k + 5, y)], style))
+                .collect::<Vec<_>>()
+        } else {
+            vec![PathElement::new(vec![(x, y), (x + 32, y)], style)]
+        }
+    };
+    for (c, learner) in learners.iter().enumerate() {
+        let x = 40 + column * c as i32;
+        for (r, price) in PRICES.iter().enumerate() {
+            let y = 14 + 22 * r as i32;
+            for p in sample(x, y, learner.colour(), r > 0, 2) {
+                area.draw(&p)?;
+            }
+            area.draw(&Text::new(
+                format!("{}, {price} per coordinate", learner.name()),
+                (x + 42, y - 7),
+                font.clone(),
+            ))?;
+        }
+    }
+    let x = 40 + column * learners.len() as i32;
+    for p in sample(x, 14, GREEDY, true, 1) {
+        area.draw(&p)?;
+    }
+    area.draw(&Text::new("AMRL-Q's greedy last 10%", (x + 42, 7), font))?;
+    Ok(())
 }
 
 #[cfg(test)]
@@ -581,7 +718,7 @@ mod tests {
     fn every_job_is_numbered_once() {
         let d = def(3);
         let n = total(&d).unwrap();
-        assert_eq!(n, 2 * 3 * 2 * 2 * 2 * 3);
+        assert_eq!(n, 2 * 3 * 2 * 2 * 4 * 3);
         let jobs: Vec<Job> = (0..n).map(|id| job(&d, id)).collect();
         for (i, a) in jobs.iter().enumerate() {
             assert!(jobs[i + 1..].iter().all(|b| b != a), "{a:?} twice");

@@ -34,7 +34,8 @@ use serde::{Deserialize, Serialize};
 /// assert_eq!((p.measure_bias, p.greedy_share), (0.1, 0.1));
 /// assert_eq!(p.measuring, csql::Measuring::Choose);
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
 pub struct AmrlParams {
     /// The learning rate of the Q update (0.3).
     pub learning_rate: LearningRate,
@@ -49,6 +50,42 @@ pub struct AmrlParams {
     pub greedy_share: f64,
     /// Whether the agent chooses to measure (AMRL-Q) or measures at every step.
     pub measuring: Measuring,
+}
+
+impl AmrlParams {
+    /// Whether every parameter is the default (for serde's `skip_serializing_if`).
+    ///
+    /// ```
+    /// assert!(csql::AmrlParams::default().is_default());
+    /// ```
+    pub fn is_default(&self) -> bool {
+        *self == AmrlParams::default()
+    }
+
+    /// Check the parameters their types do not: a finite measuring bias, a greedy share
+    /// within `[0, 1]` (the settings file's table `[amrl_q]` names them in errors).
+    ///
+    /// ```
+    /// let mut p = csql::AmrlParams::default();
+    /// assert!(p.validate().is_ok());
+    /// p.greedy_share = 1.5;
+    /// assert!(p.validate().unwrap_err().to_string().contains("amrl_q.greedy_share"));
+    /// ```
+    pub fn validate(&self) -> Result<(), crate::Error> {
+        if !self.measure_bias.is_finite() {
+            return Err(crate::Error::InvalidSetting {
+                value: format!("amrl_q.measure_bias = {}", self.measure_bias),
+                expected: "a finite number",
+            });
+        }
+        if !(0.0..=1.0).contains(&self.greedy_share) {
+            return Err(crate::Error::InvalidSetting {
+                value: format!("amrl_q.greedy_share = {}", self.greedy_share),
+                expected: "a share from 0 to 1",
+            });
+        }
+        Ok(())
+    }
 }
 
 /// Whether the agent chooses to measure.

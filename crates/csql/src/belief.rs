@@ -1,4 +1,4 @@
-//! Sensing by belief (specification 6.12): an agent that learns a model of the world from
+//! Sensing by belief (specification 6.13): an agent that learns a model of the world from
 //! what it measures, plans over the beliefs that model lets it reach, and after each move
 //! senses nothing, or only the features that separate the states it may be in, when the
 //! plan says that is worth its price.

@@ -20,7 +20,8 @@ use crate::extensions::{Extensions, Matching, WorldExtras};
 use crate::learner::{CsQlSettings, Learner, LearnerKind, PAPER_RANDOM_MOVES, UTreeParams};
 use crate::predict::level::{PredictSensing, Prediction};
 use crate::settings::{
-    JudgeSettings, MAX_ROWS, MAX_SETTINGS_BYTES, MapSource, NonNegative, RunSettings, TrialCap,
+    CostlySettings, JudgeSettings, MAX_ROWS, MAX_SETTINGS_BYTES, MapSource, NonNegative,
+    RunSettings, TrialCap,
 };
 use crate::strategy::StrategyKind;
 
@@ -104,6 +105,34 @@ pub struct SettingsDraft {
     /// `max_rows`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_rows: Option<usize>,
+    /// The table `[amrl_q]` (AMRL-Q only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub amrl_q: Option<crate::AmrlParams>,
+    /// The table `[costly]`: sensing priced in reward units.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub costly: Option<CostlyTable>,
+}
+
+/// The settings file's table `[costly]`: `price` (reward units per unit of sensing cost;
+/// the table means nothing without it) and `rule` (`with-move`, the default, or
+/// `after-outcome`).
+///
+/// ```
+/// let d = csql::SettingsDraft::from_toml("[costly]\nprice = 0.025\nrule = \"after-outcome\"", "f").unwrap();
+/// let c = d.build().unwrap().costly.unwrap();
+/// assert_eq!((c.price, c.rule), (0.025, mdp::SensingRule::AfterOutcome));
+/// let d = csql::SettingsDraft::from_toml("[costly]\nrule = \"after-outcome\"", "f").unwrap();
+/// assert!(d.build().unwrap_err().to_string().contains("costly.price"));
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CostlyTable {
+    /// `price`: reward units per unit of sensing cost.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub price: Option<f64>,
+    /// `rule`: when sensing is decided.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rule: Option<mdp::SensingRule>,
 }
 
 /// The settings file's table `[extensions]`: CS-QL's extensions ([`Extensions`]) and how
@@ -278,6 +307,18 @@ const TABLES: &[(&str, &[&str])] = &[
             "patience",
         ],
     ),
+    (
+        "amrl_q",
+        &[
+            "learning_rate",
+            "epsilon",
+            "discount",
+            "measure_bias",
+            "greedy_share",
+            "measuring",
+        ],
+    ),
+    ("costly", &["price", "rule"]),
 ];
 
 /// The keys of the top level that are not tables.
@@ -437,7 +478,9 @@ impl SettingsDraft {
             extensions,
             learner,
             u_tree,
-            max_rows
+            max_rows,
+            amrl_q,
+            costly
         );
     }
 
@@ -448,6 +491,7 @@ impl SettingsDraft {
         self.predict_sensing = None;
         self.prediction = None;
         self.u_tree = None;
+        self.amrl_q = None;
         if let Some(table) = &mut self.extensions {
             let (_, judge) = table.split();
             *table = ExtensionsTable::from_parts(Extensions::default(), judge);
@@ -482,6 +526,28 @@ impl SettingsDraft {
                 "[u_tree] tunes learner = \"u-tree\"",
             );
         }
+        if kind != LearnerKind::AmrlQ && self.amrl_q.is_some_and(|p| !p.is_default()) {
+            return conflict(
+                "[amrl_q] settings".to_string(),
+                "[amrl_q] tunes learner = \"amrl-q\"",
+            );
+        }
+        let costly = match self.costly {
+            None => None,
+            Some(CostlyTable { price: None, .. }) => {
+                return Err(Error::InvalidSetting {
+                    value: "[costly] without costly.price".to_string(),
+                    expected: "costly.price, reward units per unit of sensing cost",
+                });
+            }
+            Some(CostlyTable {
+                price: Some(price),
+                rule,
+            }) => Some(CostlySettings {
+                price,
+                rule: rule.unwrap_or(mdp::SensingRule::WithMove),
+            }),
+        };
         let learner = match kind {
             LearnerKind::CsQl => Learner::CsQl(CsQlSettings {
                 strategy: self.strategy.unwrap_or(StrategyKind::Resetting),
@@ -490,7 +556,7 @@ impl SettingsDraft {
                 prediction: self.prediction.unwrap_or_default(),
                 extensions,
             }),
-            LearnerKind::UTree | LearnerKind::FullSensing => {
+            LearnerKind::UTree | LearnerKind::FullSensing | LearnerKind::AmrlQ => {
                 let why =
                     "it is a setting of CS-QL, and the baselines have none of CS-QL's settings";
                 if let Some(k) = self.strategy {
@@ -511,6 +577,7 @@ impl SettingsDraft {
                 }
                 match kind {
                     LearnerKind::UTree => Learner::UTree(self.u_tree.unwrap_or_default()),
+                    LearnerKind::AmrlQ => Learner::AmrlQ(self.amrl_q.unwrap_or_default()),
                     _ => Learner::FullSensing,
                 }
             }
@@ -530,6 +597,7 @@ impl SettingsDraft {
             world: self.world.clone().unwrap_or_default(),
             judge,
             max_rows: self.max_rows.unwrap_or(MAX_ROWS),
+            costly,
         };
         settings.validate()?;
         Ok(settings)
@@ -571,6 +639,14 @@ impl From<&RunSettings> for SettingsDraft {
                 _ => None,
             },
             max_rows: Some(s.max_rows).filter(|n| *n != MAX_ROWS),
+            amrl_q: match s.learner {
+                Learner::AmrlQ(p) if !p.is_default() => Some(p),
+                _ => None,
+            },
+            costly: s.costly.map(|c| CostlyTable {
+                price: Some(c.price),
+                rule: Some(c.rule),
+            }),
         }
     }
 }

@@ -6,6 +6,7 @@
 //! | `cs-ql` | CLASSIFY over descriptions refined on a decrease of V | [`crate::Classify`] |
 //! | `u-tree` | a tree split by a Kolmogorov-Smirnov test on future discounted returns | [`crate::UTree`] |
 //! | `full-sensing` | every sensable feature measured at every step | [`crate::FullView`] |
+//! | `amrl-q` | the believed state, measured whole when the learner chooses to (not a learner of [`crate::run`]; `csrl run` plays it for a fixed number of episodes) | [`crate::AmrlParams`] |
 //!
 //! Every learner is judged the same way ([`crate::Judging`]): by the oracle's verdicts
 //! where the world is deterministic and the run in the paper's setting (for U-Tree, whose
@@ -40,6 +41,10 @@ pub enum Learner {
     UTree(UTreeParams),
     /// Q-learning on the whole sensable view ([`crate::FullView`]).
     FullSensing,
+    /// AMRL-Q ([`crate::amrl_q`]): Q-learning over the state and whether to measure it
+    /// whole, played for a fixed number of episodes on the costed return (specification
+    /// 6.11). `csrl run` plays it; [`crate::run`] refuses it.
+    AmrlQ(crate::AmrlParams),
 }
 
 impl Learner {
@@ -63,6 +68,7 @@ impl Learner {
             Learner::CsQl(_) => LearnerKind::CsQl,
             Learner::UTree(_) => LearnerKind::UTree,
             Learner::FullSensing => LearnerKind::FullSensing,
+            Learner::AmrlQ(_) => LearnerKind::AmrlQ,
         }
     }
 
@@ -93,6 +99,7 @@ impl From<LearnerKind> for Learner {
             LearnerKind::CsQl => Learner::cs_ql(StrategyKind::Resetting),
             LearnerKind::UTree => Learner::UTree(UTreeParams::default()),
             LearnerKind::FullSensing => Learner::FullSensing,
+            LearnerKind::AmrlQ => Learner::AmrlQ(crate::AmrlParams::default()),
         }
     }
 }
@@ -163,10 +170,14 @@ pub enum LearnerKind {
     UTree,
     /// Q-learning on the whole sensable view, charged every feature at every step.
     FullSensing,
+    /// AMRL-Q, measuring the whole state or not at each step, on the costed return
+    /// (not a learner of [`crate::run`]: `csrl run` plays it for `max_trials` episodes).
+    AmrlQ,
 }
 
 impl LearnerKind {
-    /// The three learners, in order.
+    /// The three learners of [`crate::run`], in order (AMRL-Q, played on episodes of the
+    /// costed return, is not among them).
     ///
     /// ```
     /// assert_eq!(csql::LearnerKind::ALL.len(), 3);
@@ -177,7 +188,7 @@ impl LearnerKind {
         LearnerKind::FullSensing,
     ];
 
-    /// The setting's value: `cs-ql`, `u-tree` or `full-sensing`.
+    /// The setting's value: `cs-ql`, `u-tree`, `full-sensing` or `amrl-q`.
     ///
     /// ```
     /// assert_eq!(csql::LearnerKind::CsQl.name(), "cs-ql");
@@ -187,6 +198,7 @@ impl LearnerKind {
             LearnerKind::CsQl => "cs-ql",
             LearnerKind::UTree => "u-tree",
             LearnerKind::FullSensing => "full-sensing",
+            LearnerKind::AmrlQ => "amrl-q",
         }
     }
 
@@ -211,10 +223,11 @@ impl std::str::FromStr for LearnerKind {
     fn from_str(s: &str) -> Result<LearnerKind, Error> {
         LearnerKind::ALL
             .into_iter()
+            .chain([LearnerKind::AmrlQ])
             .find(|k| k.name() == s)
             .ok_or_else(|| Error::InvalidSetting {
                 value: s.to_string(),
-                expected: "cs-ql, u-tree or full-sensing",
+                expected: "cs-ql, u-tree, full-sensing or amrl-q",
             })
     }
 }

@@ -156,6 +156,7 @@ mod belief;
     reason = "internal invariants: feature spaces hold valid costs; a node with counts has a candidate feature"
 )]
 mod classify;
+mod costly;
 mod detector;
 mod draft;
 mod error;
@@ -221,10 +222,11 @@ mod view;
 pub use amrl::{AmrlParams, CostlySummary, Episode, Measuring, amrl_q};
 pub use belief::{BeliefParams, belief_planning};
 pub use classify::{Classification, Classify};
+pub use costly::{AmrlReport, CostedRun, amrl_report, costed_episodes};
 pub use detector::{
     ActionDrop, AnyDrop, Detector, DetectorKind, RateParams, RateTest, RunDetector,
 };
-pub use draft::{DEFAULT_MAP, ExtensionsTable, SettingsDraft};
+pub use draft::{CostlyTable, DEFAULT_MAP, ExtensionsTable, SettingsDraft};
 pub use error::{Error, SettingsProblem};
 pub use extensions::{Extensions, Matching, WorldExtras};
 pub use figure::{descriptions_svg, descriptions_table, policy_svg};
@@ -259,7 +261,8 @@ pub use run::{
 };
 pub use sensor::Sensor;
 pub use settings::{
-    JudgeSettings, MAX_ROWS, MAX_SETTINGS_BYTES, MapSource, NonNegative, RunSettings, TrialCap,
+    CostlySettings, JudgeSettings, MAX_ROWS, MAX_SETTINGS_BYTES, MapSource, NonNegative,
+    RunSettings, TrialCap,
 };
 pub use setup::Setup;
 pub use stepper::{Moment, Sense, StepError, Stepper};

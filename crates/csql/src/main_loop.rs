@@ -259,7 +259,7 @@ pub enum RefineFrom {
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Trial {
     /// The state the agent is in, as the world it senses through names it.
-    state: StateId,
+    pub(crate) state: StateId,
     /// Its row.
     row: RowId,
     /// Random moves left (the random strategy).

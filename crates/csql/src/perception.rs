@@ -231,12 +231,7 @@ impl FullView {
         let mut cost = vec![0.0; world.num_states()];
         let every: Vec<mdp::Feature> = (0..world.num_features() as u32).map(mdp::Feature).collect();
         for s in world.states() {
-            // On a grid, every cell of the bordered world (the paper's reference);
-            // elsewhere, every feature.
-            let features: Vec<mdp::Feature> = match world.grid().zip(world.local_space()) {
-                Some((grid, space)) => crate::grid::bordered_features(grid, space, s, 1).collect(),
-                None => every.clone(),
-            };
+            let features = full_features(world, s, &every);
             cost[s.index()] = features.iter().map(|&f| world.price(f)).sum();
             let view = features
                 .into_iter()
@@ -282,6 +277,16 @@ impl FullView {
         2 * world.states().len() as u64 * per_state
     }
 
+    /// What full sensing reads in state `s` of `world`, any state (a terminal one
+    /// included): the price of every feature of its view.
+    pub(crate) fn cost_of<W: World + ?Sized>(world: &W, s: StateId) -> f64 {
+        let every: Vec<mdp::Feature> = (0..world.num_features() as u32).map(mdp::Feature).collect();
+        full_features(world, s, &every)
+            .iter()
+            .map(|&f| world.price(f))
+            .sum()
+    }
+
     /// How many different views the world's states show.
     ///
     /// ```
@@ -296,6 +301,19 @@ impl FullView {
 
     fn class_of(&self, s: StateId) -> usize {
         self.class[s.index()].expect("the goal is never classified")
+    }
+}
+
+/// The features of state `s`'s whole view: on a grid, every cell of the bordered world
+/// (the paper's reference); elsewhere, every feature (`every`).
+fn full_features<W: World + ?Sized>(
+    world: &W,
+    s: StateId,
+    every: &[mdp::Feature],
+) -> Vec<mdp::Feature> {
+    match world.grid().zip(world.local_space()) {
+        Some((grid, space)) => crate::grid::bordered_features(grid, space, s, 1).collect(),
+        None => every.to_vec(),
     }
 }
 

@@ -180,6 +180,10 @@ pub struct RunReport {
     /// passed the setting `max_rows` (at most [`crate::MAX_ROWS`]). Absent otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stopped: Option<String>,
+    /// Every trial scored by its costed return, when the settings price sensing
+    /// (`[costly]`; specification 6.12). Absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub costly: Option<crate::CostedRun>,
 }
 
 impl RunReport {
@@ -196,6 +200,7 @@ impl RunReport {
             crate::Learner::CsQl(q) => format!("{} strategy", q.strategy),
             crate::Learner::UTree(_) => "U-Tree".to_string(),
             crate::Learner::FullSensing => "full sensing".to_string(),
+            crate::Learner::AmrlQ(_) => "AMRL-Q".to_string(),
         }
     }
 }
@@ -593,5 +598,6 @@ pub(crate) fn report<W: World + ?Sized, P: Perception + Describes + crate::view:
                 settings.max_rows, learned.trials
             )
         }),
+        costly: None,
     }
 }

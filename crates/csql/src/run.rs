@@ -54,12 +54,25 @@ pub fn run_settings(
     settings: &RunSettings,
     observer: &mut dyn Observer,
 ) -> Result<RunReport, Error> {
+    not_amrl_q(settings)?;
     match Resolved::new(settings)? {
         Resolved::Grid(setup) => Ok(run_observed(&setup, settings, observer)),
         Resolved::Finite { world, oracle } => {
             let scene = Scene::new(&world, &oracle, &oracle, world.name());
             run_in(&scene, settings, observer)
         }
+    }
+}
+
+/// AMRL-Q is played on episodes of the costed return ([`crate::amrl_q`]), not in a run.
+fn not_amrl_q(settings: &RunSettings) -> Result<(), Error> {
+    match settings.learner {
+        Learner::AmrlQ(_) => Err(Error::Conflict {
+            first: "learner = amrl-q".to_string(),
+            second: "a run judged by trials (csql::run)".to_string(),
+            why: "AMRL-Q is played for a fixed number of episodes on the costed return (csql::amrl_q, or csrl run)",
+        }),
+        _ => Ok(()),
     }
 }
 
@@ -95,6 +108,7 @@ pub fn run_in<W: World + ?Sized>(
     observer: &mut dyn Observer,
 ) -> Result<RunReport, Error> {
     settings.validate()?;
+    not_amrl_q(settings)?;
     if scene.world.grid().is_none() {
         if settings.predict_sensing() == PredictSensing::Motion {
             return Err(Error::GridOnly {
@@ -185,6 +199,25 @@ fn run_classify<W: World + ?Sized>(
     classify: Classify,
     observer: &mut dyn Observer,
 ) -> (RunReport, Representation) {
+    let (mut report, rep) = learn_classify(scene, settings, classify, observer);
+    // With sensing priced (`[costly]`), the run's trials again, each scored by its
+    // costed return: the same trials, as `costed_episodes` plays them from the same
+    // generator. Every learner and setting it refuses was refused by
+    // `RunSettings::validate` already.
+    if settings.costly.is_some() {
+        report.costly = crate::costly::costed_run(scene.world, settings, report.trials)
+            .ok()
+            .flatten();
+    }
+    (report, rep)
+}
+
+fn learn_classify<W: World + ?Sized>(
+    scene: &Scene<'_, W>,
+    settings: &RunSettings,
+    classify: Classify,
+    observer: &mut dyn Observer,
+) -> (RunReport, Representation) {
     // The sensors' own generator: the run's, 2^128 draws ahead (drawn from only under
     // sensor noise).
     let mut sensor_rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
@@ -194,7 +227,9 @@ fn run_classify<W: World + ?Sized>(
         .with_noise(settings.world.sensor_noise, sensor_rng)
         .with_extensions(&extensions);
     let (q, predicting) = match &settings.learner {
-        Learner::FullSensing => {
+        // AMRL-Q is refused before a run of `csql::run` starts (`not_amrl_q`); a
+        // setup prepared for it learns as full sensing, its nearest learner here.
+        Learner::FullSensing | Learner::AmrlQ(_) => {
             let perception = FullView::new(scene.world);
             let (report, _) = learn_and_report(scene, settings, perception, Never, observer);
             return (report, classify.into_representation());

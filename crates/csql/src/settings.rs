@@ -290,6 +290,40 @@ pub struct RunSettings {
     /// The most rows the representation may reach before the run ends, saying so (at
     /// least 1, at most and by default [`MAX_ROWS`]).
     pub max_rows: usize,
+    /// Sensing priced in reward units (the TOML table `[costly]`): when set, a report
+    /// also scores every trial by its costed return (specification 6.10 and 6.12).
+    /// AMRL-Q needs it; U-Tree and CS-QL with prediction or memory refuse it.
+    pub costly: Option<CostlySettings>,
+}
+
+/// Sensing priced in reward units: the TOML table `[costly]` (`price`, and `rule`,
+/// `with-move` by default).
+///
+/// ```
+/// let c = csql::CostlySettings::new(0.025);
+/// assert_eq!((c.price, c.rule), (0.025, mdp::SensingRule::WithMove));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CostlySettings {
+    /// Reward units per unit of sensing cost: a feature of cost `c` is priced `c *
+    /// price` (the world's whole state, for AMRL-Q, the sum over its features).
+    pub price: f64,
+    /// When sensing is decided: with the move (the published rule) or after its outcome.
+    pub rule: mdp::SensingRule,
+}
+
+impl CostlySettings {
+    /// `price` reward units per unit of cost, sensing decided with the move.
+    ///
+    /// ```
+    /// assert_eq!(csql::CostlySettings::new(1.0).price, 1.0);
+    /// ```
+    pub fn new(price: f64) -> CostlySettings {
+        CostlySettings {
+            price,
+            rule: mdp::SensingRule::WithMove,
+        }
+    }
 }
 
 /// How a run is judged: one explicit choice, `judge_by_quality`, and the schedule of the
@@ -372,6 +406,7 @@ impl RunSettings {
             world: WorldExtras::default(),
             judge: JudgeSettings::default(),
             max_rows: MAX_ROWS,
+            costly: None,
         }
     }
 
@@ -504,10 +539,49 @@ impl RunSettings {
                 "max_rows from 1 to 100000 (csql::MAX_ROWS)",
             );
         }
+        self.validate_costly()?;
         match &self.learner {
             Learner::CsQl(q) => self.validate_cs_ql(q),
             Learner::UTree(p) => p.validate(),
             Learner::FullSensing => Ok(()),
+            Learner::AmrlQ(p) => p.validate(),
+        }
+    }
+
+    /// `[costly]`: a finite price of at least 0, for the learners that are scored on it.
+    fn validate_costly(&self) -> Result<(), Error> {
+        let Some(c) = self.costly else {
+            if self.learner.kind() == LearnerKind::AmrlQ {
+                return Err(Error::Conflict {
+                    first: "learner = amrl-q".to_string(),
+                    second: "no [costly] price".to_string(),
+                    why: "AMRL-Q weighs measuring against reward: give [costly] price (reward units per unit of sensing cost; csrl run --price)",
+                });
+            }
+            return Ok(());
+        };
+        if !(c.price.is_finite() && c.price >= 0.0) {
+            return Err(Error::InvalidSetting {
+                value: format!("costly.price = {}", c.price),
+                expected: "a finite price of at least 0 reward units per unit of sensing cost",
+            });
+        }
+        let conflict = |second: String| {
+            Err(Error::Conflict {
+                first: "[costly] price".to_string(),
+                second,
+                why: "costed episodes are scored for cs-ql (sensing every state it reaches), full-sensing and amrl-q",
+            })
+        };
+        match &self.learner {
+            Learner::UTree(_) => conflict("learner = u-tree".to_string()),
+            Learner::CsQl(q) if !q.predict_sensing.is_off() => {
+                conflict(format!("predict_sensing = {}", q.predict_sensing))
+            }
+            Learner::CsQl(q) if q.extensions.memory > 0 => {
+                conflict(format!("[extensions] memory = {}", q.extensions.memory))
+            }
+            _ => Ok(()),
         }
     }
 

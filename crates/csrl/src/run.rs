@@ -31,8 +31,8 @@ pub struct RunArgs {
     /// A TOML file of settings that override the paper's (beta, gamma, temperature,
     /// max_moves, random_moves, tolerance, decrease_threshold, max_trials, map,
     /// strategy, seed, predict_sensing, learner and the tables `[prediction]`,
-    /// `[world]`, `[extensions]` and `[u_tree]`); flags given here
-    /// override the file.
+    /// `[world]`, `[extensions]`, `[u_tree]`, `[amrl_q]` and `[costly]`); flags given
+    /// here override the file.
     #[arg(long)]
     config: Option<PathBuf>,
     /// off, learned or motion: predict the next description instead of sensing it
@@ -40,13 +40,28 @@ pub struct RunArgs {
     /// the config tunes it).
     #[arg(long)]
     predict_sensing: Option<csql::PredictSensing>,
-    /// cs-ql (the default), u-tree or full-sensing: the learner (default: the config's
-    /// `learner`, else cs-ql). Every learner is judged the same way: by the oracle's
-    /// convergence in a deterministic world in the paper's setting, else by the policy
-    /// quality; every report also gives the cost and trials until quality 0.95.
+    /// cs-ql (the default), u-tree, full-sensing or amrl-q: the learner (default: the
+    /// config's `learner`, else cs-ql). The first three are judged the same way: by the
+    /// oracle's convergence in a deterministic world in the paper's setting, else by the
+    /// policy quality; every report also gives the cost and trials until quality 0.95.
+    /// amrl-q (AMRL-Q, its published parameters by default, tuned by the config's
+    /// `[amrl_q]`) plays exactly `max_trials` episodes and needs `--price`; its report is
+    /// the costed return of every episode and their summary.
     #[arg(long)]
     learner: Option<csql::LearnerKind>,
-    /// Stop an unconverged run after this many trials.
+    /// Price sensing in reward units: a feature of cost c costs c times PRICE (the
+    /// config's `[costly] price`). The report then also scores every trial by its costed
+    /// return (reward less the prices of what was sensed) and sums them up (cs-ql,
+    /// full-sensing, amrl-q).
+    #[arg(long, value_name = "PRICE")]
+    price: Option<f64>,
+    /// with-move (the published rule: sensing decided with the move, paid even when the
+    /// move ends the episode) or after-outcome: when priced sensing is charged (the
+    /// config's `[costly] rule`, else with-move).
+    #[arg(long, value_parser = parse_rule)]
+    sensing_rule: Option<mdp::SensingRule>,
+    /// Stop an unconverged run after this many trials (amrl-q: the number of episodes
+    /// it plays).
     #[arg(long)]
     max_trials: Option<csql::TrialCap>,
     /// Exit with code 3 if the run does not converge, or, for a run judged by the policy
@@ -83,8 +98,21 @@ impl RunArgs {
             learner: self.learner,
             ..SettingsDraft::default()
         });
+        if self.price.is_some() || self.sensing_rule.is_some() {
+            let table = draft.costly.get_or_insert_default();
+            table.price = self.price.or(table.price);
+            table.rule = self.sensing_rule.or(table.rule);
+        }
         Ok(draft.build()?)
     }
+}
+
+/// `--sensing-rule`.
+fn parse_rule(s: &str) -> Result<mdp::SensingRule, String> {
+    [mdp::SensingRule::WithMove, mdp::SensingRule::AfterOutcome]
+        .into_iter()
+        .find(|r| r.name() == s)
+        .ok_or_else(|| format!("{s:?}: expected with-move or after-outcome"))
 }
 
 /// Shows progress on a terminal (nothing otherwise), keeps the trace only when asked,
@@ -146,6 +174,9 @@ fn progress_bar(len: u32) -> indicatif::ProgressBar {
 pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     let settings = args.settings()?;
     let resolved = csql::Resolved::new(&settings)?;
+    if let csql::Learner::AmrlQ(_) = settings.learner {
+        return run_amrl_q(args, &settings, &resolved, out);
+    }
     if args.svg.is_some() && !matches!(resolved, csql::Resolved::Grid(_)) {
         return Err(csql::Error::GridOnly {
             what: "--svg (the policy drawn on a grid map)",
@@ -208,6 +239,67 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     Ok(())
 }
 
+/// `csrl run --learner amrl-q`: AMRL-Q's episodes, scored.
+fn run_amrl_q(
+    args: &RunArgs,
+    settings: &RunSettings,
+    resolved: &csql::Resolved,
+    out: &mut dyn Write,
+) -> Result<()> {
+    for (given, flag) in [
+        (args.svg.is_some(), "--svg"),
+        (args.require_convergence, "--require-convergence"),
+        (args.trace, "--trace"),
+    ] {
+        if given {
+            return Err(csql::Error::Conflict {
+                first: flag.to_string(),
+                second: "learner = amrl-q".to_string(),
+                why: "AMRL-Q plays a fixed number of episodes, scored by the costed return: no policy to draw, nothing to converge, its every episode already in the report",
+            }
+            .into());
+        }
+    }
+    let report = match resolved {
+        csql::Resolved::Grid(setup) => {
+            csql::amrl_report(&setup.sensed(settings), setup.map.name(), settings)?
+        }
+        csql::Resolved::Finite { world, .. } => csql::amrl_report(world, world.name(), settings)?,
+    };
+    if args.json {
+        writeln!(out, "{}", serde_json::to_string(&report)?)?;
+    } else {
+        writeln!(
+            out,
+            "AMRL-Q on {}, seed {}: {} episodes, the whole state measured at {} reward units",
+            report.map, report.seed, report.costly.summary.episodes, report.whole_state_price
+        )?;
+        print_costly(&report.costly, out)?;
+    }
+    Ok(())
+}
+
+/// The costed return's summary, in two lines.
+fn print_costly(c: &csql::CostedRun, out: &mut dyn Write) -> std::io::Result<()> {
+    let s = &c.summary;
+    writeln!(
+        out,
+        "Costed return (sensing at {} reward units per unit of cost, {}): {:.3} a trial over all {} trials, {:.3} over the last 10%",
+        c.price,
+        c.rule.name(),
+        s.mean_all,
+        s.episodes,
+        s.mean_last10
+    )?;
+    writeln!(
+        out,
+        "Per trial: {:.2} sensing acts, {:.2} moves; {:.1}% reached the goal",
+        s.sensing_per_episode,
+        s.steps_per_episode,
+        100.0 * s.success
+    )
+}
+
 /// The learned policy: on a grid map, the greedy action of each state's description as an
 /// arrow on the map; in any other world, a table of state -> greedy action and
 /// description.
@@ -251,6 +343,7 @@ fn print_report(r: &RunReport, out: &mut dyn Write) -> std::io::Result<()> {
         csql::Learner::CsQl(q) => format!("CS-QL on {} with the {} strategy", r.map, q.strategy),
         csql::Learner::UTree(_) => format!("U-Tree on {}", r.map),
         csql::Learner::FullSensing => format!("Full sensing on {}", r.map),
+        csql::Learner::AmrlQ(_) => format!("AMRL-Q on {}", r.map),
     };
     // The same three lines for every learner, so that runs compare line by line.
     let verdict = match r.judged_by {
@@ -283,6 +376,9 @@ fn print_report(r: &RunReport, out: &mut dyn Write) -> std::io::Result<()> {
     )?;
     if let Some(why) = &r.stopped {
         writeln!(out, "Stopped early: {why}")?;
+    }
+    if let Some(c) = &r.costly {
+        print_costly(c, out)?;
     }
     writeln!(out)?;
     write!(out, "{}", r.table1)?;

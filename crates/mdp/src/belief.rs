@@ -8,7 +8,7 @@
 //! value the start of a world's model; a [`BeliefPlan`] keeps the whole graph, so that an
 //! agent can follow it step by step: [`BeliefPlan::point`] for a known state,
 //! [`BeliefPlan::decide`] for the best choice, [`BeliefPlan::follow`] for the belief the
-//! readings lead to (specification 6.12).
+//! readings lead to (specification 6.13).
 //!
 //! ```
 //! use mdp::{BeliefPlan, CostlyModel, Decision, PlanOptions, SensingMenu, StateId};

@@ -1,0 +1,436 @@
+//! CS-QL and full sensing scored on costed episodes (specification 6.12): the learner of
+//! a run's settings played for a fixed number of episodes, each scored as the
+//! active-measurement benchmark scores AMRL-Q ([`crate::amrl_q`]).
+//!
+//! The learner is the main loop of [`crate::run`], driven episode by episode from the
+//! run's generator exactly as `csql::run` drives it (the same starts, moves and
+//! learning), but for a fixed number of episodes: nothing judges it and nothing stops
+//! it early. Each episode's sensing is what the learner really read in it, each feature
+//! at its price times `reward_per_cost`: CS-QL's CLASSIFY of the start state and of every
+//! state a move reached (a goal or a hole is never classified), with a refinement's
+//! feature read on the state left; full sensing's every feature at every state.
+//!
+//! The two sensing rules differ only at the move that ends an episode:
+//!
+//! * [`SensingRule::AfterOutcome`]: nothing is charged for the state a move that ends
+//!   the episode reaches (the learner does not classify it);
+//! * [`SensingRule::WithMove`]: sensing is chosen with the move, before its outcome, so
+//!   the move that ends the episode is charged what the learner would have read
+//!   classifying the state it reached, learning nothing from it: CS-QL's features along
+//!   its descriptions until one matches or none can (as CLASSIFY would read them, without
+//!   creating a description), full sensing's every feature.
+//!
+//! A move cut by the move cap is not an end of the episode for the learner: the state
+//! reached is classified, and charged, under both rules (as AMRL-Q measures there too).
+//! A sensing act (an [`Episode`]'s `measurements`) is a state classified with at least
+//! one feature read.
+
+use mdp::{SensingRule, StateId, World};
+use qlearn::QTable;
+use rand::SeedableRng;
+use rand_xoshiro::Xoshiro256PlusPlus;
+
+use serde::Serialize;
+
+use crate::amrl::{CostlySummary, Episode};
+use crate::classify::Classify;
+use crate::error::Error;
+use crate::learner::Learner;
+use crate::main_loop::Agent;
+use crate::perception::{FullView, Perception};
+use crate::predict::level::PredictSensing;
+use crate::settings::{CostlySettings, RunSettings};
+use crate::strategy::{Never, Strategy};
+
+/// What a perception would read classifying a state, learning nothing: the charge of a
+/// move that ends an episode under [`SensingRule::WithMove`].
+trait WouldRead: Perception {
+    fn would_read<W: World + ?Sized>(&mut self, world: &W, s: StateId) -> f64;
+}
+
+impl WouldRead for Classify {
+    fn would_read<W: World + ?Sized>(&mut self, world: &W, s: StateId) -> f64 {
+        self.lookup_cost(world, s)
+    }
+}
+
+impl WouldRead for FullView {
+    fn would_read<W: World + ?Sized>(&mut self, world: &W, s: StateId) -> f64 {
+        FullView::cost_of(world, s)
+    }
+}
+
+/// Play the learner of `settings` (CS-QL without prediction or memory, or full sensing)
+/// for exactly `episodes` episodes of at most `settings.max_moves` moves in `world`, and
+/// score each: its undiscounted reward, and the prices of what it sensed (the world's
+/// feature costs times `reward_per_cost`, reward units per unit of cost) under `rule`.
+///
+/// The episodes are those of `csql::run` with the same settings, trial for trial, for as
+/// long as that run goes: under [`SensingRule::AfterOutcome`] their sensing is its
+/// cost times `reward_per_cost`.
+///
+/// ```
+/// use csql::{LearnerKind, RunSettings, StrategyKind};
+/// use mdp::SensingRule;
+/// let options = mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() };
+/// let lake = mdp::builtin_world("frozenlake4x4", &options).unwrap();
+/// let settings = RunSettings::tan1991("frozenlake4x4", StrategyKind::Resetting, 1);
+/// let run = csql::costed_episodes(&lake, &settings, SensingRule::WithMove, 0.025, 200).unwrap();
+/// assert_eq!(run.len(), 200); // never stopped early
+/// let full = settings.clone().with_learner(LearnerKind::FullSensing);
+/// let run = csql::costed_episodes(&lake, &full, SensingRule::AfterOutcome, 0.025, 200).unwrap();
+/// // Full sensing reads the row and the column of every state it classifies.
+/// assert!(run.iter().all(|e| (e.sensing - 0.05 * f64::from(e.measurements)).abs() < 1e-9));
+/// assert!(csql::costed_episodes(&lake, &settings, SensingRule::WithMove, f64::NAN, 1).is_err());
+/// ```
+pub fn costed_episodes<W: World + ?Sized>(
+    world: &W,
+    settings: &RunSettings,
+    rule: SensingRule,
+    reward_per_cost: f64,
+    episodes: u32,
+) -> Result<Vec<Episode>, Error> {
+    if !(reward_per_cost.is_finite() && reward_per_cost >= 0.0) {
+        return Err(Error::InvalidSetting {
+            value: format!("reward_per_cost = {reward_per_cost}"),
+            expected: "a finite price of at least 0 reward units per unit of sensing cost",
+        });
+    }
+    settings.validate()?;
+    crate::resolve::check_with_world(
+        settings,
+        crate::quality::is_deterministic(world),
+        world.grid().is_some(),
+    )?;
+    crate::resolve::check_size(settings, world)?;
+    let refuse = |what: String, why: &'static str| Error::Conflict {
+        first: "costed episodes".to_string(),
+        second: what,
+        why,
+    };
+    // Q and V start at the floor of the world's returns, as in `csql::run`.
+    let floor = crate::quality::value_floor(world, settings.gamma.get());
+    let table = QTable::new(world.num_actions())
+        .and_then(|t| t.starting_at(floor))
+        .map_err(|_| Error::InvalidSetting {
+            value: format!("{} actions, returns from {floor}", world.num_actions()),
+            expected: "a world of at least one action and finite returns",
+        })?;
+    let play = Play {
+        world,
+        settings,
+        rule,
+        reward_per_cost,
+        episodes,
+    };
+    match &settings.learner {
+        Learner::FullSensing => Ok(play.run(FullView::new(world), Never, table)),
+        Learner::CsQl(q) => {
+            if q.predict_sensing != PredictSensing::Off || q.extensions.memory > 0 {
+                return Err(refuse(
+                    "predict_sensing or memory".to_string(),
+                    "they are scored for CS-QL classifying every state it reaches",
+                ));
+            }
+            // CLASSIFY as `csql::run` builds it: the sensors' own generator, the run's
+            // 2^128 draws ahead (drawn from only under sensor noise).
+            let mut sensor_rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
+            sensor_rng.jump();
+            let classify = Classify::new(world)
+                .with_noise(settings.world.sensor_noise, sensor_rng)
+                .with_extensions(&settings.extensions());
+            Ok(play.run(classify, q.strategy.build(q.random_moves), table))
+        }
+        other => Err(refuse(
+            format!("learner = {}", other.kind()),
+            "they are scored for cs-ql, full-sensing and amrl-q",
+        )),
+    }
+}
+
+/// A run's trials scored by their costed return: what a report carries when the settings
+/// price sensing (`[costly]`).
+///
+/// ```
+/// let e = |r: f64| csql::Episode { reward: r, sensing: 0.1, measurements: 2, steps: 3, reached_goal: r > 0.0 };
+/// let c = csql::CostedRun::of(csql::CostlySettings::new(0.05), &[e(0.0), e(1.0)]);
+/// assert_eq!(c.returns.len(), 2);
+/// assert!((c.returns[1] - 0.9).abs() < 1e-12 && (c.summary.mean_all - 0.4).abs() < 1e-12);
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CostedRun {
+    /// Reward units per unit of sensing cost.
+    pub price: f64,
+    /// When sensing was decided.
+    pub rule: SensingRule,
+    /// The costed return of every episode (trial), in order.
+    pub returns: Vec<f64>,
+    /// The episodes summed up.
+    pub summary: CostlySummary,
+}
+
+impl CostedRun {
+    /// The costed returns and summary of `episodes`, scored under `costly`.
+    ///
+    /// ```
+    /// let c = csql::CostedRun::of(csql::CostlySettings::new(0.05), &[]);
+    /// assert_eq!(c.summary.episodes, 0);
+    /// ```
+    pub fn of(costly: CostlySettings, episodes: &[Episode]) -> CostedRun {
+        CostedRun {
+            price: costly.price,
+            rule: costly.rule,
+            returns: episodes.iter().map(Episode::costed_return).collect(),
+            summary: CostlySummary::of(episodes),
+        }
+    }
+}
+
+/// The costed run of `trials` trials of the learner of `settings` in `world`, when the
+/// settings price sensing (`None` otherwise): what `csql::run` attaches to its report.
+pub(crate) fn costed_run<W: World + ?Sized>(
+    world: &W,
+    settings: &RunSettings,
+    trials: u32,
+) -> Result<Option<CostedRun>, Error> {
+    let Some(c) = settings.costly else {
+        return Ok(None);
+    };
+    let episodes = costed_episodes(world, settings, c.rule, c.price, trials)?;
+    Ok(Some(CostedRun::of(c, &episodes)))
+}
+
+/// What `csrl run --learner amrl-q` reports: AMRL-Q played for `max_trials` episodes,
+/// each scored by its costed return.
+///
+/// ```
+/// let mut s = csql::SettingsDraft::from_toml("learner = \"amrl-q\"\nmax_trials = 20\n[costly]\nprice = 0.5", "f")
+///     .unwrap()
+///     .build()
+///     .unwrap();
+/// let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions::default()).unwrap();
+/// let r: csql::AmrlReport = csql::amrl_report(&lake, "frozenlake4x4", &s).unwrap();
+/// let json = serde_json::to_value(&r).unwrap();
+/// assert_eq!(json["learner"], "amrl-q");
+/// assert_eq!(json["settings"]["costly"]["rule"], "with-move");
+/// // Not a learner of `csql::run`.
+/// s.map = "frozenlake4x4".into();
+/// assert!(csql::run(&s).unwrap_err().to_string().contains("learner = amrl-q"));
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct AmrlReport {
+    /// The world's name.
+    pub map: String,
+    /// `amrl-q`.
+    pub learner: crate::LearnerKind,
+    /// The seed of the run's generator.
+    pub seed: u64,
+    /// The price of measuring the whole state, in reward units: `[costly] price` times
+    /// the sum of the world's feature costs.
+    pub whole_state_price: f64,
+    /// Every episode's costed return, and their summary.
+    pub costly: CostedRun,
+    /// The settings.
+    pub settings: RunSettings,
+}
+
+/// AMRL-Q with the parameters of `settings` (`[amrl_q]`) in `world` (named `name`), for
+/// `max_trials` episodes of at most `max_moves` moves, measuring the whole state at
+/// `[costly] price` times the sum of the world's feature costs, under `[costly] rule`,
+/// from one generator seeded with `seed`: exactly [`crate::amrl_q`] with those
+/// arguments.
+///
+/// ```
+/// let mut s = csql::RunSettings::tan1991("frozenlake4x4", csql::StrategyKind::Lazy, 3)
+///     .with_learner(csql::LearnerKind::AmrlQ);
+/// s.costly = Some(csql::CostlySettings::new(0.025));
+/// s.max_trials = csql::TrialCap::new(300).unwrap();
+/// let options = mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() };
+/// let lake = mdp::builtin_world("frozenlake4x4", &options).unwrap();
+/// let r = csql::amrl_report(&lake, "frozenlake4x4", &s).unwrap();
+/// assert_eq!((r.costly.returns.len(), r.whole_state_price), (300, 0.05));
+/// ```
+pub fn amrl_report<W: World + ?Sized>(
+    world: &W,
+    name: &str,
+    settings: &RunSettings,
+) -> Result<AmrlReport, Error> {
+    settings.validate()?;
+    let (Learner::AmrlQ(params), Some(costly)) = (&settings.learner, settings.costly) else {
+        return Err(Error::Conflict {
+            first: format!("learner = {}", settings.learner.kind()),
+            second: "an AMRL-Q report".to_string(),
+            why: "it needs learner = amrl-q and [costly] price",
+        });
+    };
+    let whole: f64 = (0..world.num_features() as u32)
+        .map(|f| world.price(mdp::Feature(f)))
+        .sum();
+    let whole_state_price = costly.price * whole;
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
+    let episodes = crate::amrl::amrl_q(
+        world,
+        params,
+        whole_state_price,
+        costly.rule,
+        settings.max_trials.get(),
+        settings.max_moves.get(),
+        &mut rng,
+    );
+    Ok(AmrlReport {
+        map: name.to_string(),
+        learner: crate::LearnerKind::AmrlQ,
+        seed: settings.seed,
+        whole_state_price,
+        costly: CostedRun::of(costly, &episodes),
+        settings: settings.clone(),
+    })
+}
+
+/// One call of [`costed_episodes`], its arguments checked.
+struct Play<'a, W: ?Sized> {
+    world: &'a W,
+    settings: &'a RunSettings,
+    rule: SensingRule,
+    reward_per_cost: f64,
+    episodes: u32,
+}
+
+impl<W: World + ?Sized> Play<'_, W> {
+    fn run<P: WouldRead, S: Strategy>(
+        &self,
+        perception: P,
+        strategy: S,
+        table: QTable,
+    ) -> Vec<Episode> {
+        let world = self.world;
+        let mut agent: Agent<P, S> =
+            crate::learn::agent_of(perception, strategy, table, self.settings);
+        // The run's generator, drawn from as `csql::run` draws: a start, then the trial.
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(self.settings.seed);
+        let mut out = Vec::with_capacity(self.episodes as usize);
+        for trial in 1..=self.episodes {
+            let start = world.sample_start(&mut rng);
+            let mut t = agent.begin_trial(world, start, trial);
+            let mut e = Episode {
+                reward: 0.0,
+                sensing: 0.0,
+                measurements: u32::from(t.rec.cost > 0.0),
+                steps: 0,
+                reached_goal: false,
+            };
+            let mut cost = t.rec.cost;
+            while !t.over {
+                let m = agent.choose(&mut t, &mut rng);
+                let mut step = world.sample(t.state, m.action, &mut rng);
+                step.truncated |= t.rec.moves + 1 >= agent.params.max_moves;
+                let before = t.rec.cost;
+                agent.observe(&mut t, world, m, step, &mut rng);
+                let mut paid = t.rec.cost - before;
+                if step.terminated {
+                    e.reached_goal = step.reward > 0.0;
+                    if self.rule == SensingRule::WithMove {
+                        paid += agent.perception.would_read(world, step.next);
+                    }
+                }
+                e.measurements += u32::from(paid > 0.0);
+                e.reward += step.reward;
+                e.steps += 1;
+                cost += paid;
+            }
+            // Nobody judges these episodes.
+            agent.clear_journal();
+            e.sensing = cost * self.reward_per_cost;
+            out.push(e);
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::strategy::StrategyKind;
+    use crate::{LearnerKind, RunSettings};
+
+    fn lake(name: &str, slide: f64) -> mdp::FiniteWorld {
+        let options = mdp::WorldOptions {
+            slide,
+            sensing: Some(mdp::SensingModel::Factors),
+            ..Default::default()
+        };
+        mdp::builtin_world(name, &options).unwrap()
+    }
+
+    /// Under the second rule, the episodes are the run's trials: their sensing sums to
+    /// the run's cost, and their moves to its moves.
+    #[test]
+    fn after_the_outcome_the_episodes_are_the_runs_trials() {
+        for (learner, strategy) in [
+            (LearnerKind::CsQl, StrategyKind::Resetting),
+            (LearnerKind::CsQl, StrategyKind::Lazy),
+            (LearnerKind::FullSensing, StrategyKind::Resetting),
+        ] {
+            let world = lake("frozenlake4x4", 0.5);
+            let mut settings = RunSettings::tan1991("frozenlake4x4", strategy, 3);
+            if learner != LearnerKind::CsQl {
+                settings = settings.with_learner(learner);
+            }
+            let oracle = mdp::Oracle::solve_stochastic(&world, settings.gamma.get()).unwrap();
+            let scene = crate::Scene::new(&world, &oracle, &oracle, "lake");
+            let report = crate::run_in(&scene, &settings, &mut crate::KeepTrace).unwrap();
+            let run = costed_episodes(
+                &world,
+                &settings,
+                SensingRule::AfterOutcome,
+                1.0,
+                report.trials,
+            )
+            .unwrap();
+            let sensing: f64 = run.iter().map(|e| e.sensing).sum();
+            let moves: u64 = run.iter().map(|e| u64::from(e.steps)).sum();
+            assert!(
+                (sensing - report.total_cost).abs() < 1e-6,
+                "{sensing} {report:?}"
+            );
+            assert_eq!(moves, report.moves, "{learner}");
+        }
+    }
+
+    /// With the move, a move that ends an episode is charged; after the outcome it is
+    /// not, and nothing else differs.
+    #[test]
+    fn with_the_move_the_last_move_is_charged() {
+        let world = lake("frozenlake4x4", 0.0);
+        let settings = RunSettings::tan1991("frozenlake4x4", StrategyKind::Resetting, 2);
+        let with = costed_episodes(&world, &settings, SensingRule::WithMove, 0.025, 300).unwrap();
+        let after =
+            costed_episodes(&world, &settings, SensingRule::AfterOutcome, 0.025, 300).unwrap();
+        for (w, a) in with.iter().zip(&after) {
+            assert_eq!((w.reward, w.steps), (a.reward, a.steps));
+            assert!(w.sensing >= a.sensing - 1e-12 && w.measurements >= a.measurements);
+        }
+        assert!(
+            with.iter().map(|e| e.sensing).sum::<f64>()
+                > after.iter().map(|e| e.sensing).sum::<f64>()
+        );
+        let full = settings.with_learner(LearnerKind::FullSensing);
+        let with = costed_episodes(&world, &full, SensingRule::WithMove, 0.025, 50).unwrap();
+        for e in &with {
+            // Row and column after every move, the start's too, the last included.
+            assert_eq!(e.measurements, e.steps + 1);
+            assert!((e.sensing - 0.05 * f64::from(e.steps + 1)).abs() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn other_learners_are_refused() {
+        let world = lake("frozenlake4x4", 0.0);
+        let settings = RunSettings::tan1991("frozenlake4x4", StrategyKind::Resetting, 2)
+            .with_learner(LearnerKind::UTree);
+        let err = costed_episodes(&world, &settings, SensingRule::WithMove, 0.025, 3)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("learner = u-tree"), "{err}");
+    }
+}
