@@ -121,14 +121,18 @@ pub enum Learner {
     /// Q-learning sensing every feature at every step, in CS-QL's main loop
     /// (`csql::costed_episodes` with `learner = "full-sensing"`).
     FullSensing,
+    /// Sensing by belief: a learned model, a plan over beliefs, the row and the column
+    /// measured apart (`csql::belief_planning`).
+    Belief,
 }
 
 impl Learner {
-    const ALL: [Learner; 4] = [
+    const ALL: [Learner; 5] = [
         Learner::AmrlQ,
         Learner::AlwaysMeasuring,
         Learner::CsQl,
         Learner::FullSensing,
+        Learner::Belief,
     ];
 
     fn name(self) -> &'static str {
@@ -137,6 +141,7 @@ impl Learner {
             Learner::AlwaysMeasuring => "always-measuring",
             Learner::CsQl => "cs-ql",
             Learner::FullSensing => "full-sensing",
+            Learner::Belief => "belief",
         }
     }
 
@@ -147,6 +152,7 @@ impl Learner {
             Learner::AlwaysMeasuring => RGBColor(150, 150, 150),
             Learner::CsQl => RGBColor(31, 119, 180),
             Learner::FullSensing => RGBColor(230, 120, 20),
+            Learner::Belief => RGBColor(44, 160, 44),
         }
     }
 
@@ -198,6 +204,17 @@ impl Learner {
                 (episodes, max_moves),
                 seed,
             ),
+            Learner::Belief => {
+                // Each coordinate costs 1: its price in reward units is the scale.
+                let params = csql::BeliefParams {
+                    price_scale: price,
+                    ..csql::BeliefParams::default()
+                };
+                let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+                Ok(csql::belief_planning(
+                    lake, &params, rule, episodes, max_moves, &mut rng,
+                )?)
+            }
         }
     }
 }
@@ -578,7 +595,7 @@ fn draw(path: &Path, world: &str, rows: &[Row<'_>]) -> Result<()> {
     let root = base
         .titled(
             &format!(
-                "{world}: costed return per episode (mean over runs, blocks of {BLOCK} episodes)"
+                "{world}: costed return per episode (mean over runs, blocks of {BLOCK} episodes; in brackets, the price per coordinate)"
             ),
             ("sans-serif", 20),
         )
@@ -688,7 +705,7 @@ fn draw_legend<DB: DrawingBackend>(
                 area.draw(&p)?;
             }
             area.draw(&Text::new(
-                format!("{}, {price} per coordinate", learner.name()),
+                format!("{} ({price})", learner.name()),
                 (x + 42, y - 7),
                 font.clone(),
             ))?;
