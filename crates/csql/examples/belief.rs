@@ -2,8 +2,12 @@
 //! all episodes and over the last 10%, measurements and moves per episode, success.
 //!
 //! ```text
-//! cargo run --release -p csql --example belief [-- RUNS [K]]
+//! cargo run --release -p csql --example belief [-- RUNS [K [FILTER]]]
 //! ```
+//!
+//! RUNS (3) runs of each lake, K (7) the bound on uncertain steps, FILTER a part of
+//! "WORLD DYNAMICS" to keep (e.g. `8x8 semi`); the variables `TRUST`, `PRIOR` and `MAXB`
+//! set `trust`, `prior` and `max_beliefs` (4, 3, 5000).
 
 use rand::SeedableRng;
 

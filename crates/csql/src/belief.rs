@@ -116,7 +116,7 @@ struct Learner<'w, W: World + ?Sized> {
     k: u32,
 }
 
-/// Run `episodes` episodes of sensing by belief (see the [module](self)) and return what
+/// Run `episodes` episodes of sensing by belief (specification 6.13) and return what
 /// each gave; `max_moves` caps an episode (and is the plan's horizon).
 ///
 /// # Errors
