@@ -6,8 +6,8 @@
 //! ```
 //!
 //! RUNS (3) runs of each lake, K (7) the bound on uncertain steps, FILTER a part of
-//! "WORLD DYNAMICS" to keep (e.g. `8x8 semi`); the variables `TRUST`, `PRIOR` and `MAXB`
-//! set `trust`, `prior` and `max_beliefs` (4, 3, 5000).
+//! "WORLD DYNAMICS" to keep (e.g. `8x8 semi`); the variables `TRUST`, `PRIOR`, `MAXB` and `OPT`
+//! set `trust`, `prior` and `max_beliefs` (4, 3, 5000), `OPT` the optimism (1).
 
 use rand::SeedableRng;
 
@@ -27,6 +27,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         trust: env("TRUST", 4.0) as u32,
         prior: env("PRIOR", 3.0),
         max_beliefs: env("MAXB", 5000.0) as usize,
+        optimism: env("OPT", 1.0),
         ..Default::default()
     };
     for (world, episodes, horizon) in [("frozenlake4x4", 1000, 100), ("frozenlake8x8", 2000, 200)] {

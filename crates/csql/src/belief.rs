@@ -3,17 +3,19 @@
 //! senses nothing, or only the features that separate the states it may be in, when the
 //! plan says that is worth its price.
 //!
-//! * **The model.** Counts of the transitions from a known state: the next state when it
-//!   is known (measured, or the only one the model allows after the readings), or the
-//!   end of the episode with its reward. A pair tried `n` times has the empirical
+//! * **The model.** Counts of the transitions from a known state: the next state when
+//!   what was read tells it among the states the pair may lead to (its outcomes so far
+//!   once trusted, every state before; a state inferred with nothing read is not
+//!   counted, it would only confirm the model), or the end of the episode and its reward. A pair tried `n` times has the empirical
 //!   outcomes with weight `n / (n + prior)` and, with the rest, an optimistic outcome
 //!   that ends the episode with reward `optimism` (so untried pairs are worth trying);
-//!   from `trust` tries on, the empirical outcomes alone.
+//!   once trusted, the empirical outcomes alone. A pair is trusted after `trust` tries
+//!   if it has shown two outcomes or more, after `2 trust` if it has shown one.
 //! * **The plan.** An [`mdp::BeliefPlan`] over that model from every state known so far:
 //!   the best choice of a move and of the features to measure (each at its price, in
 //!   reward units) at every belief reachable with at most `max_uncertain` uncertain
-//!   steps in a row. A pair tried fewer than `trust` times must be followed by a
-//!   measurement of every feature, so that the agent learns it. The plan is rebuilt,
+//!   steps in a row. A pair not yet trusted is taken from a known state only and
+//!   followed by a measurement of every feature, so that the agent learns it. The plan is rebuilt,
 //!   when the agent knows its state, after the model has changed enough (a pair's count
 //!   reached a power of two or `trust`, a state was seen for the first time, or a pair
 //!   lost its trust), or when it lacks the state.
@@ -55,7 +57,8 @@ use crate::amrl::Episode;
 pub struct BeliefParams {
     /// `K`: the most steps in a row after which the agent may be uncertain of its state (7).
     pub max_uncertain: u32,
-    /// Tries of a pair after which it may be taken without measuring what follows (4).
+    /// Tries of a pair after which it may be taken without measuring what follows, if it
+    /// has shown two outcomes; twice as many if it has shown one (4).
     pub trust: u32,
     /// The weight of the optimistic outcome against a pair's tries (3).
     pub prior: f64,
@@ -96,8 +99,23 @@ struct Counts {
     next: BTreeMap<u32, u32>,
     /// The sum of the rewards of every try.
     reward: f64,
-    /// Tries from which on the pair may go unmeasured.
+    /// Tries from which on the pair may go unmeasured, once it has shown two outcomes.
     trusted_at: u32,
+}
+
+impl Counts {
+    /// How many different outcomes it has shown (an end of the episode is one).
+    fn outcomes(&self) -> usize {
+        self.next.len() + usize::from(self.next.values().sum::<u32>() < self.tries)
+    }
+
+    /// Whether it may go unmeasured: `trusted_at` tries, `trust` more while it has shown
+    /// one outcome only (a pair of two even outcomes shows one in `trust` tries with
+    /// probability `2^(1 - trust)`; in `2 trust`, `2^(1 - 2 trust)`).
+    fn trusted(&self, trust: u32) -> bool {
+        let extra = if self.outcomes() < 2 { trust } else { 0 };
+        self.tries >= self.trusted_at.saturating_add(extra)
+    }
 }
 
 struct Learner<'w, W: World + ?Sized> {
@@ -237,7 +255,7 @@ impl<W: World + ?Sized> Learner<'_, W> {
         let mut must_measure = Vec::with_capacity(self.counts.len());
         for c in &self.counts {
             let tries = f64::from(c.tries);
-            let (weight, rest) = if c.tries >= p.trust {
+            let (weight, rest) = if c.trusted(p.trust) {
                 (1.0 / tries, 0.0)
             } else {
                 (1.0 / (tries + p.prior), p.prior / (tries + p.prior))
@@ -249,7 +267,7 @@ impl<W: World + ?Sized> Learner<'_, W> {
                     .map(|(&t, &k)| (t, f64::from(k) * weight))
                     .collect(),
             );
-            must_measure.push(c.tries < c.trusted_at);
+            must_measure.push(!c.trusted(p.trust));
         }
         let mut readings = Vec::with_capacity(n * nf);
         for s in 0..n {
@@ -321,12 +339,13 @@ impl<W: World + ?Sized> Learner<'_, W> {
         let i = self.pair(s, a);
         let trust = self.params.trust;
         let c = &mut self.counts[i];
+        let was = c.trusted(trust);
         c.tries = c.tries.saturating_add(1);
         c.reward += reward;
         if let Some(t) = next {
             *c.next.entry(t).or_insert(0) += 1;
         }
-        if c.tries.is_power_of_two() || c.tries == trust || c.tries == c.trusted_at {
+        if c.tries.is_power_of_two() || c.trusted(trust) != was {
             self.stale = true;
         }
         if let Some(t) = next
@@ -363,6 +382,21 @@ impl<W: World + ?Sized> Learner<'_, W> {
                 .collect(),
             Place::Lost(states) => states.clone(),
         }
+    }
+
+    /// Whether the features read tell `truth` among the states `(s, a)` may lead to:
+    /// its outcomes so far once it is trusted, every state before.
+    fn told(&self, s: u32, a: ActionId, truth: StateId, read: &[usize]) -> bool {
+        if read.is_empty() {
+            return false;
+        }
+        let c = &self.counts[self.pair(s, a)];
+        let trusted = c.trusted(self.params.trust);
+        let agreeing = self.agreeing(truth, read);
+        let mut possible = agreeing
+            .iter()
+            .filter(|t| !trusted || c.next.contains_key(t));
+        possible.next() == Some(&truth.0) && possible.next().is_none()
     }
 
     /// The states that read as `truth` does on every feature.
@@ -505,7 +539,7 @@ impl<W: World + ?Sized> Learner<'_, W> {
                     let may_end = self.states(&place).iter().any(|&s| {
                         let c = &self.counts[self.pair(s, action)];
                         let before = c.tries - u32::from(from_state == Some(s));
-                        before < trust || c.next.values().sum::<u32>() < before
+                        !c.trusted(trust) || c.next.values().sum::<u32>() < before
                     });
                     if !may_end {
                         self.distrust(&path);
@@ -536,9 +570,11 @@ impl<W: World + ?Sized> Learner<'_, W> {
                     Place::Lost(self.agreeing(truth, if read_now { &features } else { &[] }))
                 }
             };
+            // The features read in this step.
+            let mut read: Vec<usize> = if read_now { features } else { Vec::new() };
             // After the outcome: measure one probe at a time while the plan says so.
             if self.rule == SensingRule::AfterOutcome {
-                next_place = self.sense_after(next_place, truth, &mut e, &path);
+                next_place = self.sense_after(next_place, truth, &mut e, &path, &mut read);
             }
             // Certain now?
             let certain = match &next_place {
@@ -550,7 +586,13 @@ impl<W: World + ?Sized> Learner<'_, W> {
             };
             match certain {
                 Some(t) => {
-                    if let Some(s) = from_state {
+                    // Counted only when something was read and the readings tell the
+                    // state among those the pair may lead to (every state until it is
+                    // trusted): a state inferred from the model alone would only
+                    // confirm the model.
+                    if let Some(s) = from_state
+                        && self.told(s, action, truth, &read)
+                    {
                         self.count(s, action, Some(t), step.reward);
                     }
                     from = Some(t);
@@ -574,6 +616,7 @@ impl<W: World + ?Sized> Learner<'_, W> {
         truth: StateId,
         e: &mut Episode,
         path: &[(Vec<u32>, ActionId)],
+        read: &mut Vec<usize>,
     ) -> Place {
         let w = self.world;
         if let Place::Lost(states) = &place
@@ -592,6 +635,7 @@ impl<W: World + ?Sized> Learner<'_, W> {
                     let (price, features) = self.probes(1 << j);
                     e.sensing += price;
                     e.measurements += features.len() as u32;
+                    read.extend(&features);
                     match plan.follow(node, c, |f| match f {
                         None => truth.0,
                         Some(f) => w.read(truth, f).0,
@@ -612,6 +656,8 @@ impl<W: World + ?Sized> Learner<'_, W> {
         let all = self.all_features();
         e.sensing += self.prices.iter().sum::<f64>();
         e.measurements += all.len() as u32;
-        Place::Lost(self.agreeing(truth, &all))
+        let lost = Place::Lost(self.agreeing(truth, &all));
+        read.extend(all);
+        lost
     }
 }
