@@ -39,8 +39,8 @@
 use std::collections::BTreeMap;
 
 use mdp::{
-    ActionId, BeliefPlan, CostlyModel, Decision, Feature, ModelParts, NodeId, PlanOptions,
-    ReferenceError, ReferenceOptions, SensingMenu, SensingRule, StateId, World,
+    ActionId, BeliefPlan, CostlyModel, Decision, EVERY_PROBE, Feature, ModelParts, NodeId,
+    PlanOptions, ReferenceError, ReferenceOptions, SensingMenu, SensingRule, StateId, World,
 };
 use rand::Rng;
 use serde::Serialize;
@@ -419,14 +419,12 @@ impl<W: World + ?Sized> Learner<'_, W> {
 
     /// The price of a set of probes of the plan's menu, and the features they read.
     fn probes(&self, mask: u32) -> (f64, Vec<usize>) {
-        if self.params.whole_state {
-            if mask == 0 {
-                (0.0, Vec::new())
-            } else {
-                (self.prices.iter().sum(), self.all_features())
-            }
+        if mask == 0 {
+            (0.0, Vec::new())
+        } else if self.params.whole_state || mask == EVERY_PROBE {
+            (self.prices.iter().sum(), self.all_features())
         } else {
-            let f: Vec<usize> = (0..self.prices.len())
+            let f: Vec<usize> = (0..self.prices.len().min(32))
                 .filter(|j| mask >> j & 1 == 1)
                 .collect();
             (f.iter().map(|&j| self.prices[j]).sum(), f)
@@ -501,10 +499,10 @@ impl<W: World + ?Sized> Learner<'_, W> {
                     let plan = self.plan.as_ref().expect("a node is of a plan");
                     match plan.decide(*node) {
                         Some((c, Decision::Move { action, measure })) => (action, measure, Some(c)),
-                        _ => (self.fallback(&self.states(&place)), u32::MAX, None),
+                        _ => (self.fallback(&self.states(&place)), EVERY_PROBE, None),
                     }
                 }
-                Place::Lost(states) => (self.fallback(states), u32::MAX, None),
+                Place::Lost(states) => (self.fallback(states), EVERY_PROBE, None),
             };
             let step = w.sample(truth, action, rng);
             e.steps += 1;
@@ -512,11 +510,7 @@ impl<W: World + ?Sized> Learner<'_, W> {
             let ended = step.terminated || w.is_terminal(step.next);
             path.push((self.states(&place), action));
             // What is read: with the move, whatever happens; after it, only if it goes on.
-            let (price, features) = if mask == u32::MAX {
-                (self.prices.iter().sum(), self.all_features())
-            } else {
-                self.probes(mask)
-            };
+            let (price, features) = self.probes(mask);
             let read_now = match self.rule {
                 SensingRule::WithMove => true,
                 SensingRule::AfterOutcome => !ended && (mask != 0),

@@ -371,22 +371,28 @@ impl Probe {
     }
 }
 
-/// The probes of a bit set over the menu.
+/// The probes of a bit set over the menu ([`EVERY_PROBE`]: all of them, however many).
 fn members(mask: u32, probes: usize) -> impl Iterator<Item = usize> {
-    (0..probes).filter(move |j| mask >> j & 1 == 1)
+    (0..probes).filter(move |&j| mask == EVERY_PROBE || (j < 32 && mask >> j & 1 == 1))
 }
 
-/// Split a sub-distribution (sorted by state) by what the probes in `mask` read: the
+/// The bit set of [`Decision::Move`] that stands for every probe of the menu, however
+/// many there are.
+///
+/// ```
+/// assert_eq!(mdp::EVERY_PROBE, u32::MAX);
+/// ```
+pub const EVERY_PROBE: u32 = u32::MAX;
+
+/// Split a sub-distribution (sorted by state) by what the probes in `set` read: the
 /// parts' masses (of the whole) and normalised beliefs, in the order of the readings.
-fn split(m: &CostlyModel, probes: &[Probe], mask: u32, b: &[(u32, f64)]) -> Vec<(f64, Belief)> {
-    if mask == 0 {
+fn split(m: &CostlyModel, probes: &[Probe], set: &[usize], b: &[(u32, f64)]) -> Vec<(f64, Belief)> {
+    if set.is_empty() {
         return vec![normalise(b.to_vec())];
     }
     let mut parts: BTreeMap<Vec<u32>, Belief> = BTreeMap::new();
     for &(s, p) in b {
-        let r: Vec<u32> = members(mask, probes.len())
-            .map(|j| probes[j].read(m, s))
-            .collect();
+        let r: Vec<u32> = set.iter().map(|&j| probes[j].read(m, s)).collect();
         parts.entry(r).or_default().push((s, p));
     }
     parts.into_values().map(normalise).collect()
@@ -402,9 +408,9 @@ fn split(m: &CostlyModel, probes: &[Probe], mask: u32, b: &[(u32, f64)]) -> Vec<
 pub enum Decision {
     /// Make this move. Under [`SensingRule::WithMove`], measure the probes of the bit set
     /// `measure` with it (bit `j` is probe `j` of the menu: feature `j`, or the whole
-    /// state for [`SensingMenu::Whole`]). Under [`SensingRule::AfterOutcome`], `measure`
-    /// is 0, or every probe when the pair must be measured (then every probe is read if
-    /// the episode goes on).
+    /// state for [`SensingMenu::Whole`]); [`EVERY_PROBE`] when the pair must be measured.
+    /// Under [`SensingRule::AfterOutcome`], `measure` is 0, or [`EVERY_PROBE`] when the
+    /// pair must be measured (then every probe is read if the episode goes on).
     Move {
         /// The action.
         action: ActionId,
@@ -521,12 +527,14 @@ pub(crate) fn solve(
             ),
         ));
     }
-    let all: u32 = if probes.is_empty() {
-        0
+    // With the move at most MAX_MENU_FEATURES probes, so every subset is a number.
+    let subsets_end: u32 = if probes.len() < 32 {
+        (1u32 << probes.len()) - 1
     } else {
-        u32::MAX >> (32 - probes.len())
+        EVERY_PROBE
     };
     let all_price: f64 = probes.iter().map(|p| p.price).sum();
+    let every: Vec<usize> = (0..probes.len()).collect();
     // No run has more uncertain steps in a row than moves.
     let k_max = options
         .max_uncertain
@@ -547,7 +555,7 @@ pub(crate) fn solve(
     };
     // Every subset of the probes, with the move only (at most MAX_MENU_FEATURES of them).
     let subsets: Vec<u32> = match rule {
-        SensingRule::WithMove => (0..=all).collect(),
+        SensingRule::WithMove => (0..=subsets_end).collect(),
         SensingRule::AfterOutcome => Vec::new(),
     };
     let mut starts = Vec::new();
@@ -590,7 +598,7 @@ pub(crate) fn solve(
                         let mut children = Vec::new();
                         let mut going_on = 0.0;
                         if !next.is_empty() {
-                            for (w, part) in split(m, &probes, all, &next) {
+                            for (w, part) in split(m, &probes, &every, &next) {
                                 going_on += w;
                                 children.push((w, g.node(Kind::Act, part, next_count)?));
                             }
@@ -602,7 +610,7 @@ pub(crate) fn solve(
                         choices.push(Choice {
                             decision: Decision::Move {
                                 action,
-                                measure: all,
+                                measure: EVERY_PROBE,
                             },
                             reward: reward - price,
                             children,
@@ -612,11 +620,11 @@ pub(crate) fn solve(
                     match rule {
                         SensingRule::WithMove => {
                             'subset: for &set in &subsets {
-                                let price: f64 =
-                                    members(set, probes.len()).map(|j| probes[j].price).sum();
+                                let members: Vec<usize> = members(set, probes.len()).collect();
+                                let price: f64 = members.iter().map(|&j| probes[j].price).sum();
                                 let mut children = Vec::new();
                                 if !next.is_empty() {
-                                    for (w, part) in split(m, &probes, set, &next) {
+                                    for (w, part) in split(m, &probes, &members, &next) {
                                         if part.len() > 1 && count >= k_max {
                                             if !reveal {
                                                 continue 'subset;
@@ -678,7 +686,7 @@ pub(crate) fn solve(
                     });
                 }
                 for (j, probe) in probes.iter().enumerate() {
-                    let parts = split(m, &probes, 1 << j, &b);
+                    let parts = split(m, &probes, &[j], &b);
                     if parts.len() < 2 {
                         continue; // reads alike on every state of the belief: no news
                     }

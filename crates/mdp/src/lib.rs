@@ -110,7 +110,7 @@ mod tabular;
 mod world;
 mod worlds;
 
-pub use belief::{BeliefPlan, CostlyModel, Decision, ModelParts, NodeId, PlanOptions};
+pub use belief::{BeliefPlan, CostlyModel, Decision, EVERY_PROBE, ModelParts, NodeId, PlanOptions};
 pub use builtin::{builtin, builtin_names};
 pub use error::{MapError, MdpError, Position};
 pub use finite::{

@@ -156,7 +156,7 @@ fn a_pair_that_must_be_measured_is_taken_from_a_known_state_only() {
         forced.decide(at0).unwrap().1,
         Decision::Move {
             action: ActionId(1),
-            measure: 0b11
+            measure: mdp::EVERY_PROBE
         }
     );
     assert!((forced.value(at0) - (1.0 - 0.3)).abs() < 1e-12);
