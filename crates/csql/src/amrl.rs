@@ -123,8 +123,9 @@ impl Default for AmrlParams {
 /// ```
 /// let e = csql::Episode { reward: 1.0, sensing: 0.1, measurements: 2, steps: 6, reached_goal: true };
 /// assert!((e.costed_return() - 0.9).abs() < 1e-12);
+/// assert_eq!(csql::Episode::default().costed_return(), 0.0); // before its first move
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct Episode {
     /// The undiscounted reward of the episode.
     pub reward: f64,
@@ -342,13 +343,7 @@ pub fn amrl_q<W: World + ?Sized, R: Rng + ?Sized>(
         // The truth, and what the agent takes for it.
         let mut truth = world.sample_start(rng);
         let mut believed = truth;
-        let mut e = Episode {
-            reward: 0.0,
-            sensing: 0.0,
-            measurements: 0,
-            steps: 0,
-            reached_goal: false,
-        };
+        let mut e = Episode::default();
         for _ in 0..max_moves {
             let exploit = greedy || !rng.random_bool(params.epsilon.get());
             let (a, measure) = match (params.measuring, exploit) {

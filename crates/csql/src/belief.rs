@@ -479,13 +479,7 @@ impl<W: World + ?Sized> Learner<'_, W> {
 
     fn episode<R: Rng + ?Sized>(&mut self, rng: &mut R) -> Result<Episode, ReferenceError> {
         let w = self.world;
-        let mut e = Episode {
-            reward: 0.0,
-            sensing: 0.0,
-            measurements: 0,
-            steps: 0,
-            reached_goal: false,
-        };
+        let mut e = Episode::default();
         let mut truth = w.sample_start(rng);
         let mut place = self.at(truth.0)?;
         // The moves since the agent last knew its state, from that state.

@@ -313,11 +313,8 @@ impl<W: World + ?Sized> Play<'_, W> {
             let start = world.sample_start(&mut rng);
             let mut t = agent.begin_trial(world, start, trial);
             let mut e = Episode {
-                reward: 0.0,
-                sensing: 0.0,
                 measurements: u32::from(t.rec.cost > 0.0),
-                steps: 0,
-                reached_goal: false,
+                ..Episode::default()
             };
             let mut cost = t.rec.cost;
             while !t.over {
