@@ -47,6 +47,10 @@ use serde::Serialize;
 
 use crate::amrl::Episode;
 
+/// Value iteration of a plan stops when a step changes no value by more than this (reward
+/// units): far below any price, and far fewer steps on lakes where the values creep.
+const PLAN_TOLERANCE: f64 = 1e-9;
+
 /// The settings of [`belief_planning`].
 ///
 /// ```
@@ -317,6 +321,7 @@ impl<W: World + ?Sized> Learner<'_, W> {
                     ..ReferenceOptions::default()
                 },
                 move_cost: self.params.move_cost,
+                tolerance: PLAN_TOLERANCE,
             };
             match BeliefPlan::build(&model, &options, &roots) {
                 Ok(plan) => {

@@ -505,14 +505,14 @@ pub(crate) fn solve(
         rule,
         search: ref options,
         move_cost,
+        tolerance,
     } = *plan;
     check_horizon(options)?;
     check_menu(menu)?;
-    if !(move_cost.is_finite() && move_cost >= 0.0) {
-        return Err(bad(
-            "move_cost",
-            format!("{move_cost}; it must be finite and >= 0"),
-        ));
+    for (what, v) in [("move_cost", move_cost), ("tolerance", tolerance)] {
+        if !(v.is_finite() && v >= 0.0) {
+            return Err(bad(what, format!("{v}; it must be finite and >= 0")));
+        }
     }
     if options.max_beliefs == 0 {
         return Err(bad("max_beliefs", "0; at least one belief is needed"));
@@ -729,7 +729,13 @@ pub(crate) fn solve(
                 cur[i] = best_of(&g.choices[i], &cur);
             }
         }
-        let same = cur == prev;
+        let same = if tolerance == 0.0 {
+            cur == prev
+        } else {
+            cur.iter()
+                .zip(&prev)
+                .all(|(a, b)| a == b || (a - b).abs() <= tolerance)
+        };
         std::mem::swap(&mut prev, &mut cur);
         if same {
             converged_at = h;
@@ -760,7 +766,7 @@ fn best_of(cs: &[Choice], v: &[f64]) -> f64 {
 ///
 /// ```
 /// let o = mdp::PlanOptions::default();
-/// assert_eq!((o.menu, o.rule, o.move_cost), (mdp::SensingMenu::Features, mdp::SensingRule::WithMove, 0.0));
+/// assert_eq!((o.menu, o.rule, o.move_cost, o.tolerance), (mdp::SensingMenu::Features, mdp::SensingRule::WithMove, 0.0, 0.0));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PlanOptions {
@@ -774,6 +780,9 @@ pub struct PlanOptions {
     /// plan end an episode sooner where that costs nothing else, so that a plan followed
     /// step by step does not wander between choices of equal value.
     pub move_cost: f64,
+    /// When value iteration stops before the horizon: 0 (exact) when a step leaves every
+    /// value unchanged bit for bit; otherwise when it changes none by more than this.
+    pub tolerance: f64,
 }
 
 impl Default for PlanOptions {
@@ -783,6 +792,7 @@ impl Default for PlanOptions {
             rule: SensingRule::WithMove,
             search: ReferenceOptions::default(),
             move_cost: 0.0,
+            tolerance: 0.0,
         }
     }
 }

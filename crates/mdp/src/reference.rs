@@ -706,6 +706,7 @@ fn search<W: World>(
         rule,
         search: *options,
         move_cost: 0.0,
+        tolerance: 0.0,
     };
     let solved = solve(&m, &plan, &roots, reveal, false)?;
     let value: f64 = m

@@ -38,6 +38,7 @@ fn the_plan_values_the_start_as_the_reference_search_does() {
                     rule,
                     search,
                     move_cost: 0.0,
+                    tolerance: 0.0,
                 };
                 let plan = BeliefPlan::build(&m, &o, &[StateId(0)]).unwrap();
                 let v = plan.value(plan.point(StateId(0)).unwrap());
