@@ -95,6 +95,11 @@ impl Default for BeliefParams {
 /// The largest `max_uncertain` a run's settings take ([`BeliefParams::validate`]): a plan
 /// over more beliefs than `max_beliefs` is rebuilt with `K` one lower, so a larger bound
 /// would only be lowered again, plan after plan.
+///
+/// ```
+/// let p = csql::BeliefParams { max_uncertain: csql::MAX_BELIEF_UNCERTAIN + 1, ..Default::default() };
+/// assert!(p.validate().unwrap_err().to_string().contains("belief.max_uncertain = 65"));
+/// ```
 pub const MAX_BELIEF_UNCERTAIN: u32 = 64;
 
 impl BeliefParams {
