@@ -43,7 +43,7 @@ use mdp::{
     PlanOptions, ReferenceError, ReferenceOptions, SensingMenu, SensingRule, StateId, World,
 };
 use rand::Rng;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::amrl::Episode;
 
@@ -51,13 +51,15 @@ use crate::amrl::Episode;
 /// units): far below any price, and far fewer steps on lakes where the values creep.
 const PLAN_TOLERANCE: f64 = 1e-9;
 
-/// The settings of [`belief_planning`].
+/// The settings of [`belief_planning`], and of the learner `belief` (the settings file's
+/// table `[belief]`: every field but `price_scale`, which is `[costly] price`).
 ///
 /// ```
 /// let p = csql::BeliefParams::default();
 /// assert_eq!((p.max_uncertain, p.trust, p.prior, p.optimism), (7, 4, 3.0, 1.0));
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
 pub struct BeliefParams {
     /// `K`: the most steps in a row after which the agent may be uncertain of its state (7).
     pub max_uncertain: u32,
@@ -68,7 +70,9 @@ pub struct BeliefParams {
     pub prior: f64,
     /// The reward of the optimistic outcome, in reward units (1, FrozenLake's goal).
     pub optimism: f64,
-    /// Reward units per unit of a feature's cost (1: the world's costs are prices).
+    /// Reward units per unit of a feature's cost (1: the world's costs are prices). Not a
+    /// key of `[belief]`: a run's settings take it from `[costly] price`.
+    #[serde(skip)]
     pub price_scale: f64,
     /// Measure the whole state at once (the sum of the prices) rather than features apart.
     pub whole_state: bool,
@@ -92,6 +96,97 @@ impl Default for BeliefParams {
             max_beliefs: 5_000,
             move_cost: 1e-6,
         }
+    }
+}
+
+/// The largest `max_uncertain` a run's settings take ([`BeliefParams::validate`]): a plan
+/// over more beliefs than `max_beliefs` is rebuilt with `K` one lower, so a larger bound
+/// would only be lowered again, plan after plan.
+///
+/// ```
+/// let p = csql::BeliefParams { max_uncertain: csql::MAX_BELIEF_UNCERTAIN + 1, ..Default::default() };
+/// assert!(p.validate().unwrap_err().to_string().contains("belief.max_uncertain = 65"));
+/// ```
+pub const MAX_BELIEF_UNCERTAIN: u32 = 64;
+
+impl BeliefParams {
+    /// Whether every setting of `[belief]` is at its default (`price_scale`, which is
+    /// `[costly] price`, aside): for the settings echo, which leaves the table out then.
+    ///
+    /// ```
+    /// let p = csql::BeliefParams { price_scale: 0.025, ..Default::default() };
+    /// assert!(p.is_default());
+    /// assert!(!csql::BeliefParams { trust: 2, ..p }.is_default());
+    /// ```
+    pub fn is_default(&self) -> bool {
+        BeliefParams {
+            price_scale: BeliefParams::default().price_scale,
+            ..*self
+        } == BeliefParams::default()
+    }
+
+    /// Check the settings as a run's settings take them, each refused with its key in
+    /// `[belief]` and what is accepted: what [`belief_planning`] refuses, and the bounds
+    /// that keep a plan's size and its rebuilding finite (`max_uncertain` at most
+    /// [`MAX_BELIEF_UNCERTAIN`], `max_beliefs` at most [`mdp::DEFAULT_MAX_BELIEFS`]).
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidSetting`], naming the key.
+    ///
+    /// ```
+    /// assert!(csql::BeliefParams::default().validate().is_ok());
+    /// let p = csql::BeliefParams { trust: 0, ..Default::default() };
+    /// assert!(p.validate().unwrap_err().to_string().contains("belief.trust = 0"));
+    /// ```
+    pub fn validate(&self) -> Result<(), crate::Error> {
+        let bad = |key: &str, value: String, expected: &'static str| {
+            Err(crate::Error::InvalidSetting {
+                value: format!("belief.{key} = {value}"),
+                expected,
+            })
+        };
+        if self.max_uncertain > MAX_BELIEF_UNCERTAIN {
+            return bad(
+                "max_uncertain",
+                self.max_uncertain.to_string(),
+                "at most 64 uncertain steps in a row (csql::MAX_BELIEF_UNCERTAIN)",
+            );
+        }
+        if self.trust == 0 {
+            return bad("trust", "0".into(), "at least 1 try");
+        }
+        if !(self.prior.is_finite() && self.prior > 0.0) {
+            return bad(
+                "prior",
+                self.prior.to_string(),
+                "a finite weight greater than 0",
+            );
+        }
+        if !self.optimism.is_finite() {
+            return bad("optimism", self.optimism.to_string(), "a finite reward");
+        }
+        if !(self.move_cost.is_finite() && self.move_cost >= 0.0) {
+            return bad(
+                "move_cost",
+                self.move_cost.to_string(),
+                "a finite price of at least 0 reward units",
+            );
+        }
+        if !(1..=mdp::DEFAULT_MAX_BELIEFS).contains(&self.max_beliefs) {
+            return bad(
+                "max_beliefs",
+                self.max_beliefs.to_string(),
+                "1 to 1000000 beliefs (mdp::DEFAULT_MAX_BELIEFS)",
+            );
+        }
+        if !(self.price_scale.is_finite() && self.price_scale >= 0.0) {
+            return bad(
+                "price_scale",
+                self.price_scale.to_string(),
+                "a finite price of at least 0 reward units per unit of cost ([costly] price)",
+            );
+        }
+        Ok(())
     }
 }
 

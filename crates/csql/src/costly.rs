@@ -200,8 +200,9 @@ pub(crate) fn costed_run<W: World + ?Sized>(
     Ok(Some(CostedRun::of(c, &episodes)))
 }
 
-/// What `csrl run --learner amrl-q` reports: AMRL-Q played for `max_trials` episodes,
-/// each scored by its costed return.
+/// What `csrl run` reports for a learner played on episodes of the costed return
+/// (`--learner amrl-q` or `--learner belief`): `max_trials` episodes, each scored by its
+/// costed return.
 ///
 /// ```
 /// let mut s = csql::SettingsDraft::from_toml("learner = \"amrl-q\"\nmax_trials = 20\n[costly]\nprice = 0.5", "f")
@@ -209,7 +210,7 @@ pub(crate) fn costed_run<W: World + ?Sized>(
 ///     .build()
 ///     .unwrap();
 /// let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions::default()).unwrap();
-/// let r: csql::AmrlReport = csql::amrl_report(&lake, "frozenlake4x4", &s).unwrap();
+/// let r: csql::CostedReport = csql::costed_report(&lake, "frozenlake4x4", &s).unwrap();
 /// let json = serde_json::to_value(&r).unwrap();
 /// assert_eq!(json["learner"], "amrl-q");
 /// assert_eq!(json["settings"]["costly"]["rule"], "with-move");
@@ -218,15 +219,16 @@ pub(crate) fn costed_run<W: World + ?Sized>(
 /// assert!(csql::run(&s).unwrap_err().to_string().contains("learner = amrl-q"));
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct AmrlReport {
+pub struct CostedReport {
     /// The world's name.
     pub map: String,
-    /// `amrl-q`.
+    /// `amrl-q` or `belief`.
     pub learner: crate::LearnerKind,
     /// The seed of the run's generator.
     pub seed: u64,
     /// The price of measuring the whole state, in reward units: `[costly] price` times
-    /// the sum of the world's feature costs.
+    /// the sum of the world's feature costs (each feature alone costs its cost times
+    /// `[costly] price`).
     pub whole_state_price: f64,
     /// Every episode's costed return, and their summary.
     pub costly: CostedRun,
@@ -234,11 +236,19 @@ pub struct AmrlReport {
     pub settings: RunSettings,
 }
 
-/// AMRL-Q with the parameters of `settings` (`[amrl_q]`) in `world` (named `name`), for
-/// `max_trials` episodes of at most `max_moves` moves, measuring the whole state at
-/// `[costly] price` times the sum of the world's feature costs, under `[costly] rule`,
-/// from one generator seeded with `seed`: exactly [`crate::amrl_q`] with those
-/// arguments.
+/// The learner of `settings` played on episodes of the costed return in `world` (named
+/// `name`): `max_trials` episodes of at most `max_moves` moves, under `[costly] rule`,
+/// from one generator seeded with `seed`.
+///
+/// * `amrl-q`: exactly [`crate::amrl_q`] with the parameters of `[amrl_q]`, measuring
+///   the whole state at `[costly] price` times the sum of the world's feature costs;
+/// * `belief`: exactly [`crate::belief_planning`] with the parameters of `[belief]`, a
+///   feature priced at its cost times `[costly] price`.
+///
+/// # Errors
+/// Settings refused by [`RunSettings::validate`], a learner of [`crate::run`] or no
+/// `[costly] price` ([`Error::Conflict`]), or a world sensing by belief cannot plan in
+/// ([`Error::Plan`]).
 ///
 /// ```
 /// let mut s = csql::RunSettings::tan1991("frozenlake4x4", csql::StrategyKind::Lazy, 3)
@@ -247,44 +257,88 @@ pub struct AmrlReport {
 /// s.max_trials = csql::TrialCap::new(300).unwrap();
 /// let options = mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() };
 /// let lake = mdp::builtin_world("frozenlake4x4", &options).unwrap();
-/// let r = csql::amrl_report(&lake, "frozenlake4x4", &s).unwrap();
+/// let r = csql::costed_report(&lake, "frozenlake4x4", &s).unwrap();
 /// assert_eq!((r.costly.returns.len(), r.whole_state_price), (300, 0.05));
+/// // Sensing by belief, its features priced at [costly] price.
+/// s.learner = csql::Learner::Belief(csql::BeliefParams { price_scale: 0.025, ..Default::default() });
+/// let r = csql::costed_report(&lake, "frozenlake4x4", &s).unwrap();
+/// assert_eq!((r.learner, r.costly.summary.episodes), (csql::LearnerKind::Belief, 300));
 /// ```
-pub fn amrl_report<W: World + ?Sized>(
+pub fn costed_report<W: World + ?Sized>(
     world: &W,
     name: &str,
     settings: &RunSettings,
-) -> Result<AmrlReport, Error> {
+) -> Result<CostedReport, Error> {
     settings.validate()?;
-    let (Learner::AmrlQ(params), Some(costly)) = (&settings.learner, settings.costly) else {
-        return Err(Error::Conflict {
-            first: format!("learner = {}", settings.learner.kind()),
-            second: "an AMRL-Q report".to_string(),
-            why: "it needs learner = amrl-q and [costly] price",
-        });
+    let kind = settings.learner.kind();
+    let refuse = || Error::Conflict {
+        first: format!("learner = {kind}"),
+        second: "a report on costed episodes".to_string(),
+        why: "it needs learner = amrl-q or belief, and [costly] price",
+    };
+    let Some(costly) = settings.costly else {
+        return Err(refuse());
     };
     let whole: f64 = (0..world.num_features() as u32)
         .map(|f| world.price(mdp::Feature(f)))
         .sum();
     let whole_state_price = costly.price * whole;
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
-    let episodes = crate::amrl::amrl_q(
-        world,
-        params,
-        whole_state_price,
-        costly.rule,
-        settings.max_trials.get(),
-        settings.max_moves.get(),
-        &mut rng,
-    );
-    Ok(AmrlReport {
+    let (episodes, max_moves) = (settings.max_trials.get(), settings.max_moves.get());
+    let played = match &settings.learner {
+        Learner::AmrlQ(params) => crate::amrl::amrl_q(
+            world,
+            params,
+            whole_state_price,
+            costly.rule,
+            episodes,
+            max_moves,
+            &mut rng,
+        ),
+        Learner::Belief(params) => crate::belief::belief_planning(
+            world,
+            params,
+            costly.rule,
+            episodes,
+            max_moves,
+            &mut rng,
+        )?,
+        _ => return Err(refuse()),
+    };
+    Ok(CostedReport {
         map: name.to_string(),
-        learner: crate::LearnerKind::AmrlQ,
+        learner: kind,
         seed: settings.seed,
         whole_state_price,
-        costly: CostedRun::of(costly, &episodes),
+        costly: CostedRun::of(costly, &played),
         settings: settings.clone(),
     })
+}
+
+/// [`costed_report`] in the world resolved from `settings` (a grid map sensed as the
+/// settings say, or a world beyond grids): what `csrl run --learner amrl-q` and
+/// `--learner belief` print.
+///
+/// ```
+/// let s = csql::SettingsDraft::from_toml("map = \"frozenlake4x4\"\nlearner = \"belief\"\nmax_trials = 30\n[world]\nsensing = \"factors\"\n[costly]\nprice = 0.025", "f")
+///     .unwrap()
+///     .build()
+///     .unwrap();
+/// let r = csql::costed_report_in(&csql::Resolved::new(&s).unwrap(), &s).unwrap();
+/// assert_eq!((r.map.as_str(), r.costly.returns.len()), ("frozenlake4x4", 30));
+/// ```
+pub fn costed_report_in(
+    resolved: &crate::resolve::Resolved,
+    settings: &RunSettings,
+) -> Result<CostedReport, Error> {
+    match resolved {
+        crate::resolve::Resolved::Grid(setup) => {
+            costed_report(&setup.sensed(settings), setup.map.name(), settings)
+        }
+        crate::resolve::Resolved::Finite { world, .. } => {
+            costed_report(world, world.name(), settings)
+        }
+    }
 }
 
 /// One call of [`costed_episodes`], its arguments checked.

@@ -96,7 +96,7 @@ pub struct SettingsDraft {
     /// The table `[extensions]`: CS-QL's extensions and how the run is judged.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub extensions: Option<ExtensionsTable>,
-    /// `learner`: `cs-ql` (when absent), `u-tree` or `full-sensing`.
+    /// `learner`: `cs-ql` (when absent), `u-tree`, `full-sensing`, `amrl-q` or `belief`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub learner: Option<LearnerKind>,
     /// The table `[u_tree]` (U-Tree only).
@@ -111,6 +111,10 @@ pub struct SettingsDraft {
     /// The table `[costly]`: sensing priced in reward units.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub costly: Option<CostlyTable>,
+    /// The table `[belief]` (sensing by belief only; its `price_scale` is `[costly]
+    /// price`, not a key of the table).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub belief: Option<crate::BeliefParams>,
 }
 
 /// The settings file's table `[costly]`: `price` (reward units per unit of sensing cost;
@@ -319,6 +323,18 @@ const TABLES: &[(&str, &[&str])] = &[
         ],
     ),
     ("costly", &["price", "rule"]),
+    (
+        "belief",
+        &[
+            "max_uncertain",
+            "trust",
+            "prior",
+            "optimism",
+            "whole_state",
+            "max_beliefs",
+            "move_cost",
+        ],
+    ),
 ];
 
 /// The keys of the top level that are not tables.
@@ -363,6 +379,11 @@ fn check_layout(layout: &toml::Table) -> Result<(), SettingsProblem> {
                         "`{inner_key}` is a setting of the [{home}] table, not of [{table}]"
                     )));
                 }
+            }
+            if *table == "belief" && inner.contains_key("price_scale") {
+                return Err(SettingsProblem::Layout(
+                    "`price_scale` is not a setting of [belief]: sensing by belief prices a feature at its cost times [costly] price".to_string(),
+                ));
             }
             if *table == "extensions"
                 && let Some(rate) = inner.get("rate")
@@ -480,7 +501,8 @@ impl SettingsDraft {
             u_tree,
             max_rows,
             amrl_q,
-            costly
+            costly,
+            belief
         );
     }
 
@@ -492,6 +514,7 @@ impl SettingsDraft {
         self.prediction = None;
         self.u_tree = None;
         self.amrl_q = None;
+        self.belief = None;
         if let Some(table) = &mut self.extensions {
             let (_, judge) = table.split();
             *table = ExtensionsTable::from_parts(Extensions::default(), judge);
@@ -532,6 +555,12 @@ impl SettingsDraft {
                 "[amrl_q] tunes learner = \"amrl-q\"",
             );
         }
+        if kind != LearnerKind::Belief && self.belief.is_some_and(|p| !p.is_default()) {
+            return conflict(
+                "[belief] settings".to_string(),
+                "[belief] tunes learner = \"belief\"",
+            );
+        }
         let costly = match self.costly {
             None => None,
             Some(CostlyTable { price: None, .. }) => {
@@ -556,7 +585,10 @@ impl SettingsDraft {
                 prediction: self.prediction.unwrap_or_default(),
                 extensions,
             }),
-            LearnerKind::UTree | LearnerKind::FullSensing | LearnerKind::AmrlQ => {
+            LearnerKind::UTree
+            | LearnerKind::FullSensing
+            | LearnerKind::AmrlQ
+            | LearnerKind::Belief => {
                 let why =
                     "it is a setting of CS-QL, and the baselines have none of CS-QL's settings";
                 if let Some(k) = self.strategy {
@@ -578,6 +610,12 @@ impl SettingsDraft {
                 match kind {
                     LearnerKind::UTree => Learner::UTree(self.u_tree.unwrap_or_default()),
                     LearnerKind::AmrlQ => Learner::AmrlQ(self.amrl_q.unwrap_or_default()),
+                    // Features priced at `[costly] price` (which the learner needs: refused
+                    // without it below).
+                    LearnerKind::Belief => Learner::Belief(crate::BeliefParams {
+                        price_scale: costly.map_or(1.0, |c: CostlySettings| c.price),
+                        ..self.belief.unwrap_or_default()
+                    }),
                     _ => Learner::FullSensing,
                 }
             }
@@ -647,6 +685,10 @@ impl From<&RunSettings> for SettingsDraft {
                 price: Some(c.price),
                 rule: Some(c.rule),
             }),
+            belief: match s.learner {
+                Learner::Belief(p) if !p.is_default() => Some(p),
+                _ => None,
+            },
         }
     }
 }

@@ -62,6 +62,10 @@ pub enum Error {
         /// What to do instead.
         hint: &'static str,
     },
+    /// Sensing by belief could not plan in this world with these settings (for example,
+    /// more features measured apart than a plan's menu takes).
+    #[error("sensing by belief: {0}")]
+    Plan(#[from] mdp::ReferenceError),
     /// A setting or a measure that only makes sense on a grid map, asked of another world.
     #[error("{what} needs a grid map; this world is not one")]
     GridOnly {

@@ -1,5 +1,6 @@
 //! Which learner a run uses (the run setting `learner`), with its own settings: CS-QL, the paper's method and the
-//! default, or one of two baselines that share its sensing model and its charges.
+//! default, one of two baselines that share its sensing model and its charges, or one of
+//! two learners played on episodes of the costed return.
 //!
 //! | `learner` | perception | type |
 //! |---|---|---|
@@ -7,8 +8,9 @@
 //! | `u-tree` | a tree split by a Kolmogorov-Smirnov test on future discounted returns | [`crate::UTree`] |
 //! | `full-sensing` | every sensable feature measured at every step | [`crate::FullView`] |
 //! | `amrl-q` | the believed state, measured whole when the learner chooses to (not a learner of [`crate::run`]; `csrl run` plays it for a fixed number of episodes) | [`crate::AmrlParams`] |
+//! | `belief` | a belief over the states a learned model allows, the features that separate them measured when a plan says it is worth their price (not a learner of [`crate::run`]; `csrl run` plays it for a fixed number of episodes) | [`crate::BeliefParams`] |
 //!
-//! Every learner is judged the same way ([`crate::Judging`]): by the oracle's verdicts
+//! Every learner of [`crate::run`] is judged the same way ([`crate::Judging`]): by the oracle's verdicts
 //! where the world is deterministic and the run in the paper's setting (for U-Tree, whose
 //! rows may depend on the last move, over every state and way of arriving there), by the
 //! policy quality otherwise (specification §6); every run also reports the cost and trials
@@ -45,6 +47,13 @@ pub enum Learner {
     /// whole, played for a fixed number of episodes on the costed return (specification
     /// 6.11). `csrl run` plays it; [`crate::run`] refuses it.
     AmrlQ(crate::AmrlParams),
+    /// Sensing by belief ([`crate::belief_planning`]): a learned model, a plan over
+    /// beliefs, features measured when the plan says so, played for a fixed number of
+    /// episodes on the costed return (specification 6.13). Its `price_scale` is the
+    /// settings' `[costly] price` (a settings file sets it so;
+    /// [`crate::RunSettings::validate`] refuses another). `csrl run` plays it;
+    /// [`crate::run`] refuses it.
+    Belief(crate::BeliefParams),
 }
 
 impl Learner {
@@ -69,6 +78,7 @@ impl Learner {
             Learner::UTree(_) => LearnerKind::UTree,
             Learner::FullSensing => LearnerKind::FullSensing,
             Learner::AmrlQ(_) => LearnerKind::AmrlQ,
+            Learner::Belief(_) => LearnerKind::Belief,
         }
     }
 
@@ -100,6 +110,7 @@ impl From<LearnerKind> for Learner {
             LearnerKind::UTree => Learner::UTree(UTreeParams::default()),
             LearnerKind::FullSensing => Learner::FullSensing,
             LearnerKind::AmrlQ => Learner::AmrlQ(crate::AmrlParams::default()),
+            LearnerKind::Belief => Learner::Belief(crate::BeliefParams::default()),
         }
     }
 }
@@ -159,6 +170,7 @@ impl CsQlSettings {
 /// assert_eq!(LearnerKind::default(), LearnerKind::CsQl);
 /// assert_eq!("u-tree".parse::<LearnerKind>().unwrap(), LearnerKind::UTree);
 /// assert_eq!(LearnerKind::FullSensing.to_string(), "full-sensing");
+/// assert_eq!("belief".parse::<LearnerKind>().unwrap(), LearnerKind::Belief);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -173,11 +185,15 @@ pub enum LearnerKind {
     /// AMRL-Q, measuring the whole state or not at each step, on the costed return
     /// (not a learner of [`crate::run`]: `csrl run` plays it for `max_trials` episodes).
     AmrlQ,
+    /// Sensing by belief, measuring what a plan over a learned model says is worth its
+    /// price, on the costed return (not a learner of [`crate::run`]: `csrl run` plays it
+    /// for `max_trials` episodes).
+    Belief,
 }
 
 impl LearnerKind {
-    /// The three learners of [`crate::run`], in order (AMRL-Q, played on episodes of the
-    /// costed return, is not among them).
+    /// The three learners of [`crate::run`], in order (AMRL-Q and sensing by belief,
+    /// played on episodes of the costed return, are not among them).
     ///
     /// ```
     /// assert_eq!(csql::LearnerKind::ALL.len(), 3);
@@ -188,7 +204,7 @@ impl LearnerKind {
         LearnerKind::FullSensing,
     ];
 
-    /// The setting's value: `cs-ql`, `u-tree`, `full-sensing` or `amrl-q`.
+    /// The setting's value: `cs-ql`, `u-tree`, `full-sensing`, `amrl-q` or `belief`.
     ///
     /// ```
     /// assert_eq!(csql::LearnerKind::CsQl.name(), "cs-ql");
@@ -199,7 +215,21 @@ impl LearnerKind {
             LearnerKind::UTree => "u-tree",
             LearnerKind::FullSensing => "full-sensing",
             LearnerKind::AmrlQ => "amrl-q",
+            LearnerKind::Belief => "belief",
         }
+    }
+
+    /// Whether this learner is played on episodes of the costed return (`amrl-q`,
+    /// `belief`): for a fixed number of episodes, with `[costly] price`, reported by
+    /// [`crate::costed_report`] rather than run by [`crate::run`].
+    ///
+    /// ```
+    /// use csql::LearnerKind;
+    /// assert!(LearnerKind::Belief.on_episodes() && LearnerKind::AmrlQ.on_episodes());
+    /// assert!(!LearnerKind::CsQl.on_episodes());
+    /// ```
+    pub fn on_episodes(self) -> bool {
+        matches!(self, LearnerKind::AmrlQ | LearnerKind::Belief)
     }
 
     /// Whether this is CS-QL (for serde's `skip_serializing_if`).
@@ -223,11 +253,11 @@ impl std::str::FromStr for LearnerKind {
     fn from_str(s: &str) -> Result<LearnerKind, Error> {
         LearnerKind::ALL
             .into_iter()
-            .chain([LearnerKind::AmrlQ])
+            .chain([LearnerKind::AmrlQ, LearnerKind::Belief])
             .find(|k| k.name() == s)
             .ok_or_else(|| Error::InvalidSetting {
                 value: s.to_string(),
-                expected: "cs-ql, u-tree, full-sensing or amrl-q",
+                expected: "cs-ql, u-tree, full-sensing, amrl-q or belief",
             })
     }
 }

@@ -220,9 +220,9 @@ mod utree;
 mod view;
 
 pub use amrl::{AmrlParams, CostlySummary, Episode, Measuring, amrl_q};
-pub use belief::{BeliefParams, belief_planning};
+pub use belief::{BeliefParams, MAX_BELIEF_UNCERTAIN, belief_planning};
 pub use classify::{Classification, Classify};
-pub use costly::{AmrlReport, CostedRun, amrl_report, costed_episodes};
+pub use costly::{CostedReport, CostedRun, costed_episodes, costed_report, costed_report_in};
 pub use detector::{
     ActionDrop, AnyDrop, Detector, DetectorKind, RateParams, RateTest, RunDetector,
 };

@@ -201,6 +201,7 @@ impl RunReport {
             crate::Learner::UTree(_) => "U-Tree".to_string(),
             crate::Learner::FullSensing => "full sensing".to_string(),
             crate::Learner::AmrlQ(_) => "AMRL-Q".to_string(),
+            crate::Learner::Belief(_) => "sensing by belief".to_string(),
         }
     }
 }

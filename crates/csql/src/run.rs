@@ -54,7 +54,7 @@ pub fn run_settings(
     settings: &RunSettings,
     observer: &mut dyn Observer,
 ) -> Result<RunReport, Error> {
-    not_amrl_q(settings)?;
+    not_on_episodes(settings)?;
     match Resolved::new(settings)? {
         Resolved::Grid(setup) => Ok(run_observed(&setup, settings, observer)),
         Resolved::Finite { world, oracle } => {
@@ -64,16 +64,18 @@ pub fn run_settings(
     }
 }
 
-/// AMRL-Q is played on episodes of the costed return ([`crate::amrl_q`]), not in a run.
-fn not_amrl_q(settings: &RunSettings) -> Result<(), Error> {
-    match settings.learner {
-        Learner::AmrlQ(_) => Err(Error::Conflict {
-            first: "learner = amrl-q".to_string(),
+/// AMRL-Q and sensing by belief are played on episodes of the costed return
+/// ([`crate::costed_report`]), not in a run.
+fn not_on_episodes(settings: &RunSettings) -> Result<(), Error> {
+    let kind = settings.learner.kind();
+    if kind.on_episodes() {
+        return Err(Error::Conflict {
+            first: format!("learner = {kind}"),
             second: "a run judged by trials (csql::run)".to_string(),
-            why: "AMRL-Q is played for a fixed number of episodes on the costed return (csql::amrl_q, or csrl run)",
-        }),
-        _ => Ok(()),
+            why: "the learner is played for a fixed number of episodes on the costed return (csql::costed_report, or csrl run)",
+        });
     }
+    Ok(())
 }
 
 /// Run CS-QL on a prepared world (the settings' map name is only reported).
@@ -108,7 +110,7 @@ pub fn run_in<W: World + ?Sized>(
     observer: &mut dyn Observer,
 ) -> Result<RunReport, Error> {
     settings.validate()?;
-    not_amrl_q(settings)?;
+    not_on_episodes(settings)?;
     if scene.world.grid().is_none() {
         if settings.predict_sensing() == PredictSensing::Motion {
             return Err(Error::GridOnly {
@@ -227,9 +229,10 @@ fn learn_classify<W: World + ?Sized>(
         .with_noise(settings.world.sensor_noise, sensor_rng)
         .with_extensions(&extensions);
     let (q, predicting) = match &settings.learner {
-        // AMRL-Q is refused before a run of `csql::run` starts (`not_amrl_q`); a
-        // setup prepared for it learns as full sensing, its nearest learner here.
-        Learner::FullSensing | Learner::AmrlQ(_) => {
+        // AMRL-Q and sensing by belief are refused before a run of `csql::run` starts
+        // (`not_on_episodes`); a setup prepared for one learns as full sensing, the
+        // nearest learner here.
+        Learner::FullSensing | Learner::AmrlQ(_) | Learner::Belief(_) => {
             let perception = FullView::new(scene.world);
             let (report, _) = learn_and_report(scene, settings, perception, Never, observer);
             return (report, classify.into_representation());

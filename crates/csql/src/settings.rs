@@ -545,17 +545,32 @@ impl RunSettings {
             Learner::UTree(p) => p.validate(),
             Learner::FullSensing => Ok(()),
             Learner::AmrlQ(p) => p.validate(),
+            Learner::Belief(p) => self.validate_belief(p),
+        }
+    }
+
+    /// Sensing by belief: its settings, and its price scale, which is `[costly] price`.
+    fn validate_belief(&self, p: &crate::BeliefParams) -> Result<(), Error> {
+        p.validate()?;
+        match self.costly {
+            Some(c) if c.price != p.price_scale => Err(Error::Conflict {
+                first: format!("belief price_scale = {}", p.price_scale),
+                second: format!("[costly] price = {}", c.price),
+                why: "sensing by belief prices a feature at its cost times [costly] price: give its price_scale that value",
+            }),
+            _ => Ok(()),
         }
     }
 
     /// `[costly]`: a finite price of at least 0, for the learners that are scored on it.
     fn validate_costly(&self) -> Result<(), Error> {
         let Some(c) = self.costly else {
-            if self.learner.kind() == LearnerKind::AmrlQ {
+            let kind = self.learner.kind();
+            if kind.on_episodes() {
                 return Err(Error::Conflict {
-                    first: "learner = amrl-q".to_string(),
+                    first: format!("learner = {kind}"),
                     second: "no [costly] price".to_string(),
-                    why: "AMRL-Q weighs measuring against reward: give [costly] price (reward units per unit of sensing cost; csrl run --price)",
+                    why: "the learner weighs measuring against reward: give [costly] price (reward units per unit of sensing cost; csrl run --price)",
                 });
             }
             return Ok(());
@@ -570,7 +585,7 @@ impl RunSettings {
             Err(Error::Conflict {
                 first: "[costly] price".to_string(),
                 second,
-                why: "costed episodes are scored for cs-ql (sensing every state it reaches), full-sensing and amrl-q",
+                why: "costed episodes are scored for cs-ql (sensing every state it reaches), full-sensing, amrl-q and belief",
             })
         };
         match &self.learner {

@@ -158,3 +158,69 @@ fn bad_settings_are_refused_naming_them() {
     .unwrap_err();
     assert!(err.to_string().contains("max_moves"), "{err}");
 }
+
+/// The learner `belief` of a run's settings: `[belief]` read, echoed and read back, its
+/// price scale `[costly] price`, played by `costed_report` exactly as `belief_planning`
+/// plays it, and refused by `csql::run`.
+#[test]
+fn the_learner_belief_of_a_runs_settings() {
+    let text = "map = \"frozenlake4x4\"\nlearner = \"belief\"\nmax_trials = 60\nseed = 8\n\
+                [belief]\ntrust = 2\nwhole_state = true\n[world]\nsensing = \"factors\"\n\
+                [costly]\nprice = 0.025\nrule = \"after-outcome\"";
+    let s = csql::SettingsDraft::from_toml(text, "f")
+        .unwrap()
+        .build()
+        .unwrap();
+    let csql::Learner::Belief(p) = s.learner else {
+        panic!("{:?}", s.learner)
+    };
+    assert_eq!(
+        p,
+        BeliefParams {
+            trust: 2,
+            whole_state: true,
+            price_scale: 0.025,
+            ..BeliefParams::default()
+        }
+    );
+    // Echoed and read back.
+    let echo = toml::to_string(&s).unwrap();
+    assert!(
+        echo.contains("[belief]") && !echo.contains("price_scale"),
+        "{echo}"
+    );
+    assert_eq!(toml::from_str::<csql::RunSettings>(&echo).unwrap(), s);
+    // Played as belief_planning plays it.
+    let world = lake("frozenlake4x4", 0.0, 1.0);
+    let r = csql::costed_report(&world, "frozenlake4x4", &s).unwrap();
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(8);
+    let episodes =
+        belief_planning(&world, &p, SensingRule::AfterOutcome, 60, 100, &mut rng).unwrap();
+    assert_eq!(r.costly, csql::CostedRun::of(s.costly.unwrap(), &episodes));
+    assert_eq!(
+        (r.learner, r.whole_state_price),
+        (csql::LearnerKind::Belief, 0.05)
+    );
+    // Not a learner of csql::run.
+    let err = csql::run(&s).unwrap_err().to_string();
+    assert!(err.contains("learner = belief"), "{err}");
+    // Another price scale than [costly] price is refused, naming both.
+    let mut other = s.clone();
+    other.learner = csql::Learner::Belief(BeliefParams {
+        price_scale: 1.0,
+        ..p
+    });
+    let err = other.validate().unwrap_err().to_string();
+    assert!(
+        err.contains("price_scale = 1") && err.contains("[costly] price = 0.025"),
+        "{err}"
+    );
+    // Without [costly], refused.
+    let mut unpriced = s;
+    unpriced.costly = None;
+    let err = unpriced.validate().unwrap_err().to_string();
+    assert!(
+        err.contains("learner = belief") && err.contains("[costly] price"),
+        "{err}"
+    );
+}

@@ -171,6 +171,23 @@ fn run_json(
         settings::check_world_object(&mut settings, &w.world)?;
     }
     let world = object.as_ref().map(|w| &w.world);
+    if settings.learner.kind().on_episodes() {
+        // AMRL-Q and sensing by belief: their episodes, scored, as `csrl run` plays them.
+        if trace {
+            return Err(run_error(&csql::Error::Conflict {
+                first: "trace".to_string(),
+                second: format!("learner = {}", settings.learner.kind()),
+                why: "the learner plays a fixed number of episodes, scored by the costed return: its every episode is already in the report",
+            }));
+        }
+        let report = py
+            .detach(|| match world {
+                None => csql::costed_report_in(&csql::Resolved::new(&settings)?, &settings),
+                Some(world) => csql::costed_report(world, world.name(), &settings),
+            })
+            .map_err(|e| run_error(&e))?;
+        return serde_json::to_string(&report).map_err(|e| SettingsError::new_err(e.to_string()));
+    }
     // Resolving a world solves its true model (value iteration), which takes time on
     // large worlds: everything from here runs without the GIL.
     let report = py

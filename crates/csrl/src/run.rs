@@ -31,7 +31,7 @@ pub struct RunArgs {
     /// A TOML file of settings that override the paper's (beta, gamma, temperature,
     /// max_moves, random_moves, tolerance, decrease_threshold, max_trials, map,
     /// strategy, seed, predict_sensing, learner and the tables `[prediction]`,
-    /// `[world]`, `[extensions]`, `[u_tree]`, `[amrl_q]` and `[costly]`); flags given
+    /// `[world]`, `[extensions]`, `[u_tree]`, `[amrl_q]`, `[belief]` and `[costly]`); flags given
     /// here override the file.
     #[arg(long)]
     config: Option<PathBuf>,
@@ -40,19 +40,21 @@ pub struct RunArgs {
     /// the config tunes it).
     #[arg(long)]
     predict_sensing: Option<csql::PredictSensing>,
-    /// cs-ql (the default), u-tree, full-sensing or amrl-q: the learner (default: the
-    /// config's `learner`, else cs-ql). The first three are judged the same way: by the
-    /// oracle's convergence in a deterministic world in the paper's setting, else by the
-    /// policy quality; every report also gives the cost and trials until quality 0.95.
-    /// amrl-q (AMRL-Q, its published parameters by default, tuned by the config's
-    /// `[amrl_q]`) plays exactly `max_trials` episodes and needs `--price`; its report is
-    /// the costed return of every episode and their summary.
+    /// cs-ql (the default), u-tree, full-sensing, amrl-q or belief: the learner (default:
+    /// the config's `learner`, else cs-ql). The first three are judged the same way: by
+    /// the oracle's convergence in a deterministic world in the paper's setting, else by
+    /// the policy quality; every report also gives the cost and trials until quality
+    /// 0.95. amrl-q (AMRL-Q, its published parameters by default, tuned by the config's
+    /// `[amrl_q]`) and belief (sensing by belief: a learned model and a plan over
+    /// beliefs, tuned by the config's `[belief]`) play exactly `max_trials` episodes and
+    /// need `--price`; their report is the costed return of every episode and their
+    /// summary.
     #[arg(long)]
     learner: Option<csql::LearnerKind>,
     /// Price sensing in reward units: a feature of cost c costs c times PRICE (the
     /// config's `[costly] price`). The report then also scores every trial by its costed
     /// return (reward less the prices of what was sensed) and sums them up (cs-ql,
-    /// full-sensing, amrl-q).
+    /// full-sensing, amrl-q, belief).
     #[arg(long, value_name = "PRICE")]
     price: Option<f64>,
     /// with-move (the published rule: sensing decided with the move, paid even when the
@@ -60,8 +62,8 @@ pub struct RunArgs {
     /// config's `[costly] rule`, else with-move).
     #[arg(long, value_parser = parse_rule)]
     sensing_rule: Option<mdp::SensingRule>,
-    /// Stop an unconverged run after this many trials (amrl-q: the number of episodes
-    /// it plays).
+    /// Stop an unconverged run after this many trials (amrl-q, belief: the number of
+    /// episodes played).
     #[arg(long)]
     max_trials: Option<csql::TrialCap>,
     /// Exit with code 3 if the run does not converge, or, for a run judged by the policy
@@ -174,8 +176,8 @@ fn progress_bar(len: u32) -> indicatif::ProgressBar {
 pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     let settings = args.settings()?;
     let resolved = csql::Resolved::new(&settings)?;
-    if let csql::Learner::AmrlQ(_) = settings.learner {
-        return run_amrl_q(args, &settings, &resolved, out);
+    if settings.learner.kind().on_episodes() {
+        return run_on_episodes(args, &settings, &resolved, out);
     }
     if args.svg.is_some() && !matches!(resolved, csql::Resolved::Grid(_)) {
         return Err(csql::Error::GridOnly {
@@ -239,8 +241,8 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     Ok(())
 }
 
-/// `csrl run --learner amrl-q`: AMRL-Q's episodes, scored.
-fn run_amrl_q(
+/// `csrl run --learner amrl-q` or `--learner belief`: the learner's episodes, scored.
+fn run_on_episodes(
     args: &RunArgs,
     settings: &RunSettings,
     resolved: &csql::Resolved,
@@ -254,26 +256,35 @@ fn run_amrl_q(
         if given {
             return Err(csql::Error::Conflict {
                 first: flag.to_string(),
-                second: "learner = amrl-q".to_string(),
-                why: "AMRL-Q plays a fixed number of episodes, scored by the costed return: no policy to draw, nothing to converge, its every episode already in the report",
+                second: format!("learner = {}", settings.learner.kind()),
+                why: "the learner plays a fixed number of episodes, scored by the costed return: no policy to draw, nothing to converge, its every episode already in the report",
             }
             .into());
         }
     }
-    let report = match resolved {
-        csql::Resolved::Grid(setup) => {
-            csql::amrl_report(&setup.sensed(settings), setup.map.name(), settings)?
-        }
-        csql::Resolved::Finite { world, .. } => csql::amrl_report(world, world.name(), settings)?,
-    };
+    let report = csql::costed_report_in(resolved, settings)?;
     if args.json {
         writeln!(out, "{}", serde_json::to_string(&report)?)?;
     } else {
-        writeln!(
-            out,
-            "AMRL-Q on {}, seed {}: {} episodes, the whole state measured at {} reward units",
-            report.map, report.seed, report.costly.summary.episodes, report.whole_state_price
-        )?;
+        let (map, seed, n) = (&report.map, report.seed, report.costly.summary.episodes);
+        match &report.settings.learner {
+            csql::Learner::Belief(p) => writeln!(
+                out,
+                "Sensing by belief on {map}, seed {seed}: {n} episodes, each feature measured at its cost times {} reward units (the whole state at {}{})",
+                report.costly.price,
+                report.whole_state_price,
+                if p.whole_state {
+                    ", measured whole"
+                } else {
+                    ""
+                }
+            )?,
+            _ => writeln!(
+                out,
+                "AMRL-Q on {map}, seed {seed}: {n} episodes, the whole state measured at {} reward units",
+                report.whole_state_price
+            )?,
+        }
         print_costly(&report.costly, out)?;
     }
     Ok(())
@@ -344,6 +355,7 @@ fn print_report(r: &RunReport, out: &mut dyn Write) -> std::io::Result<()> {
         csql::Learner::UTree(_) => format!("U-Tree on {}", r.map),
         csql::Learner::FullSensing => format!("Full sensing on {}", r.map),
         csql::Learner::AmrlQ(_) => format!("AMRL-Q on {}", r.map),
+        csql::Learner::Belief(_) => format!("Sensing by belief on {}", r.map),
     };
     // The same three lines for every learner, so that runs compare line by line.
     let verdict = match r.judged_by {
