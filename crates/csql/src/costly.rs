@@ -143,7 +143,7 @@ pub fn costed_episodes<W: World + ?Sized>(
         }
         other => Err(refuse(
             format!("learner = {}", other.kind()),
-            "they are scored for cs-ql, full-sensing and amrl-q",
+            "they play cs-ql and full-sensing; amrl-q and belief play through csql::costed_report",
         )),
     }
 }
