@@ -484,9 +484,10 @@ impl<W: World + ?Sized> Learner<'_, W> {
         }
     }
 
-    /// Whether the features read tell `truth` among the states `(s, a)` may lead to:
-    /// its outcomes so far once it is trusted, every state before.
-    fn told(&self, s: u32, a: ActionId, truth: StateId, read: &[usize]) -> bool {
+    /// Whether what was read (the readings `truth` gives on `read`) tells the state `t`
+    /// the agent believes it reached, among the states `(s, a)` may lead to: its outcomes
+    /// so far once it is trusted, every state before.
+    fn told(&self, s: u32, a: ActionId, t: u32, truth: StateId, read: &[usize]) -> bool {
         if read.is_empty() {
             return false;
         }
@@ -495,8 +496,8 @@ impl<W: World + ?Sized> Learner<'_, W> {
         let agreeing = self.agreeing(truth, read);
         let mut possible = agreeing
             .iter()
-            .filter(|t| !trusted || c.next.contains_key(t));
-        possible.next() == Some(&truth.0) && possible.next().is_none()
+            .filter(|x| !trusted || c.next.contains_key(x));
+        possible.next() == Some(&t) && possible.next().is_none()
     }
 
     /// The states that read as `truth` does on every feature.
@@ -679,7 +680,7 @@ impl<W: World + ?Sized> Learner<'_, W> {
                     // trusted): a state inferred from the model alone would only
                     // confirm the model.
                     if let Some(s) = from_state
-                        && self.told(s, action, truth, &read)
+                        && self.told(s, action, t, truth, &read)
                     {
                         self.count(s, action, Some(t), step.reward);
                     }
