@@ -15,7 +15,10 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Result, anyhow, bail};
 use clap::Args;
-use csql::{AmrlParams, CostlySummary, Episode, LearnerKind, Measuring, RunSettings, StrategyKind};
+use csql::{
+    AmrlParams, CostlySettings, CostlySummary, Episode, LearnerKind, Measuring, PredictSensing,
+    RunSettings, StrategyKind,
+};
 use mdp::{FiniteWorld, SensingModel, SensingRule, WorldOptions};
 use plotters::prelude::*;
 use qlearn::MoveCap;
@@ -124,15 +127,19 @@ pub enum Learner {
     /// Sensing by belief: a learned model, a plan over beliefs, the row and the column
     /// measured apart (`csql::belief_planning`).
     Belief,
+    /// CS-QL as [`Learner::CsQl`], sensing by its belief over descriptions
+    /// (`predict_sensing = "belief"`, `[prediction]` at its defaults).
+    CsQlBelief,
 }
 
 impl Learner {
-    const ALL: [Learner; 5] = [
+    const ALL: [Learner; 6] = [
         Learner::AmrlQ,
         Learner::AlwaysMeasuring,
         Learner::CsQl,
         Learner::FullSensing,
         Learner::Belief,
+        Learner::CsQlBelief,
     ];
 
     fn name(self) -> &'static str {
@@ -142,6 +149,7 @@ impl Learner {
             Learner::CsQl => "cs-ql",
             Learner::FullSensing => "full-sensing",
             Learner::Belief => "belief",
+            Learner::CsQlBelief => "cs-ql-belief",
         }
     }
 
@@ -153,6 +161,7 @@ impl Learner {
             Learner::CsQl => RGBColor(31, 119, 180),
             Learner::FullSensing => RGBColor(230, 120, 20),
             Learner::Belief => RGBColor(44, 160, 44),
+            Learner::CsQlBelief => RGBColor(148, 103, 189),
         }
     }
 
@@ -188,7 +197,7 @@ impl Learner {
             )),
             Learner::CsQl => cs_ql(
                 lake,
-                LearnerKind::CsQl,
+                (LearnerKind::CsQl, PredictSensing::Off),
                 world,
                 price,
                 rule,
@@ -197,7 +206,16 @@ impl Learner {
             ),
             Learner::FullSensing => cs_ql(
                 lake,
-                LearnerKind::FullSensing,
+                (LearnerKind::FullSensing, PredictSensing::Off),
+                world,
+                price,
+                rule,
+                (episodes, max_moves),
+                seed,
+            ),
+            Learner::CsQlBelief => cs_ql(
+                lake,
+                (LearnerKind::CsQl, PredictSensing::Belief),
                 world,
                 price,
                 rule,
@@ -246,11 +264,12 @@ fn amrl(
     )
 }
 
-/// CS-QL (the resetting strategy) or full sensing, with the paper's settings and the
-/// lake's move cap; each coordinate costs 1 and is priced `price` reward units.
+/// CS-QL (the resetting strategy, at the given `predict_sensing` level) or full
+/// sensing, with the paper's settings and the lake's move cap; each coordinate costs 1
+/// and is priced `price` reward units.
 fn cs_ql(
     lake: &FiniteWorld,
-    kind: LearnerKind,
+    (kind, level): (LearnerKind, PredictSensing),
     world: &str,
     price: f64,
     rule: SensingRule,
@@ -260,6 +279,13 @@ fn cs_ql(
     let mut settings = RunSettings::tan1991(world, StrategyKind::Resetting, seed);
     if kind != LearnerKind::CsQl {
         settings = settings.with_learner(kind);
+    }
+    if let Some(q) = settings.cs_ql_mut() {
+        q.predict_sensing = level;
+    }
+    if level == PredictSensing::Belief {
+        // The belief level weighs sensing at the price it is scored at.
+        settings.costly = Some(CostlySettings { price, rule });
     }
     settings.max_moves = MoveCap::new(u64::from(max_moves))?;
     Ok(csql::costed_episodes(

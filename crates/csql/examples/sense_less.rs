@@ -8,11 +8,13 @@
 //! over seeds 1..=SEEDS (default 10; maps default to `tan8x8`), the ratio of each level's
 //! best strategy to the best of the paper's four (level `off`), the runs that converged,
 //! and navigation's cost per move and success. `KEY=VALUE` sets a field of
-//! `[prediction]` (for example `memory_moves=100`).
+//! `[prediction]` (for example `memory_moves=100`). The belief level weighs sensing at
+//! `[costly] price` = the environment variable `PRICE` (default 0.01 reward units per
+//! unit of sensing cost).
 
 use std::sync::Mutex;
 
-use csql::{PredictSensing, RunReport, RunSettings, Setup, StrategyKind};
+use csql::{CostlySettings, PredictSensing, RunReport, RunSettings, Setup, StrategyKind};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
@@ -24,6 +26,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .map(str::to_string)
         .collect();
     let overrides: Vec<String> = args.collect();
+    let price: f64 = std::env::var("PRICE").map_or(Ok(0.01), |p| p.parse())?;
     let toml = format!("[prediction]\n{}", overrides.join("\n"));
     for map in &maps {
         let base = RunSettings::tan1991(map, StrategyKind::Lazy, 1);
@@ -36,6 +39,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     s.apply_toml(&toml, "arguments")?;
                     if let Some(q) = s.cs_ql_mut() {
                         q.predict_sensing = level;
+                    }
+                    if level == PredictSensing::Belief {
+                        s.costly = Some(CostlySettings::new(price));
                     }
                     jobs.push(s);
                 }

@@ -131,6 +131,10 @@ impl Perception for Audited {
     fn lookup<W: World + ?Sized>(&mut self, world: &W, s: StateId) -> Option<RowId> {
         self.inner.lookup(world, s)
     }
+
+    fn learns_from_move(&self, ended: bool) -> bool {
+        self.inner.learns_from_move(ended)
+    }
 }
 
 impl Sees for Audited {

@@ -25,8 +25,8 @@
 //! A sensing act (an [`Episode`]'s `measurements`) is a state classified with at least
 //! one feature read.
 
-use mdp::{SensingRule, StateId, World};
-use qlearn::QTable;
+use mdp::{ActionId, SensingRule, StateId, World};
+use qlearn::{QTable, RowId};
 use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
@@ -38,6 +38,7 @@ use crate::error::Error;
 use crate::learner::Learner;
 use crate::main_loop::Agent;
 use crate::perception::{FullView, Perception};
+use crate::predict::Predicting;
 use crate::predict::level::PredictSensing;
 use crate::settings::{CostlySettings, RunSettings};
 use crate::strategy::{Never, Strategy};
@@ -45,18 +46,62 @@ use crate::strategy::{Never, Strategy};
 /// What a perception would read classifying a state, learning nothing: the charge of a
 /// move that ends an episode under [`SensingRule::WithMove`].
 trait WouldRead: Perception {
-    fn would_read<W: World + ?Sized>(&mut self, world: &W, s: StateId) -> f64;
+    /// Action `a` was taken from row `from` and will end the episode: a perception that
+    /// chooses what to sense with the move chooses it now, before the move is learned
+    /// from.
+    fn before_outcome(&mut self, from: RowId, a: ActionId, table: &QTable) {
+        let _ = (from, a, table);
+    }
+    /// What it would read on `s`, reached by `a` from `from`.
+    fn would_read<W: World + ?Sized>(
+        &mut self,
+        world: &W,
+        from: RowId,
+        a: ActionId,
+        s: StateId,
+        table: &QTable,
+    ) -> f64;
 }
 
 impl WouldRead for Classify {
-    fn would_read<W: World + ?Sized>(&mut self, world: &W, s: StateId) -> f64 {
+    fn would_read<W: World + ?Sized>(
+        &mut self,
+        world: &W,
+        _: RowId,
+        _: ActionId,
+        s: StateId,
+        _: &QTable,
+    ) -> f64 {
         self.lookup_cost(world, s)
     }
 }
 
 impl WouldRead for FullView {
-    fn would_read<W: World + ?Sized>(&mut self, world: &W, s: StateId) -> f64 {
+    fn would_read<W: World + ?Sized>(
+        &mut self,
+        world: &W,
+        _: RowId,
+        _: ActionId,
+        s: StateId,
+        _: &QTable,
+    ) -> f64 {
         FullView::cost_of(world, s)
+    }
+}
+
+impl WouldRead for Predicting {
+    fn before_outcome(&mut self, from: RowId, a: ActionId, table: &QTable) {
+        self.choose_with_move(from, a, table);
+    }
+    fn would_read<W: World + ?Sized>(
+        &mut self,
+        world: &W,
+        from: RowId,
+        a: ActionId,
+        s: StateId,
+        table: &QTable,
+    ) -> f64 {
+        self.would_read_by_belief(world, from, a, s, table)
     }
 }
 
@@ -126,10 +171,11 @@ pub fn costed_episodes<W: World + ?Sized>(
     match &settings.learner {
         Learner::FullSensing => Ok(play.run(FullView::new(world), Never, table)),
         Learner::CsQl(q) => {
-            if q.predict_sensing != PredictSensing::Off || q.extensions.memory > 0 {
+            let belief = q.predict_sensing == PredictSensing::Belief;
+            if !(q.predict_sensing.is_off() || belief) || q.extensions.memory > 0 {
                 return Err(refuse(
-                    "predict_sensing or memory".to_string(),
-                    "they are scored for CS-QL classifying every state it reaches",
+                    format!("predict_sensing = {} or memory", q.predict_sensing),
+                    "they are scored for CS-QL classifying every state it reaches, or sensing by its belief (predict_sensing = belief)",
                 ));
             }
             // CLASSIFY as `csql::run` builds it: the sensors' own generator, the run's
@@ -139,7 +185,23 @@ pub fn costed_episodes<W: World + ?Sized>(
             let classify = Classify::new(world)
                 .with_noise(settings.world.sensor_noise, sensor_rng)
                 .with_extensions(&settings.extensions());
-            Ok(play.run(classify, q.strategy.build(q.random_moves), table))
+            let strategy = q.strategy.build(q.random_moves);
+            if belief && settings.costly.map(|c| c.price) != Some(reward_per_cost) {
+                return Err(refuse(
+                    "predict_sensing = belief".to_string(),
+                    "the belief level weighs sensing at the price it is scored at: give [costly] price the value of reward_per_cost",
+                ));
+            }
+            if belief {
+                let p = Predicting::belief(
+                    classify,
+                    &q.prediction,
+                    world.num_actions(),
+                    reward_per_cost,
+                );
+                return Ok(play.run(p, strategy, table));
+            }
+            Ok(play.run(classify, strategy, table))
         }
         other => Err(refuse(
             format!("learner = {}", other.kind()),
@@ -375,13 +437,25 @@ impl<W: World + ?Sized> Play<'_, W> {
                 let m = agent.choose(&mut t, &mut rng);
                 let mut step = world.sample(t.state, m.action, &mut rng);
                 step.truncated |= t.rec.moves + 1 >= agent.params.max_moves;
-                let before = t.rec.cost;
+                let (before, from) = (t.rec.cost, t.row);
+                let with_move = step.terminated && self.rule == SensingRule::WithMove;
+                if with_move {
+                    agent
+                        .perception
+                        .before_outcome(from, m.action, &agent.table);
+                }
                 agent.observe(&mut t, world, m, step, &mut rng);
                 let mut paid = t.rec.cost - before;
                 if step.terminated {
                     e.reached_goal = step.reward > 0.0;
-                    if self.rule == SensingRule::WithMove {
-                        paid += agent.perception.would_read(world, step.next);
+                    if with_move {
+                        paid += agent.perception.would_read(
+                            world,
+                            from,
+                            m.action,
+                            step.next,
+                            &agent.table,
+                        );
                     }
                 }
                 e.measurements += u32::from(paid > 0.0);

@@ -106,7 +106,11 @@
 //!
 //! Beyond the paper, a run may predict the next description instead of classifying it
 //! ([`Predicting`]): `learned` with a model of (description, action) -> next description
-//! kept as the representation changes, `motion` with dead reckoning as well. No
+//! kept as the representation changes, `motion` with dead reckoning as well, and
+//! `belief`, which keeps the frequencies of every next description, weighs acting on the
+//! belief they give against the price of measuring (`[costly] price`, in reward units),
+//! and measures only what tells the likely descriptions apart (also in stochastic
+//! worlds; at a price of 0 it is the paper's run, move for move). No
 //! transition is used more than `max_skips` (16) times in a row without a measurement,
 //! which bounds how long a wrong prediction can feed the Q table; `tests/predict.rs`
 //! checks it. With `off` every run is the paper's, byte for byte. Measured over seeds 1

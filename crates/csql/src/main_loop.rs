@@ -261,7 +261,7 @@ pub(crate) struct Trial {
     /// The state the agent is in, as the world it senses through names it.
     pub(crate) state: StateId,
     /// Its row.
-    row: RowId,
+    pub(crate) row: RowId,
     /// Random moves left (the random strategy).
     random_left: u32,
     /// What happened so far.
@@ -276,6 +276,23 @@ pub(crate) struct Move {
     pub(crate) action: ActionId,
     /// A uniformly drawn move of the random strategy: its decreases refine nothing.
     random: bool,
+}
+
+impl Trial {
+    /// x <- y (row `next`, `None` at the goal), and go on until the goal or the cap.
+    fn move_on(&mut self, next: Option<RowId>, step: mdp::Step) {
+        match next {
+            None => {
+                self.rec.reached_goal = true;
+                self.over = true;
+            }
+            Some(r) => {
+                self.state = step.next;
+                self.row = r;
+                self.over = step.truncated;
+            }
+        }
+    }
 }
 
 impl<P: Perception, S: Strategy> Agent<P, S> {
@@ -401,6 +418,11 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
             waiting,
         } = self;
         let rec = &mut t.rec;
+        if !perception.learns_from_move(next.is_none()) {
+            // A description only guessed: nothing to learn from this move.
+            t.move_on(next, step);
+            return;
+        }
         // 4./5. Equation 2 for Q(descrip(x), a), then V(descrip(x)).
         let target = next.map_or(Target::Terminal, Target::Bootstrap);
         let q_before = table.q(row_x, a);
@@ -464,17 +486,7 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
             }
         }
         // 8./9. x <- y, and go on until the goal.
-        match row_y {
-            None => {
-                rec.reached_goal = true;
-                t.over = true;
-            }
-            Some(r) => {
-                t.state = step.next;
-                t.row = r;
-                t.over = step.truncated;
-            }
-        }
+        t.move_on(row_y, step);
     }
 
     /// A description waiting for its feature ([`RefineFrom::NextSensed`]) that state `s`

@@ -113,6 +113,23 @@ pub trait Perception {
     /// row (`None` if classifying it would add one). This is the view the oracle judges
     /// the perception through; the learner never uses it.
     fn lookup<W: World + ?Sized>(&mut self, world: &W, s: StateId) -> Option<RowId>;
+    /// Whether the main loop may learn from the move just observed: a perception that
+    /// gave the state left (or, unless the move ended the trial, the state reached) a
+    /// description it only guessed among several says false, and the move updates
+    /// nothing (true by default).
+    ///
+    /// ```
+    /// use csql::{Identified, Perception};
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let p = Identified::new(&sensed, vec![1.0; 9]);
+    /// assert!(p.learns_from_move(false));
+    /// ```
+    fn learns_from_move(&self, ended: bool) -> bool {
+        let _ = ended;
+        true
+    }
     /// Whether the perception keeps the contract above (true by default). U-Tree, whose
     /// splits move states between rows without a refinement, says false.
     fn keeps_rows(&self) -> bool {

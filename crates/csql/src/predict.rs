@@ -3,7 +3,7 @@
 //! The paper charges every measurement and leaves a "task-dependent world model (e.g., a
 //! reduced map)" built from the learned representation as future work. In a
 //! deterministic world most of CLASSIFY's measurements after a move can be predicted from
-//! the description the robot left and the action it took. Two levels, never mixed in a
+//! the description the robot left and the action it took. The levels, never mixed in a
 //! report (the setting `predict_sensing`, [`PredictSensing`]):
 //!
 //! | level | what the agent knows | type |
@@ -11,6 +11,11 @@
 //! | `off` | nothing: every next state is classified (the paper's procedure) | [`crate::Classify`] alone |
 //! | `learned` | a model learned on the way: (description, action) -> next description | [`Predicting::learned`], [`TransitionModel`] |
 //! | `motion` | the learned model, and how its moves shift its view (dead reckoning) | [`Predicting::motion`] |
+//! | `belief` | the model's frequencies of next descriptions, weighed against a price in reward units (also in stochastic worlds) | [`Predicting::belief`] |
+//!
+//! The belief level is described in its own module (`predict/weighing.rs`, specification
+//! 6.14): what follows describes the learned and motion levels, whose rules it shares
+//! where it says so.
 //!
 //! # The learned model
 //!
@@ -68,6 +73,7 @@
 pub(crate) mod level;
 pub(crate) mod model;
 mod reckoning;
+mod weighing;
 
 use cslearn::{FeatureId, Sensor, Value};
 use mdp::{
@@ -108,6 +114,14 @@ pub struct PredictionStats {
     /// The most wrong predictions of one transition between two of its measurements
     /// (the guarantee: at most `max_skips`).
     pub longest_wrong_run: u32,
+    /// States the belief level resolved by measuring only what tells the likely
+    /// descriptions apart (charged, and absent from the JSON when 0).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub narrowed: u64,
+}
+
+fn is_zero(n: &u64) -> bool {
+    *n == 0
 }
 
 /// CLASSIFY with a learned transition model (and, at the motion level, a memory placed
@@ -153,6 +167,42 @@ pub struct Predicting {
     tree: Option<StateTree>,
     scratch: Vec<(Feature, Reading)>,
     stats: PredictionStats,
+    /// The belief level: its price of sensing, in reward units per unit of cost.
+    price: Option<f64>,
+    /// The belief level: what the agent knows of the state it is in.
+    known: Known,
+    /// The belief level: moves since the last classification in full.
+    blind: u32,
+    /// The belief level: whether the state before the current one, and the current
+    /// one, were given the most likely of several descriptions.
+    guessed: (bool, bool),
+    /// The belief level: what was chosen with the move in progress, if it was chosen
+    /// before its outcome (costed episodes under the rule "with the move").
+    chosen: Option<Choice>,
+}
+
+/// What the belief level knows of the state it is in.
+#[derive(Clone, Debug, PartialEq)]
+enum Known {
+    /// Classified in full: its description is measured.
+    Measured,
+    /// Given a description by the model (skipped, or told apart among the likely ones).
+    Trusted,
+    /// Given its most likely description; the belief over descriptions it may have.
+    Spread(Vec<(RowId, f64)>),
+    /// A refinement touched a description it may have: the next state is classified.
+    Lost,
+}
+
+/// The belief level's choice after a move, made before its outcome is seen.
+#[derive(Clone, Debug, PartialEq)]
+enum Choice {
+    /// Classify in full (the paper's procedure).
+    Classify,
+    /// Measure nothing: take the most likely description, keep the belief.
+    Skip(RowId, Vec<(RowId, f64)>),
+    /// Measure only what tells the likely descriptions apart.
+    Narrow(Vec<(RowId, f64)>),
 }
 
 /// A state sensed through the decision tree, keeping what was measured.
@@ -209,6 +259,35 @@ impl Predicting {
             tree: None,
             scratch: Vec::new(),
             stats: PredictionStats::default(),
+            price: None,
+            known: Known::Measured,
+            blind: 0,
+            guessed: (false, false),
+            chosen: None,
+        }
+    }
+
+    /// The belief level: CLASSIFY and a model of the frequencies of next descriptions,
+    /// weighed against sensing at `price` reward units per unit of sensing cost (a run's
+    /// `[costly] price`). At a price of 0 measuring is free, and the agent measures
+    /// everything the paper's procedure measures.
+    ///
+    /// ```
+    /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+    /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+    /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+    /// let p = csql::Predicting::belief(csql::Classify::new(&sensed), &Default::default(), 4, 0.01);
+    /// assert_eq!(p.level(), csql::PredictSensing::Belief);
+    /// ```
+    pub fn belief(
+        classify: Classify,
+        settings: &Prediction,
+        actions: usize,
+        price: f64,
+    ) -> Predicting {
+        Predicting {
+            price: Some(price),
+            ..Predicting::learned(classify, settings, actions)
         }
     }
 
@@ -244,9 +323,10 @@ impl Predicting {
     /// assert_ne!(p.level(), csql::PredictSensing::Off);
     /// ```
     pub fn level(&self) -> PredictSensing {
-        match self.memory {
-            None => PredictSensing::Learned,
-            Some(_) => PredictSensing::Motion,
+        match (&self.memory, self.price) {
+            (_, Some(_)) => PredictSensing::Belief,
+            (None, None) => PredictSensing::Learned,
+            (Some(_), None) => PredictSensing::Motion,
         }
     }
 
@@ -403,6 +483,7 @@ impl Perception for Predicting {
             memory.clear();
         }
         (self.previous, self.current) = (None, None);
+        self.restart_belief();
         self.measure(world, s, table)
     }
 
@@ -415,6 +496,9 @@ impl Perception for Predicting {
         table: &mut QTable,
         rng: &mut R,
     ) -> (RowId, f64) {
+        if self.belief_price().is_some() {
+            return self.next_by_belief(world, from, a, s, table, rng);
+        }
         if let (Some(memory), Some(action)) = (&mut self.memory, Action::from_id(a)) {
             memory.moved(action.offset());
         }
@@ -465,7 +549,9 @@ impl Perception for Predicting {
     }
 
     /// A refinement of `refined` changes the description of no state outside it: the
-    /// next state keeps its description unless that is the one refined.
+    /// next state keeps its description unless that is the one refined. (At the belief
+    /// level with a price of 0, measuring is free: the state is classified again, as
+    /// the paper does.)
     fn classify_again<W: World + ?Sized>(
         &mut self,
         world: &W,
@@ -474,8 +560,13 @@ impl Perception for Predicting {
         s: StateId,
         table: &mut QTable,
     ) -> (RowId, f64) {
-        if current == refined {
+        let free = self.belief_price().is_some_and(|p| p <= 0.0);
+        if current == refined || free {
             self.current = None;
+            if self.belief_price().is_some() {
+                self.known = Known::Measured;
+                self.blind = 0;
+            }
             self.measure(world, s, table)
         } else {
             (current, 0.0)
@@ -502,7 +593,11 @@ impl Perception for Predicting {
             }
         }
         let cost = self.inner.refine(world, row, s)?;
-        self.model.invalidate(row);
+        if self.belief_price().is_some() {
+            self.refined_belief(row);
+        } else {
+            self.model.invalidate(row);
+        }
         Some(check + cost)
     }
 
@@ -512,6 +607,12 @@ impl Perception for Predicting {
 
     fn lookup<W: World + ?Sized>(&mut self, world: &W, s: StateId) -> Option<RowId> {
         Perception::lookup(&mut self.inner, world, s)
+    }
+
+    /// The belief level learns nothing from a move from or (unless it ended the trial)
+    /// to a state given the most likely of several descriptions.
+    fn learns_from_move(&self, ended: bool) -> bool {
+        !(self.guessed.1 || (!ended && self.guessed.0))
     }
 }
 

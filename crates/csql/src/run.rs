@@ -271,6 +271,16 @@ fn learn_classify<W: World + ?Sized>(
                     None => Predicting::learned(classify, &q.prediction, scene.world.num_actions()),
                 },
             ),
+            PredictSensing::Belief => (
+                q,
+                Predicting::belief(
+                    classify,
+                    &q.prediction,
+                    scene.world.num_actions(),
+                    // Validated: the belief level is given [costly] price.
+                    settings.costly.map_or(0.0, |c| c.price),
+                ),
+            ),
         },
     };
     let strategy = q.strategy.build(q.random_moves);

@@ -585,12 +585,14 @@ impl RunSettings {
             Err(Error::Conflict {
                 first: "[costly] price".to_string(),
                 second,
-                why: "costed episodes are scored for cs-ql (sensing every state it reaches), full-sensing, amrl-q and belief",
+                why: "costed episodes are scored for cs-ql (sensing every state it reaches, or by its belief), full-sensing, amrl-q and belief",
             })
         };
         match &self.learner {
             Learner::UTree(_) => conflict("learner = u-tree".to_string()),
-            Learner::CsQl(q) if !q.predict_sensing.is_off() => {
+            Learner::CsQl(q)
+                if !(q.predict_sensing.is_off() || q.predict_sensing == PredictSensing::Belief) =>
+            {
                 conflict(format!("predict_sensing = {}", q.predict_sensing))
             }
             Learner::CsQl(q) if q.extensions.memory > 0 => {
@@ -626,7 +628,14 @@ impl RunSettings {
             return conflict(
                 "[prediction] settings".to_string(),
                 "predict_sensing = off".to_string(),
-                "[prediction] tunes predict_sensing = \"learned\" or \"motion\"",
+                "[prediction] tunes predict_sensing = \"learned\", \"motion\" or \"belief\"",
+            );
+        }
+        if q.predict_sensing == PredictSensing::Belief && self.costly.is_none() {
+            return conflict(
+                "predict_sensing = \"belief\"".to_string(),
+                "no [costly] price".to_string(),
+                "the belief level weighs the loss of acting on its belief against the price of measuring, in reward units: give [costly] price (csrl run --price)",
             );
         }
         if q.predict_sensing == PredictSensing::Motion

@@ -35,9 +35,10 @@ pub struct RunArgs {
     /// here override the file.
     #[arg(long)]
     config: Option<PathBuf>,
-    /// off, learned or motion: predict the next description instead of sensing it
-    /// (default: the config's `predict_sensing`, else off; the `[prediction]` table of
-    /// the config tunes it).
+    /// off, learned, motion or belief: predict the next description instead of sensing
+    /// it (default: the config's `predict_sensing`, else off; the `[prediction]` table of
+    /// the config tunes it). belief weighs acting on its belief against sensing at
+    /// `--price` and needs it.
     #[arg(long)]
     predict_sensing: Option<csql::PredictSensing>,
     /// cs-ql (the default), u-tree, full-sensing, amrl-q or belief: the learner (default:

@@ -24,21 +24,27 @@ pub enum PredictSensing {
     Learned,
     /// The learned model, and features carried over by dead reckoning.
     Motion,
+    /// The learned model with the frequencies of every next description: the agent
+    /// skips a measurement when acting on its belief loses less than measuring costs at
+    /// `[costly] price`, and otherwise measures only what tells the likely descriptions
+    /// apart (see `docs/predict_sensing.md`).
+    Belief,
 }
 
 impl PredictSensing {
-    /// The three levels, in order.
+    /// The four levels, in order.
     ///
     /// ```
-    /// assert_eq!(csql::PredictSensing::ALL.len(), 3);
+    /// assert_eq!(csql::PredictSensing::ALL.len(), 4);
     /// ```
-    pub const ALL: [PredictSensing; 3] = [
+    pub const ALL: [PredictSensing; 4] = [
         PredictSensing::Off,
         PredictSensing::Learned,
         PredictSensing::Motion,
+        PredictSensing::Belief,
     ];
 
-    /// The setting's value: `off`, `learned` or `motion`.
+    /// The setting's value: `off`, `learned`, `motion` or `belief`.
     ///
     /// ```
     /// assert_eq!(csql::PredictSensing::Learned.name(), "learned");
@@ -48,6 +54,7 @@ impl PredictSensing {
             PredictSensing::Off => "off",
             PredictSensing::Learned => "learned",
             PredictSensing::Motion => "motion",
+            PredictSensing::Belief => "belief",
         }
     }
 
@@ -75,7 +82,7 @@ impl std::str::FromStr for PredictSensing {
             .find(|l| l.name() == s)
             .ok_or_else(|| Error::InvalidSetting {
                 value: format!("predict_sensing = {s}"),
-                expected: "one of off, learned, motion",
+                expected: "one of off, learned, motion, belief",
             })
     }
 }

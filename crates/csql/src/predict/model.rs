@@ -12,6 +12,12 @@ struct Entry {
     next: Option<RowId>,
     /// Every next description measured, in the order first seen.
     successors: Vec<RowId>,
+    /// How often each of `successors` was measured (the belief level's frequencies).
+    counts: Vec<u32>,
+    /// Measurements since the entry was last invalidated.
+    measured: u32,
+    /// Whether a use of the transition was found wrong (set by [`TransitionModel::distrust`]).
+    distrusted: bool,
     /// Measurements in a row that gave `next`.
     agree: u32,
     /// Whether two measurements disagreed since the entry was last invalidated.
@@ -73,6 +79,12 @@ impl TransitionModel {
         self.entry(from, a).map_or(0, |e| e.unmeasured)
     }
 
+    /// The transition's outcome was classified in full from a state whose description
+    /// was not: its run of unmeasured uses ends, and nothing is learned.
+    pub(crate) fn measured_unobserved(&mut self, from: RowId, a: ActionId) {
+        self.entry_mut(from, a).unmeasured = 0;
+    }
+
     /// The transition was used without a measurement.
     pub(crate) fn used_unmeasured(&mut self, from: RowId, a: ActionId) {
         self.entry_mut(from, a).unmeasured += 1;
@@ -115,8 +127,13 @@ impl TransitionModel {
     pub fn observe(&mut self, from: RowId, a: ActionId, to: RowId) -> bool {
         let e = self.entry_mut(from, a);
         e.unmeasured = 0;
-        if !e.successors.contains(&to) {
-            e.successors.push(to);
+        e.measured = e.measured.saturating_add(1);
+        match e.successors.iter().position(|&r| r == to) {
+            Some(i) => e.counts[i] = e.counts[i].saturating_add(1),
+            None => {
+                e.successors.push(to);
+                e.counts.push(1);
+            }
         }
         match e.next {
             Some(n) if n == to => {
@@ -150,7 +167,60 @@ impl TransitionModel {
     pub fn distrust(&mut self, from: RowId, a: ActionId) {
         let e = self.entry_mut(from, a);
         e.conflicted = true;
+        e.distrusted = true;
         e.unmeasured = 0;
+    }
+
+    /// The measured frequencies of a transition's next descriptions, once it has been
+    /// measured at least `confirmations` times and never found wrong since it was last
+    /// invalidated (the belief level's trust): `(description, count)` in the order first
+    /// seen, and the number of measurements.
+    ///
+    /// ```
+    /// let mut m = csql::TransitionModel::new(4, 2);
+    /// let (d, a) = (qlearn::RowId(0), mdp::ActionId(0));
+    /// m.observe(d, a, qlearn::RowId(4));
+    /// assert!(m.frequencies(d, a).is_none()); // one measurement is not enough
+    /// m.observe(d, a, qlearn::RowId(2));
+    /// let (next, n) = m.frequencies(d, a).unwrap();
+    /// assert_eq!((next.count(), n), (2, 2));
+    /// m.distrust(d, a);
+    /// assert!(m.frequencies(d, a).is_none());
+    /// ```
+    pub fn frequencies(
+        &self,
+        from: RowId,
+        a: ActionId,
+    ) -> Option<(impl Iterator<Item = (RowId, u32)> + '_, u32)> {
+        self.entry(from, a)
+            .filter(|e| !e.distrusted && e.measured >= self.confirmations)
+            .map(|e| {
+                (
+                    e.successors.iter().copied().zip(e.counts.iter().copied()),
+                    e.measured,
+                )
+            })
+    }
+
+    /// Forget what a refinement of `row` may have made wrong, for a model whose
+    /// transitions may have several next descriptions: the transitions that leave `row`
+    /// and every one that has led to it.
+    ///
+    /// ```
+    /// let mut m = csql::TransitionModel::new(4, 1);
+    /// let a = mdp::ActionId(0);
+    /// m.observe(qlearn::RowId(0), a, qlearn::RowId(1));
+    /// m.observe(qlearn::RowId(0), a, qlearn::RowId(2));
+    /// m.invalidate_outcome(qlearn::RowId(1)); // not the last outcome, but one of them
+    /// assert!(m.frequencies(qlearn::RowId(0), a).is_none());
+    /// ```
+    pub fn invalidate_outcome(&mut self, row: RowId) {
+        let actions = self.actions;
+        for (i, e) in self.entries.iter_mut().enumerate() {
+            if i / actions == row.index() || e.successors.contains(&row) {
+                *e = Entry::default();
+            }
+        }
     }
 
     /// Every next description measured for a transition since it was last invalidated,

@@ -1,0 +1,281 @@
+//! The belief level (`predict_sensing = "belief"`): after a move, the frequencies the
+//! model measured give the descriptions the agent may now have, with their
+//! probabilities; the agent weighs acting on that belief against the price of measuring
+//! (specification 6.14, `docs/predict_sensing.md`).
+//!
+//! The choice is made with the move, before its outcome: it depends only on the belief
+//! before the move, the action and the model.
+//!
+//! * The belief after the move is the belief before it pushed through the model's
+//!   frequencies. It exists only when every description it starts from has a trusted
+//!   transition for the action (measured at least `confirmations` times, never found
+//!   wrong); otherwise the agent classifies in full, as the paper does.
+//! * Acting on the belief means acting as its most likely description: the loss is the
+//!   expected shortfall of that description's greedy action,
+//!   `sum_d b(d) (max_a Q(d, a) - Q(d, a*))`. The belief is carried to the next move, so
+//!   the uncertainty a skip leaves is weighed again, grown, at the next choice; the
+//!   main loop learns nothing from a move from or to a state given the most likely of
+//!   several descriptions ([`crate::Perception::learns_from_move`]).
+//! * Measuring costs at least: with one likely description, its features (what
+//!   classifying a state of it reads); with several, the cheapest feature two of them
+//!   read differently. Both at the price in reward units.
+//! * The agent skips when the loss is below that price; otherwise, with several likely
+//!   descriptions, it measures only what tells them apart (CLASSIFY's rule restricted to
+//!   them, [`Classify::classify_among`]), and with one it classifies in full.
+//!
+//! At a price of 0 the agent never skips or narrows and classifies again after a
+//! refinement, so a run is the paper's, move for move. No more than `max_skips` moves
+//! pass without a classification in full, no transition is used more than `max_skips`
+//! times in a row without its outcome classified in full, and a use chosen to skip or
+//! narrow is re-checked in full with probability `recheck` (one draw, only then).
+
+use mdp::{ActionId, StateId, World};
+use qlearn::{QTable, RowId};
+use rand::{Rng, RngExt};
+
+use super::{Choice, Known, Predicting};
+use crate::classify::Classify;
+use crate::representation::DescriptionId;
+
+impl Predicting {
+    /// The price of the belief level (`None` at the other levels).
+    pub(super) fn belief_price(&self) -> Option<f64> {
+        self.price
+    }
+
+    /// What the belief level chooses after action `a` from row `from`, before the
+    /// outcome.
+    pub(super) fn choose(&self, from: RowId, a: ActionId, table: &QTable) -> Choice {
+        let price = self.price.unwrap_or(0.0);
+        if price <= 0.0
+            || self.blind >= self.max_skips
+            || self.model.unmeasured_uses(from, a) >= self.max_skips
+        {
+            return Choice::Classify;
+        }
+        let before: Vec<(RowId, f64)> = match &self.known {
+            Known::Measured | Known::Trusted => vec![(from, 1.0)],
+            Known::Spread(b) => b.clone(),
+            Known::Lost => return Choice::Classify,
+        };
+        let mut after: Vec<(RowId, f64)> = Vec::new();
+        for (d, p) in before {
+            let Some((next, n)) = self.model.frequencies(d, a) else {
+                return Choice::Classify;
+            };
+            for (r, c) in next {
+                let q = p * f64::from(c) / f64::from(n);
+                match after.iter_mut().find(|(x, _)| *x == r) {
+                    Some((_, w)) => *w += q,
+                    None => after.push((r, q)),
+                }
+            }
+        }
+        // The most likely description, the first of equals in the order first seen.
+        let Some(&(likely, _)) =
+            after
+                .iter()
+                .fold(None, |best: Option<&(RowId, f64)>, x| match best {
+                    Some(b) if b.1 >= x.1 => Some(b),
+                    _ => Some(x),
+                })
+        else {
+            return Choice::Classify;
+        };
+        let act = table.greedy(likely);
+        let loss: f64 = after
+            .iter()
+            .map(|&(d, p)| {
+                let best = table.q_row(d).iter().copied().fold(f64::MIN, f64::max);
+                p * (best - table.q(d, act))
+            })
+            .sum();
+        let rows: Vec<RowId> = after.iter().map(|&(d, _)| d).collect();
+        if loss < price * self.least_to_measure(&rows) {
+            Choice::Skip(likely, after)
+        } else if after.len() >= 2 {
+            Choice::Narrow(after)
+        } else {
+            Choice::Classify
+        }
+    }
+
+    /// The least that measuring a state of one of `rows` costs: the features of the one
+    /// description, or the cheapest feature two of them read differently.
+    fn least_to_measure(&self, rows: &[RowId]) -> f64 {
+        let rep = self.inner.representation();
+        let prices = self.inner.prices();
+        if let [only] = rows {
+            return rep
+                .get(DescriptionId(only.0))
+                .features()
+                .map(|(f, _)| prices[f.index()])
+                .sum();
+        }
+        let mut least = f64::INFINITY;
+        for (i, &d) in rows.iter().enumerate() {
+            for (f, v) in rep.get(DescriptionId(d.0)).features() {
+                let differs = rows[i + 1..]
+                    .iter()
+                    .any(|&e| rep.get(DescriptionId(e.0)).value(f).is_some_and(|w| w != v));
+                if differs {
+                    least = least.min(prices[f.index()]);
+                }
+            }
+        }
+        if least.is_finite() { least } else { 0.0 }
+    }
+
+    /// The belief level's [`Perception::classify_next`].
+    pub(super) fn next_by_belief<W: World + ?Sized, R: Rng + ?Sized>(
+        &mut self,
+        world: &W,
+        from: RowId,
+        a: ActionId,
+        s: StateId,
+        table: &mut QTable,
+        rng: &mut R,
+    ) -> (RowId, f64) {
+        self.previous = self.current.take();
+        // The state left becomes the one before; the one reached is guessed only if
+        // skipped with a belief over several descriptions.
+        self.guessed = (self.guessed.1, false);
+        let choice = self
+            .chosen
+            .take()
+            .unwrap_or_else(|| self.choose(from, a, table));
+        let likely: Vec<RowId> = match &choice {
+            Choice::Classify => return self.classify_in_full(world, from, a, s, table),
+            Choice::Skip(_, b) | Choice::Narrow(b) => b.iter().map(|&(d, _)| d).collect(),
+        };
+        // One draw per use chosen to skip or narrow.
+        let draw: f64 = rng.random();
+        if draw < self.recheck {
+            self.stats.rechecks += 1;
+            let (row, cost) = self.classify_in_full(world, from, a, s, table);
+            if !likely.contains(&row) {
+                self.stats.caught += 1;
+            }
+            return (row, cost);
+        }
+        match choice {
+            Choice::Skip(row, belief) => {
+                self.stats.skipped += 1;
+                self.unmeasured(from, a, s, row);
+                self.blind += 1;
+                self.known = if belief.len() == 1 {
+                    Known::Trusted
+                } else {
+                    self.guessed.1 = true;
+                    Known::Spread(belief)
+                };
+                (row, 0.0)
+            }
+            _ => {
+                let candidates: Vec<DescriptionId> =
+                    likely.iter().map(|&r| DescriptionId(r.0)).collect();
+                let found = self.inner.classify_among(world, s, &candidates);
+                let partial = self.charge(self.inner.last_cost());
+                if let Some(d) = found {
+                    self.stats.narrowed += 1;
+                    self.unmeasured(from, a, s, d.row());
+                    self.blind += 1;
+                    self.known = Known::Trusted;
+                    return (d.row(), partial);
+                }
+                // None of the likely descriptions: the model was wrong where it started.
+                self.stats.caught += 1;
+                self.distrust_before(from, a);
+                let (row, cost) = self.classify_in_full(world, from, a, s, table);
+                (row, partial + cost)
+            }
+        }
+    }
+
+    /// Distrust every transition the belief before the move used.
+    fn distrust_before(&mut self, from: RowId, a: ActionId) {
+        match &self.known {
+            Known::Spread(b) => {
+                for d in b.iter().map(|&(d, _)| d).collect::<Vec<_>>() {
+                    self.model.distrust(d, a);
+                }
+            }
+            _ => self.model.distrust(from, a),
+        }
+    }
+
+    /// Classify `s` in full (charged); the transition is learned when the state left
+    /// was classified in full too.
+    fn classify_in_full<W: World + ?Sized>(
+        &mut self,
+        world: &W,
+        from: RowId,
+        a: ActionId,
+        s: StateId,
+        table: &mut QTable,
+    ) -> (RowId, f64) {
+        let (row, cost) = self.measure(world, s, table);
+        if self.known == Known::Measured {
+            self.model.observe(from, a, row);
+        } else {
+            self.model.measured_unobserved(from, a);
+        }
+        self.known = Known::Measured;
+        self.blind = 0;
+        (row, cost)
+    }
+
+    /// After a refinement of `row`: forget the transitions it may have made wrong, and
+    /// the belief if it held `row`.
+    pub(super) fn refined_belief(&mut self, row: RowId) {
+        self.model.invalidate_outcome(row);
+        if let Known::Spread(b) = &self.known
+            && b.iter().any(|&(d, _)| d == row)
+        {
+            self.known = Known::Lost;
+        }
+    }
+
+    /// What the belief level would read on `s` reached by `a` from `from`, learning
+    /// nothing: the charge of a move that ends an episode when sensing is chosen with
+    /// the move.
+    pub(crate) fn would_read_by_belief<W: World + ?Sized>(
+        &mut self,
+        world: &W,
+        from: RowId,
+        a: ActionId,
+        s: StateId,
+        table: &QTable,
+    ) -> f64 {
+        let choice = self
+            .chosen
+            .take()
+            .unwrap_or_else(|| self.choose(from, a, table));
+        match choice {
+            Choice::Skip(..) => 0.0,
+            Choice::Narrow(b) => {
+                let candidates: Vec<DescriptionId> =
+                    b.iter().map(|&(d, _)| DescriptionId(d.0)).collect();
+                self.inner.classify_among(world, s, &candidates);
+                self.charge(self.inner.last_cost())
+            }
+            Choice::Classify => Classify::lookup_cost(&mut self.inner, world, s),
+        }
+    }
+
+    /// Choose, before the outcome of action `a` from `from`, what the belief level
+    /// will measure after it (the rule "with the move").
+    pub(crate) fn choose_with_move(&mut self, from: RowId, a: ActionId, table: &QTable) {
+        if self.price.is_some() {
+            self.chosen = Some(self.choose(from, a, table));
+        }
+    }
+
+    /// A new trial: the start is classified in full.
+    pub(super) fn restart_belief(&mut self) {
+        self.known = Known::Measured;
+        self.blind = 0;
+        self.guessed = (false, false);
+        self.chosen = None;
+    }
+}
