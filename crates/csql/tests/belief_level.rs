@@ -130,6 +130,11 @@ fn on_a_slippery_lake_it_narrows_and_senses_less() {
     let (a, b) = (csql::run(&off).unwrap(), csql::run(&belief).unwrap());
     let p = b.prediction.unwrap();
     assert!(p.narrowed > 0 && p.skipped > 0, "{p:?}");
+    // The bound holds where outcomes are random too (the oracle's count).
+    assert!(
+        p.wrong > 0 && p.longest_wrong_run <= Prediction::default().max_skips,
+        "{p:?}"
+    );
     let (ca, cb) = (a.costly.unwrap().summary, b.costly.unwrap().summary);
     assert!(
         cb.sensing_per_episode < 0.6 * ca.sensing_per_episode,

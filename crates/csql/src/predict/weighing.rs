@@ -279,3 +279,107 @@ impl Predicting {
         self.chosen = None;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use mdp::{Cell, Feature, Reading};
+    use qlearn::{Discount, LearningRate, Target};
+
+    use super::*;
+    use crate::predict::level::Prediction;
+    use crate::representation::Representation;
+
+    /// A level at `price` whose model has seen action 0 from row 0 lead to rows 1 and 2
+    /// twice each (told apart by feature 0), and a table where row 1 prefers action 0
+    /// and row 2 prefers action 1 by `gap` (row 2 is the most likely by one count).
+    fn level(price: f64, gap: f64) -> (Predicting, QTable) {
+        let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
+        let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
+        let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
+        let (wall, free) = (Reading::from(Cell::Obstacle), Reading::from(Cell::Empty));
+        let mut rep = Representation::default();
+        rep.push(&[]);
+        rep.push(&[(Feature(0), wall), (Feature(1), free)]);
+        rep.push(&[(Feature(0), free), (Feature(1), free)]);
+        let classify = Classify::with_representation(&sensed, rep);
+        let mut p = Predicting::belief(classify, &Prediction::default(), 4, price);
+        for to in [1, 2, 2, 1, 2] {
+            p.model.observe(RowId(0), ActionId(0), RowId(to));
+        }
+        let mut table = QTable::with_rows(4, 3).unwrap();
+        let (beta, gamma) = (LearningRate::new(1.0).unwrap(), Discount::new(0.9).unwrap());
+        table.update(RowId(1), ActionId(0), 1.0, Target::Terminal, beta, gamma);
+        table.update(RowId(2), ActionId(0), 1.0, Target::Terminal, beta, gamma);
+        table.update(
+            RowId(2),
+            ActionId(1),
+            1.0 + gap,
+            Target::Terminal,
+            beta,
+            gamma,
+        );
+        (p, table)
+    }
+
+    #[test]
+    fn the_choice_weighs_the_loss_against_the_price() {
+        // Acting as row 2 (greedy: action 1) loses `gap` in row 1's 2 cases of 5.
+        let (p, table) = level(0.01, 0.0);
+        match p.choose(RowId(0), ActionId(0), &table) {
+            Choice::Skip(row, belief) => {
+                assert_eq!(row, RowId(2));
+                assert_eq!(belief, [(RowId(1), 0.4), (RowId(2), 0.6)]);
+            }
+            other => panic!("{other:?}"),
+        }
+        // A loss of 0.4 * gap against 0.01 times the one feature that tells them apart.
+        let (p, table) = level(0.01, 0.1);
+        assert!(matches!(
+            p.choose(RowId(0), ActionId(0), &table),
+            Choice::Narrow(_)
+        ));
+        let (p, table) = level(1.0, 0.1);
+        assert!(matches!(
+            p.choose(RowId(0), ActionId(0), &table),
+            Choice::Skip(..)
+        ));
+        // Free measuring, an untrusted transition, or the bound reached: classify.
+        let (p, table) = level(0.0, 0.0);
+        assert_eq!(p.choose(RowId(0), ActionId(0), &table), Choice::Classify);
+        let (p, table) = level(0.01, 0.0);
+        assert_eq!(p.choose(RowId(0), ActionId(1), &table), Choice::Classify);
+        let (mut p, table) = level(0.01, 0.0);
+        p.blind = p.max_skips;
+        assert_eq!(p.choose(RowId(0), ActionId(0), &table), Choice::Classify);
+    }
+
+    #[test]
+    fn a_carried_belief_is_pushed_through_every_description_it_holds() {
+        let (mut p, table) = level(0.01, 0.0);
+        // From rows 1 and 2 with action 0 nothing is known: the state is classified.
+        p.known = Known::Spread(vec![(RowId(1), 0.5), (RowId(2), 0.5)]);
+        assert_eq!(p.choose(RowId(2), ActionId(0), &table), Choice::Classify);
+        for _ in 0..3 {
+            p.model.observe(RowId(1), ActionId(0), RowId(1));
+            p.model.observe(RowId(2), ActionId(0), RowId(1));
+        }
+        match p.choose(RowId(2), ActionId(0), &table) {
+            Choice::Skip(row, belief) => {
+                assert_eq!((row, belief), (RowId(1), vec![(RowId(1), 1.0)]))
+            }
+            other => panic!("{other:?}"),
+        }
+        // Where the one likely description reads nothing, measuring is free: classify.
+        p.model.observe(RowId(1), ActionId(2), RowId(0));
+        p.model.observe(RowId(1), ActionId(2), RowId(0));
+        p.model.observe(RowId(1), ActionId(2), RowId(0));
+        p.model.observe(RowId(2), ActionId(2), RowId(0));
+        p.model.observe(RowId(2), ActionId(2), RowId(0));
+        p.model.observe(RowId(2), ActionId(2), RowId(0));
+        assert_eq!(p.choose(RowId(2), ActionId(2), &table), Choice::Classify);
+        // A refinement of a description the belief holds loses it.
+        p.refined_belief(RowId(1));
+        assert_eq!(p.known, Known::Lost);
+        assert_eq!(p.choose(RowId(2), ActionId(0), &table), Choice::Classify);
+    }
+}
