@@ -393,6 +393,23 @@ fn print_report(r: &RunReport, out: &mut dyn Write) -> std::io::Result<()> {
     if let Some(c) = &r.costly {
         print_costly(c, out)?;
     }
+    if let Some(p) = &r.prediction {
+        let narrowed = if p.narrowed > 0 {
+            format!(", {} told apart among the likely descriptions", p.narrowed)
+        } else {
+            String::new()
+        };
+        writeln!(
+            out,
+            "Sensing less ({}): {} classifications skipped{narrowed}, {} re-checked ({} found wrong); the oracle counts {} wrong, at most {} of one transition in a row",
+            r.settings.predict_sensing(),
+            p.skipped,
+            p.rechecks,
+            p.caught,
+            p.wrong,
+            p.longest_wrong_run
+        )?;
+    }
     writeln!(out)?;
     write!(out, "{}", r.table1)?;
     if let (Some(cost), Some(success)) = (r.navigation_cost_per_move, r.navigation_success) {
