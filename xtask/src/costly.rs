@@ -165,118 +165,71 @@ impl Learner {
         }
     }
 
-    /// One run of `episodes` episodes of at most `max_moves` moves on `lake`, each
-    /// coordinate at `price`, seeded with `seed`.
-    fn play(
-        self,
-        lake: &FiniteWorld,
-        world: &str,
-        price: f64,
-        rule: SensingRule,
-        (episodes, max_moves): (u32, u32),
-        seed: u64,
-    ) -> Result<Vec<Episode>> {
+    /// One run of `play`'s episodes by this learner.
+    fn play(self, play: &Play<'_>) -> Result<Vec<Episode>> {
         match self {
-            Learner::AmrlQ => Ok(amrl(
-                lake,
-                Measuring::Choose,
-                price,
-                rule,
-                episodes,
-                max_moves,
-                seed,
-            )),
-            Learner::AlwaysMeasuring => Ok(amrl(
-                lake,
-                Measuring::Always,
-                price,
-                rule,
-                episodes,
-                max_moves,
-                seed,
-            )),
-            Learner::CsQl => cs_ql(
-                lake,
-                (LearnerKind::CsQl, PredictSensing::Off),
-                world,
-                price,
-                rule,
-                (episodes, max_moves),
-                seed,
-            ),
-            Learner::FullSensing => cs_ql(
-                lake,
-                (LearnerKind::FullSensing, PredictSensing::Off),
-                world,
-                price,
-                rule,
-                (episodes, max_moves),
-                seed,
-            ),
-            Learner::CsQlBelief => cs_ql(
-                lake,
-                (LearnerKind::CsQl, PredictSensing::Belief),
-                world,
-                price,
-                rule,
-                (episodes, max_moves),
-                seed,
-            ),
+            Learner::AmrlQ => Ok(amrl(play, Measuring::Choose)),
+            Learner::AlwaysMeasuring => Ok(amrl(play, Measuring::Always)),
+            Learner::CsQl => cs_ql(play, (LearnerKind::CsQl, PredictSensing::Off)),
+            Learner::FullSensing => cs_ql(play, (LearnerKind::FullSensing, PredictSensing::Off)),
+            Learner::CsQlBelief => cs_ql(play, (LearnerKind::CsQl, PredictSensing::Belief)),
             Learner::Belief => {
                 // Each coordinate costs 1: its price in reward units is the scale.
                 let params = csql::BeliefParams {
-                    price_scale: price,
+                    price_scale: play.price,
                     ..csql::BeliefParams::default()
                 };
-                let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+                let mut rng = Xoshiro256PlusPlus::seed_from_u64(play.seed);
                 Ok(csql::belief_planning(
-                    lake, &params, rule, episodes, max_moves, &mut rng,
+                    play.lake,
+                    &params,
+                    play.rule,
+                    play.episodes,
+                    play.max_moves,
+                    &mut rng,
                 )?)
             }
         }
     }
 }
 
-/// AMRL-Q or the always-measuring learner, measuring the whole state: every coordinate
-/// at once.
-fn amrl(
-    lake: &FiniteWorld,
-    measuring: Measuring,
+/// What one run plays, whatever the learner: `episodes` episodes of at most `max_moves`
+/// moves on `lake` (the built-in world `world`), each coordinate at `price` reward units,
+/// sensed under `rule`, seeded with `seed`.
+struct Play<'a> {
+    lake: &'a FiniteWorld,
+    world: &'a str,
     price: f64,
     rule: SensingRule,
     episodes: u32,
     max_moves: u32,
     seed: u64,
-) -> Vec<Episode> {
+}
+
+/// AMRL-Q or the always-measuring learner, measuring the whole state: every coordinate
+/// at once.
+fn amrl(play: &Play<'_>, measuring: Measuring) -> Vec<Episode> {
     let params = AmrlParams {
         measuring,
         ..AmrlParams::default()
     };
-    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(play.seed);
     csql::amrl_q(
-        lake,
+        play.lake,
         &params,
-        2.0 * price,
-        rule,
-        episodes,
-        max_moves,
+        2.0 * play.price,
+        play.rule,
+        play.episodes,
+        play.max_moves,
         &mut rng,
     )
 }
 
 /// CS-QL (the resetting strategy, at the given `predict_sensing` level) or full
 /// sensing, with the paper's settings and the lake's move cap; each coordinate costs 1
-/// and is priced `price` reward units.
-fn cs_ql(
-    lake: &FiniteWorld,
-    (kind, level): (LearnerKind, PredictSensing),
-    world: &str,
-    price: f64,
-    rule: SensingRule,
-    (episodes, max_moves): (u32, u32),
-    seed: u64,
-) -> Result<Vec<Episode>> {
-    let mut settings = RunSettings::tan1991(world, StrategyKind::Resetting, seed);
+/// and is priced `play.price` reward units.
+fn cs_ql(play: &Play<'_>, (kind, level): (LearnerKind, PredictSensing)) -> Result<Vec<Episode>> {
+    let mut settings = RunSettings::tan1991(play.world, StrategyKind::Resetting, play.seed);
     if kind != LearnerKind::CsQl {
         settings = settings.with_learner(kind);
     }
@@ -285,11 +238,18 @@ fn cs_ql(
     }
     if level == PredictSensing::Belief {
         // The belief level weighs sensing at the price it is scored at.
-        settings.costly = Some(CostlySettings { price, rule });
+        settings.costly = Some(CostlySettings {
+            price: play.price,
+            rule: play.rule,
+        });
     }
-    settings.max_moves = MoveCap::new(u64::from(max_moves))?;
+    settings.max_moves = MoveCap::new(u64::from(play.max_moves))?;
     Ok(csql::costed_episodes(
-        lake, &settings, rule, price, episodes,
+        play.lake,
+        &settings,
+        play.rule,
+        play.price,
+        play.episodes,
     )?)
 }
 
@@ -401,9 +361,15 @@ fn run_job(
     let (world, episodes, max_moves) = WORLDS[j.world];
     let lake = &lakes[&(j.world, j.dynamics)];
     let seed = def.seed + j.run;
-    let run = j
-        .learner
-        .play(lake, world, j.price, j.rule, (episodes, max_moves), seed)?;
+    let run = j.learner.play(&Play {
+        lake,
+        world,
+        price: j.price,
+        rule: j.rule,
+        episodes,
+        max_moves,
+        seed,
+    })?;
     Ok(JobResult {
         id,
         world: world.to_string(),

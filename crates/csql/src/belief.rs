@@ -228,6 +228,9 @@ struct Learner<'w, W: World + ?Sized> {
     stale: bool,
     plan: Option<BeliefPlan>,
     prices: Vec<f64>,
+    /// What each state reads on each feature, at `s * features + f` (as
+    /// [`ModelParts::readings`]): the world's readings, read once.
+    readings: Vec<u32>,
     /// The bound `K` of the plans, lowered for the rest of the run when a plan passes
     /// the cap on beliefs.
     k: u32,
@@ -264,6 +267,13 @@ pub fn belief_planning<W: World + ?Sized, R: Rng + ?Sized>(
     let prices: Vec<f64> = (0..world.num_features())
         .map(|f| world.price(Feature(f as u32)) * params.price_scale)
         .collect();
+    let nf = world.num_features();
+    let mut readings = Vec::with_capacity(n * nf);
+    for s in 0..n {
+        for f in 0..nf {
+            readings.push(world.read(StateId(s as u32), Feature(f as u32)).0);
+        }
+    }
     let mut l = Learner {
         world,
         params: *params,
@@ -280,6 +290,7 @@ pub fn belief_planning<W: World + ?Sized, R: Rng + ?Sized>(
         stale: true,
         plan: None,
         prices,
+        readings,
         k: params.max_uncertain,
     };
     for (_, s) in world.start_distribution() {
@@ -347,7 +358,6 @@ impl<W: World + ?Sized> Learner<'_, W> {
     fn model(&self) -> Result<CostlyModel, ReferenceError> {
         let w = self.world;
         let n = w.num_states();
-        let nf = w.num_features();
         let p = &self.params;
         let mut reward = Vec::with_capacity(self.counts.len());
         let mut next = Vec::with_capacity(self.counts.len());
@@ -368,12 +378,6 @@ impl<W: World + ?Sized> Learner<'_, W> {
             );
             must_measure.push(!c.trusted(p.trust));
         }
-        let mut readings = Vec::with_capacity(n * nf);
-        for s in 0..n {
-            for f in 0..nf {
-                readings.push(w.read(StateId(s as u32), Feature(f as u32)).0);
-            }
-        }
         CostlyModel::from_parts(ModelParts {
             num_actions: self.na(),
             terminal: (0..n).map(|s| w.is_terminal(StateId(s as u32))).collect(),
@@ -381,7 +385,7 @@ impl<W: World + ?Sized> Learner<'_, W> {
             next,
             must_measure,
             prices: self.prices.clone(),
-            readings,
+            readings: self.readings.clone(),
             start: w
                 .start_distribution()
                 .into_iter()
@@ -503,13 +507,14 @@ impl<W: World + ?Sized> Learner<'_, W> {
     /// The states that read as `truth` does on every feature.
     fn agreeing(&self, truth: StateId, features: &[usize]) -> Vec<u32> {
         let w = self.world;
+        let nf = self.prices.len();
+        let reads = |s: usize, f: usize| self.readings[s * nf + f];
         (0..w.num_states() as u32)
             .filter(|&s| !w.is_terminal(StateId(s)))
             .filter(|&s| {
-                features.iter().all(|&f| {
-                    let f = Feature(f as u32);
-                    w.read(StateId(s), f) == w.read(truth, f)
-                })
+                features
+                    .iter()
+                    .all(|&f| reads(s as usize, f) == reads(truth.index(), f))
             })
             .collect()
     }

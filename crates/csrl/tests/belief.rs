@@ -2,31 +2,13 @@
 //! `csql::belief_planning` plays it, its settings (`[belief]`, `[costly]`) checked and
 //! echoed, and refused where they mean nothing.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
+
+use common::{config, csrl, json, lake, ok, returns};
+
+use std::path::Path;
 
 use rand::SeedableRng;
-
-fn csrl(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_csrl"))
-        .args(args)
-        .output()
-        .expect("run csrl")
-}
-
-fn stdout(args: &[&str]) -> String {
-    let out = csrl(args);
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).unwrap()
-}
-
-fn json(args: &[&str]) -> serde_json::Value {
-    serde_json::from_str(&stdout(args)).unwrap()
-}
 
 /// The error of a refused run: exit code 1, one message, no panic.
 fn refused(args: &[&str]) -> String {
@@ -42,31 +24,6 @@ fn lake_refused(extra: &[&str]) -> String {
     let mut args = vec!["run", "--world", "frozenlake4x4"];
     args.extend_from_slice(extra);
     refused(&args)
-}
-
-/// A settings file sensing the lake by row and column, with `extra` before `[world]`.
-fn config(dir: &Path, name: &str, extra: &str) -> PathBuf {
-    let path = dir.join(format!("{name}.toml"));
-    std::fs::write(&path, format!("{extra}\n[world]\nsensing = \"factors\"\n")).unwrap();
-    path
-}
-
-fn lake() -> mdp::FiniteWorld {
-    let options = mdp::WorldOptions {
-        sensing: Some(mdp::SensingModel::Factors),
-        slide: 0.0,
-        ..Default::default()
-    };
-    mdp::builtin_world("frozenlake4x4", &options).unwrap()
-}
-
-fn returns(v: &serde_json::Value) -> Vec<f64> {
-    v["costly"]["returns"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
 }
 
 /// The report's returns are `belief_planning`'s for the same seed and settings, episode
@@ -154,7 +111,7 @@ fn the_report_has_the_fields_of_a_run_on_costed_episodes() {
         "fields",
         "learner = \"belief\"\n[belief]\ntrust = 2",
     );
-    let text = stdout(&[
+    let text = ok(&[
         "run",
         "--world",
         "frozenlake4x4",
@@ -231,7 +188,7 @@ fn the_report_has_the_fields_of_a_run_on_costed_episodes() {
     ]);
     assert!(v["settings"].get("belief").is_none(), "{v}");
     // The text report.
-    let text = stdout(&[
+    let text = ok(&[
         "run",
         "--world",
         "frozenlake4x4",
@@ -274,7 +231,7 @@ fn a_settings_file_with_belief_is_read_back() {
         ]
         .map(str::to_string)
     };
-    let first = stdout(&args(&path).each_ref().map(String::as_str));
+    let first = ok(&args(&path).each_ref().map(String::as_str));
     let v: serde_json::Value = serde_json::from_str(&first).unwrap();
     assert_eq!(v["settings"]["belief"]["whole_state"], true);
     assert_eq!(v["settings"]["belief"]["max_uncertain"], 4);
@@ -289,7 +246,7 @@ fn a_settings_file_with_belief_is_read_back() {
     }
     let echo = dir.path().join("echo.toml");
     std::fs::write(&echo, toml::to_string(&settings).unwrap()).unwrap();
-    let again = stdout(&args(&echo).each_ref().map(String::as_str));
+    let again = ok(&args(&echo).each_ref().map(String::as_str));
     assert_eq!(again, first);
 }
 

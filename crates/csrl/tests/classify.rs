@@ -1,15 +1,12 @@
 //! `csrl classify`, run as a user runs it: on the shipped heart-disease data and on broken
 //! files.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+mod common;
 
-fn csrl(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_csrl"))
-        .args(args)
-        .output()
-        .expect("run csrl")
-}
+use common::{csrl, stderr};
+
+use std::path::PathBuf;
+use std::process::Output;
 
 fn heart(name: &str) -> String {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -25,10 +22,6 @@ fn scratch(name: &str, bytes: &[u8]) -> String {
     let path = dir.join(name);
     std::fs::write(&path, bytes).unwrap();
     path.to_string_lossy().into_owned()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
 /// `csrl classify` on the shipped heart data with target `num`, plus `extra` arguments.

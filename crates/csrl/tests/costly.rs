@@ -1,25 +1,10 @@
 //! `csrl run` with sensing priced in reward units, and `--learner amrl-q`.
 
-use std::process::{Command, Output};
+mod common;
+
+use common::{config, csrl, json, lake, returns};
 
 use rand::SeedableRng;
-
-fn csrl(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_csrl"))
-        .args(args)
-        .output()
-        .expect("run csrl")
-}
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let out = csrl(args);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
-}
 
 fn refused(args: &[&str]) -> String {
     let out = csrl(args);
@@ -27,16 +12,10 @@ fn refused(args: &[&str]) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
 }
 
-/// A settings file sensing the lake by row and column.
-fn factors(name: &str, extra: &str) -> std::path::PathBuf {
-    let path = std::env::temp_dir().join(format!("csrl-costly-{}-{name}.toml", std::process::id()));
-    std::fs::write(&path, format!("{extra}\n[world]\nsensing = \"factors\"\n")).unwrap();
-    path
-}
-
 #[test]
 fn amrl_q_in_csrl_run_is_csql_amrl_q() {
-    let config = factors("amrl", "");
+    let dir = tempfile::tempdir().unwrap();
+    let plain = config(dir.path(), "amrl", "");
     let v = json(&[
         "run",
         "--world",
@@ -50,17 +29,12 @@ fn amrl_q_in_csrl_run_is_csql_amrl_q() {
         "--seed",
         "5",
         "--config",
-        config.to_str().unwrap(),
+        plain.to_str().unwrap(),
         "--json",
     ]);
-    let options = mdp::WorldOptions {
-        sensing: Some(mdp::SensingModel::Factors),
-        ..Default::default()
-    };
-    let lake = mdp::builtin_world("frozenlake4x4", &options).unwrap();
     let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(5);
     let run = csql::amrl_q(
-        &lake,
+        &lake(),
         &csql::AmrlParams::default(),
         0.05,
         mdp::SensingRule::WithMove,
@@ -68,12 +42,7 @@ fn amrl_q_in_csrl_run_is_csql_amrl_q() {
         100,
         &mut rng,
     );
-    let returns: Vec<f64> = v["costly"]["returns"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect();
+    let returns = returns(&v);
     let expected: Vec<f64> = run.iter().map(csql::Episode::costed_return).collect();
     // JSON's decimal form read back is within a unit of the last place.
     assert_eq!(returns.len(), expected.len());
@@ -88,7 +57,8 @@ fn amrl_q_in_csrl_run_is_csql_amrl_q() {
         Some(s.mean_all)
     );
     // [amrl_q] tunes it, and the rule is a setting.
-    let tuned = factors(
+    let tuned = config(
+        dir.path(),
         "tuned",
         "[amrl_q]\nepsilon = 0.3\n[costly]\nrule = \"after-outcome\"",
     );
@@ -128,9 +98,6 @@ fn amrl_q_in_csrl_run_is_csql_amrl_q() {
         text.contains("AMRL-Q on frozenlake4x4") && text.contains("Costed return"),
         "{text}"
     );
-    for path in [config, tuned] {
-        let _ = std::fs::remove_file(path);
-    }
 }
 
 #[test]
@@ -189,7 +156,8 @@ fn refused_combinations_name_both() {
         err.contains("learner = amrl-q") && err.contains("--price"),
         "{err}"
     );
-    let tuned = factors("wrong", "[amrl_q]\nepsilon = 0.3");
+    let dir = tempfile::tempdir().unwrap();
+    let tuned = config(dir.path(), "wrong", "[amrl_q]\nepsilon = 0.3");
     let err = refused(&[
         "run",
         "--world",
@@ -201,7 +169,6 @@ fn refused_combinations_name_both() {
         err.contains("[amrl_q]") && err.contains("learner = cs-ql"),
         "{err}"
     );
-    let _ = std::fs::remove_file(tuned);
     let err = refused(&["run", "--world", "frozenlake4x4", "--price=-1"]);
     assert!(err.contains("costly.price = -1"), "{err}");
     let err = refused(&[

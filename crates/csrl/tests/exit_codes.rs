@@ -1,18 +1,11 @@
 //! One exit code per kind of ending, across commands; each message says a thing once;
 //! SIGTERM stops a run as Ctrl-C does.
 
-use std::process::{Command, Output, Stdio};
+mod common;
 
-fn csrl(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_csrl"))
-        .args(args)
-        .output()
-        .expect("run csrl")
-}
+use common::{csrl, stderr};
 
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use std::process::{Command, Stdio};
 
 /// A missing folder and a folder that is a file are both "cannot write": exit code 4,
 /// for `run --svg` and `world export --out` alike.

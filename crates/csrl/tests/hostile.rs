@@ -1,18 +1,11 @@
 //! The command surface under hostile or careless use: every case once made `csrl` panic,
 //! hang, or say something wrong.
 
+mod common;
+
+use common::{csrl, stderr};
+
 use std::process::{Command, Output, Stdio};
-
-fn csrl(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_csrl"))
-        .args(args)
-        .output()
-        .expect("run csrl")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
 
 /// Run csrl with stderr sent to `/dev/full`, where every write fails.
 #[cfg(target_os = "linux")]

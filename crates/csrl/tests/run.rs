@@ -1,23 +1,10 @@
 //! `csrl run`, as a user runs it.
 
+mod common;
+
+use common::{csrl, json};
+
 use std::process::{Command, Output};
-
-fn csrl(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_csrl"))
-        .args(args)
-        .output()
-        .expect("run csrl")
-}
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let out = csrl(args);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
-}
 
 #[test]
 fn json_has_the_documented_fields() {

@@ -1,27 +1,8 @@
 //! `csrl world ...` and `csrl run --world`, as a user runs them.
 
-use std::process::{Command, Output};
+mod common;
 
-fn csrl(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_csrl"))
-        .args(args)
-        .output()
-        .expect("run csrl")
-}
-
-fn ok(args: &[&str]) -> String {
-    let out = csrl(args);
-    assert!(
-        out.status.success(),
-        "csrl {args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).unwrap()
-}
-
-fn json(args: &[&str]) -> serde_json::Value {
-    serde_json::from_str(&ok(args)).unwrap()
-}
+use common::{csrl, json, ok};
 
 /// Fails with exit code 1 and an `error: ` line that contains every fragment.
 fn refused(args: &[&str], fragments: &[&str]) {
