@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{csrl, json};
+use common::{csrl, json, ok, stderr};
 
 use std::process::{Command, Output};
 
@@ -239,4 +239,36 @@ fn svg_writes_the_descriptions_table_beside_it() {
     assert!(stdout(&out).contains(&table));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("policy.md"), "{err}");
+}
+
+/// A run that senses less says what it skipped; its JSON holds the same counts; the
+/// belief level needs a price.
+#[test]
+fn sensing_less_is_reported_in_the_text() {
+    let args = [
+        "run",
+        "--map",
+        "tan8x8",
+        "--strategy",
+        "eager",
+        "--predict-sensing",
+        "belief",
+        "--price",
+        "0.01",
+    ];
+    let text = ok(&args);
+    let v = json(&[&args[..], &["--json"]].concat());
+    let skipped = v["prediction"]["skipped"].as_u64().unwrap();
+    assert!(skipped > 0, "{v}");
+    assert!(
+        text.contains(&format!(
+            "Sensing less (belief): {skipped} classifications skipped"
+        )),
+        "{text}"
+    );
+    let plain = ok(&["run", "--map", "tan8x8", "--strategy", "eager"]);
+    assert!(!plain.contains("Sensing less"), "{plain}");
+    let out = csrl(&["run", "--map", "tan3x3", "--predict-sensing", "belief"]);
+    assert!(!out.status.success());
+    assert!(stderr(&out).contains("[costly] price"), "{}", stderr(&out));
 }
