@@ -8,7 +8,8 @@
 //! over seeds 1..=SEEDS (default 10; maps default to `tan8x8`), the ratio of each level's
 //! best strategy to the best of the paper's four (level `off`), the runs that converged,
 //! and navigation's cost per move and success. `KEY=VALUE` sets a field of
-//! `[prediction]` (for example `memory_moves=100`). The belief level weighs sensing at
+//! `[prediction]` (for example `memory_moves=100`) at the levels that take it (a level
+//! that refuses it runs with the defaults, and says so). The belief level weighs sensing at
 //! `[costly] price` = the environment variable `PRICE` (default 0.01 reward units per
 //! unit of sensing cost).
 
@@ -36,12 +37,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             for strategy in StrategyKind::ALL {
                 for seed in 1..=seeds {
                     let mut s = RunSettings::tan1991(map, strategy, seed);
-                    s.apply_toml(&toml, "arguments")?;
                     if let Some(q) = s.cs_ql_mut() {
                         q.predict_sensing = level;
                     }
                     if level == PredictSensing::Belief {
                         s.costly = Some(CostlySettings::new(price));
+                    }
+                    // The overrides tune the levels that take them (`memory_moves`: motion).
+                    if level != PredictSensing::Off && !overrides.is_empty() {
+                        let mut tuned = s.clone();
+                        match tuned.apply_toml(&toml, "arguments") {
+                            Ok(()) => s = tuned,
+                            Err(e) if strategy == StrategyKind::ALL[0] && seed == 1 => {
+                                eprintln!("{map}, {level}: the overrides are not applied ({e})");
+                            }
+                            Err(_) => {}
+                        }
                     }
                     jobs.push(s);
                 }

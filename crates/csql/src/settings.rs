@@ -663,6 +663,16 @@ impl RunSettings {
                 "memory refines descriptions that CLASSIFY senses; give it with predict_sensing = off",
             );
         }
+        let moves = q.prediction.memory_moves;
+        if moves != Prediction::default().memory_moves
+            && q.predict_sensing != PredictSensing::Motion
+        {
+            return conflict(
+                format!("prediction.memory_moves = {moves}"),
+                format!("predict_sensing = {}", q.predict_sensing),
+                "memory_moves is how long the motion level remembers a sensed cell; give it with predict_sensing = \"motion\"",
+            );
+        }
         Ok(())
     }
 }

@@ -185,3 +185,19 @@ fn the_belief_level_needs_a_price_in_reward_units() {
     assert!(err.contains("predict_sensing = belief"), "{err}");
     assert!(csql::costed_episodes(&lake, &s, SensingRule::WithMove, 0.05, 3).is_ok());
 }
+
+/// `[prediction] memory_moves` tunes the motion level only: elsewhere it is refused,
+/// naming both settings.
+#[test]
+fn memory_moves_is_refused_away_from_the_motion_level() {
+    for level in [PredictSensing::Learned, PredictSensing::Belief] {
+        let mut s = settings("tan3x3", StrategyKind::Lazy, 1, level);
+        if level == PredictSensing::Belief {
+            s = priced(s, 0.01);
+        }
+        s.cs_ql_mut().unwrap().prediction.memory_moves = 5;
+        let err = csql::run(&s).unwrap_err().to_string();
+        assert!(err.contains("prediction.memory_moves = 5"), "{err}");
+        assert!(err.contains(&format!("predict_sensing = {level}")), "{err}");
+    }
+}

@@ -143,12 +143,16 @@ fn motion_charges_less_for_the_same_run() {
             memory_moves,
             ..Prediction::default()
         };
+        // The learned level keeps no memory: memory_moves is the motion level's alone.
         let learned = run(
             "tan8x8",
             StrategyKind::Random,
             2,
             PredictSensing::Learned,
-            p,
+            Prediction {
+                memory_moves: 1,
+                ..p
+            },
         );
         let motion = run("tan8x8", StrategyKind::Random, 2, PredictSensing::Motion, p);
         assert_eq!(
