@@ -186,13 +186,13 @@ pub fn costed_episodes<W: World + ?Sized>(
                 .with_noise(settings.world.sensor_noise, sensor_rng)
                 .with_extensions(&settings.extensions());
             let strategy = q.strategy.build(q.random_moves);
-            if belief && settings.costly.map(|c| c.price) != Some(reward_per_cost) {
-                return Err(refuse(
-                    "predict_sensing = belief".to_string(),
-                    "the belief level weighs sensing at the price it is scored at: give [costly] price the value of reward_per_cost",
-                ));
-            }
             if belief {
+                if settings.costly.map(|c| c.price) != Some(reward_per_cost) {
+                    return Err(refuse(
+                        "predict_sensing = belief".to_string(),
+                        "the belief level weighs sensing at the price it is scored at: give [costly] price the value of reward_per_cost",
+                    ));
+                }
                 let p = Predicting::belief(
                     classify,
                     &q.prediction,

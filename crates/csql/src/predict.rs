@@ -173,11 +173,11 @@ pub struct Predicting {
     known: Known,
     /// The belief level: moves since the last classification in full.
     blind: u32,
-    /// The belief level: whether the state before the current one, and the current
-    /// one, were given the most likely of several descriptions.
-    guessed: (bool, bool),
-    /// The belief level: what was chosen with the move in progress, if it was chosen
-    /// before its outcome (costed episodes under the rule "with the move").
+    /// The belief level: whether the state before the current one was given the most
+    /// likely of several descriptions (the current one's is `known`).
+    left_guessed: bool,
+    /// The belief level: what was chosen with a move that ends an episode, before its
+    /// outcome (costed episodes under the rule "with the move").
     chosen: Option<Choice>,
 }
 
@@ -192,6 +192,13 @@ enum Known {
     Spread(Vec<(RowId, f64)>),
     /// A refinement touched a description it may have: the next state is classified.
     Lost,
+}
+
+impl Known {
+    /// Whether the state was given the most likely of several descriptions.
+    fn guessed(&self) -> bool {
+        matches!(self, Known::Spread(_) | Known::Lost)
+    }
 }
 
 /// The belief level's choice after a move, made before its outcome is seen.
@@ -262,7 +269,7 @@ impl Predicting {
             price: None,
             known: Known::Measured,
             blind: 0,
-            guessed: (false, false),
+            left_guessed: false,
             chosen: None,
         }
     }
@@ -496,7 +503,7 @@ impl Perception for Predicting {
         table: &mut QTable,
         rng: &mut R,
     ) -> (RowId, f64) {
-        if self.belief_price().is_some() {
+        if self.price.is_some() {
             return self.next_by_belief(world, from, a, s, table, rng);
         }
         if let (Some(memory), Some(action)) = (&mut self.memory, Action::from_id(a)) {
@@ -560,10 +567,10 @@ impl Perception for Predicting {
         s: StateId,
         table: &mut QTable,
     ) -> (RowId, f64) {
-        let free = self.belief_price().is_some_and(|p| p <= 0.0);
+        let free = self.price.is_some_and(|p| p <= 0.0);
         if current == refined || free {
             self.current = None;
-            if self.belief_price().is_some() {
+            if self.price.is_some() {
                 self.known = Known::Measured;
                 self.blind = 0;
             }
@@ -593,7 +600,7 @@ impl Perception for Predicting {
             }
         }
         let cost = self.inner.refine(world, row, s)?;
-        if self.belief_price().is_some() {
+        if self.price.is_some() {
             self.refined_belief(row);
         } else {
             self.model.invalidate(row);
@@ -612,7 +619,7 @@ impl Perception for Predicting {
     /// The belief level learns nothing from a move from or (unless it ended the trial)
     /// to a state given the most likely of several descriptions.
     fn learns_from_move(&self, ended: bool) -> bool {
-        !(self.guessed.1 || (!ended && self.guessed.0))
+        !(self.known.guessed() || (!ended && self.left_guessed))
     }
 }
 

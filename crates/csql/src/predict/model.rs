@@ -215,12 +215,7 @@ impl TransitionModel {
     /// assert!(m.frequencies(qlearn::RowId(0), a).is_none());
     /// ```
     pub fn invalidate_outcome(&mut self, row: RowId) {
-        let actions = self.actions;
-        for (i, e) in self.entries.iter_mut().enumerate() {
-            if i / actions == row.index() || e.successors.contains(&row) {
-                *e = Entry::default();
-            }
-        }
+        self.forget(row, |e| e.successors.contains(&row));
     }
 
     /// Every next description measured for a transition since it was last invalidated,
@@ -251,9 +246,14 @@ impl TransitionModel {
     /// assert_eq!(m.trusted(qlearn::RowId(2), a), Some(qlearn::RowId(3))); // untouched
     /// ```
     pub fn invalidate(&mut self, row: RowId) {
+        self.forget(row, |e| e.next == Some(row));
+    }
+
+    /// Forget the transitions that leave `row`, and those `leads` says lead to it.
+    fn forget(&mut self, row: RowId, leads: impl Fn(&Entry) -> bool) {
         let actions = self.actions;
         for (i, e) in self.entries.iter_mut().enumerate() {
-            if i / actions == row.index() || e.next == Some(row) {
+            if i / actions == row.index() || leads(e) {
                 *e = Entry::default();
             }
         }

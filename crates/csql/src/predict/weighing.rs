@@ -38,11 +38,6 @@ use crate::classify::Classify;
 use crate::representation::DescriptionId;
 
 impl Predicting {
-    /// The price of the belief level (`None` at the other levels).
-    pub(super) fn belief_price(&self) -> Option<f64> {
-        self.price
-    }
-
     /// What the belief level chooses after action `a` from row `from`, before the
     /// outcome.
     pub(super) fn choose(&self, from: RowId, a: ActionId, table: &QTable) -> Choice {
@@ -85,10 +80,7 @@ impl Predicting {
         let act = table.greedy(likely);
         let loss: f64 = after
             .iter()
-            .map(|&(d, p)| {
-                let best = table.q_row(d).iter().copied().fold(f64::MIN, f64::max);
-                p * (best - table.q(d, act))
-            })
+            .map(|&(d, p)| p * (table.q(d, table.greedy(d)) - table.q(d, act)))
             .sum();
         let rows: Vec<RowId> = after.iter().map(|&(d, _)| d).collect();
         if loss < price * self.least_to_measure(&rows) {
@@ -137,13 +129,8 @@ impl Predicting {
         rng: &mut R,
     ) -> (RowId, f64) {
         self.previous = self.current.take();
-        // The state left becomes the one before; the one reached is guessed only if
-        // skipped with a belief over several descriptions.
-        self.guessed = (self.guessed.1, false);
-        let choice = self
-            .chosen
-            .take()
-            .unwrap_or_else(|| self.choose(from, a, table));
+        self.left_guessed = self.known.guessed();
+        let choice = self.choose(from, a, table);
         let likely: Vec<RowId> = match &choice {
             Choice::Classify => return self.classify_in_full(world, from, a, s, table),
             Choice::Skip(_, b) | Choice::Narrow(b) => b.iter().map(|&(d, _)| d).collect(),
@@ -166,16 +153,12 @@ impl Predicting {
                 self.known = if belief.len() == 1 {
                     Known::Trusted
                 } else {
-                    self.guessed.1 = true;
                     Known::Spread(belief)
                 };
                 (row, 0.0)
             }
             _ => {
-                let candidates: Vec<DescriptionId> =
-                    likely.iter().map(|&r| DescriptionId(r.0)).collect();
-                let found = self.inner.classify_among(world, s, &candidates);
-                let partial = self.charge(self.inner.last_cost());
+                let (found, partial) = self.read_apart(world, s, &likely);
                 if let Some(d) = found {
                     self.stats.narrowed += 1;
                     self.unmeasured(from, a, s, d.row());
@@ -190,6 +173,19 @@ impl Predicting {
                 (row, partial + cost)
             }
         }
+    }
+
+    /// Which of `rows` state `s` has, reading only what tells them apart (charged), and
+    /// what was read.
+    fn read_apart<W: World + ?Sized>(
+        &mut self,
+        world: &W,
+        s: StateId,
+        rows: &[RowId],
+    ) -> (Option<DescriptionId>, f64) {
+        let candidates: Vec<DescriptionId> = rows.iter().map(|&r| DescriptionId(r.0)).collect();
+        let found = self.inner.classify_among(world, s, &candidates);
+        (found, self.charge(self.inner.last_cost()))
     }
 
     /// Distrust every transition the belief before the move used.
@@ -254,10 +250,8 @@ impl Predicting {
         match choice {
             Choice::Skip(..) => 0.0,
             Choice::Narrow(b) => {
-                let candidates: Vec<DescriptionId> =
-                    b.iter().map(|&(d, _)| DescriptionId(d.0)).collect();
-                self.inner.classify_among(world, s, &candidates);
-                self.charge(self.inner.last_cost())
+                let rows: Vec<RowId> = b.iter().map(|&(d, _)| d).collect();
+                self.read_apart(world, s, &rows).1
             }
             Choice::Classify => Classify::lookup_cost(&mut self.inner, world, s),
         }
@@ -275,7 +269,7 @@ impl Predicting {
     pub(super) fn restart_belief(&mut self) {
         self.known = Known::Measured;
         self.blind = 0;
-        self.guessed = (false, false);
+        self.left_guessed = false;
         self.chosen = None;
     }
 }
