@@ -188,11 +188,47 @@ fn reading(pairs: &[(FeatureId, Value)], feature: u32) -> Option<u32> {
         .map(|i| pairs[i].1.0)
 }
 
-/// Features measured on the way to a node, with their values.
-type Path = Vec<(u32, u32)>;
+/// Features measured on the way to a node, with their values, and for every feature the
+/// value it has on the path, if any: a traversal asks that of each feature of a
+/// description at each node, so it is read in one step, not by a search of the path.
+#[derive(Clone, Debug, Default)]
+struct Path {
+    edges: Vec<(u32, u32)>,
+    /// `value + 1` for a feature on the path, 0 for one that is not.
+    value_of: Vec<u32>,
+}
 
-fn on_path(path: &[(u32, u32)], feature: u32) -> Option<u32> {
-    path.iter().find(|e| e.0 == feature).map(|e| e.1)
+impl Path {
+    fn len(&self) -> usize {
+        self.edges.len()
+    }
+
+    fn push(&mut self, (feature, value): (u32, u32)) {
+        let f = feature as usize;
+        if f >= self.value_of.len() {
+            self.value_of.resize(f + 1, 0);
+        }
+        debug_assert_eq!(self.value_of[f], 0, "a feature measured twice on a path");
+        self.value_of[f] = value + 1;
+        self.edges.push((feature, value));
+    }
+
+    fn truncate(&mut self, depth: usize) {
+        while self.edges.len() > depth {
+            if let Some((f, _)) = self.edges.pop() {
+                self.value_of[f as usize] = 0;
+            }
+        }
+    }
+
+    /// The value `feature` has on the path, if it is on it.
+    #[inline]
+    fn get(&self, feature: u32) -> Option<u32> {
+        match self.value_of.get(feature as usize) {
+            Some(&v) if v > 0 => Some(v - 1),
+            _ => None,
+        }
+    }
 }
 
 /// The cached decision tree of CLASSIFY (see the module docs).
@@ -233,7 +269,7 @@ impl Cache {
             marks: Vec::new(),
             excluded: Vec::new(),
             stack: Vec::new(),
-            path: Vec::new(),
+            path: Path::default(),
             #[cfg(test)]
             transposed: 0,
         }
@@ -357,7 +393,7 @@ impl Cache {
             debug_assert!(node.cands.last().is_none_or(|&c| c < d.0));
             node.cands.push(d.0);
             for &(f, v) in pairs {
-                if on_path(&self.path, f.0).is_none() {
+                if self.path.get(f.0).is_none() {
                     node.count(arity, f.0, v.0, 1);
                 }
             }
@@ -399,7 +435,7 @@ impl Cache {
             if !self.nodes[at as usize].has_cand(d.0) {
                 continue;
             }
-            match on_path(&self.path, feature) {
+            match self.path.get(feature) {
                 // Measured above with the value now required: nothing below changes.
                 Some(w) if w == value => {}
                 // Measured above with another value: `d` no longer belongs here.
@@ -433,7 +469,7 @@ impl Cache {
             };
             node.cands.remove(i);
             for &(f, v) in pairs {
-                if on_path(&self.path, f.0).is_none() {
+                if self.path.get(f.0).is_none() {
                     node.count(arity, f.0, v.0, -1);
                 }
             }
@@ -739,7 +775,7 @@ mod tests {
             let node = &cache.nodes[at as usize];
             assert_eq!(node.cands, cands, "candidates at {path:?}");
             let (mut feats, mut vals) = (Vec::new(), Vec::new());
-            for f in (0..FEATURES).filter(|&f| on_path(&path, f).is_none()) {
+            for f in (0..FEATURES).filter(|&f| path.iter().all(|e| e.0 != f)) {
                 let mut block = vec![0; k];
                 for &d in &cands {
                     if let Some(v) = reading(examples[d as usize].pairs(), f) {
