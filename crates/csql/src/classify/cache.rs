@@ -179,6 +179,38 @@ impl Tally {
     }
 }
 
+/// How much work the cache has done, counted in its tests only (in other builds this is
+/// empty and counts nothing): elementary steps (a candidate scanned, a count changed, a
+/// feature scored, a node walked through), and among them the counts changed by added
+/// and refined descriptions.
+#[derive(Clone, Copy, Debug, Default)]
+struct Work {
+    #[cfg(test)]
+    steps: u64,
+    #[cfg(test)]
+    count_updates: u64,
+}
+
+impl Work {
+    #[inline(always)]
+    fn steps(&mut self, n: usize) {
+        #[cfg(test)]
+        {
+            self.steps += n as u64;
+        }
+        let _ = n;
+    }
+
+    #[inline(always)]
+    fn count_update(&mut self) {
+        self.steps(1);
+        #[cfg(test)]
+        {
+            self.count_updates += 1;
+        }
+    }
+}
+
 /// The reading a description (its `pairs`, by feature) requires of `feature`, if any.
 #[inline]
 fn reading(pairs: &[(FeatureId, Value)], feature: u32) -> Option<u32> {
@@ -254,6 +286,7 @@ pub(super) struct Cache {
     /// How many new children took over their grandchildren in [`Cache::transpose`].
     #[cfg(test)]
     transposed: usize,
+    work: Work,
 }
 
 impl Cache {
@@ -272,6 +305,7 @@ impl Cache {
             path: Path::default(),
             #[cfg(test)]
             transposed: 0,
+            work: Work::default(),
         }
     }
 
@@ -348,6 +382,7 @@ impl Cache {
         let mut at = 0u32;
         let width = CHILDREN + self.arity;
         loop {
+            self.work.steps(1);
             let r = at as usize * width;
             if self.table[r + STALE] != 0 {
                 self.refresh(at, costs, library, path);
@@ -395,6 +430,7 @@ impl Cache {
             for &(f, v) in pairs {
                 if self.path.get(f.0).is_none() {
                     node.count(arity, f.0, v.0, 1);
+                    self.work.count_update();
                 }
             }
             let wanted = match self.step(at) {
@@ -443,6 +479,7 @@ impl Cache {
                 None => {
                     let arity = self.arity;
                     self.nodes[at as usize].count(arity, feature, value, 1);
+                    self.work.count_update();
                     let mut stack = std::mem::take(&mut self.stack);
                     let depth = self.path.len();
                     self.stale_and_push(at, depth, |_| true, &mut stack);
@@ -471,6 +508,7 @@ impl Cache {
             for &(f, v) in pairs {
                 if self.path.get(f.0).is_none() {
                     node.count(arity, f.0, v.0, -1);
+                    self.work.count_update();
                 }
             }
             let depth = self.path.len();
@@ -589,6 +627,7 @@ impl Cache {
             }));
         }
         let node = &self.nodes[at as usize];
+        self.work.steps(node.feats.len());
         let xl = &self.xlogx;
         let mut best = cslearn::BestScore::new();
         for (&feature, counts) in node.feats.iter().zip(node.vals.chunks_exact(self.arity)) {
@@ -638,6 +677,7 @@ impl Cache {
                 _ => c.cands.push(d),
             }
         }
+        self.work.steps(self.nodes[parent as usize].cands.len());
         let r = self.rec(parent) + CHILDREN;
         self.table[r + code as usize] = child;
         if self.excluded.len() < self.nodes[child as usize].cands.len() {
@@ -655,6 +695,7 @@ impl Cache {
     fn counts_from_parent(&mut self, parent: u32, child: u32, feature: u32, library: &Library) {
         let k = self.arity;
         let from = &self.nodes[parent as usize];
+        self.work.steps(from.feats.len());
         for (&f, block) in from.feats.iter().zip(from.vals.chunks_exact(k)) {
             if f != feature {
                 self.tally.add_block(f as usize, block);
@@ -662,6 +703,7 @@ impl Cache {
         }
         let examples = library.examples();
         for &d in &self.excluded {
+            self.work.steps(examples[d as usize].pairs().len());
             for &(f, v) in examples[d as usize].pairs() {
                 // Only the parent's features count: those measured on the way do not.
                 self.tally.take_one(f.0 as usize, v.0 as usize, k);
@@ -678,6 +720,7 @@ impl Cache {
         }
         let k = self.arity;
         for &d in &self.nodes[at as usize].cands {
+            self.work.steps(examples[d as usize].pairs().len());
             for &(f, v) in examples[d as usize].pairs() {
                 let f = f.0 as usize;
                 if !self.marks.get(f).copied().unwrap_or(false) {
@@ -863,6 +906,84 @@ mod tests {
             check(&cache, &library, &costs);
         }
         cache.transposed
+    }
+
+    /// CLASSIFY's use of the cache as descriptions multiply: objects of 24 features, read
+    /// with errors, make a new description for most misreadings, and a found description
+    /// is refined with one more of its object's values half of the time (as eager CS-QL
+    /// does). Returns, when the library reaches each of `sizes`, the descriptions, the
+    /// cache's steps and its count updates so far.
+    fn multiply(seed: u64, sizes: &[usize]) -> Vec<(usize, u64, u64)> {
+        const WIDE: u32 = 24;
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+        let costs: Vec<Cost> = (0..WIDE)
+            .map(|_| Cost::new(f64::from(rng.random_range(1..4u32))).unwrap())
+            .collect();
+        let objects: Vec<Vec<u32>> = (0..400)
+            .map(|_| (0..WIDE).map(|_| rng.random_range(0..ARITY)).collect())
+            .collect();
+        let mut library = Library::new();
+        let mut cache = Cache::new(ARITY);
+        let mut path = Vec::new();
+        let mut seen = Vec::new();
+        while seen.len() < sizes.len() {
+            let object = &objects[rng.random_range(0..objects.len())];
+            let found = cache.walk(&library, &costs, &mut path, |f: Feature| {
+                let v = object[f.0 as usize];
+                Reading(if rng.random_bool(0.05) {
+                    (v + 1) % ARITY
+                } else {
+                    v
+                })
+            });
+            match found {
+                None => {
+                    let pairs = path.iter().map(|&(f, v)| (FeatureId(f.0), Value(v.0)));
+                    let id = library.len() as u32;
+                    let d =
+                        library.push(Example::from_pairs(pairs.collect::<Vec<_>>(), ClassId(id)));
+                    cache.on_push(&library, DescriptionId(d as u32));
+                }
+                Some(d) if rng.random_bool(0.5) => {
+                    let example = library.get_mut(d.index()).unwrap();
+                    if let Some(f) = (0..WIDE).find(|&f| example.get(FeatureId(f)).is_none()) {
+                        let v = object[f as usize];
+                        example.insert(FeatureId(f), Value(v));
+                        cache.on_refine(&library, d, Feature(f), Reading(v));
+                    }
+                }
+                Some(_) => {}
+            }
+            if library.len() == sizes[seen.len()] {
+                let work = cache.work;
+                seen.push((library.len(), work.steps, work.count_updates));
+            }
+        }
+        seen
+    }
+
+    #[test]
+    fn the_cache_work_per_description_follows_the_counts_it_keeps() {
+        let seen = multiply(1, &[500, 1000, 2000, 4000]);
+        let per_description = |&(d, steps, _): &(usize, u64, u64)| steps as f64 / d as f64;
+        let per_update = |&(_, steps, updates): &(usize, u64, u64)| steps as f64 / updates as f64;
+        let (first, last) = (&seen[0], &seen[seen.len() - 1]);
+        // Eight times the descriptions: the cost of each grows far less than their number
+        // (in proportion to it would be eight times); it grows as the counts each new
+        // description changes (it lands in more nodes of a deeper tree), and per count
+        // changed it stays the same.
+        let grew = per_description(last) / per_description(first);
+        assert!(
+            grew < 4.0,
+            "steps per description grew {grew:.2} times: {seen:?}"
+        );
+        for w in &seen {
+            let drift = per_update(w) / per_update(first);
+            assert!(
+                (0.8..1.25).contains(&drift),
+                "steps per count update moved {drift:.2} times: {seen:?}"
+            );
+        }
     }
 
     #[test]
