@@ -14,6 +14,7 @@ use qlearn::QTable;
 use rand::Rng;
 use serde::Serialize;
 
+use crate::observe::Observer;
 use crate::perception::Perception;
 
 /// What navigation measured.
@@ -64,8 +65,19 @@ impl Navigation {
     }
 }
 
+/// How many moves of one navigation trial pass between two questions to the observer
+/// ([`Observer::keep_going`]).
+///
+/// ```
+/// assert_eq!(csql::NAVIGATION_CHECK_MOVES, 4096);
+/// ```
+pub const NAVIGATION_CHECK_MOVES: u32 = 4096;
+
 /// Run `trials` evaluation trials from every non-goal free state of `world`, each cut
 /// after `max_moves` moves, following the greedy policy of `table` through `perception`.
+/// `observer` is asked before every trial, and every [`NAVIGATION_CHECK_MOVES`] moves
+/// within one, whether to go on ([`Observer::keep_going`]); when it says no, navigation
+/// ends there and the result counts the trials made (`trials`, with the one cut short).
 ///
 /// ```
 /// use csql::{Identified, RunSettings, Setup, StrategyKind};
@@ -77,11 +89,13 @@ impl Navigation {
 /// let mut p = Identified::new(&world, vec![1.0; 9]);
 /// let mut table = qlearn::QTable::new(4).unwrap();
 /// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
-/// let n = csql::navigate(&world, &setup.oracle, &mut p, &mut table, 2, 10, &mut rng);
+/// let mut observer = csql::KeepTrace;
+/// let n = csql::navigate(&world, &setup.oracle, &mut p, &mut table, 2, 10, &mut rng, &mut observer);
 /// assert_eq!(n.trials, 16);
 /// // One unit per classification: localising, then each state reached but the goal.
 /// assert!(n.cost_per_move() > 1.0 && n.cost <= (n.trials + n.moves) as f64);
 /// ```
+#[allow(clippy::too_many_arguments)]
 pub fn navigate<W: World + ?Sized, P: Perception, R: Rng + ?Sized>(
     world: &W,
     oracle: &Oracle,
@@ -90,10 +104,14 @@ pub fn navigate<W: World + ?Sized, P: Perception, R: Rng + ?Sized>(
     trials: u32,
     max_moves: u32,
     rng: &mut R,
+    observer: &mut dyn Observer,
 ) -> Navigation {
     let mut out = Navigation::default();
     for start in world.states() {
         for _ in 0..trials {
+            if !observer.keep_going() {
+                return out;
+            }
             out.trials += 1;
             let (mut row, cost) = perception.classify(world, start, table);
             out.cost += cost;
@@ -101,6 +119,13 @@ pub fn navigate<W: World + ?Sized, P: Perception, R: Rng + ?Sized>(
             let mut moves = 0u32;
             let mut all_optimal = true;
             while moves < max_moves {
+                if moves > 0
+                    && moves.is_multiple_of(NAVIGATION_CHECK_MOVES)
+                    && !observer.keep_going()
+                {
+                    out.moves += u64::from(moves);
+                    return out;
+                }
                 let a = table.greedy(row);
                 all_optimal &= oracle.is_optimal(s, a);
                 let step = world.sample(s, a, rng);

@@ -77,6 +77,26 @@ pub trait Observer {
 
     /// Called at the end of every trial, after the oracle's judgement.
     fn trial(&mut self, point: &TracePoint) -> Flow;
+
+    /// Asked during the work that follows learning, where there are no trials to
+    /// observe: before every trial of navigation after learning ([`crate::navigate`]),
+    /// and every [`crate::NAVIGATION_CHECK_MOVES`] moves within one. `false` ends that
+    /// work where it is, so that a stop asked for (Ctrl-C, say) is not left waiting. The
+    /// default always goes on.
+    ///
+    /// ```
+    /// use csql::{Flow, Observer, TracePoint};
+    /// struct Never;
+    /// impl Observer for Never {
+    ///     fn trial(&mut self, _: &TracePoint) -> Flow { Flow::Continue }
+    ///     fn keep_going(&mut self) -> bool { false }
+    /// }
+    /// assert!(!Never.keep_going());
+    /// assert!(csql::KeepTrace.keep_going());
+    /// ```
+    fn keep_going(&mut self) -> bool {
+        true
+    }
 }
 
 /// The observer of a plain run: keeps the trace and never stops it.

@@ -308,6 +308,7 @@ fn learn_classify<W: World + ?Sized>(
         q.prediction.navigation_trials,
         settings.max_moves.get(),
         &mut rng,
+        observer,
     );
     out.navigation_cost_per_move = Some(nav.cost_per_move());
     out.navigation_success = Some(nav.success());

@@ -216,3 +216,69 @@ fn classify_among_finds_the_true_description_among_candidates() {
         full / calls
     );
 }
+
+/// Says yes `left` times, then no: a stop asked for during navigation after learning.
+struct StopAfter {
+    left: u32,
+}
+
+impl csql::Observer for StopAfter {
+    fn trial(&mut self, _: &csql::TracePoint) -> csql::Flow {
+        csql::Flow::Continue
+    }
+
+    fn keep_going(&mut self) -> bool {
+        let go = self.left > 0;
+        self.left = self.left.saturating_sub(1);
+        go
+    }
+}
+
+/// Navigation asks its observer before every trial and within a long one, and ends
+/// where it is told to: an untrained policy that never reaches the goal, with a move
+/// cap that would take hours, ends at once.
+#[test]
+fn navigation_stops_when_its_observer_says_so() {
+    use rand::SeedableRng;
+    let settings = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
+    let setup = Setup::new(&settings).unwrap();
+    let world = setup.sensed(&settings);
+    let navigate = |observer: &mut StopAfter, max_moves: u32| {
+        // Every greedy action is "up": from most states it walks into a wall forever.
+        let mut p = csql::Identified::new(&world, vec![1.0; 9]);
+        let mut table = qlearn::QTable::new(4).unwrap();
+        let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
+        csql::navigate(
+            &world,
+            &setup.oracle,
+            &mut p,
+            &mut table,
+            csql::MAX_NAVIGATION_TRIALS,
+            max_moves,
+            &mut rng,
+            observer,
+        )
+    };
+    // Three trials, then a stop before the fourth.
+    let n = navigate(&mut StopAfter { left: 3 }, 10);
+    assert_eq!(n.trials, 3);
+    // One question before the first trial, the next after 4,096 moves of it.
+    let n = navigate(&mut StopAfter { left: 1 }, u32::MAX);
+    assert_eq!(
+        (n.trials, n.moves),
+        (1, u64::from(csql::NAVIGATION_CHECK_MOVES))
+    );
+}
+
+#[test]
+fn navigation_trials_have_an_upper_bound() {
+    let mut s = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
+    let toml = "predict_sensing = \"learned\"\n[prediction]\nnavigation_trials = 4294967295\n";
+    let err = s.apply_toml(toml, "t.toml").unwrap_err().to_string();
+    assert!(
+        err.contains("prediction.navigation_trials") && err.contains("at most 10000"),
+        "{err}"
+    );
+    let most = "predict_sensing = \"learned\"\n[prediction]\nnavigation_trials = 10000\n";
+    s.apply_toml(most, "t.toml").unwrap();
+}

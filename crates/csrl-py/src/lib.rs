@@ -108,12 +108,23 @@ impl csql::Observer for Signals {
     }
 
     fn trial(&mut self, _point: &csql::TracePoint) -> csql::Flow {
+        if self.keep_going() {
+            csql::Flow::Continue
+        } else {
+            csql::Flow::Stop
+        }
+    }
+
+    fn keep_going(&mut self) -> bool {
+        if self.raised.is_some() {
+            return false;
+        }
         // The GIL is released during the run: take it for the check only.
         match Python::attach(|py| py.check_signals()) {
-            Ok(()) => csql::Flow::Continue,
+            Ok(()) => true,
             Err(e) => {
                 self.raised = Some(e);
-                csql::Flow::Stop
+                false
             }
         }
     }

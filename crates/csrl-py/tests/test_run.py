@@ -181,6 +181,28 @@ def test_ctrl_c_stops_a_long_run():
     assert time.perf_counter() - started < 10
 
 
+def test_ctrl_c_stops_navigation_after_learning():
+    # Three trials of learning, then navigation that would run for days: 10,000 trials
+    # from each state of a policy that learned nothing, with a move cap of four billion.
+    code = (
+        "import csrl, sys\n"
+        "print('ready', flush=True)\n"
+        "csrl.run(world='tan8x8', strategy='resetting', seed=1, max_trials=3,\n"
+        "         predict_sensing='learned',\n"
+        "         settings={'max_moves': 4000000000, 'prediction': {'navigation_trials': 10000}})\n"
+        "print('finished', flush=True)\n"
+    )
+    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    assert proc.stdout.readline().strip() == "ready"
+    time.sleep(1.5)
+    started = time.perf_counter()
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=60)
+    assert "KeyboardInterrupt" in err, err
+    assert "finished" not in out
+    assert time.perf_counter() - started < 10
+
+
 def test_resolve_settings_checks_without_running():
     s = csrl.resolve_settings(world="tan8x8", strategy="eager", settings={"temperature": 0.2})
     assert s["temperature"] == 0.2 and s["strategy"] == "eager"

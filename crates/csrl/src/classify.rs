@@ -62,7 +62,7 @@ pub struct ClassifyArgs {
     #[arg(long, value_name = "EXPR", allow_hyphen_values = true)]
     positive_if: Option<String>,
     /// The learner.
-    #[arg(long, value_enum)]
+    #[arg(long, value_enum, default_value_t = Learner::CsId3)]
     learner: Learner,
     /// The seed of the random order of the objects (and of ID3's discrimination orders).
     #[arg(long, default_value_t = 1)]

@@ -119,7 +119,8 @@ fn parse_rule(s: &str) -> Result<mdp::SensingRule, String> {
 }
 
 /// Shows progress on a terminal (nothing otherwise), keeps the trace only when asked,
-/// and stops the run when Ctrl-C was pressed.
+/// and stops the run when Ctrl-C was pressed (or SIGTERM received), in learning or in
+/// the navigation after it.
 struct Watch {
     bar: indicatif::ProgressBar,
     keep_trace: bool,
@@ -140,12 +141,18 @@ impl Observer for Watch {
                 point.descriptions, point.cumulative_cost
             ));
         }
+        if self.keep_going() {
+            Flow::Continue
+        } else {
+            Flow::Stop
+        }
+    }
+
+    fn keep_going(&mut self) -> bool {
         if self.stop.load(Ordering::Relaxed) {
             self.stopped = true;
-            Flow::Stop
-        } else {
-            Flow::Continue
         }
+        !self.stopped
     }
 }
 

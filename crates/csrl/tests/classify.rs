@@ -211,6 +211,18 @@ fn broken_files_give_clear_errors() {
     );
 }
 
+/// Without `--learner`, `classify` runs CS-ID3, and says so.
+#[test]
+fn the_learner_is_cs_id3_unless_another_is_named() {
+    let out = on_heart(&["--positive-if", ">0", "--json"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let default: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(default["learner"], "cs-id3");
+    assert_eq!(default, classify_heart("cs-id3", "1"));
+    let help = csrl(&["classify", "--help"]);
+    assert!(String::from_utf8_lossy(&help.stdout).contains("[default: cs-id3]"));
+}
+
 #[test]
 fn an_unknown_learner_is_a_usage_error() {
     let out = csrl(&[

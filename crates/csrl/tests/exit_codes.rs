@@ -97,3 +97,53 @@ fn sigterm_stops_a_run_with_its_report() {
     assert!(err.contains("interrupted after"), "{err}");
     assert!(!out.stdout.is_empty(), "no report: {err}");
 }
+
+/// SIGTERM during the navigation after learning stops it too. Learning ends in three
+/// trials; navigation, 10,000 trials from each state of a policy that has learned
+/// nothing with a move cap of four billion, would run for days.
+#[cfg(unix)]
+#[test]
+fn sigterm_stops_navigation_after_learning() {
+    let dir = tempfile::tempdir().unwrap();
+    let config = dir.path().join("long.toml");
+    std::fs::write(
+        &config,
+        "max_moves = 4000000000\n[prediction]\nnavigation_trials = 10000\n",
+    )
+    .unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_csrl"))
+        .args(["run", "--map", "tan8x8", "--strategy", "resetting"])
+        .args([
+            "--max-trials",
+            "3",
+            "--predict-sensing",
+            "learned",
+            "--json",
+        ])
+        .arg("--config")
+        .arg(&config)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let kill = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    while child.try_wait().unwrap().is_none() {
+        if std::time::Instant::now() > deadline {
+            let _ = child.kill();
+            panic!("SIGTERM did not stop navigation within a minute");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    let out = child.wait_with_output().unwrap();
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(130), "{err}");
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(report["trials"], 3, "{err}");
+    assert!(report["navigation_success"].is_number(), "{report}");
+}

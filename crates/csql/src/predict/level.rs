@@ -87,6 +87,16 @@ impl std::str::FromStr for PredictSensing {
     }
 }
 
+/// The most evaluation trials of navigation from each state that a run may ask for
+/// ([`Prediction::navigation_trials`]): navigation makes that many from every non-goal
+/// state, each of up to `max_moves` moves.
+///
+/// ```
+/// let p = csql::Prediction { navigation_trials: csql::MAX_NAVIGATION_TRIALS + 1, ..Default::default() };
+/// assert!(p.validate().unwrap_err().to_string().contains("at most 10000"));
+/// ```
+pub const MAX_NAVIGATION_TRIALS: u32 = 10_000;
+
 /// The confidence rule, the re-check rates and the evaluation of navigation (the TOML
 /// table `[prediction]`; every key optional). Used only when `predict_sensing` is not
 /// `off`.
@@ -110,7 +120,8 @@ pub struct Prediction {
     pub max_skips: u32,
     /// Probability of verifying a trusted transition while navigating (default 0.05).
     pub verify: f64,
-    /// Evaluation trials of navigation from each non-goal free state (default 10).
+    /// Evaluation trials of navigation from each non-goal free state (default 10, at most
+    /// [`MAX_NAVIGATION_TRIALS`]).
     pub navigation_trials: u32,
     /// At the motion level, for how many moves a sensed cell is remembered (default 1:
     /// what was sensed at the previous state).
@@ -141,7 +152,8 @@ impl Prediction {
     }
 
     /// Check the ranges: probabilities in [0, 1], at least one confirmation, skip,
-    /// evaluation trial and remembered move.
+    /// evaluation trial and remembered move, and at most [`MAX_NAVIGATION_TRIALS`]
+    /// evaluation trials.
     ///
     /// ```
     /// let p = csql::Prediction { recheck: 1.5, ..Default::default() };
@@ -173,6 +185,13 @@ impl Prediction {
             if n == 0 {
                 return bad(name, "0".to_string(), "at least 1");
             }
+        }
+        if self.navigation_trials > MAX_NAVIGATION_TRIALS {
+            return bad(
+                "prediction.navigation_trials",
+                self.navigation_trials.to_string(),
+                "at most 10000 evaluation trials from each state",
+            );
         }
         Ok(())
     }
