@@ -25,6 +25,8 @@ use qlearn::{Discount, Epsilon, LearningRate, QTable, RowId, Target};
 use rand::{Rng, RngExt};
 use serde::{Deserialize, Serialize};
 
+use crate::observe::{KeepTrace, Observer, STOP_CHECK_MOVES};
+
 /// AMRL-Q's parameters; the defaults are those the active-measurement benchmark runs it
 /// with.
 ///
@@ -328,6 +330,35 @@ pub fn amrl_q<W: World + ?Sized, R: Rng + ?Sized>(
     max_moves: u32,
     rng: &mut R,
 ) -> Vec<Episode> {
+    let play = Episodes {
+        episodes,
+        max_moves,
+    };
+    amrl_q_observed(world, params, price, rule, play, rng, &mut KeepTrace)
+}
+
+/// How many episodes a learner on costed episodes plays, and the move cap of each.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Episodes {
+    pub(crate) episodes: u32,
+    pub(crate) max_moves: u32,
+}
+
+/// [`amrl_q`], asking `observer` before every episode and every
+/// [`STOP_CHECK_MOVES`] moves within one whether to go on ([`Observer::keep_going`]): a
+/// no ends the episode there, as the move cap would, and the run after it.
+pub(crate) fn amrl_q_observed<W: World + ?Sized, R: Rng + ?Sized>(
+    world: &W,
+    params: &AmrlParams,
+    price: f64,
+    rule: SensingRule,
+    Episodes {
+        episodes,
+        max_moves,
+    }: Episodes,
+    rng: &mut R,
+    observer: &mut dyn Observer,
+) -> Vec<Episode> {
     let actions = world.num_actions();
     let mut t = Tables::new(
         world.num_states(),
@@ -337,14 +368,20 @@ pub fn amrl_q<W: World + ?Sized, R: Rng + ?Sized>(
     );
     let greedy_share = params.greedy_share.clamp(0.0, 1.0);
     let greedy_from = episodes - (f64::from(episodes) * greedy_share).round() as u32;
-    let mut out = Vec::with_capacity(episodes as usize);
+    let mut out = Vec::with_capacity(episodes.min(crate::settings::MAX_EPISODES) as usize);
     for episode in 0..episodes {
+        if !observer.keep_going() {
+            break;
+        }
         let greedy = episode >= greedy_from;
         // The truth, and what the agent takes for it.
         let mut truth = world.sample_start(rng);
         let mut believed = truth;
         let mut e = Episode::default();
-        for _ in 0..max_moves {
+        for moves in 0..max_moves {
+            if moves > 0 && moves.is_multiple_of(STOP_CHECK_MOVES) && !observer.keep_going() {
+                break;
+            }
             let exploit = greedy || !rng.random_bool(params.epsilon.get());
             let (a, measure) = match (params.measuring, exploit) {
                 (Measuring::Choose, true) => t.greedy(believed),

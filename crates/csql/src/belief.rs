@@ -45,7 +45,8 @@ use mdp::{
 use rand::Rng;
 use serde::{Deserialize, Serialize};
 
-use crate::amrl::Episode;
+use crate::amrl::{Episode, Episodes};
+use crate::observe::{KeepTrace, Observer};
 
 /// Value iteration of a plan stops when a step changes no value by more than this (reward
 /// units): far below any price, and far fewer steps on lakes where the values creep.
@@ -261,6 +262,26 @@ pub fn belief_planning<W: World + ?Sized, R: Rng + ?Sized>(
     max_moves: u32,
     rng: &mut R,
 ) -> Result<Vec<Episode>, ReferenceError> {
+    let play = Episodes {
+        episodes,
+        max_moves,
+    };
+    belief_planning_observed(world, params, rule, play, rng, &mut KeepTrace)
+}
+
+/// [`belief_planning`], asking `observer` before every episode whether to go on
+/// ([`Observer::keep_going`]): a no ends the run there.
+pub(crate) fn belief_planning_observed<W: World + ?Sized, R: Rng + ?Sized>(
+    world: &W,
+    params: &BeliefParams,
+    rule: SensingRule,
+    Episodes {
+        episodes,
+        max_moves,
+    }: Episodes,
+    rng: &mut R,
+    observer: &mut dyn Observer,
+) -> Result<Vec<Episode>, ReferenceError> {
     check(params, max_moves)?;
     let n = world.num_states();
     let na = world.num_actions();
@@ -296,8 +317,11 @@ pub fn belief_planning<W: World + ?Sized, R: Rng + ?Sized>(
     for (_, s) in world.start_distribution() {
         l.known[s.index()] = true;
     }
-    let mut out = Vec::with_capacity(episodes as usize);
+    let mut out = Vec::with_capacity(episodes.min(crate::settings::MAX_EPISODES) as usize);
     for _ in 0..episodes {
+        if !observer.keep_going() {
+            break;
+        }
         out.push(l.episode(rng)?);
     }
     Ok(out)

@@ -37,6 +37,7 @@ use crate::classify::Classify;
 use crate::error::Error;
 use crate::learner::Learner;
 use crate::main_loop::Agent;
+use crate::observe::Observer;
 use crate::perception::{FullView, Perception};
 use crate::predict::Predicting;
 use crate::predict::level::PredictSensing;
@@ -106,7 +107,8 @@ impl WouldRead for Predicting {
 }
 
 /// Play the learner of `settings` (CS-QL without prediction or memory, or full sensing)
-/// for exactly `episodes` episodes of at most `settings.max_moves` moves in `world`, and
+/// for exactly `episodes` episodes (at most [`crate::MAX_EPISODES`]) of at most
+/// `settings.max_moves` moves in `world`, and
 /// score each: its undiscounted reward, and the prices of what it sensed (the world's
 /// feature costs times `reward_per_cost`, reward units per unit of cost) under `rule`.
 ///
@@ -127,6 +129,7 @@ impl WouldRead for Predicting {
 /// // Full sensing reads the row and the column of every state it classifies.
 /// assert!(run.iter().all(|e| (e.sensing - 0.05 * f64::from(e.measurements)).abs() < 1e-9));
 /// assert!(csql::costed_episodes(&lake, &settings, SensingRule::WithMove, f64::NAN, 1).is_err());
+/// assert!(csql::costed_episodes(&lake, &settings, SensingRule::WithMove, 0.025, u32::MAX).is_err());
 /// ```
 pub fn costed_episodes<W: World + ?Sized>(
     world: &W,
@@ -142,6 +145,12 @@ pub fn costed_episodes<W: World + ?Sized>(
         });
     }
     settings.validate()?;
+    if episodes > crate::settings::MAX_EPISODES {
+        return Err(Error::InvalidSetting {
+            value: format!("episodes = {episodes}"),
+            expected: "at most 1000000 episodes (csql::MAX_EPISODES): every episode is returned",
+        });
+    }
     crate::resolve::check_with_world(
         settings,
         crate::quality::is_deterministic(world),
@@ -300,7 +309,10 @@ pub struct CostedReport {
 
 /// The learner of `settings` played on episodes of the costed return in `world` (named
 /// `name`): `max_trials` episodes of at most `max_moves` moves, under `[costly] rule`,
-/// from one generator seeded with `seed`.
+/// from one generator seeded with `seed`. `observer` is asked before every episode
+/// whether to go on ([`Observer::keep_going`]; within an episode of `amrl-q` too, every
+/// [`crate::STOP_CHECK_MOVES`] moves): a no ends the run there, and the report holds
+/// the episodes played.
 ///
 /// * `amrl-q`: exactly [`crate::amrl_q`] with the parameters of `[amrl_q]`, measuring
 ///   the whole state at `[costly] price` times the sum of the world's feature costs;
@@ -319,17 +331,18 @@ pub struct CostedReport {
 /// s.max_trials = csql::TrialCap::new(300).unwrap();
 /// let options = mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() };
 /// let lake = mdp::builtin_world("frozenlake4x4", &options).unwrap();
-/// let r = csql::costed_report(&lake, "frozenlake4x4", &s).unwrap();
+/// let r = csql::costed_report(&lake, "frozenlake4x4", &s, &mut csql::KeepTrace).unwrap();
 /// assert_eq!((r.costly.returns.len(), r.whole_state_price), (300, 0.05));
 /// // Sensing by belief, its features priced at [costly] price.
 /// s.learner = csql::Learner::Belief(csql::BeliefParams { price_scale: 0.025, ..Default::default() });
-/// let r = csql::costed_report(&lake, "frozenlake4x4", &s).unwrap();
+/// let r = csql::costed_report(&lake, "frozenlake4x4", &s, &mut csql::KeepTrace).unwrap();
 /// assert_eq!((r.learner, r.costly.summary.episodes), (csql::LearnerKind::Belief, 300));
 /// ```
 pub fn costed_report<W: World + ?Sized>(
     world: &W,
     name: &str,
     settings: &RunSettings,
+    observer: &mut dyn Observer,
 ) -> Result<CostedReport, Error> {
     settings.validate()?;
     let kind = settings.learner.kind();
@@ -346,24 +359,27 @@ pub fn costed_report<W: World + ?Sized>(
         .sum();
     let whole_state_price = costly.price * whole;
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
-    let (episodes, max_moves) = (settings.max_trials.get(), settings.max_moves.get());
+    let play = crate::amrl::Episodes {
+        episodes: settings.max_trials.get(),
+        max_moves: settings.max_moves.get(),
+    };
     let played = match &settings.learner {
-        Learner::AmrlQ(params) => crate::amrl::amrl_q(
+        Learner::AmrlQ(params) => crate::amrl::amrl_q_observed(
             world,
             params,
             whole_state_price,
             costly.rule,
-            episodes,
-            max_moves,
+            play,
             &mut rng,
+            observer,
         ),
-        Learner::Belief(params) => crate::belief::belief_planning(
+        Learner::Belief(params) => crate::belief::belief_planning_observed(
             world,
             params,
             costly.rule,
-            episodes,
-            max_moves,
+            play,
             &mut rng,
+            observer,
         )?,
         _ => return Err(refuse()),
     };
@@ -386,19 +402,23 @@ pub fn costed_report<W: World + ?Sized>(
 ///     .unwrap()
 ///     .build()
 ///     .unwrap();
-/// let r = csql::costed_report_in(&csql::Resolved::new(&s).unwrap(), &s).unwrap();
+/// let r = csql::costed_report_in(&csql::Resolved::new(&s).unwrap(), &s, &mut csql::KeepTrace).unwrap();
 /// assert_eq!((r.map.as_str(), r.costly.returns.len()), ("frozenlake4x4", 30));
 /// ```
 pub fn costed_report_in(
     resolved: &crate::resolve::Resolved,
     settings: &RunSettings,
+    observer: &mut dyn Observer,
 ) -> Result<CostedReport, Error> {
     match resolved {
-        crate::resolve::Resolved::Grid(setup) => {
-            costed_report(&setup.sensed(settings), setup.map.name(), settings)
-        }
+        crate::resolve::Resolved::Grid(setup) => costed_report(
+            &setup.sensed(settings),
+            setup.map.name(),
+            settings,
+            observer,
+        ),
         crate::resolve::Resolved::Finite { world, .. } => {
-            costed_report(world, world.name(), settings)
+            costed_report(world, world.name(), settings, observer)
         }
     }
 }

@@ -230,7 +230,7 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
     let cap = settings.max_trials.get();
     for trial in 1..=cap {
         let start = world.sample_start(&mut rng);
-        let rec = agent.run_trial(world, start, trial, &mut rng);
+        let rec = agent.run_trial_observed(world, start, trial, &mut rng, observer);
         out.moves += rec.moves as u64;
         out.cost += rec.cost;
         let verdict = match judging {

@@ -239,8 +239,8 @@ pub use learn::{Judging, Scene};
 pub use learner::{CsQlSettings, Learner, LearnerKind, UTreeParams};
 pub use main_loop::{Agent, LoopParams, RefineFrom, TrialRecord};
 pub use memory::Remembering;
-pub use navigate::{NAVIGATION_CHECK_MOVES, Navigation, navigate};
-pub use observe::{Flow, KeepTrace, Observer, TracePoint};
+pub use navigate::{Navigation, navigate};
+pub use observe::{Flow, KeepTrace, Observer, STOP_CHECK_MOVES, TracePoint};
 pub use perception::{FULL_VIEW_LIMIT, FullView, Identified, Perception};
 pub use predict::level::{MAX_NAVIGATION_TRIALS, PredictSensing, Prediction};
 pub use predict::model::TransitionModel;
@@ -265,8 +265,8 @@ pub use run::{
 };
 pub use sensor::Sensor;
 pub use settings::{
-    CostlySettings, JudgeSettings, MAX_ROWS, MAX_SETTINGS_BYTES, MapSource, NonNegative,
-    RunSettings, TrialCap,
+    CostlySettings, JudgeSettings, MAX_EPISODES, MAX_ROWS, MAX_SETTINGS_BYTES, MapSource,
+    NonNegative, RunSettings, TrialCap,
 };
 pub use setup::Setup;
 pub use stepper::{Moment, Sense, StepError, Stepper};

@@ -14,7 +14,7 @@ use qlearn::QTable;
 use rand::Rng;
 use serde::Serialize;
 
-use crate::observe::Observer;
+use crate::observe::{Observer, STOP_CHECK_MOVES};
 use crate::perception::Perception;
 
 /// What navigation measured.
@@ -65,17 +65,9 @@ impl Navigation {
     }
 }
 
-/// How many moves of one navigation trial pass between two questions to the observer
-/// ([`Observer::keep_going`]).
-///
-/// ```
-/// assert_eq!(csql::NAVIGATION_CHECK_MOVES, 4096);
-/// ```
-pub const NAVIGATION_CHECK_MOVES: u32 = 4096;
-
 /// Run `trials` evaluation trials from every non-goal free state of `world`, each cut
 /// after `max_moves` moves, following the greedy policy of `table` through `perception`.
-/// `observer` is asked before every trial, and every [`NAVIGATION_CHECK_MOVES`] moves
+/// `observer` is asked before every trial, and every [`STOP_CHECK_MOVES`] moves
 /// within one, whether to go on ([`Observer::keep_going`]); when it says no, navigation
 /// ends there and the result counts the trials made (`trials`, with the one cut short).
 ///
@@ -119,10 +111,7 @@ pub fn navigate<W: World + ?Sized, P: Perception, R: Rng + ?Sized>(
             let mut moves = 0u32;
             let mut all_optimal = true;
             while moves < max_moves {
-                if moves > 0
-                    && moves.is_multiple_of(NAVIGATION_CHECK_MOVES)
-                    && !observer.keep_going()
-                {
+                if moves > 0 && moves.is_multiple_of(STOP_CHECK_MOVES) && !observer.keep_going() {
                     out.moves += u64::from(moves);
                     return out;
                 }

@@ -50,6 +50,14 @@ pub enum Flow {
     Stop,
 }
 
+/// How many moves of one trial, of learning or of navigation after it, pass between two
+/// questions to the observer ([`Observer::keep_going`]).
+///
+/// ```
+/// assert_eq!(csql::STOP_CHECK_MOVES, 4096);
+/// ```
+pub const STOP_CHECK_MOVES: u32 = 4096;
+
 /// Watches a run trial by trial.
 ///
 /// ```
@@ -78,11 +86,14 @@ pub trait Observer {
     /// Called at the end of every trial, after the oracle's judgement.
     fn trial(&mut self, point: &TracePoint) -> Flow;
 
-    /// Asked during the work that follows learning, where there are no trials to
-    /// observe: before every trial of navigation after learning ([`crate::navigate`]),
-    /// and every [`crate::NAVIGATION_CHECK_MOVES`] moves within one. `false` ends that
-    /// work where it is, so that a stop asked for (Ctrl-C, say) is not left waiting. The
-    /// default always goes on.
+    /// Asked where a run would otherwise not hear from its observer for long: every
+    /// [`STOP_CHECK_MOVES`] moves within a trial of learning; before every trial of
+    /// navigation after learning ([`crate::navigate`]) and every [`STOP_CHECK_MOVES`]
+    /// moves within one; before every episode of a learner on costed episodes
+    /// ([`crate::costed_report`]). `false` ends the trial there, as the move cap would
+    /// (a learning run then asks [`Observer::trial`] as after any trial), or ends the
+    /// navigation or the episodes, so that a stop asked for (Ctrl-C, say) is not left
+    /// waiting. The default always goes on.
     ///
     /// ```
     /// use csql::{Flow, Observer, TracePoint};

@@ -381,6 +381,17 @@ pub const MAX_SETTINGS_BYTES: u64 = 64 << 10;
 /// ```
 pub const MAX_ROWS: usize = 100_000;
 
+/// The most episodes a learner on costed episodes may play (`max_trials` of
+/// `learner = "amrl-q"` or `"belief"`, and [`crate::costed_episodes`]): every episode is
+/// kept in the report, with its costed return.
+///
+/// ```
+/// let s = csql::SettingsDraft::from_toml("learner = \"amrl-q\"\nmax_trials = 1000001\n[costly]\nprice = 0.1", "f").unwrap();
+/// assert!(s.build().unwrap_err().to_string().contains("at most 1000000 episodes"));
+/// assert_eq!(csql::MAX_EPISODES, 1_000_000);
+/// ```
+pub const MAX_EPISODES: u32 = 1_000_000;
+
 impl RunSettings {
     /// The paper's settings (beta 1, gamma 0.9, T 0.4, 100 moves per trial, 20 random
     /// moves) for CS-QL with `strategy`, with a tolerance of 1e-6, no decrease threshold
@@ -540,6 +551,12 @@ impl RunSettings {
             );
         }
         self.validate_costly()?;
+        if self.learner.kind().on_episodes() && self.max_trials.get() > MAX_EPISODES {
+            return refuse(
+                format!("max_trials = {}", self.max_trials.get()),
+                "at most 1000000 episodes (csql::MAX_EPISODES) for a learner on costed episodes: every episode is kept in the report",
+            );
+        }
         match &self.learner {
             Learner::CsQl(q) => self.validate_cs_ql(q),
             Learner::UTree(p) => p.validate(),

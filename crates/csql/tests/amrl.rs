@@ -102,3 +102,64 @@ fn the_always_measuring_learner_pays_every_move() {
     let s = CostlySummary::of(&episodes);
     assert!((s.mean_last10 - (1.0 - 6.0 * 0.05)).abs() < 1e-9, "{s:?}");
 }
+
+/// Says yes `left` times, then no.
+struct StopAfter {
+    left: u32,
+}
+
+impl csql::Observer for StopAfter {
+    fn trial(&mut self, _: &csql::TracePoint) -> csql::Flow {
+        csql::Flow::Continue
+    }
+
+    fn keep_going(&mut self) -> bool {
+        let go = self.left > 0;
+        self.left = self.left.saturating_sub(1);
+        go
+    }
+}
+
+/// Both learners on costed episodes ask their observer before every episode and end
+/// where it says no, with the episodes played so far, the same as those of a whole run;
+/// an episode longer than `STOP_CHECK_MOVES` moves is cut there.
+#[test]
+fn learners_on_episodes_stop_when_their_observer_says_so() {
+    let world = lake(0.5);
+    for learner in [csql::LearnerKind::AmrlQ, csql::LearnerKind::Belief] {
+        let mut s = csql::RunSettings::tan1991("frozenlake4x4", csql::StrategyKind::Lazy, 3)
+            .with_learner(learner);
+        if let csql::Learner::Belief(p) = &mut s.learner {
+            p.price_scale = 0.025;
+        }
+        s.costly = Some(csql::CostlySettings::new(0.025));
+        s.max_trials = csql::TrialCap::new(40).unwrap();
+        let whole = csql::costed_report(&world, "lake", &s, &mut csql::KeepTrace).unwrap();
+        let cut = csql::costed_report(&world, "lake", &s, &mut StopAfter { left: 7 }).unwrap();
+        assert_eq!(cut.costly.summary.episodes, 7, "{learner}");
+        assert_eq!(
+            cut.costly.returns[..],
+            whole.costly.returns[..7],
+            "{learner}"
+        );
+    }
+    // A room the agent can never leave: without the observer's no, the first episode
+    // would last four billion moves; it is cut at the first check.
+    let trap = mdp::FiniteWorld::from_json(
+        r#"{"format": "csrl-world", "version": 1, "name": "trap", "states": 2,
+            "actions": ["stay"], "start": [[1.0, 0]], "terminal": [1],
+            "transitions": [[0, 0, [[1.0, 0, 0.0, false]]]],
+            "features": [{"name": "where", "price": 1.0}], "readings": [[0], [1]]}"#,
+    )
+    .unwrap();
+    let mut s = csql::RunSettings::tan1991("trap", csql::StrategyKind::Lazy, 3)
+        .with_learner(csql::LearnerKind::AmrlQ);
+    s.costly = Some(csql::CostlySettings::new(0.025));
+    s.max_moves = qlearn::MoveCap::new(u64::from(u32::MAX)).unwrap();
+    let cut = csql::costed_report(&trap, "trap", &s, &mut StopAfter { left: 1 }).unwrap();
+    assert_eq!(cut.costly.summary.episodes, 1);
+    assert_eq!(
+        cut.costly.summary.steps_per_episode,
+        f64::from(csql::STOP_CHECK_MOVES)
+    );
+}

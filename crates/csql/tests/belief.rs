@@ -192,7 +192,7 @@ fn the_learner_belief_of_a_runs_settings() {
     assert_eq!(toml::from_str::<csql::RunSettings>(&echo).unwrap(), s);
     // Played as belief_planning plays it.
     let world = lake("frozenlake4x4", 0.0, 1.0);
-    let r = csql::costed_report(&world, "frozenlake4x4", &s).unwrap();
+    let r = csql::costed_report(&world, "frozenlake4x4", &s, &mut csql::KeepTrace).unwrap();
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(8);
     let episodes =
         belief_planning(&world, &p, SensingRule::AfterOutcome, 60, 100, &mut rng).unwrap();

@@ -264,10 +264,7 @@ fn navigation_stops_when_its_observer_says_so() {
     assert_eq!(n.trials, 3);
     // One question before the first trial, the next after 4,096 moves of it.
     let n = navigate(&mut StopAfter { left: 1 }, u32::MAX);
-    assert_eq!(
-        (n.trials, n.moves),
-        (1, u64::from(csql::NAVIGATION_CHECK_MOVES))
-    );
+    assert_eq!((n.trials, n.moves), (1, u64::from(csql::STOP_CHECK_MOVES)));
 }
 
 #[test]
@@ -281,4 +278,32 @@ fn navigation_trials_have_an_upper_bound() {
     );
     let most = "predict_sensing = \"learned\"\n[prediction]\nnavigation_trials = 10000\n";
     s.apply_toml(most, "t.toml").unwrap();
+}
+
+/// A trial of learning asks the observer every `STOP_CHECK_MOVES` moves too: a no ends
+/// the trial there, and the run after it.
+#[test]
+fn a_long_trial_of_learning_stops_when_its_observer_says_so() {
+    let mut s = RunSettings::tan1991("random:48x48:0.2:1", StrategyKind::Lazy, 1);
+    s.max_trials = csql::TrialCap::new(1).unwrap();
+    s.max_moves = qlearn::MoveCap::new(1_000_000).unwrap();
+    let setup = Setup::new(&s).unwrap();
+    let whole = csql::run_on(&setup, &s);
+    let check = u64::from(csql::STOP_CHECK_MOVES);
+    assert!(
+        whole.moves > check,
+        "the first trial is too short: {}",
+        whole.moves
+    );
+    struct StopNow;
+    impl csql::Observer for StopNow {
+        fn trial(&mut self, _: &csql::TracePoint) -> csql::Flow {
+            csql::Flow::Stop
+        }
+        fn keep_going(&mut self) -> bool {
+            false
+        }
+    }
+    let stopped = csql::run_observed(&setup, &s, &mut StopNow);
+    assert_eq!((stopped.trials, stopped.moves), (1, check));
 }

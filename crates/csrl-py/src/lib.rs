@@ -193,10 +193,17 @@ fn run_json(
         }
         let report = py
             .detach(|| match world {
-                None => csql::costed_report_in(&csql::Resolved::new(&settings)?, &settings),
-                Some(world) => csql::costed_report(world, world.name(), &settings),
+                None => csql::costed_report_in(
+                    &csql::Resolved::new(&settings)?,
+                    &settings,
+                    &mut signals,
+                ),
+                Some(world) => csql::costed_report(world, world.name(), &settings, &mut signals),
             })
             .map_err(|e| run_error(&e))?;
+        if let Some(e) = signals.raised {
+            return Err(e);
+        }
         return serde_json::to_string(&report).map_err(|e| SettingsError::new_err(e.to_string()));
     }
     // Resolving a world solves its true model (value iteration), which takes time on

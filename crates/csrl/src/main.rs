@@ -176,7 +176,7 @@ impl Status {
     }
 
     /// A run stopped by Ctrl-C or SIGTERM.
-    pub(crate) fn interrupted(trials: u32) -> Status {
+    pub(crate) fn interrupted(trials: u64) -> Status {
         Status {
             code: 130,
             message: format!(

@@ -235,7 +235,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
         write!(out, "{}", csql::descriptions_table(&report))?;
     }
     if watch.stopped {
-        return Err(Status::interrupted(report.trials).into());
+        return Err(Status::interrupted(u64::from(report.trials)).into());
     }
     // Beyond the paper, "converged" is the policy quality reached and kept
     // (specification §6.3).
@@ -270,7 +270,13 @@ fn run_on_episodes(
             .into());
         }
     }
-    let report = csql::costed_report_in(resolved, settings)?;
+    let mut watch = Watch {
+        bar: indicatif::ProgressBar::hidden(),
+        keep_trace: false,
+        stop: ctrl_c_flag(),
+        stopped: false,
+    };
+    let report = csql::costed_report_in(resolved, settings, &mut watch)?;
     if args.json {
         writeln!(out, "{}", serde_json::to_string(&report)?)?;
     } else {
@@ -294,6 +300,9 @@ fn run_on_episodes(
             )?,
         }
         print_costly(&report.costly, out)?;
+    }
+    if watch.stopped {
+        return Err(Status::interrupted(report.costly.summary.episodes as u64).into());
     }
     Ok(())
 }

@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{config, csrl, json, lake, returns};
+use common::{config, csrl, json, lake, returns, stderr};
 
 use rand::SeedableRng;
 
@@ -208,4 +208,27 @@ fn refused_combinations_name_both() {
         "/dev/null",
     ]);
     assert!(!err.contains("panicked"), "{err}");
+}
+
+/// Every episode of a learner on costed episodes is kept in its report: more than
+/// `csql::MAX_EPISODES` are refused before anything runs (four billion aborted, asking
+/// for 128 GB at once).
+#[test]
+fn too_many_episodes_are_refused_up_front() {
+    for learner in ["amrl-q", "belief"] {
+        let out = csrl(&[
+            "run",
+            "--world",
+            "frozenlake4x4",
+            "--learner",
+            learner,
+            "--price",
+            "0.025",
+            "--max-trials",
+            "4000000000",
+        ]);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(1), "{learner}: {err}");
+        assert!(err.contains("at most 1000000 episodes"), "{learner}: {err}");
+    }
 }
