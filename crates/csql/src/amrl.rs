@@ -74,10 +74,10 @@ impl AmrlParams {
     /// assert!(p.validate().unwrap_err().to_string().contains("amrl_q.greedy_share"));
     /// ```
     pub fn validate(&self) -> Result<(), crate::Error> {
-        if !self.measure_bias.is_finite() {
+        if !(-crate::MAX_BIAS..=crate::MAX_BIAS).contains(&self.measure_bias) {
             return Err(crate::Error::InvalidSetting {
-                value: format!("amrl_q.measure_bias = {}", self.measure_bias),
-                expected: "a finite number",
+                value: format!("amrl_q.measure_bias = {:?}", self.measure_bias),
+                expected: "a number of at most 1e9 in size (csql::MAX_BIAS): a larger one drowns the world's rewards in the values' rounding",
             });
         }
         if !(0.0..=1.0).contains(&self.greedy_share) {

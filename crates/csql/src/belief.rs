@@ -69,7 +69,8 @@ pub struct BeliefParams {
     pub trust: u32,
     /// The weight of the optimistic outcome against a pair's tries (3).
     pub prior: f64,
-    /// The reward of the optimistic outcome, in reward units (1, FrozenLake's goal).
+    /// The reward of the optimistic outcome, in reward units (1, FrozenLake's goal; at
+    /// most [`crate::MAX_BIAS`] in size).
     pub optimism: f64,
     /// Reward units per unit of a feature's cost (1: the world's costs are prices). Not a
     /// key of `[belief]`: a run's settings take it from `[costly] price`.
@@ -163,8 +164,12 @@ impl BeliefParams {
                 "a finite weight greater than 0",
             );
         }
-        if !self.optimism.is_finite() {
-            return bad("optimism", self.optimism.to_string(), "a finite reward");
+        if !(-crate::MAX_BIAS..=crate::MAX_BIAS).contains(&self.optimism) {
+            return bad(
+                "optimism",
+                format!("{:?}", self.optimism),
+                "a reward of at most 1e9 in size (csql::MAX_BIAS): a larger one drowns the world's rewards in the plan's rounding",
+            );
         }
         if !(self.move_cost.is_finite() && self.move_cost >= 0.0) {
             return bad(

@@ -345,6 +345,7 @@ pub fn costed_report<W: World + ?Sized>(
     observer: &mut dyn Observer,
 ) -> Result<CostedReport, Error> {
     settings.validate()?;
+    crate::resolve::check_size(settings, world)?;
     let kind = settings.learner.kind();
     let refuse = || Error::Conflict {
         first: format!("learner = {kind}"),

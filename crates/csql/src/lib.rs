@@ -265,8 +265,8 @@ pub use run::{
 };
 pub use sensor::Sensor;
 pub use settings::{
-    CostlySettings, JudgeSettings, MAX_EPISODES, MAX_ROWS, MAX_SETTINGS_BYTES, MapSource,
-    NonNegative, RunSettings, TrialCap,
+    CostlySettings, JudgeSettings, MAX_BIAS, MAX_COSTED_TOTAL, MAX_EPISODES, MAX_ROWS,
+    MAX_SETTINGS_BYTES, MapSource, NonNegative, RunSettings, TrialCap,
 };
 pub use setup::Setup;
 pub use stepper::{Moment, Sense, StepError, Stepper};

@@ -157,7 +157,10 @@ pub fn is_world_name(name: &str) -> bool {
 }
 
 /// Runs whose memory would exceed a documented bound, refused before they start with
-/// the estimate: full sensing keeps every state's whole view ([`crate::FullView`]).
+/// the estimate: full sensing keeps every state's whole view ([`crate::FullView`]). And
+/// runs priced by `[costly] price` whose costed returns could add up to more than
+/// [`crate::MAX_COSTED_TOTAL`] in size (every feature charged, and the largest reward
+/// earned, at every move of every trial), whose sums would not be true.
 ///
 /// ```
 /// let s = csql::RunSettings::tan1991("random:256x256:0.2:1", csql::StrategyKind::Lazy, 1)
@@ -181,6 +184,36 @@ pub(crate) fn check_size<W: mdp::World + ?Sized>(
                 needed,
                 limit: crate::FULL_VIEW_LIMIT,
                 hint: "run it on a smaller world, or with a sensing radius",
+            });
+        }
+    }
+    if let Some(c) = settings.costly {
+        // The most a run's costed returns could add up to in size: every feature
+        // charged, and the largest reward earned, at every move of every trial. Their
+        // sums (an episode's, the means over episodes) stay finite below the bound.
+        let whole: f64 = (0..world.num_features() as u32)
+            .map(|f| world.price(mdp::Feature(f)))
+            .sum();
+        let mut outcomes = Vec::new();
+        let mut reward = 0.0f64;
+        for s in world.states() {
+            for a in 0..world.num_actions() as u32 {
+                world.outcomes(s, mdp::ActionId(a), &mut outcomes);
+                for o in &outcomes {
+                    reward = reward.max(o.1.reward.abs());
+                }
+            }
+        }
+        let most = (c.price * whole + reward)
+            * f64::from(settings.max_moves.get())
+            * f64::from(settings.max_trials.get());
+        if !(0.0..=crate::MAX_COSTED_TOTAL).contains(&most) {
+            return Err(Error::InvalidSetting {
+                value: format!(
+                    "costly.price = {:?} in {} (feature costs summing to {whole:?}, rewards of up to {reward:?} in size)",
+                    c.price, settings.map
+                ),
+                expected: "costed returns that can be summed: the price times the summed feature costs, plus the largest reward, times max_moves and max_trials, at most 1e300 (csql::MAX_COSTED_TOTAL)",
             });
         }
     }

@@ -392,6 +392,32 @@ pub const MAX_ROWS: usize = 100_000;
 /// ```
 pub const MAX_EPISODES: u32 = 1_000_000;
 
+/// The largest size the costed returns of a run may add up to, in reward units:
+/// `[costly] price` times the world's summed feature costs, plus its largest reward in
+/// size, times `max_moves` and `max_trials`, must not pass it, so that every sum of
+/// costed returns a report prints is finite and true.
+///
+/// ```
+/// let s = csql::SettingsDraft::from_toml("map = \"frozenlake4x4\"\nlearner = \"amrl-q\"\n[costly]\nprice = 1e308", "f").unwrap().build().unwrap();
+/// let err = csql::Resolved::new(&s).unwrap_err().to_string();
+/// assert!(err.contains("costly.price = 1e308"), "{err}");
+/// assert_eq!(csql::MAX_COSTED_TOTAL, 1e300);
+/// ```
+pub const MAX_COSTED_TOTAL: f64 = 1e300;
+
+/// The largest size of a value the learners on costed episodes add to the world's
+/// rewards (`[belief] optimism`, `[amrl_q] measure_bias`): beyond it, rewards of the
+/// size of FrozenLake's drown in the rounding of the values.
+///
+/// ```
+/// let p = csql::BeliefParams { optimism: 1e20, ..Default::default() };
+/// assert!(p.validate().unwrap_err().to_string().contains("belief.optimism = 1e20"));
+/// let a = csql::AmrlParams { measure_bias: -1e308, ..Default::default() };
+/// assert!(a.validate().unwrap_err().to_string().contains("measure_bias = -1e308"));
+/// assert_eq!(csql::MAX_BIAS, 1e9);
+/// ```
+pub const MAX_BIAS: f64 = 1e9;
+
 impl RunSettings {
     /// The paper's settings (beta 1, gamma 0.9, T 0.4, 100 moves per trial, 20 random
     /// moves) for CS-QL with `strategy`, with a tolerance of 1e-6, no decrease threshold

@@ -232,3 +232,57 @@ fn too_many_episodes_are_refused_up_front() {
         assert!(err.contains("at most 1000000 episodes"), "{learner}: {err}");
     }
 }
+
+/// Costed returns whose sums cannot be represented are refused before anything runs,
+/// naming the price, the world and its costs and rewards: a price of 1e308 (its means
+/// were printed as `null`), and a world file whose reward is 1e308.
+#[test]
+fn costed_returns_that_cannot_be_summed_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = dir.path().join("huge-reward.json");
+    std::fs::write(
+        &world,
+        r#"{"format": "csrl-world", "version": 1, "name": "huge", "states": 2,
+            "actions": ["go"], "start": [[1.0, 0]], "terminal": [1],
+            "transitions": [[0, 0, [[1.0, 1, 1e308, true]]]],
+            "features": [{"name": "where", "price": 1.0}], "readings": [[0], [1]]}"#,
+    )
+    .unwrap();
+    let world = world.to_str().unwrap();
+    for (args, named) in [
+        (
+            vec![
+                "--world",
+                "frozenlake4x4",
+                "--learner",
+                "amrl-q",
+                "--price",
+                "1e308",
+            ],
+            "costly.price = 1e308 in frozenlake4x4",
+        ),
+        (
+            vec![
+                "--world",
+                "frozenlake4x4",
+                "--price",
+                "1e308",
+                "--max-trials",
+                "5",
+            ],
+            "costly.price = 1e308",
+        ),
+        (
+            vec!["--world", world, "--learner", "amrl-q", "--price", "0.1"],
+            "rewards of up to 1e308",
+        ),
+    ] {
+        let out = csrl(&[&["run"][..], &args].concat());
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+        assert!(
+            err.contains(named) && err.contains("at most 1e300"),
+            "{args:?}: {err}"
+        );
+    }
+}
