@@ -74,7 +74,7 @@ impl AmrlParams {
     /// assert!(p.validate().unwrap_err().to_string().contains("amrl_q.greedy_share"));
     /// ```
     pub fn validate(&self) -> Result<(), crate::Error> {
-        if !(-crate::MAX_BIAS..=crate::MAX_BIAS).contains(&self.measure_bias) {
+        if !(-MAX_BIAS..=MAX_BIAS).contains(&self.measure_bias) {
             return Err(crate::Error::InvalidSetting {
                 value: format!("amrl_q.measure_bias = {:?}", self.measure_bias),
                 expected: "a number of at most 1e9 in size (csql::MAX_BIAS): a larger one drowns the world's rewards in the values' rounding",
@@ -89,6 +89,30 @@ impl AmrlParams {
         Ok(())
     }
 }
+
+/// The most episodes a learner on costed episodes may play (`max_trials` of
+/// `learner = "amrl-q"` or `"belief"`, and [`crate::costed_episodes`]): every episode is
+/// kept in the report, with its costed return.
+///
+/// ```
+/// let s = csql::SettingsDraft::from_toml("learner = \"amrl-q\"\nmax_trials = 1000001\n[costly]\nprice = 0.1", "f").unwrap();
+/// assert!(s.build().unwrap_err().to_string().contains("at most 1000000 episodes"));
+/// assert_eq!(csql::MAX_EPISODES, 1_000_000);
+/// ```
+pub const MAX_EPISODES: u32 = 1_000_000;
+
+/// The largest size of a value the learners on costed episodes add to the world's
+/// rewards (`[belief] optimism`, `[amrl_q] measure_bias`): beyond it, rewards of the
+/// size of FrozenLake's drown in the rounding of the values.
+///
+/// ```
+/// let p = csql::BeliefParams { optimism: 1e20, ..Default::default() };
+/// assert!(p.validate().unwrap_err().to_string().contains("belief.optimism = 1e20"));
+/// let a = csql::AmrlParams { measure_bias: -1e308, ..Default::default() };
+/// assert!(a.validate().unwrap_err().to_string().contains("measure_bias = -1e308"));
+/// assert_eq!(csql::MAX_BIAS, 1e9);
+/// ```
+pub const MAX_BIAS: f64 = 1e9;
 
 /// Whether the agent chooses to measure.
 ///
@@ -368,7 +392,7 @@ pub(crate) fn amrl_q_observed<W: World + ?Sized, R: Rng + ?Sized>(
     );
     let greedy_share = params.greedy_share.clamp(0.0, 1.0);
     let greedy_from = episodes - (f64::from(episodes) * greedy_share).round() as u32;
-    let mut out = Vec::with_capacity(episodes.min(crate::settings::MAX_EPISODES) as usize);
+    let mut out = Vec::with_capacity(episodes.min(MAX_EPISODES) as usize);
     for episode in 0..episodes {
         if !observer.keep_going() {
             break;

@@ -164,7 +164,7 @@ impl BeliefParams {
                 "a finite weight greater than 0",
             );
         }
-        if !(-crate::MAX_BIAS..=crate::MAX_BIAS).contains(&self.optimism) {
+        if !(-crate::amrl::MAX_BIAS..=crate::amrl::MAX_BIAS).contains(&self.optimism) {
             return bad(
                 "optimism",
                 format!("{:?}", self.optimism),
@@ -322,7 +322,7 @@ pub(crate) fn belief_planning_observed<W: World + ?Sized, R: Rng + ?Sized>(
     for (_, s) in world.start_distribution() {
         l.known[s.index()] = true;
     }
-    let mut out = Vec::with_capacity(episodes.min(crate::settings::MAX_EPISODES) as usize);
+    let mut out = Vec::with_capacity(episodes.min(crate::amrl::MAX_EPISODES) as usize);
     for _ in 0..episodes {
         if !observer.keep_going() {
             break;

@@ -145,7 +145,7 @@ pub fn costed_episodes<W: World + ?Sized>(
         });
     }
     settings.validate()?;
-    if episodes > crate::settings::MAX_EPISODES {
+    if episodes > crate::amrl::MAX_EPISODES {
         return Err(Error::InvalidSetting {
             value: format!("episodes = {episodes}"),
             expected: "at most 1000000 episodes (csql::MAX_EPISODES): every episode is returned",

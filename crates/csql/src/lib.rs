@@ -223,7 +223,7 @@ mod tree;
 mod utree;
 mod view;
 
-pub use amrl::{AmrlParams, CostlySummary, Episode, Measuring, amrl_q};
+pub use amrl::{AmrlParams, CostlySummary, Episode, MAX_BIAS, MAX_EPISODES, Measuring, amrl_q};
 pub use belief::{BeliefParams, MAX_BELIEF_UNCERTAIN, belief_planning};
 pub use classify::{Classification, Classify};
 pub use costly::{CostedReport, CostedRun, costed_episodes, costed_report, costed_report_in};
@@ -265,8 +265,8 @@ pub use run::{
 };
 pub use sensor::Sensor;
 pub use settings::{
-    CostlySettings, JudgeSettings, MAX_BIAS, MAX_COSTED_TOTAL, MAX_EPISODES, MAX_ROWS,
-    MAX_SETTINGS_BYTES, MapSource, NonNegative, RunSettings, TrialCap,
+    CostlySettings, JudgeSettings, MAX_COSTED_TOTAL, MAX_ROWS, MAX_SETTINGS_BYTES, MapSource,
+    NonNegative, RunSettings, TrialCap,
 };
 pub use setup::Setup;
 pub use stepper::{Moment, Sense, StepError, Stepper};

@@ -381,17 +381,6 @@ pub const MAX_SETTINGS_BYTES: u64 = 64 << 10;
 /// ```
 pub const MAX_ROWS: usize = 100_000;
 
-/// The most episodes a learner on costed episodes may play (`max_trials` of
-/// `learner = "amrl-q"` or `"belief"`, and [`crate::costed_episodes`]): every episode is
-/// kept in the report, with its costed return.
-///
-/// ```
-/// let s = csql::SettingsDraft::from_toml("learner = \"amrl-q\"\nmax_trials = 1000001\n[costly]\nprice = 0.1", "f").unwrap();
-/// assert!(s.build().unwrap_err().to_string().contains("at most 1000000 episodes"));
-/// assert_eq!(csql::MAX_EPISODES, 1_000_000);
-/// ```
-pub const MAX_EPISODES: u32 = 1_000_000;
-
 /// The largest size the costed returns of a run may add up to, in reward units:
 /// `[costly] price` times the world's summed feature costs, plus its largest reward in
 /// size, times `max_moves` and `max_trials`, must not pass it, so that every sum of
@@ -404,19 +393,6 @@ pub const MAX_EPISODES: u32 = 1_000_000;
 /// assert_eq!(csql::MAX_COSTED_TOTAL, 1e300);
 /// ```
 pub const MAX_COSTED_TOTAL: f64 = 1e300;
-
-/// The largest size of a value the learners on costed episodes add to the world's
-/// rewards (`[belief] optimism`, `[amrl_q] measure_bias`): beyond it, rewards of the
-/// size of FrozenLake's drown in the rounding of the values.
-///
-/// ```
-/// let p = csql::BeliefParams { optimism: 1e20, ..Default::default() };
-/// assert!(p.validate().unwrap_err().to_string().contains("belief.optimism = 1e20"));
-/// let a = csql::AmrlParams { measure_bias: -1e308, ..Default::default() };
-/// assert!(a.validate().unwrap_err().to_string().contains("measure_bias = -1e308"));
-/// assert_eq!(csql::MAX_BIAS, 1e9);
-/// ```
-pub const MAX_BIAS: f64 = 1e9;
 
 impl RunSettings {
     /// The paper's settings (beta 1, gamma 0.9, T 0.4, 100 moves per trial, 20 random
@@ -577,7 +553,7 @@ impl RunSettings {
             );
         }
         self.validate_costly()?;
-        if self.learner.kind().on_episodes() && self.max_trials.get() > MAX_EPISODES {
+        if self.learner.kind().on_episodes() && self.max_trials.get() > crate::amrl::MAX_EPISODES {
             return refuse(
                 format!("max_trials = {}", self.max_trials.get()),
                 "at most 1000000 episodes (csql::MAX_EPISODES) for a learner on costed episodes: every episode is kept in the report",
