@@ -281,7 +281,7 @@ pub(crate) fn costed_run<W: World + ?Sized>(
 ///     .build()
 ///     .unwrap();
 /// let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions::default()).unwrap();
-/// let r: csql::CostedReport = csql::costed_report(&lake, "frozenlake4x4", &s).unwrap();
+/// let r: csql::CostedReport = csql::costed_report(&lake, "frozenlake4x4", &s, &mut csql::KeepTrace).unwrap();
 /// let json = serde_json::to_value(&r).unwrap();
 /// assert_eq!(json["learner"], "amrl-q");
 /// assert_eq!(json["settings"]["costly"]["rule"], "with-move");
