@@ -1,6 +1,10 @@
 //! AMRL-Q, the active-measurement baseline: its accounting, its two sensing rules, and
 //! that it learns the deterministic lake.
 
+mod common;
+
+use common::StopAfter;
+
 use csql::{AmrlParams, CostlySummary, Episode, Measuring, amrl_q};
 use mdp::SensingRule;
 use mdp::{SensingModel, WorldOptions};
@@ -101,23 +105,6 @@ fn the_always_measuring_learner_pays_every_move() {
     assert!(episodes.iter().all(|e| e.measurements == e.steps));
     let s = CostlySummary::of(&episodes);
     assert!((s.mean_last10 - (1.0 - 6.0 * 0.05)).abs() < 1e-9, "{s:?}");
-}
-
-/// Says yes `left` times, then no.
-struct StopAfter {
-    left: u32,
-}
-
-impl csql::Observer for StopAfter {
-    fn trial(&mut self, _: &csql::TracePoint) -> csql::Flow {
-        csql::Flow::Continue
-    }
-
-    fn keep_going(&mut self) -> bool {
-        let go = self.left > 0;
-        self.left = self.left.saturating_sub(1);
-        go
-    }
 }
 
 /// Both learners on costed episodes ask their observer before every episode and end

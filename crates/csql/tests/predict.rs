@@ -1,6 +1,10 @@
 //! `predict_sensing`: off changes nothing; the learned and motion levels converge as
 //! before, keep the bound on wrong predictions, and navigate by optimal paths.
 
+mod common;
+
+use common::StopAfter;
+
 use csql::{PredictSensing, Prediction, RunReport, RunSettings, Setup, StrategyKind};
 
 fn run(
@@ -215,23 +219,6 @@ fn classify_among_finds_the_true_description_among_candidates() {
         narrowed / calls,
         full / calls
     );
-}
-
-/// Says yes `left` times, then no: a stop asked for during navigation after learning.
-struct StopAfter {
-    left: u32,
-}
-
-impl csql::Observer for StopAfter {
-    fn trial(&mut self, _: &csql::TracePoint) -> csql::Flow {
-        csql::Flow::Continue
-    }
-
-    fn keep_going(&mut self) -> bool {
-        let go = self.left > 0;
-        self.left = self.left.saturating_sub(1);
-        go
-    }
 }
 
 /// Navigation asks its observer before every trial and within a long one, and ends

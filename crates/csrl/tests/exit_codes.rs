@@ -68,30 +68,45 @@ fn a_message_says_a_thing_once() {
     }
 }
 
-/// SIGTERM, as Ctrl-C: the run stops, prints the report it reached, and exits 130.
+/// Run `csrl` with `args`, send it SIGTERM once it is under way (time for the handler to
+/// be installed and the run to start), and wait for it, for a minute at most.
 #[cfg(unix)]
-#[test]
-fn sigterm_stops_a_run_with_its_report() {
-    let child = Command::new(env!("CARGO_BIN_EXE_csrl"))
-        .args([
-            "run",
-            "--map",
-            "random:48x48:0.2:1",
-            "--max-trials",
-            "1000000",
-        ])
+fn terminated(args: &[&std::ffi::OsStr]) -> std::process::Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_csrl"))
+        .args(args)
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    // Time for the handler to be installed and the run to start.
     std::thread::sleep(std::time::Duration::from_millis(1500));
     let kill = Command::new("kill")
         .args(["-TERM", &child.id().to_string()])
         .status()
         .unwrap();
     assert!(kill.success());
-    let out = child.wait_with_output().unwrap();
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    while child.try_wait().unwrap().is_none() {
+        if std::time::Instant::now() > deadline {
+            let _ = child.kill();
+            panic!("SIGTERM did not stop {args:?} within a minute");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    child.wait_with_output().unwrap()
+}
+
+/// SIGTERM, as Ctrl-C: the run stops, prints the report it reached, and exits 130.
+#[cfg(unix)]
+#[test]
+fn sigterm_stops_a_run_with_its_report() {
+    let args = [
+        "run",
+        "--map",
+        "random:48x48:0.2:1",
+        "--max-trials",
+        "1000000",
+    ];
+    let out = terminated(&args.map(std::ffi::OsStr::new));
     let err = stderr(&out);
     assert_eq!(out.status.code(), Some(130), "{err}");
     assert!(err.contains("interrupted after"), "{err}");
@@ -111,36 +126,21 @@ fn sigterm_stops_navigation_after_learning() {
         "max_moves = 4000000000\n[prediction]\nnavigation_trials = 10000\n",
     )
     .unwrap();
-    let mut child = Command::new(env!("CARGO_BIN_EXE_csrl"))
-        .args(["run", "--map", "tan8x8", "--strategy", "resetting"])
-        .args([
-            "--max-trials",
-            "3",
-            "--predict-sensing",
-            "learned",
-            "--json",
-        ])
-        .arg("--config")
-        .arg(&config)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(1500));
-    let kill = Command::new("kill")
-        .args(["-TERM", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(kill.success());
-    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
-    while child.try_wait().unwrap().is_none() {
-        if std::time::Instant::now() > deadline {
-            let _ = child.kill();
-            panic!("SIGTERM did not stop navigation within a minute");
-        }
-        std::thread::sleep(std::time::Duration::from_millis(50));
-    }
-    let out = child.wait_with_output().unwrap();
+    let args = [
+        "run",
+        "--map",
+        "tan8x8",
+        "--strategy",
+        "resetting",
+        "--max-trials",
+        "3",
+        "--predict-sensing",
+        "learned",
+        "--json",
+        "--config",
+    ]
+    .map(std::ffi::OsStr::new);
+    let out = terminated(&[&args[..], &[config.as_os_str()]].concat());
     let err = stderr(&out);
     assert_eq!(out.status.code(), Some(130), "{err}");
     let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
