@@ -25,7 +25,7 @@ use qlearn::{Discount, Epsilon, LearningRate, QTable, RowId, Target};
 use rand::{Rng, RngExt};
 use serde::{Deserialize, Serialize};
 
-use crate::observe::{KeepTrace, Observer, STOP_CHECK_MOVES};
+use crate::observe::{KeepTrace, Observer, told_to_stop};
 
 /// AMRL-Q's parameters; the defaults are those the active-measurement benchmark runs it
 /// with.
@@ -369,7 +369,7 @@ pub(crate) struct Episodes {
 }
 
 /// [`amrl_q`], asking `observer` before every episode and every
-/// [`STOP_CHECK_MOVES`] moves within one whether to go on ([`Observer::keep_going`]): a
+/// [`crate::STOP_CHECK_MOVES`] moves within one whether to go on ([`Observer::keep_going`]): a
 /// no ends the episode there, as the move cap would, and the run after it.
 pub(crate) fn amrl_q_observed<W: World + ?Sized, R: Rng + ?Sized>(
     world: &W,
@@ -403,7 +403,7 @@ pub(crate) fn amrl_q_observed<W: World + ?Sized, R: Rng + ?Sized>(
         let mut believed = truth;
         let mut e = Episode::default();
         for moves in 0..max_moves {
-            if moves > 0 && moves.is_multiple_of(STOP_CHECK_MOVES) && !observer.keep_going() {
+            if told_to_stop(observer, moves) {
                 break;
             }
             let exploit = greedy || !rng.random_bool(params.epsilon.get());

@@ -41,7 +41,7 @@ use rand::{Rng, RngExt};
 use serde::Serialize;
 
 use crate::detector::{Detector, RunDetector};
-use crate::observe::{KeepTrace, Observer, STOP_CHECK_MOVES};
+use crate::observe::{KeepTrace, Observer, told_to_stop};
 use crate::perception::Perception;
 use crate::strategy::{Reaction, Strategy};
 
@@ -334,7 +334,7 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
         self.run_trial_observed(world, start, trial, rng, &mut KeepTrace)
     }
 
-    /// [`Agent::run_trial`], asking `observer` every [`STOP_CHECK_MOVES`] moves whether
+    /// [`Agent::run_trial`], asking `observer` every [`crate::STOP_CHECK_MOVES`] moves whether
     /// to go on ([`Observer::keep_going`]); a no cuts the trial there, as the move cap
     /// would.
     pub(crate) fn run_trial_observed<W: World + ?Sized, R: Rng + ?Sized>(
@@ -349,12 +349,9 @@ impl<P: Perception, S: Strategy> Agent<P, S> {
         while !t.over {
             let m = self.choose(&mut t, rng);
             let mut step = world.sample(t.state, m.action, rng);
-            // The move cap cuts the trial; it does not change the target.
-            step.truncated |= t.rec.moves + 1 >= self.params.max_moves;
+            // The move cap, or a stop, cuts the trial; it does not change the target.
             let moves = t.rec.moves + 1;
-            if moves.is_multiple_of(STOP_CHECK_MOVES) && !observer.keep_going() {
-                step.truncated = true;
-            }
+            step.truncated |= moves >= self.params.max_moves || told_to_stop(observer, moves);
             self.observe(&mut t, world, m, step, rng);
         }
         t.rec

@@ -14,7 +14,7 @@ use qlearn::QTable;
 use rand::Rng;
 use serde::Serialize;
 
-use crate::observe::{Observer, STOP_CHECK_MOVES};
+use crate::observe::{Observer, told_to_stop};
 use crate::perception::Perception;
 
 /// What navigation measured.
@@ -67,7 +67,7 @@ impl Navigation {
 
 /// Run `trials` evaluation trials from every non-goal free state of `world`, each cut
 /// after `max_moves` moves, following the greedy policy of `table` through `perception`.
-/// `observer` is asked before every trial, and every [`STOP_CHECK_MOVES`] moves
+/// `observer` is asked before every trial, and every [`crate::STOP_CHECK_MOVES`] moves
 /// within one, whether to go on ([`Observer::keep_going`]); when it says no, navigation
 /// ends there and the result counts the trials made (`trials`, with the one cut short).
 ///
@@ -110,10 +110,11 @@ pub fn navigate<W: World + ?Sized, P: Perception, R: Rng + ?Sized>(
             let mut s = start;
             let mut moves = 0u32;
             let mut all_optimal = true;
+            let mut stopped = false;
             while moves < max_moves {
-                if moves > 0 && moves.is_multiple_of(STOP_CHECK_MOVES) && !observer.keep_going() {
-                    out.moves += u64::from(moves);
-                    return out;
+                if told_to_stop(observer, moves) {
+                    stopped = true;
+                    break;
                 }
                 let a = table.greedy(row);
                 all_optimal &= oracle.is_optimal(s, a);
@@ -135,7 +136,10 @@ pub fn navigate<W: World + ?Sized, P: Perception, R: Rng + ?Sized>(
                 row = next;
                 s = step.next;
             }
-            out.moves += moves as u64;
+            out.moves += u64::from(moves);
+            if stopped {
+                return out;
+            }
         }
     }
     out

@@ -58,6 +58,12 @@ pub enum Flow {
 /// ```
 pub const STOP_CHECK_MOVES: u32 = 4096;
 
+/// Whether `observer`, asked `moves` moves into a trial (every [`STOP_CHECK_MOVES`]
+/// moves, not at the start), says to stop.
+pub(crate) fn told_to_stop(observer: &mut dyn Observer, moves: u32) -> bool {
+    moves > 0 && moves.is_multiple_of(STOP_CHECK_MOVES) && !observer.keep_going()
+}
+
 /// Watches a run trial by trial.
 ///
 /// ```

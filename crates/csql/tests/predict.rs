@@ -282,15 +282,7 @@ fn a_long_trial_of_learning_stops_when_its_observer_says_so() {
         "the first trial is too short: {}",
         whole.moves
     );
-    struct StopNow;
-    impl csql::Observer for StopNow {
-        fn trial(&mut self, _: &csql::TracePoint) -> csql::Flow {
-            csql::Flow::Stop
-        }
-        fn keep_going(&mut self) -> bool {
-            false
-        }
-    }
-    let stopped = csql::run_observed(&setup, &s, &mut StopNow);
+    // One trial at most: the no cuts it, and the run ends with it.
+    let stopped = csql::run_observed(&setup, &s, &mut StopAfter { left: 0 });
     assert_eq!((stopped.trials, stopped.moves), (1, check));
 }
