@@ -231,6 +231,25 @@ pub enum Error {
         /// What is wrong.
         reason: String,
     },
+    /// An input that cannot be used: `at` says where in it (a line, the header), `reason`
+    /// what is wrong there.
+    #[error("{}: {at}: {reason}", path.display())]
+    BadInput {
+        /// The file (or the name the caller gave its source).
+        path: PathBuf,
+        /// Where in it.
+        at: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A value given in code that cannot be used: `what` names it, `reason` says why.
+    #[error("{what}: {reason}")]
+    Invalid {
+        /// What was given.
+        what: String,
+        /// What is wrong with it.
+        reason: String,
+    },
     /// A JSON file whose `format` is not a model's.
     #[error("{}: not a csrl-classifier model file (its format is `{format}`)", path.display())]
     NotAModel {

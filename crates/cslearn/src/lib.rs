@@ -208,6 +208,7 @@ mod predict;
 mod select;
 mod sensing;
 mod stream;
+pub mod testcost;
 mod tree;
 mod types;
 mod update;

@@ -1,0 +1,398 @@
+//! The learners of the test-cost family, by name, and ICET's genetic search.
+
+use rand::{RngExt, SeedableRng};
+use rand_xoshiro::Xoshiro256PlusPlus;
+
+use super::data::Frame;
+use super::prices::{MisclassCosts, TestPrices};
+use super::tree::{CostTree, Criterion, GrowParams};
+use crate::Error;
+
+/// A learner of the family.
+///
+/// ```
+/// use cslearn::testcost::Method;
+/// assert_eq!(Method::parse("eg2").unwrap(), Method::Eg2);
+/// assert_eq!(Method::CsId3Batch.name(), "cs-id3-batch");
+/// assert!(Method::parse("c5").unwrap_err().to_string().contains("c45"));
+/// ```
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize,
+)]
+pub enum Method {
+    /// ID3: information gain, no pruning.
+    Id3,
+    /// C4.5: gain ratio, numeric thresholds, pessimistic pruning.
+    C45,
+    /// IDX: gain / price, pruned as C4.5.
+    Idx,
+    /// CS-ID3 as a batch tree: gain^2 / price, pruned as C4.5.
+    CsId3Batch,
+    /// EG2: (2^gain - 1) / (price + 1)^w, pruned as C4.5.
+    Eg2,
+    /// DTMC: the largest reduction of expected total cost; stops when none reduces it.
+    Dtmc,
+    /// ICET: EG2 with prices, w and pruning confidence found by a genetic search.
+    Icet,
+}
+
+impl Method {
+    /// Every learner, in the order of the benchmark's tables.
+    pub const ALL: [Method; 7] = [
+        Method::C45,
+        Method::Id3,
+        Method::Idx,
+        Method::CsId3Batch,
+        Method::Eg2,
+        Method::Dtmc,
+        Method::Icet,
+    ];
+
+    /// The learner's name, as `csrl classify --learner` and `cargo xtask testcost` spell it.
+    ///
+    /// ```
+    /// assert_eq!(cslearn::testcost::Method::C45.name(), "c45");
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Id3 => "id3",
+            Method::C45 => "c45",
+            Method::Idx => "idx",
+            Method::CsId3Batch => "cs-id3-batch",
+            Method::Eg2 => "eg2",
+            Method::Dtmc => "dtmc",
+            Method::Icet => "icet",
+        }
+    }
+
+    /// The learner called `name`.
+    ///
+    /// ```
+    /// assert_eq!(cslearn::testcost::Method::parse("icet").unwrap(), cslearn::testcost::Method::Icet);
+    /// ```
+    pub fn parse(name: &str) -> Result<Method, Error> {
+        Method::ALL
+            .into_iter()
+            .find(|m| m.name() == name)
+            .ok_or_else(|| Error::Invalid {
+                what: format!("learner `{name}`"),
+                reason: format!(
+                    "not a learner of the family (learners: {})",
+                    Method::ALL.map(Method::name).join(", ")
+                ),
+            })
+    }
+
+    /// Whether the tree's shape depends on the misclassification costs (DTMC and ICET);
+    /// the others grow the same tree whatever they are and only label it by them.
+    ///
+    /// ```
+    /// assert!(cslearn::testcost::Method::Dtmc.depends_on_mc());
+    /// assert!(!cslearn::testcost::Method::Eg2.depends_on_mc());
+    /// ```
+    pub fn depends_on_mc(self) -> bool {
+        matches!(self, Method::Dtmc | Method::Icet)
+    }
+
+    /// How the learner grows its tree (ICET: the start of its search).
+    ///
+    /// ```
+    /// use cslearn::testcost::{FamilyParams, Method};
+    /// assert_eq!(Method::Idx.grow_params(&FamilyParams::default()).confidence, Some(0.25));
+    /// ```
+    pub fn grow_params(self, params: &FamilyParams) -> GrowParams {
+        let pruned = |c| GrowParams::new(c).pruned(params.confidence);
+        match self {
+            Method::Id3 => GrowParams::new(Criterion::Id3),
+            Method::C45 => pruned(Criterion::C45),
+            Method::Idx => pruned(Criterion::Idx),
+            Method::CsId3Batch => pruned(Criterion::CsId3),
+            Method::Eg2 | Method::Icet => pruned(Criterion::Eg2 { w: params.eg2_w }),
+            Method::Dtmc => GrowParams::new(Criterion::Dtmc),
+        }
+    }
+}
+
+/// The family's settings.
+///
+/// ```
+/// let p = cslearn::testcost::FamilyParams::default();
+/// assert_eq!((p.confidence, p.eg2_w, p.icet.population, p.icet.generations), (0.25, 1.0, 50, 20));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct FamilyParams {
+    /// C4.5's pruning confidence, for every pruned learner but ICET (which searches it).
+    pub confidence: f64,
+    /// EG2's weight of the price.
+    pub eg2_w: f64,
+    /// ICET's search.
+    pub icet: IcetParams,
+}
+
+impl Default for FamilyParams {
+    fn default() -> FamilyParams {
+        FamilyParams {
+            confidence: 0.25,
+            eg2_w: 1.0,
+            icet: IcetParams::default(),
+        }
+    }
+}
+
+/// ICET's genetic search (Turney 1995): each individual is one price bias per test, EG2's
+/// `w` and the pruning confidence; its fitness is the mean total cost (real prices plus
+/// misclassification) on one half of the training objects of the EG2 tree it grows on
+/// the other half. Turney's population (50) and number of generations (20: 1000 trees).
+///
+/// ```
+/// let p = cslearn::testcost::IcetParams::default();
+/// assert_eq!(p.population * p.generations, 1000);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct IcetParams {
+    /// Individuals per generation.
+    pub population: usize,
+    /// Generations (the first one included).
+    pub generations: usize,
+    /// The chance that two parents are crossed (Turney's GENESIS setting, 0.6).
+    pub crossover: f64,
+    /// The chance that one gene of a child is drawn anew.
+    pub mutation: f64,
+}
+
+impl Default for IcetParams {
+    fn default() -> IcetParams {
+        IcetParams {
+            population: 50,
+            generations: 20,
+            crossover: 0.6,
+            mutation: 0.05,
+        }
+    }
+}
+
+/// The best individual ICET found.
+///
+/// ```
+/// let g = cslearn::testcost::IcetGenome { prices: vec![1.0], w: 1.0, confidence: 0.25, fitness: 3.0 };
+/// assert_eq!(g.prices.len(), 1);
+/// ```
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct IcetGenome {
+    /// The biased price of each test EG2 selects with.
+    pub prices: Vec<f64>,
+    /// EG2's `w`.
+    pub w: f64,
+    /// The pruning confidence.
+    pub confidence: f64,
+    /// Its mean total cost on the held-out half.
+    pub fitness: f64,
+}
+
+/// A learned tree, and for ICET the individual it was grown from.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Fitted {
+    /// The tree.
+    pub tree: CostTree,
+    /// ICET's best individual (`None` for the other learners).
+    pub genome: Option<IcetGenome>,
+}
+
+/// Learns a tree with `method` on the objects `rows` of `frame`. `seed` matters only to
+/// ICET (its halves and its search).
+///
+/// ```
+/// use cslearn::testcost::{fit, Column, FamilyParams, Frame, Method, MisclassCosts, TestPrices};
+/// let frame = Frame::new(vec!["x".into()], vec![Column::Numeric((0..20).map(f64::from).collect())],
+///     (0..20).map(|i| u32::from(i >= 10)).collect(), vec!["a".into(), "b".into()]).unwrap();
+/// let prices = TestPrices::flat(&[5.0]).unwrap();
+/// let mc = MisclassCosts::uniform(2, 100.0).unwrap();
+/// let rows: Vec<usize> = (0..20).collect();
+/// for method in Method::ALL {
+///     let fitted = fit(method, &frame, &rows, &prices, &mc, &FamilyParams::default(), 1);
+///     assert_eq!(fitted.tree.classify(&frame, 15, &prices).class, 1, "{}", method.name());
+/// }
+/// ```
+pub fn fit(
+    method: Method,
+    frame: &Frame,
+    rows: &[usize],
+    prices: &TestPrices,
+    mc: &MisclassCosts,
+    params: &FamilyParams,
+    seed: u64,
+) -> Fitted {
+    if method == Method::Icet {
+        let genome = icet_search(frame, rows, prices, mc, params, seed);
+        let biased = prices
+            .repriced(&genome.prices)
+            .unwrap_or_else(|_| prices.clone());
+        let grow = GrowParams::new(Criterion::Eg2 { w: genome.w }).pruned(genome.confidence);
+        return Fitted {
+            tree: CostTree::grow(frame, rows, &biased, mc, &grow),
+            genome: Some(genome),
+        };
+    }
+    Fitted {
+        tree: CostTree::grow(frame, rows, prices, mc, &method.grow_params(params)),
+        genome: None,
+    }
+}
+
+/// The mean total cost (tests at `prices` plus misclassification at `mc`) of `tree` on
+/// the objects `rows`.
+///
+/// ```
+/// use cslearn::testcost::{mean_total_cost, Column, CostTree, Criterion, Frame, GrowParams, MisclassCosts, TestPrices};
+/// let frame = Frame::new(vec!["x".into()], vec![Column::Numeric(vec![0.0, 1.0])],
+///     vec![0, 1], vec!["a".into(), "b".into()]).unwrap();
+/// let (prices, mc) = (TestPrices::flat(&[3.0]).unwrap(), MisclassCosts::uniform(2, 50.0).unwrap());
+/// let stump = CostTree::grow(&frame, &[0], &prices, &mc, &GrowParams::new(Criterion::Id3));
+/// assert_eq!(mean_total_cost(&stump, &frame, &[0, 1], &prices, &mc), 25.0);
+/// ```
+pub fn mean_total_cost(
+    tree: &CostTree,
+    frame: &Frame,
+    rows: &[usize],
+    prices: &TestPrices,
+    mc: &MisclassCosts,
+) -> f64 {
+    if rows.is_empty() {
+        return 0.0;
+    }
+    let total: f64 = rows
+        .iter()
+        .map(|&r| {
+            let c = tree.classify(frame, r, prices);
+            c.test_cost + mc.cost(c.class as usize, frame.class(r) as usize)
+        })
+        .sum();
+    total / rows.len() as f64
+}
+
+/// The genes of one individual: a log2 factor per test, then `w`, then the confidence.
+type Genes = Vec<f64>;
+
+/// How far a price bias may move a price: (price + 1) * 2^u - 1 with u in [-SPAN, SPAN].
+const SPAN: f64 = 6.0;
+
+fn decode(genes: &Genes, prices: &TestPrices) -> (Vec<f64>, f64, f64) {
+    let n = prices.len();
+    let biased = (0..n)
+        .map(|i| ((prices.test(i).full + 1.0) * genes[i].exp2() - 1.0).max(0.0))
+        .collect();
+    (biased, genes[n], genes[n + 1])
+}
+
+fn random_genes<R: rand::Rng>(n: usize, rng: &mut R) -> Genes {
+    let mut genes: Genes = (0..n).map(|_| rng.random_range(-SPAN..=SPAN)).collect();
+    genes.push(rng.random_range(0.0..=1.0));
+    genes.push(rng.random_range(0.01..=0.99));
+    genes
+}
+
+fn icet_search(
+    frame: &Frame,
+    rows: &[usize],
+    prices: &TestPrices,
+    mc: &MisclassCosts,
+    params: &FamilyParams,
+    seed: u64,
+) -> IcetGenome {
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    let n = prices.len();
+    // Two halves, stratified by class: grow on one, score on the other.
+    let mut by_class: Vec<Vec<usize>> = vec![Vec::new(); frame.class_count()];
+    for &r in rows {
+        by_class[frame.class(r) as usize].push(r);
+    }
+    let (mut grow_half, mut score_half) = (Vec::new(), Vec::new());
+    let mut flip = false;
+    for class_rows in &mut by_class {
+        shuffle(class_rows, &mut rng);
+        for &r in class_rows.iter() {
+            if flip {
+                score_half.push(r);
+            } else {
+                grow_half.push(r);
+            }
+            flip = !flip;
+        }
+    }
+    if score_half.is_empty() {
+        score_half.clone_from(&grow_half);
+    }
+    let fitness = |genes: &Genes| -> f64 {
+        let (biased, w, confidence) = decode(genes, prices);
+        let biased = prices.repriced(&biased).unwrap_or_else(|_| prices.clone());
+        let grow = GrowParams::new(Criterion::Eg2 { w }).pruned(confidence);
+        let tree = CostTree::grow(frame, &grow_half, &biased, mc, &grow);
+        mean_total_cost(&tree, frame, &score_half, prices, mc)
+    };
+    let icet = params.icet;
+    let size = icet.population.max(2);
+    // The first individual is plain EG2 with C4.5's confidence: the search starts from it.
+    let mut start: Genes = vec![0.0; n];
+    start.push(params.eg2_w);
+    start.push(params.confidence);
+    let mut population: Vec<(Genes, f64)> = Vec::with_capacity(size);
+    population.push((start.clone(), fitness(&start)));
+    while population.len() < size {
+        let genes = random_genes(n, &mut rng);
+        let f = fitness(&genes);
+        population.push((genes, f));
+    }
+    for _ in 1..icet.generations.max(1) {
+        let best = population
+            .iter()
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .cloned()
+            .unwrap_or_else(|| (start.clone(), f64::INFINITY));
+        let mut next = vec![best];
+        while next.len() < size {
+            let pick = |rng: &mut Xoshiro256PlusPlus| {
+                let a = &population[rng.random_range(0..population.len())];
+                let b = &population[rng.random_range(0..population.len())];
+                if a.1 <= b.1 { a.0.clone() } else { b.0.clone() }
+            };
+            let mut child = pick(&mut rng);
+            if rng.random_bool(icet.crossover.clamp(0.0, 1.0)) {
+                let other = pick(&mut rng);
+                for (g, o) in child.iter_mut().zip(other) {
+                    if rng.random_bool(0.5) {
+                        *g = o;
+                    }
+                }
+            }
+            let fresh = random_genes(n, &mut rng);
+            for (g, f) in child.iter_mut().zip(fresh) {
+                if rng.random_bool(icet.mutation.clamp(0.0, 1.0)) {
+                    *g = f;
+                }
+            }
+            let f = fitness(&child);
+            next.push((child, f));
+        }
+        population = next;
+    }
+    let (genes, fitness) = population
+        .into_iter()
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .unwrap_or((start, f64::INFINITY));
+    let (biased, w, confidence) = decode(&genes, prices);
+    IcetGenome {
+        prices: biased,
+        w,
+        confidence,
+        fitness,
+    }
+}
+
+/// Fisher-Yates with the crate's generator, so results do not depend on rand's own
+/// shuffle changing between versions.
+pub(crate) fn shuffle<T, R: rand::Rng>(items: &mut [T], rng: &mut R) {
+    for i in (1..items.len()).rev() {
+        let j = rng.random_range(0..=i);
+        items.swap(i, j);
+    }
+}
