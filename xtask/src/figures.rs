@@ -360,3 +360,35 @@ pub fn side_by_side(title: &str, parts: &[String]) -> String {
         escape(title)
     )
 }
+
+/// Okabe and Ito's colour-blind-safe palette, and one marker shape per series, so that
+/// the figure reads in grey too.
+pub const PALETTE: [RGBColor; 7] = [
+    RGBColor(0, 0, 0),
+    RGBColor(230, 159, 0),
+    RGBColor(86, 180, 233),
+    RGBColor(0, 158, 115),
+    RGBColor(213, 94, 0),
+    RGBColor(0, 114, 178),
+    RGBColor(204, 121, 167),
+];
+
+/// Series `k`'s marker at `at`: seven shapes, filled or hollow, told apart in grey.
+pub fn marker<DB: DrawingBackend>(
+    k: usize,
+    at: (i32, i32),
+    color: RGBColor,
+) -> DynElement<'static, DB, (i32, i32)> {
+    let (filled, hollow) = (color.filled(), color.stroke_width(2));
+    let square =
+        |style: ShapeStyle| Rectangle::new([(at.0 - 4, at.1 - 4), (at.0 + 4, at.1 + 4)], style);
+    match k % 7 {
+        0 => Circle::new(at, 5, filled).into_dyn(),
+        1 => TriangleMarker::new(at, 6, filled).into_dyn(),
+        2 => Cross::new(at, 5, hollow).into_dyn(),
+        3 => square(filled).into_dyn(),
+        4 => Circle::new(at, 5, hollow).into_dyn(),
+        5 => TriangleMarker::new(at, 6, hollow).into_dyn(),
+        _ => square(hollow).into_dyn(),
+    }
+}

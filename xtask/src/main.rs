@@ -7,6 +7,8 @@
 //!   machines (see `docs/sweeps.md`).
 //! * `cargo xtask robustness`: CS-QL, U-Tree and full sensing beyond the paper's
 //!   assumptions (see `docs/robustness.md`).
+//! * `cargo xtask testcost`: the test-cost tree family on the UCI benchmark (see
+//!   `docs/testcost.md`).
 //! * `cargo xtask bench scale` and `cargo xtask bench throughput`: how CS-QL's cost grows
 //!   with the world, and its moves per second against a plain Q-learning loop.
 //! * `cargo xtask test`: every test, Rust and Python (the README's test command).
@@ -31,6 +33,7 @@ mod sense;
 mod shard;
 mod stats;
 mod sweep;
+mod testcost;
 
 use std::process::ExitCode;
 
@@ -72,6 +75,9 @@ enum Command {
     /// The active-measurement benchmark: FrozenLake with priced row and column, the
     /// costed return per episode of each learner under both sensing rules.
     Costly(costly::CostlyArgs),
+    /// The test-cost tree family on the UCI benchmark of Esmeir's thesis, beside the
+    /// published figures.
+    Testcost(testcost::TestcostArgs),
     /// Benchmarks: CS-QL's growth with the world's size, and its moves per second.
     Bench(bench::BenchArgs),
     /// Every test: `cargo test --workspace`, then the Python package's tests in a virtual
@@ -100,6 +106,7 @@ fn main() -> ExitCode {
         Command::Merge(args) => sweep::merge(args),
         Command::Robustness(args) => robustness::robustness(args),
         Command::Costly(args) => costly::costly(args),
+        Command::Testcost(args) => testcost::testcost(args),
         Command::Bench(args) => bench::run(args),
         Command::Test(args) => pytest::test(args),
     };

@@ -42,6 +42,7 @@ use mdp::{Map, SensorNoise, Slip};
 use plotters::prelude::*;
 use serde::{Deserialize, Serialize};
 
+use crate::figures::{PALETTE, marker};
 use crate::shard::JobLine;
 
 /// Arguments of `cargo xtask robustness`.
@@ -726,18 +727,6 @@ struct Series {
     points: Vec<(usize, Option<Cell>)>,
 }
 
-/// Okabe and Ito's colour-blind-safe palette, and one marker shape per series, so that
-/// the figure reads in grey too.
-const PALETTE: [RGBColor; 7] = [
-    RGBColor(0, 0, 0),
-    RGBColor(230, 159, 0),
-    RGBColor(86, 180, 233),
-    RGBColor(0, 158, 115),
-    RGBColor(213, 94, 0),
-    RGBColor(0, 114, 178),
-    RGBColor(204, 121, 167),
-];
-
 /// Three panels against one departure: final quality, sensing cost until quality 0.95
 /// (log scale), sensing cost per state after learning (log scale).
 fn figure(path: &Path, title: &str, axis: &str, ticks: &[String], series: &[Series]) -> Result<()> {
@@ -942,26 +931,6 @@ fn figure(path: &Path, title: &str, axis: &str, ticks: &[String], series: &[Seri
     drop(root);
     drop(base);
     crate::files::write_atomic(path, svg)
-}
-
-/// Series `k`'s marker at `at`: seven shapes, filled or hollow, told apart in grey.
-fn marker<DB: DrawingBackend>(
-    k: usize,
-    at: (i32, i32),
-    color: RGBColor,
-) -> DynElement<'static, DB, (i32, i32)> {
-    let (filled, hollow) = (color.filled(), color.stroke_width(2));
-    let square =
-        |style: ShapeStyle| Rectangle::new([(at.0 - 4, at.1 - 4), (at.0 + 4, at.1 + 4)], style);
-    match k % 7 {
-        0 => Circle::new(at, 5, filled).into_dyn(),
-        1 => TriangleMarker::new(at, 6, filled).into_dyn(),
-        2 => Cross::new(at, 5, hollow).into_dyn(),
-        3 => square(filled).into_dyn(),
-        4 => Circle::new(at, 5, hollow).into_dyn(),
-        5 => TriangleMarker::new(at, 6, hollow).into_dyn(),
-        _ => square(hollow).into_dyn(),
-    }
 }
 
 /// The sideways step between two series' points at one setting, in settings.

@@ -129,14 +129,14 @@ enum Op {
 
 /// A parsed positive-if expression.
 #[derive(Clone, Debug, PartialEq)]
-struct Condition {
+pub(crate) struct Condition {
     op: Op,
     text: String,
     number: Option<f64>,
 }
 
 impl Condition {
-    fn parse(expr: &str) -> Result<Condition, Error> {
+    pub(crate) fn parse(expr: &str) -> Result<Condition, Error> {
         let bad = |reason| Error::BadExpression {
             expr: expr.to_string(),
             reason,
@@ -173,7 +173,7 @@ impl Condition {
     }
 
     /// Whether `cell` satisfies the condition; `Err(())` if it must be a number and is not.
-    fn holds(&self, cell: &str) -> Result<bool, ()> {
+    pub(crate) fn holds(&self, cell: &str) -> Result<bool, ()> {
         let cell_number = parse_number(cell);
         let ordering = match (self.number, cell_number) {
             (Some(n), Some(c)) => c.partial_cmp(&n),

@@ -510,8 +510,17 @@ impl Coder {
     }
 }
 
-/// The data lines of a headerless file, each split into `width` cells.
-pub(crate) fn read_rows(
+/// The data lines of a headerless file, each split into `width` cells (the splitting of
+/// [`Frame::read_delimited`]).
+///
+/// ```
+/// let dir = tempfile::tempdir().unwrap();
+/// let path = dir.path().join("t.data");
+/// std::fs::write(&path, " 1 2\n3 4 5\n").unwrap();
+/// let err = cslearn::testcost::read_rows(&path, 2, "").unwrap_err();
+/// assert!(err.to_string().ends_with("line 2: 3 cells, but 2 columns are named"));
+/// ```
+pub fn read_rows(
     path: &std::path::Path,
     width: usize,
     skip_prefix: &str,

@@ -62,13 +62,15 @@
 //! assert_eq!(eg2.tree.classify(&frame, test[0], &prices).test_cost, 2.0);
 //! ```
 
+mod catalogue;
 mod data;
 mod evaluate;
 mod family;
 mod prices;
 mod tree;
 
-pub use data::{Column, Frame, FrameSpec, MISSING};
+pub use catalogue::{Catalogue, Loaded, Source};
+pub use data::{Column, Frame, FrameSpec, MISSING, read_rows};
 pub use evaluate::{folds, random_prices, standard_cost};
 pub use family::{FamilyParams, Fitted, IcetGenome, IcetParams, Method, fit, mean_total_cost};
 pub use prices::{Basket, MisclassCosts, TestPrice, TestPrices, TurneyExtra};

@@ -1,0 +1,479 @@
+//! `cargo xtask testcost`: the test-cost tree family on the UCI benchmark of Esmeir's
+//! thesis (chapter 4), beside the published figures.
+//!
+//! One job is one data set, one price assignment (Turney's, or random draw `a`), one run
+//! of `K`-fold cross-validation and one learner; it reports, for every misclassification
+//! cost `mc`, the mean total cost, test cost and error rate over the data set's objects
+//! (each object is tested once per run). Jobs are sharded and resumable like `sweep`'s.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use cslearn::testcost::{
+    Catalogue, CostTree, FamilyParams, Frame, Method, MisclassCosts, TestPrices, fit, folds,
+    random_prices, standard_cost,
+};
+use serde::{Deserialize, Serialize};
+
+use crate::shard::JobLine;
+
+mod published;
+mod report;
+
+/// Arguments of `cargo xtask testcost`.
+#[derive(Args, Clone, Debug)]
+pub struct TestcostArgs {
+    /// Data sets, comma-separated, as `data/uci/datasets.toml` names them (default: all).
+    #[arg(long, value_delimiter = ',')]
+    datasets: Vec<String>,
+    /// Learners, comma-separated (`c45,id3,idx,cs-id3-batch,eg2,dtmc,icet`; default: all).
+    #[arg(long, value_delimiter = ',')]
+    learners: Vec<String>,
+    /// Uniform misclassification costs, comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "100,500,1000,5000")]
+    mc: Vec<f64>,
+    /// Price sets, comma-separated: `random` (every data set, `--assignments` draws) and
+    /// `turney` (the data sets with Turney's cost files).
+    #[arg(long, value_delimiter = ',', default_value = "random,turney")]
+    costs: Vec<String>,
+    /// Random price assignments per data set.
+    #[arg(long, default_value_t = 4)]
+    assignments: u64,
+    /// The range random prices are drawn from, uniformly: `LOW,HIGH`.
+    #[arg(long, value_delimiter = ',', default_value = "1,100")]
+    price_range: Vec<f64>,
+    /// Runs of cross-validation per data set and price assignment.
+    #[arg(long, default_value_t = 10)]
+    runs: u64,
+    /// Folds of each run.
+    #[arg(long, default_value_t = 10)]
+    folds: usize,
+    /// Base seed of folds, prices and ICET's search.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// The manifest of the data sets.
+    #[arg(long, default_value = "data/uci/datasets.toml")]
+    manifest: PathBuf,
+    /// Output folder.
+    #[arg(long, default_value = "results/testcost")]
+    out: PathBuf,
+    /// Worker threads (default: every core); results do not depend on it.
+    #[arg(long)]
+    threads: Option<usize>,
+    /// This machine's shard, `K/N`.
+    #[arg(long, default_value = "1/1")]
+    shard: String,
+    /// Only write the report from the results already in `--out`.
+    #[arg(long)]
+    report: bool,
+    /// Also write the report, the table and the figure into `docs/`.
+    #[arg(long)]
+    bless: bool,
+}
+
+/// What a benchmark is: shards must agree on it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub(crate) struct Definition {
+    pub datasets: Vec<String>,
+    pub learners: Vec<Method>,
+    pub mc: Vec<f64>,
+    pub costs: Vec<PriceSet>,
+    pub assignments: u64,
+    pub price_range: (f64, f64),
+    pub runs: u64,
+    pub folds: usize,
+    pub seed: u64,
+}
+
+/// Where a job's prices come from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(crate) enum PriceSet {
+    Random,
+    Turney,
+}
+
+impl PriceSet {
+    pub fn name(self) -> &'static str {
+        match self {
+            PriceSet::Random => "random",
+            PriceSet::Turney => "turney",
+        }
+    }
+}
+
+/// One job's result.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub(crate) struct JobResult {
+    pub id: u64,
+    pub dataset: String,
+    pub costs: PriceSet,
+    pub assignment: u64,
+    pub run: u64,
+    pub learner: Method,
+    /// One per `mc` of the definition, in its order.
+    pub by_mc: Vec<Score>,
+    /// Mean nodes per tree.
+    pub nodes: f64,
+    /// CPU seconds to learn every fold's trees (not reproducible: a measurement).
+    pub learn_seconds: f64,
+    /// CPU seconds to classify every object.
+    pub classify_seconds: f64,
+}
+
+/// Scores of one job at one misclassification cost.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize)]
+pub(crate) struct Score {
+    pub mc: f64,
+    /// Mean total cost per object.
+    pub total: f64,
+    /// Mean test cost per object.
+    pub tests: f64,
+    /// Share of objects misclassified.
+    pub error_rate: f64,
+    /// Turney's standard cost under the job's prices and this mc.
+    pub standard: f64,
+}
+
+impl JobLine for JobResult {
+    fn id(&self) -> u64 {
+        self.id
+    }
+}
+
+/// One job, from its number.
+#[derive(Clone, Copy, Debug)]
+struct Job {
+    dataset: usize,
+    costs: PriceSet,
+    assignment: u64,
+    run: u64,
+    learner: usize,
+}
+
+/// The job list in its fixed order: data set, price set, assignment, run, learner.
+struct Jobs {
+    jobs: Vec<Job>,
+}
+
+impl Jobs {
+    fn new(def: &Definition, turney: &[bool]) -> Jobs {
+        let mut jobs = Vec::new();
+        for (d, &has_turney) in turney.iter().enumerate() {
+            for &costs in &def.costs {
+                let assignments = match costs {
+                    PriceSet::Random => def.assignments,
+                    PriceSet::Turney if has_turney => 1,
+                    PriceSet::Turney => 0,
+                };
+                for assignment in 0..assignments {
+                    for run in 0..def.runs {
+                        for learner in 0..def.learners.len() {
+                            jobs.push(Job {
+                                dataset: d,
+                                costs,
+                                assignment,
+                                run,
+                                learner,
+                            });
+                        }
+                    }
+                }
+            }
+        }
+        Jobs { jobs }
+    }
+}
+
+/// A seed from the base seed, a data set's name and some numbers (SplitMix64 over an
+/// FNV-1a hash of the name): adding a data set or a learner changes no other job's draws.
+pub(crate) fn mix(seed: u64, name: &str, parts: &[u64]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in name.bytes() {
+        h ^= u64::from(b);
+        h = h.wrapping_mul(0x0100_0000_01b3);
+    }
+    let mut x = seed ^ h.rotate_left(17);
+    for &p in parts {
+        x = splitmix(x ^ p.wrapping_mul(0x9e37_79b9_7f4a_7c15));
+    }
+    splitmix(x)
+}
+
+fn splitmix(mut z: u64) -> u64 {
+    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// The prices of one job.
+pub(crate) fn job_prices(
+    def: &Definition,
+    name: &str,
+    frame: &Frame,
+    turney: Option<&TestPrices>,
+    costs: PriceSet,
+    assignment: u64,
+) -> Result<TestPrices> {
+    match costs {
+        PriceSet::Random => Ok(random_prices(
+            frame.feature_count(),
+            def.price_range.0,
+            def.price_range.1,
+            mix(def.seed, name, &[1, assignment]),
+        )),
+        PriceSet::Turney => turney
+            .cloned()
+            .with_context(|| format!("data set `{name}` has no Turney prices")),
+    }
+}
+
+/// Runs one job: `runs`-th cross-validation of one learner under one price assignment.
+fn run_job(
+    def: &Definition,
+    id: u64,
+    job: Job,
+    name: &str,
+    frame: &Frame,
+    turney: Option<&TestPrices>,
+) -> Result<JobResult> {
+    let method = def.learners[job.learner];
+    let prices = job_prices(def, name, frame, turney, job.costs, job.assignment)?;
+    let params = FamilyParams::default();
+    let k = frame.class_count();
+    let mcs: Vec<MisclassCosts> = def
+        .mc
+        .iter()
+        .map(|&m| MisclassCosts::uniform(k, m))
+        .collect::<Result<_, _>>()?;
+    let mut sums = vec![(0.0, 0.0, 0usize); mcs.len()];
+    let (mut nodes, mut trees) = (0usize, 0usize);
+    let (mut learn, mut classify) = (0.0, 0.0);
+    let fold_rows = folds(frame, def.folds, mix(def.seed, name, &[2, job.run]));
+    for (f, test) in fold_rows.iter().enumerate() {
+        if test.is_empty() {
+            continue;
+        }
+        let train: Vec<usize> = (0..frame.len())
+            .filter(|r| test.binary_search(r).is_err())
+            .collect();
+        let icet_seed = mix(
+            def.seed,
+            name,
+            &[3, job.costs as u64, job.assignment, job.run, f as u64],
+        );
+        // Learners whose tree does not depend on mc grow once and are relabelled.
+        let mut shared: Option<CostTree> = None;
+        for (m, mc) in mcs.iter().enumerate() {
+            let start = Instant::now();
+            let tree = if method.depends_on_mc() {
+                fit(method, frame, &train, &prices, mc, &params, icet_seed).tree
+            } else {
+                let tree = shared.get_or_insert_with(|| {
+                    fit(method, frame, &train, &prices, mc, &params, icet_seed).tree
+                });
+                tree.relabel(mc);
+                tree.clone()
+            };
+            learn += start.elapsed().as_secs_f64();
+            if method.depends_on_mc() || m == 0 {
+                nodes += tree.len();
+                trees += 1;
+            }
+            let start = Instant::now();
+            for &r in test {
+                let c = tree.classify(frame, r, &prices);
+                let actual = frame.class(r) as usize;
+                sums[m].0 += c.test_cost + mc.cost(c.class as usize, actual);
+                sums[m].1 += c.test_cost;
+                sums[m].2 += usize::from(c.class as usize != actual);
+            }
+            classify += start.elapsed().as_secs_f64();
+        }
+    }
+    let n = frame.len() as f64;
+    let by_mc = mcs
+        .iter()
+        .zip(&sums)
+        .zip(&def.mc)
+        .map(|((mc, &(total, tests, errors)), &m)| Score {
+            mc: m,
+            total: total / n,
+            tests: tests / n,
+            error_rate: errors as f64 / n,
+            standard: standard_cost(frame, &prices, mc),
+        })
+        .collect();
+    Ok(JobResult {
+        id,
+        dataset: name.to_string(),
+        costs: job.costs,
+        assignment: job.assignment,
+        run: job.run,
+        learner: method,
+        by_mc,
+        nodes: nodes as f64 / trees.max(1) as f64,
+        learn_seconds: learn,
+        classify_seconds: classify,
+    })
+}
+
+/// `cargo xtask testcost`.
+pub fn testcost(args: &TestcostArgs) -> Result<()> {
+    let catalogue = Catalogue::read(&args.manifest)?;
+    let datasets: Vec<String> = if args.datasets.is_empty() {
+        catalogue.sources().iter().map(|s| s.name.clone()).collect()
+    } else {
+        args.datasets.clone()
+    };
+    crate::files::distinct("--datasets", &datasets)?;
+    let learners: Vec<Method> = if args.learners.is_empty() {
+        Method::ALL.to_vec()
+    } else {
+        args.learners
+            .iter()
+            .map(|l| Method::parse(l))
+            .collect::<Result<_, _>>()?
+    };
+    crate::files::distinct(
+        "--learners",
+        &learners.iter().map(|m| m.name()).collect::<Vec<_>>(),
+    )?;
+    let costs: Vec<PriceSet> = args
+        .costs
+        .iter()
+        .map(|c| match c.as_str() {
+            "random" => Ok(PriceSet::Random),
+            "turney" => Ok(PriceSet::Turney),
+            other => bail!("--costs: `{other}` is neither `random` nor `turney`"),
+        })
+        .collect::<Result<_>>()?;
+    crate::files::distinct("--costs", &args.costs)?;
+    if args.mc.is_empty() || args.mc.iter().any(|m| !m.is_finite() || *m < 0.0) {
+        bail!("--mc: every misclassification cost must be a finite number of at least 0");
+    }
+    let price_range = match args.price_range[..] {
+        [lo, hi] if lo.is_finite() && hi.is_finite() && 0.0 <= lo && lo <= hi => (lo, hi),
+        _ => bail!("--price-range: expected LOW,HIGH with 0 <= LOW <= HIGH, finite"),
+    };
+    if args.runs == 0 || args.folds < 2 || args.assignments == 0 {
+        bail!("testcost needs --runs and --assignments of at least 1 and --folds of at least 2");
+    }
+    let def = Definition {
+        datasets: datasets.clone(),
+        learners,
+        mc: args.mc.clone(),
+        costs,
+        assignments: args.assignments,
+        price_range,
+        runs: args.runs,
+        folds: args.folds,
+        seed: args.seed,
+    };
+    let loaded: Vec<_> = datasets
+        .iter()
+        .map(|d| catalogue.load(d).with_context(|| format!("data set `{d}`")))
+        .collect::<Result<_>>()?;
+    for (d, l) in datasets.iter().zip(&loaded) {
+        let smallest = l.frame.class_totals().into_iter().min().unwrap_or(0);
+        if smallest == 0 {
+            bail!("data set `{d}`: a class with no objects");
+        }
+    }
+    if !args.report {
+        let turney: Vec<bool> = loaded.iter().map(|l| l.turney.is_some()).collect();
+        let list = Jobs::new(&def, &turney);
+        crate::shard::run_shard(
+            &args.out,
+            &args.shard,
+            def.clone(),
+            list.jobs.len() as u64,
+            args.threads,
+            |id| {
+                let job = list.jobs[id as usize];
+                let l = &loaded[job.dataset];
+                run_job(
+                    &def,
+                    id,
+                    job,
+                    &datasets[job.dataset],
+                    &l.frame,
+                    l.turney.as_ref(),
+                )
+            },
+        )?;
+        if crate::shard::parse_shard(&args.shard)?.1 > 1 {
+            crate::note(
+                "run `cargo xtask testcost --report` with the same arguments once every shard is done",
+            );
+            return Ok(());
+        }
+    }
+    let (found, by_id): (Definition, BTreeMap<u64, JobResult>) =
+        crate::shard::collect(std::slice::from_ref(&args.out))?;
+    if found != def {
+        bail!(
+            "{} holds another benchmark ({found:?}); give its arguments, or another --out",
+            args.out.display()
+        );
+    }
+    let results: Vec<JobResult> = by_id.into_values().collect();
+    let rows = report::aggregate(&def, &results);
+    let published: BTreeMap<String, String> = catalogue
+        .sources()
+        .iter()
+        .filter_map(|s| s.published.clone().map(|p| (s.name.clone(), p)))
+        .collect();
+    report::write(
+        &def,
+        &rows,
+        &results,
+        &published,
+        &args.out,
+        &args_line(args),
+    )?;
+    if args.bless {
+        report::write(
+            &def,
+            &rows,
+            &results,
+            &published,
+            Path::new("docs/testcost"),
+            &args_line(args),
+        )?;
+    }
+    Ok(())
+}
+
+/// The command that made a report, for its header.
+fn args_line(args: &TestcostArgs) -> String {
+    let mut line = String::from("cargo xtask testcost");
+    if !args.datasets.is_empty() {
+        let _ = write!(line, " --datasets {}", args.datasets.join(","));
+    }
+    if !args.learners.is_empty() {
+        let _ = write!(line, " --learners {}", args.learners.join(","));
+    }
+    let mc: Vec<String> = args.mc.iter().map(|m| m.to_string()).collect();
+    if mc.join(",") != "100,500,1000,5000" {
+        let _ = write!(line, " --mc {}", mc.join(","));
+    }
+    if args.costs.join(",") != "random,turney" {
+        let _ = write!(line, " --costs {}", args.costs.join(","));
+    }
+    if args.runs != 10 {
+        let _ = write!(line, " --runs {}", args.runs);
+    }
+    if args.folds != 10 {
+        let _ = write!(line, " --folds {}", args.folds);
+    }
+    if args.seed != 1 {
+        let _ = write!(line, " --seed {}", args.seed);
+    }
+    line
+}

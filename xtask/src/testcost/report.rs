@@ -1,0 +1,428 @@
+//! The benchmark's table, figure and report, from the job results.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::Path;
+
+use anyhow::{Result, anyhow};
+use cslearn::testcost::Method;
+use plotters::prelude::*;
+
+use super::published;
+use super::{Definition, JobResult, PriceSet};
+use crate::figures::{PALETTE, marker};
+
+/// One row of `testcost.csv`.
+#[derive(Clone, Debug)]
+pub(crate) struct Row {
+    pub dataset: String,
+    pub costs: PriceSet,
+    pub mc: f64,
+    pub learner: Method,
+    /// Mean total cost as a percentage of the standard cost.
+    pub normalised: f64,
+    /// Half-width of the 95% interval of that mean (normal approximation).
+    pub ci95: f64,
+    /// Mean test cost per object.
+    pub test_cost: f64,
+    /// Mean error rate.
+    pub error_rate: f64,
+    /// Mean total cost per object, in the prices' units.
+    pub total: f64,
+    /// `normalised` over batch CS-ID3's on the same data set, prices and mc.
+    pub ratio: Option<f64>,
+}
+
+type Key = (String, PriceSet, u64, Method);
+
+/// The rows, in the definition's order of data sets, price sets, mc and learners.
+pub(crate) fn aggregate(def: &Definition, results: &[JobResult]) -> Vec<Row> {
+    let mut cells: BTreeMap<Key, Vec<(f64, f64, f64, f64)>> = BTreeMap::new();
+    for r in results {
+        for s in &r.by_mc {
+            cells
+                .entry((r.dataset.clone(), r.costs, s.mc.to_bits(), r.learner))
+                .or_default()
+                .push((100.0 * s.total / s.standard, s.tests, s.error_rate, s.total));
+        }
+    }
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
+    let mut rows = Vec::new();
+    for d in &def.datasets {
+        for &costs in &def.costs {
+            for &mc in &def.mc {
+                let key = |m: Method| (d.clone(), costs, mc.to_bits(), m);
+                let base = cells
+                    .get(&key(Method::CsId3Batch))
+                    .map(|v| mean(&v.iter().map(|x| x.0).collect::<Vec<_>>()));
+                for &learner in &def.learners {
+                    let Some(v) = cells.get(&key(learner)) else {
+                        continue;
+                    };
+                    let norm: Vec<f64> = v.iter().map(|x| x.0).collect();
+                    let m = mean(&norm);
+                    let n = norm.len();
+                    let sd = if n > 1 {
+                        (norm.iter().map(|x| (x - m).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt()
+                    } else {
+                        0.0
+                    };
+                    rows.push(Row {
+                        dataset: d.clone(),
+                        costs,
+                        mc,
+                        learner,
+                        normalised: m,
+                        ci95: 1.96 * sd / (n as f64).sqrt(),
+                        test_cost: mean(&v.iter().map(|x| x.1).collect::<Vec<_>>()),
+                        error_rate: mean(&v.iter().map(|x| x.2).collect::<Vec<_>>()),
+                        total: mean(&v.iter().map(|x| x.3).collect::<Vec<_>>()),
+                        ratio: base.filter(|b| *b > 0.0).map(|b| m / b),
+                    });
+                }
+            }
+        }
+    }
+    rows
+}
+
+fn find<'a>(rows: &'a [Row], d: &str, costs: PriceSet, mc: f64, m: Method) -> Option<&'a Row> {
+    rows.iter()
+        .find(|r| r.dataset == d && r.costs == costs && r.mc == mc && r.learner == m)
+}
+
+/// `testcost.csv`: one line per data set, price set, mc and learner.
+pub(crate) fn csv(def: &Definition, rows: &[Row]) -> String {
+    let mut out = String::from(
+        "dataset,costs,mc,learner,runs,folds,normalised_cost,ci95,test_cost,error_rate,ratio_to_cs_id3\n",
+    );
+    for r in rows {
+        let _ = writeln!(
+            out,
+            "{},{},{},{},{},{},{:.3},{:.3},{:.3},{:.4},{}",
+            r.dataset,
+            r.costs.name(),
+            r.mc,
+            r.learner.name(),
+            def.runs,
+            def.folds,
+            r.normalised,
+            r.ci95,
+            r.test_cost,
+            r.error_rate,
+            r.ratio.map_or(String::new(), |x| format!("{x:.4}")),
+        );
+    }
+    out
+}
+
+/// The mean over data sets of each learner's ratio to CS-ID3, ours and published, over
+/// the data sets that have both, at `mc`: (learner, ours, published, data sets).
+pub(crate) fn mean_ratios(
+    def: &Definition,
+    rows: &[Row],
+    published_names: &BTreeMap<String, String>,
+    mc: f64,
+) -> Vec<(Method, f64, f64, usize)> {
+    let mut out = Vec::new();
+    for &m in &def.learners {
+        let Some(col) = published::column(m) else {
+            continue;
+        };
+        let (mut ours, mut theirs, mut n) = (0.0, 0.0, 0);
+        for d in &def.datasets {
+            let Some(p) = published_names
+                .get(d)
+                .and_then(|name| published::row(name, mc))
+            else {
+                continue;
+            };
+            let Some(r) = find(rows, d, PriceSet::Random, mc, m).and_then(|r| r.ratio) else {
+                continue;
+            };
+            ours += r;
+            theirs += p[col] / p[3];
+            n += 1;
+        }
+        if n > 0 {
+            out.push((m, ours / n as f64, theirs / n as f64, n));
+        }
+    }
+    out
+}
+
+/// Writes `testcost.csv`, `timing.csv`, `testcost.md` and `testcost.svg` into `dir`.
+pub(crate) fn write(
+    def: &Definition,
+    rows: &[Row],
+    results: &[JobResult],
+    published_names: &BTreeMap<String, String>,
+    dir: &Path,
+    command: &str,
+) -> Result<()> {
+    crate::files::create_dir(dir)?;
+    crate::files::write_atomic(&dir.join("testcost.csv"), csv(def, rows))?;
+    crate::files::write_atomic(&dir.join("timing.csv"), timing_csv(def, results))?;
+    figure(&dir.join("testcost.svg"), def, rows)?;
+    crate::files::write_atomic(
+        &dir.join("testcost.md"),
+        markdown(def, rows, published_names, command),
+    )?;
+    crate::note(&format!(
+        "wrote {}/testcost.csv, timing.csv, testcost.md and testcost.svg",
+        dir.display()
+    ));
+    Ok(())
+}
+
+/// Learning and classification time per data set and learner (measurements: they vary
+/// from run to run, unlike every other output).
+fn timing_csv(def: &Definition, results: &[JobResult]) -> String {
+    let mut cells: BTreeMap<(String, Method), (f64, f64, f64, usize)> = BTreeMap::new();
+    for r in results {
+        let e = cells.entry((r.dataset.clone(), r.learner)).or_default();
+        let trees = if r.learner.depends_on_mc() {
+            def.folds * def.mc.len()
+        } else {
+            def.folds
+        };
+        e.0 += r.learn_seconds / trees as f64;
+        e.1 += r.classify_seconds;
+        e.2 += r.nodes;
+        e.3 += 1;
+    }
+    let mut out =
+        String::from("dataset,learner,ms_per_tree,nodes_per_tree,learn_seconds_per_job\n");
+    for d in &def.datasets {
+        for &m in &def.learners {
+            if let Some(&(per_tree, _, nodes, n)) = cells.get(&(d.clone(), m)) {
+                let jobs: f64 = results
+                    .iter()
+                    .filter(|r| &r.dataset == d && r.learner == m)
+                    .map(|r| r.learn_seconds)
+                    .sum::<f64>()
+                    / n as f64;
+                let _ = writeln!(
+                    out,
+                    "{d},{},{:.4},{:.1},{:.3}",
+                    m.name(),
+                    1e3 * per_tree / n as f64,
+                    nodes / n as f64,
+                    jobs
+                );
+            }
+        }
+    }
+    out
+}
+
+fn markdown(
+    def: &Definition,
+    rows: &[Row],
+    published_names: &BTreeMap<String, String>,
+    command: &str,
+) -> String {
+    let mut md = String::new();
+    let _ = writeln!(md, "# The test-cost benchmark\n");
+    let _ = writeln!(
+        md,
+        "Written by `{command}`. Average total cost (tests plus misclassification) as a \
+         percentage of Turney's standard cost, lower is better; {} runs of {}-fold stratified \
+         cross-validation per data set and price assignment; random prices: {} assignments \
+         per data set, each test uniform in [{}, {}]. Learners: {}. `docs/testcost.md` reads \
+         the results.\n",
+        def.runs,
+        def.folds,
+        def.assignments,
+        def.price_range.0,
+        def.price_range.1,
+        def.learners
+            .iter()
+            .map(|m| m.name())
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    for &mc in &def.mc {
+        if !def.costs.contains(&PriceSet::Random) {
+            break;
+        }
+        let published_here = mc == 500.0 || mc == 1000.0;
+        let _ = writeln!(
+            md,
+            "## Random prices, mc = {mc}{}\n",
+            if published_here {
+                " (published figure in parentheses)"
+            } else {
+                ""
+            }
+        );
+        let _ = write!(md, "| data set |");
+        for m in &def.learners {
+            let _ = write!(md, " {} |", m.name());
+        }
+        let _ = writeln!(md);
+        let _ = writeln!(md, "|---|{}", "---|".repeat(def.learners.len()));
+        for d in &def.datasets {
+            let p = published_names.get(d).and_then(|n| published::row(n, mc));
+            let _ = write!(md, "| {d} |");
+            for &m in &def.learners {
+                let ours = find(rows, d, PriceSet::Random, mc, m).map_or("".to_string(), |r| {
+                    format!("{:.1} ± {:.1}", r.normalised, r.ci95)
+                });
+                let theirs = match (p, published::column(m)) {
+                    (Some(p), Some(c)) => format!(" ({:.1})", p[c]),
+                    _ => String::new(),
+                };
+                let _ = write!(md, " {ours}{theirs} |");
+            }
+            let _ = writeln!(md);
+        }
+        let _ = writeln!(md);
+        let ratios = mean_ratios(def, rows, published_names, mc);
+        if !ratios.is_empty() {
+            let _ = writeln!(
+                md,
+                "Mean ratio to batch CS-ID3 over the {} data sets with a published row:\n",
+                ratios[0].3
+            );
+            let _ = writeln!(md, "| learner | ours | published | difference |");
+            let _ = writeln!(md, "|---|---|---|---|");
+            for (m, ours, theirs, _) in &ratios {
+                let _ = writeln!(
+                    md,
+                    "| {} | {ours:.3} | {theirs:.3} | {:+.3} |",
+                    m.name(),
+                    ours - theirs
+                );
+            }
+            let _ = writeln!(md);
+        }
+    }
+    if def.costs.contains(&PriceSet::Turney) {
+        let _ = writeln!(
+            md,
+            "## Turney's prices, with group discounts\n\nTotal and test cost per object in the \
+             cost files' currency (Canadian dollars), error rate, and % of standard cost.\n"
+        );
+        let _ = writeln!(
+            md,
+            "| data set | mc | learner | total | tests | error rate | % standard |"
+        );
+        let _ = writeln!(md, "|---|---|---|---|---|---|---|");
+        for r in rows.iter().filter(|r| r.costs == PriceSet::Turney) {
+            let _ = writeln!(
+                md,
+                "| {} | {} | {} | {:.2} | {:.2} | {:.3} | {:.1} ± {:.1} |",
+                r.dataset,
+                r.mc,
+                r.learner.name(),
+                r.total,
+                r.test_cost,
+                r.error_rate,
+                r.normalised,
+                r.ci95
+            );
+        }
+        let _ = writeln!(md);
+    }
+    let _ = writeln!(
+        md,
+        "![Mean normalised cost against the misclassification cost](testcost.svg)\n\n\
+         Times are in `timing.csv` (measured, so they vary between runs)."
+    );
+    md
+}
+
+/// Mean normalised cost over the data sets (random prices) against mc, one line per
+/// learner, colour-blind-safe colours and one marker shape each.
+fn figure(path: &Path, def: &Definition, rows: &[Row]) -> Result<()> {
+    crate::figures::register_font();
+    let plot_err = |e: &dyn std::fmt::Display| anyhow!("drawing {}: {e}", path.display());
+    let series: Vec<(Method, Vec<(f64, f64)>)> = def
+        .learners
+        .iter()
+        .map(|&m| {
+            let pts = def
+                .mc
+                .iter()
+                .filter_map(|&mc| {
+                    let v: Vec<f64> = rows
+                        .iter()
+                        .filter(|r| r.learner == m && r.mc == mc && r.costs == PriceSet::Random)
+                        .map(|r| r.normalised)
+                        .collect();
+                    (!v.is_empty()).then(|| (mc, v.iter().sum::<f64>() / v.len() as f64))
+                })
+                .collect();
+            (m, pts)
+        })
+        .collect();
+    let top = series
+        .iter()
+        .flat_map(|(_, p)| p.iter().map(|x| x.1))
+        .fold(10.0, f64::max);
+    let lo = def
+        .mc
+        .iter()
+        .copied()
+        .fold(f64::INFINITY, f64::min)
+        .max(1.0);
+    let hi = def.mc.iter().copied().fold(0.0, f64::max).max(lo * 2.0);
+    let mut svg = String::new();
+    {
+        let base = SVGBackend::with_string(&mut svg, (900, 560)).into_drawing_area();
+        base.fill(&WHITE).map_err(|e| plot_err(&e))?;
+        let mut chart = ChartBuilder::on(&base)
+            .caption(
+                format!(
+                    "Test-cost learners: mean cost over {} data sets, random prices",
+                    def.datasets.len()
+                ),
+                ("sans-serif", 20),
+            )
+            .margin(16)
+            .x_label_area_size(50)
+            .y_label_area_size(70)
+            .build_cartesian_2d((lo / 1.3..hi * 1.3).log_scale(), 0.0..top * 1.1)
+            .map_err(|e| plot_err(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc("misclassification cost (log scale)")
+            .y_desc("total cost, % of standard cost")
+            .axis_desc_style(("sans-serif", 16))
+            .label_style(("sans-serif", 14))
+            .light_line_style(WHITE)
+            .bold_line_style(RGBColor(230, 230, 230))
+            .x_label_formatter(&|x| format!("{x:.0}"))
+            .draw()
+            .map_err(|e| plot_err(&e))?;
+        for (k, (m, pts)) in series.iter().enumerate() {
+            let color = PALETTE[k % PALETTE.len()];
+            chart
+                .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
+                .map_err(|e| plot_err(&e))?
+                .label(m.name())
+                .legend(move |(x, y)| {
+                    EmptyElement::at((x + 12, y))
+                        + PathElement::new(vec![(-12, 0), (12, 0)], color.stroke_width(2))
+                        + marker::<SVGBackend<'_>>(k, (0, 0), color)
+                });
+            chart
+                .draw_series(
+                    pts.iter()
+                        .map(|&p| EmptyElement::at(p) + marker::<SVGBackend<'_>>(k, (0, 0), color)),
+                )
+                .map_err(|e| plot_err(&e))?;
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
+            .background_style(WHITE.mix(0.9))
+            .border_style(RGBColor(150, 150, 150))
+            .label_font(("sans-serif", 14))
+            .draw()
+            .map_err(|e| plot_err(&e))?;
+        base.present().map_err(|e| plot_err(&e))?;
+    }
+    crate::files::write_atomic(path, svg)
+}
