@@ -5,6 +5,7 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 
 use super::data::Frame;
 use super::prices::{MisclassCosts, TestPrices};
+use super::splits::Splits;
 use super::tree::{CostTree, Criterion, GrowParams};
 use crate::Error;
 
@@ -322,11 +323,15 @@ fn icet_search(
     if score_half.is_empty() {
         score_half.clone_from(&grow_half);
     }
-    let fitness = |genes: &Genes| -> f64 {
+    // Every tree of the search grows on the same half: they share one split trie.
+    let min_objects = GrowParams::new(Criterion::Eg2 { w: 1.0 }).min_objects;
+    let ones = vec![1.0; grow_half.len()];
+    let mut splits = Splits::new(frame, &grow_half, &ones, mc, Criterion::Eg2 { w: 1.0 }, min_objects);
+    let mut fitness = |genes: &Genes| -> f64 {
         let (biased, w, confidence) = decode(genes, prices);
         let biased = prices.repriced(&biased).unwrap_or_else(|_| prices.clone());
         let grow = GrowParams::new(Criterion::Eg2 { w }).pruned(confidence);
-        let tree = CostTree::grow(frame, &grow_half, &biased, mc, &grow);
+        let tree = CostTree::grow_in(&mut splits, &biased, mc, &grow);
         mean_total_cost(&tree, frame, &score_half, prices, mc)
     };
     let icet = params.icet;

@@ -67,6 +67,7 @@ mod data;
 mod evaluate;
 mod family;
 mod prices;
+mod splits;
 mod tree;
 
 pub use catalogue::{Catalogue, Loaded, Source};

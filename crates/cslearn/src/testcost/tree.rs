@@ -4,8 +4,9 @@
 //! split ([`Criterion`], the framework's selection function), whether growth stops when
 //! no test pays for itself (DTMC), and whether the tree is pruned afterwards.
 
-use super::data::{Column, Frame, MISSING};
-use super::prices::{Basket, MisclassCosts, TestPrices};
+use super::data::{Column, Frame};
+use super::prices::{MisclassCosts, TestPrices};
+use super::splits::{Splits, Stat};
 
 /// How a test is scored at a node: the selection function of each learner.
 ///
@@ -223,329 +224,6 @@ pub struct CostTree {
     mc: MisclassCosts,
 }
 
-/// A node waiting to be grown: its objects with their weights and the tests on its path.
-struct Pending {
-    node: NodeIndex,
-    rows: Vec<u32>,
-    weights: Vec<f64>,
-    /// For each numeric feature, the positions in `rows` of the objects whose value is
-    /// known, in increasing order of the value (sorted once at the root, then kept in
-    /// order as objects are dealt to children); empty for nominal features.
-    order: Vec<Vec<u32>>,
-    path: Vec<usize>,
-}
-
-/// The best split found for one feature.
-struct Candidate {
-    feature: usize,
-    /// The threshold of a numeric feature.
-    at: Option<f64>,
-    gain: f64,
-    score: f64,
-}
-
-/// C4.5's least branch size for a split of `known` weight among `classes` classes.
-fn min_split(min_objects: f64, classes: usize, known: f64) -> f64 {
-    (0.1 * known / classes as f64).clamp(min_objects, 25.0_f64.max(min_objects))
-}
-
-/// `x log2 x`, read from a table for the small whole numbers that unweighted objects
-/// give (0 at 0).
-fn xlog2x(x: f64) -> f64 {
-    const TABLE: usize = 4096;
-    static VALUES: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
-    if x <= 0.0 {
-        return 0.0;
-    }
-    if x < TABLE as f64 && x == x.trunc() {
-        let table = VALUES.get_or_init(|| {
-            (0..TABLE)
-                .map(|i| {
-                    if i == 0 {
-                        0.0
-                    } else {
-                        i as f64 * (i as f64).log2()
-                    }
-                })
-                .collect()
-        });
-        return table[x as usize];
-    }
-    x * x.log2()
-}
-
-/// `total * entropy(weights)`, as `total log2 total - sum w log2 w`.
-fn weighted_entropy(weights: &[f64], total: f64) -> f64 {
-    let mut h = xlog2x(total);
-    for &w in weights {
-        h -= xlog2x(w);
-    }
-    h.max(0.0)
-}
-
-fn entropy(weights: &[f64], total: f64) -> f64 {
-    if total <= 0.0 {
-        return 0.0;
-    }
-    let mut h = 0.0;
-    for &w in weights {
-        if w > 0.0 {
-            let p = w / total;
-            h -= p * p.log2();
-        }
-    }
-    h
-}
-
-/// `-sum p log2 p` over the parts of a total.
-fn split_information(parts: impl Iterator<Item = f64>, total: f64) -> f64 {
-    let mut h = 0.0;
-    for w in parts {
-        if w > 0.0 {
-            let p = w / total;
-            h -= p * p.log2();
-        }
-    }
-    h
-}
-
-/// Reusable buffers for scoring splits.
-struct Scratch {
-    /// Per value (nominal) or per side (numeric), per class.
-    branch: Vec<f64>,
-    /// (value, class, weight) of the objects with a known value, for numeric features.
-    sorted: Vec<(f64, u32, f64)>,
-}
-
-struct Grower<'a> {
-    frame: &'a Frame,
-    prices: &'a TestPrices,
-    mc: &'a MisclassCosts,
-    params: &'a GrowParams,
-    classes: usize,
-    scratch: Scratch,
-}
-
-impl Grower<'_> {
-    /// The weight per class of `rows`.
-    fn class_weights(&self, rows: &[u32], weights: &[f64]) -> Vec<f64> {
-        let mut out = vec![0.0; self.classes];
-        for (&r, &w) in rows.iter().zip(weights) {
-            out[self.frame.class(r as usize) as usize] += w;
-        }
-        out
-    }
-
-    /// The best split of `feature` for the node's objects, or `None` if it has none
-    /// (too few objects with a known value, a single value, no gain).
-    fn candidate(
-        &mut self,
-        feature: usize,
-        pending: &Pending,
-        node_weights: &[f64],
-        price: f64,
-    ) -> Option<Candidate> {
-        let (rows, weights) = (&pending.rows[..], &pending.weights[..]);
-        let k = self.classes;
-        let total: f64 = weights.iter().sum();
-        let dtmc = matches!(self.params.criterion, Criterion::Dtmc);
-        match self.frame.column(feature) {
-            Column::Nominal { values, codes } => {
-                let v = values.len();
-                let branch = &mut self.scratch.branch;
-                branch.clear();
-                branch.resize(v * k, 0.0);
-                let mut known = vec![0.0; k];
-                for (&r, &w) in rows.iter().zip(weights) {
-                    let code = codes[r as usize];
-                    if code != MISSING {
-                        let c = self.frame.class(r as usize) as usize;
-                        branch[code as usize * k + c] += w;
-                        known[c] += w;
-                    }
-                }
-                let known_total: f64 = known.iter().sum();
-                if known_total <= 0.0 {
-                    return None;
-                }
-                let sizes: Vec<f64> = (0..v)
-                    .map(|b| branch[b * k..(b + 1) * k].iter().sum())
-                    .collect();
-                let min = min_split(self.params.min_objects, self.classes, known_total);
-                if sizes.iter().filter(|&&s| s >= min).count() < 2 {
-                    return None;
-                }
-                let share = known_total / total;
-                if dtmc {
-                    let after: f64 = (0..v)
-                        .map(|b| {
-                            let part = &branch[b * k..(b + 1) * k];
-                            let with_missing: Vec<f64> = part
-                                .iter()
-                                .zip(node_weights.iter().zip(&known))
-                                .map(|(w, (n, kn))| w + (n - kn) * sizes[b] / known_total)
-                                .collect();
-                            self.mc.best(&with_missing).1
-                        })
-                        .sum();
-                    let before = self.mc.best(node_weights).1;
-                    let reduction = before - after - price * total;
-                    return Some(Candidate {
-                        feature,
-                        at: None,
-                        gain: reduction,
-                        score: reduction,
-                    });
-                }
-                let after: f64 = (0..v)
-                    .map(|b| sizes[b] * entropy(&branch[b * k..(b + 1) * k], sizes[b]))
-                    .sum::<f64>()
-                    / known_total;
-                let gain = share * (entropy(&known, known_total) - after);
-                let split_info =
-                    split_information(sizes.iter().copied().chain([total - known_total]), total);
-                Some(Candidate {
-                    feature,
-                    at: None,
-                    gain,
-                    score: self.params.criterion.score(gain, split_info, price),
-                })
-            }
-            Column::Numeric(x) => {
-                let sorted = &mut self.scratch.sorted;
-                sorted.clear();
-                for &p in &pending.order[feature] {
-                    let r = rows[p as usize] as usize;
-                    sorted.push((x[r], self.frame.class(r), weights[p as usize]));
-                }
-                if sorted.len() < 2 {
-                    return None;
-                }
-                let mut known = vec![0.0; k];
-                for &(_, c, w) in sorted.iter() {
-                    known[c as usize] += w;
-                }
-                let known_total: f64 = known.iter().sum();
-                let min = min_split(self.params.min_objects, self.classes, known_total);
-                let base = entropy(&known, known_total);
-                let missing: Vec<f64> = node_weights
-                    .iter()
-                    .zip(&known)
-                    .map(|(n, kn)| n - kn)
-                    .collect();
-                let before_cost = if dtmc {
-                    self.mc.best(node_weights).1
-                } else {
-                    0.0
-                };
-                let mut left = vec![0.0; k];
-                let mut right = vec![0.0; k];
-                let mut mixed = vec![0.0; k];
-                let mut left_total = 0.0;
-                let mut best: Option<(f64, f64, f64)> = None; // (value, at, left_total)
-                let mut tested = 0usize;
-                for i in 0..sorted.len() - 1 {
-                    let (value, c, w) = sorted[i];
-                    left[c as usize] += w;
-                    left_total += w;
-                    let next = sorted[i + 1].0;
-                    if next <= value {
-                        continue;
-                    }
-                    let right_total = known_total - left_total;
-                    if left_total < min || right_total < min {
-                        continue;
-                    }
-                    tested += 1;
-                    for j in 0..k {
-                        right[j] = known[j] - left[j];
-                    }
-                    let quality = if dtmc {
-                        let share_left = left_total / known_total;
-                        let mut cost = 0.0;
-                        for (side, s) in [(&left, share_left), (&right, 1.0 - share_left)] {
-                            for j in 0..k {
-                                mixed[j] = side[j] + missing[j] * s;
-                            }
-                            cost += self.mc.best(&mixed).1;
-                        }
-                        -cost
-                    } else {
-                        -(weighted_entropy(&left, left_total)
-                            + weighted_entropy(&right, right_total))
-                    };
-                    if best.is_none_or(|(q, _, _)| quality > q) {
-                        best = Some((quality, (value + next) / 2.0, left_total));
-                    }
-                }
-                let (quality, at, left_total) = best?;
-                let right_total = known_total - left_total;
-                if dtmc {
-                    let reduction = before_cost + quality - price * total;
-                    return Some(Candidate {
-                        feature,
-                        at: Some(at),
-                        gain: reduction,
-                        score: reduction,
-                    });
-                }
-                let share = known_total / total;
-                let mut gain = share * (base + quality / known_total);
-                if matches!(self.params.criterion, Criterion::C45) && tested > 1 {
-                    // C4.5 (release 8) charges the choice among thresholds.
-                    gain -= (tested as f64).log2() / total;
-                }
-                let split_info = split_information(
-                    [left_total, right_total, total - known_total].into_iter(),
-                    total,
-                );
-                Some(Candidate {
-                    feature,
-                    at: Some(at),
-                    gain,
-                    score: self.params.criterion.score(gain, split_info, price),
-                })
-            }
-        }
-    }
-
-    /// The split to make at a node, if any.
-    fn choose(&mut self, pending: &Pending, node_weights: &[f64]) -> Option<Candidate> {
-        let mut basket = Basket::new(self.prices);
-        for &t in &pending.path {
-            basket.buy(self.prices, t);
-        }
-        let mut candidates = Vec::new();
-        for feature in 0..self.frame.feature_count() {
-            let price = basket.price(self.prices, feature);
-            if let Some(c) = self.candidate(feature, pending, node_weights, price)
-                && c.gain > 1e-9
-            {
-                candidates.push(c);
-            }
-        }
-        if candidates.is_empty() {
-            return None;
-        }
-        if matches!(self.params.criterion, Criterion::C45) {
-            let average = candidates.iter().map(|c| c.gain).sum::<f64>() / candidates.len() as f64;
-            candidates.retain(|c| c.gain >= average - 1e-12);
-        }
-        let mut best: Option<Candidate> = None;
-        for c in candidates {
-            // Ties: the higher gain, then the lower feature index (kept by `>`).
-            let better = match &best {
-                None => true,
-                Some(b) => c.score > b.score || (c.score == b.score && c.gain > b.gain),
-            };
-            if better && c.score > 0.0 {
-                best = Some(c);
-            }
-        }
-        best
-    }
-}
-
 impl CostTree {
     /// Grows a tree on the objects `rows` of `frame`, selecting tests with `prices` (the
     /// prices the learner believes: the real ones, or ICET's biased ones) and labelling
@@ -598,154 +276,68 @@ impl CostTree {
         mc: &MisclassCosts,
         params: &GrowParams,
     ) -> CostTree {
-        let classes = frame.class_count();
-        let mut grower = Grower {
-            frame,
-            prices,
-            mc,
-            params,
-            classes,
-            scratch: Scratch {
-                branch: Vec::new(),
-                sorted: Vec::new(),
-            },
-        };
-        let mut nodes: Vec<TreeNode> = Vec::new();
-        let root_rows: Vec<u32> = rows.iter().map(|&r| r as u32).collect();
-        let root_weights = grower.class_weights(&root_rows, weights);
-        nodes.push(TreeNode {
-            label: mc.best(&root_weights).0 as u32,
-            weights: root_weights,
+        let mut splits = Splits::new(frame, rows, weights, mc, params.criterion, params.min_objects);
+        CostTree::grow_in(&mut splits, prices, mc, params)
+    }
+
+    /// Grows a tree by walking the split trie `splits` (made with the same objects, `mc`,
+    /// criterion kind and `min_objects`), choosing each test by `prices` and `params`.
+    pub(crate) fn grow_in(
+        splits: &mut Splits<'_>,
+        prices: &TestPrices,
+        mc: &MisclassCosts,
+        params: &GrowParams,
+    ) -> CostTree {
+        let root = splits.cell(0).class_weights.clone();
+        let mut nodes = vec![TreeNode {
+            label: mc.best(&root).0 as u32,
+            weights: root,
             split: None,
-        });
-        let order = (0..frame.feature_count())
-            .map(|f| match frame.column(f) {
-                Column::Numeric(x) => {
-                    let mut known: Vec<u32> = (0..root_rows.len() as u32)
-                        .filter(|&p| !x[root_rows[p as usize] as usize].is_nan())
-                        .collect();
-                    known.sort_by(|&a, &b| {
-                        x[root_rows[a as usize] as usize]
-                            .total_cmp(&x[root_rows[b as usize] as usize])
-                    });
-                    known
-                }
-                Column::Nominal { .. } => Vec::new(),
-            })
-            .collect();
-        let mut stack = vec![Pending {
-            node: 0,
-            rows: root_rows,
-            weights: weights.to_vec(),
-            order,
-            path: Vec::new(),
         }];
-        while let Some(pending) = stack.pop() {
-            let node_weights = nodes[pending.node as usize].weights.clone();
-            let pure = node_weights.iter().filter(|&&w| w > 1e-9).count() <= 1;
-            if pure || pending.path.len() >= params.max_depth {
+        let mut stack: Vec<(NodeIndex, u32)> = vec![(0, 0)];
+        while let Some((node, c)) = stack.pop() {
+            let cell = splits.cell(c);
+            let pure = cell.class_weights.iter().filter(|&&w| w > 1e-9).count() <= 1;
+            if pure || cell.path.len() >= params.max_depth {
                 continue;
             }
-            let Some(best) = grower.choose(&pending, &node_weights) else {
+            let node_weights = cell.class_weights.clone();
+            let Some(best) = choose(splits, c, prices, params.criterion) else {
                 continue;
             };
-            let feature = best.feature;
-            let column = frame.column(feature);
-            let branches = match (column, best.at) {
-                (Column::Nominal { values, .. }, _) => values.len(),
-                (Column::Numeric(_), _) => 2,
+            splits.children(c, &best);
+            let splits = &*splits;
+            let Some(children) = splits.cell(c).children_for(best.feature) else {
+                continue;
             };
-            let branch_of = |r: u32| -> Option<usize> {
-                match column {
-                    Column::Nominal { codes, .. } => {
-                        let c = codes[r as usize];
-                        (c != MISSING).then_some(c as usize)
-                    }
-                    Column::Numeric(x) => {
-                        let v = x[r as usize];
-                        (!v.is_nan()).then(|| usize::from(v > best.at.unwrap_or(0.0)))
-                    }
-                }
-            };
-            let n = pending.rows.len();
-            let mut parts: Vec<(Vec<u32>, Vec<f64>)> = vec![(Vec::new(), Vec::new()); branches];
-            // Where each of the node's objects sits in each child, u32::MAX if absent.
-            let mut position: Vec<Vec<u32>> = vec![vec![u32::MAX; n]; branches];
-            let mut known_by_branch = vec![0.0; branches];
-            let mut unknown: Vec<usize> = Vec::new();
-            for (p, (&r, &w)) in pending.rows.iter().zip(&pending.weights).enumerate() {
-                match branch_of(r) {
-                    Some(b) => {
-                        position[b][p] = parts[b].0.len() as u32;
-                        parts[b].0.push(r);
-                        parts[b].1.push(w);
-                        known_by_branch[b] += w;
-                    }
-                    None => unknown.push(p),
-                }
-            }
-            let known_total: f64 = known_by_branch.iter().sum();
-            let shares: Vec<f64> = known_by_branch.iter().map(|k| k / known_total).collect();
-            for &p in &unknown {
-                for (b, part) in parts.iter_mut().enumerate() {
-                    if shares[b] > 0.0 {
-                        position[b][p] = part.0.len() as u32;
-                        part.0.push(pending.rows[p]);
-                        part.1.push(pending.weights[p] * shares[b]);
-                    }
-                }
-            }
-            let mut children = Vec::with_capacity(branches);
-            let mut path = pending.path.clone();
-            path.push(feature);
-            for (b, (part_rows, part_weights)) in parts.into_iter().enumerate() {
-                let index = nodes.len() as NodeIndex;
-                let child_weights = if part_rows.is_empty() {
-                    node_weights.clone()
-                } else {
-                    grower.class_weights(&part_rows, &part_weights)
+            let mut made = Vec::with_capacity(children.cells.len());
+            for cell in &children.cells {
+                let weights = match cell {
+                    Some(child) => splits.cell(*child).class_weights.clone(),
+                    None => node_weights.clone(),
                 };
+                let index = nodes.len() as NodeIndex;
                 nodes.push(TreeNode {
-                    label: mc.best(&child_weights).0 as u32,
-                    weights: child_weights,
+                    label: mc.best(&weights).0 as u32,
+                    weights,
                     split: None,
                 });
-                children.push(index);
-                if !part_rows.is_empty() {
-                    let at = &position[b];
-                    let order = pending
-                        .order
-                        .iter()
-                        .map(|sorted| {
-                            sorted
-                                .iter()
-                                .filter_map(|&p| {
-                                    let q = at[p as usize];
-                                    (q != u32::MAX).then_some(q)
-                                })
-                                .collect()
-                        })
-                        .collect();
-                    stack.push(Pending {
-                        node: index,
-                        rows: part_rows,
-                        weights: part_weights,
-                        order,
-                        path: path.clone(),
-                    });
+                made.push(index);
+                if let Some(child) = cell {
+                    stack.push((index, *child));
                 }
             }
-            nodes[pending.node as usize].split = Some(match best.at {
+            nodes[node as usize].split = Some(match children.at {
                 Some(at) => Split::Threshold {
-                    feature,
+                    feature: children.feature,
                     at,
-                    children: [children[0], children[1]],
-                    shares: [shares[0], shares[1]],
+                    children: [made[0], made[1]],
+                    shares: [children.shares[0], children.shares[1]],
                 },
                 None => Split::Nominal {
-                    feature,
-                    children,
-                    shares,
+                    feature: children.feature,
+                    children: made,
+                    shares: children.shares.clone(),
                 },
             });
         }
@@ -921,8 +513,8 @@ impl CostTree {
     /// assert_eq!(tree.classify(&frame, 4, &prices).tests, vec![0]);
     /// ```
     pub fn classify(&self, frame: &Frame, row: usize, prices: &TestPrices) -> Classification {
-        let mut basket = Basket::new(prices);
-        let mut tests = Vec::new();
+        let mut tests: Vec<usize> = Vec::new();
+        let mut spent = 0.0;
         // The common case: no missing value on the path.
         let mut at = 0usize;
         loop {
@@ -930,7 +522,7 @@ impl CostTree {
             let Some(split) = &node.split else {
                 return Classification {
                     class: node.label,
-                    test_cost: basket.spent(),
+                    test_cost: spent,
                     tests,
                 };
             };
@@ -938,8 +530,8 @@ impl CostTree {
             if frame.column(feature).is_missing(row) {
                 break;
             }
-            if !basket.has(feature) {
-                basket.buy(prices, feature);
+            if !tests.contains(&feature) {
+                spent += price_after(prices, feature, &tests);
                 tests.push(feature);
             }
             at = self.child(split, frame, row) as usize;
@@ -961,8 +553,8 @@ impl CostTree {
                 }
                 Some(split) => {
                     let feature = split.feature();
-                    if !basket.has(feature) {
-                        basket.buy(prices, feature);
+                    if !tests.contains(&feature) {
+                        spent += price_after(prices, feature, &tests);
                         tests.push(feature);
                     }
                     if frame.column(feature).is_missing(row) {
@@ -979,7 +571,7 @@ impl CostTree {
         }
         Classification {
             class: self.best_for(&mixed),
-            test_cost: basket.spent(),
+            test_cost: spent,
             tests,
         }
     }
@@ -1008,6 +600,67 @@ impl CostTree {
             // A frame whose column kinds differ from training: the first branch.
             (s, _) => s.children()[0],
         }
+    }
+}
+
+/// The test to split cell `c` on with these prices, if any: the best score among the
+/// tests with positive gain (for DTMC, a positive reduction of the expected total cost);
+/// for C4.5 only among those whose gain is at least the average. Ties go to the higher
+/// gain, then to the lower feature index.
+fn choose(splits: &mut Splits<'_>, c: u32, prices: &TestPrices, criterion: Criterion) -> Option<Stat> {
+    let total = splits.total(c);
+    let cost_based = splits.cost_based();
+    let path = std::mem::take(&mut splits.cell_mut(c).path);
+    // (value, score) of a test: the gain (DTMC: the reduction of the expected total cost)
+    // and the criterion's score at the test's price on this path.
+    let judge = |stat: &Stat| -> (f64, f64) {
+        let price = price_after(prices, stat.feature, &path);
+        if cost_based {
+            let reduction = stat.gain - price * total;
+            (reduction, reduction)
+        } else {
+            (stat.gain, criterion.score(stat.gain, stat.split_info, price))
+        }
+    };
+    let stats = splits.stats(c);
+    let floor = if matches!(criterion, Criterion::C45) {
+        let (sum, n) = stats
+            .iter()
+            .map(|s| judge(s).0)
+            .filter(|&v| v > 1e-9)
+            .fold((0.0, 0usize), |(s, n), v| (s + v, n + 1));
+        if n > 0 { sum / n as f64 - 1e-12 } else { 0.0 }
+    } else {
+        f64::NEG_INFINITY
+    };
+    let mut best: Option<(Stat, f64, f64)> = None;
+    for stat in stats {
+        let (value, score) = judge(stat);
+        if value <= 1e-9 || value < floor || score <= 0.0 {
+            continue;
+        }
+        let better = match &best {
+            None => true,
+            Some(b) => score > b.2 || (score == b.2 && value > b.1),
+        };
+        if better {
+            best = Some((*stat, value, score));
+        }
+    }
+    splits.cell_mut(c).path = path;
+    best.map(|b| b.0)
+}
+
+/// The price of `test` after the tests `done`: nothing if it was done, its discount if a
+/// test of its group was, its full price otherwise ([`Basket`]'s rule, for a path).
+fn price_after(prices: &TestPrices, test: usize, done: &[usize]) -> f64 {
+    if done.contains(&test) {
+        return 0.0;
+    }
+    let t = prices.test(test);
+    match t.group {
+        Some(g) if done.iter().any(|&d| prices.test(d).group == Some(g)) => t.discount,
+        _ => t.full,
     }
 }
 
