@@ -159,6 +159,10 @@ pub struct IcetParams {
     pub crossover: f64,
     /// The chance that one gene of a child is drawn anew.
     pub mutation: f64,
+    /// The most training objects the search uses (half to grow, half to score), drawn
+    /// stratified; the final tree grows on all of them. 400 by default, which leaves
+    /// Turney's smaller data sets whole and keeps the search's cost bounded on large ones.
+    pub search_objects: usize,
 }
 
 impl Default for IcetParams {
@@ -168,6 +172,7 @@ impl Default for IcetParams {
             generations: 20,
             crossover: 0.6,
             mutation: 0.05,
+            search_objects: 400,
         }
     }
 }
@@ -307,17 +312,24 @@ fn icet_search(
     for &r in rows {
         by_class[frame.class(r) as usize].push(r);
     }
-    let (mut grow_half, mut score_half) = (Vec::new(), Vec::new());
-    let mut flip = false;
+    // Each class shuffled, then all interleaved in proportion (the object at position i
+    // of a class of n comes at (i + 0.5) / n), so any prefix is stratified too.
+    let mut dealt: Vec<(f64, usize)> = Vec::with_capacity(rows.len());
     for class_rows in &mut by_class {
         shuffle(class_rows, &mut rng);
-        for &r in class_rows.iter() {
-            if flip {
-                score_half.push(r);
-            } else {
-                grow_half.push(r);
-            }
-            flip = !flip;
+        let n = class_rows.len() as f64;
+        for (i, &r) in class_rows.iter().enumerate() {
+            dealt.push(((i as f64 + 0.5) / n, r));
+        }
+    }
+    dealt.sort_by(|a, b| a.0.total_cmp(&b.0));
+    dealt.truncate(params.icet.search_objects.max(2));
+    let (mut grow_half, mut score_half) = (Vec::new(), Vec::new());
+    for (i, &(_, r)) in dealt.iter().enumerate() {
+        if i % 2 == 0 {
+            grow_half.push(r);
+        } else {
+            score_half.push(r);
         }
     }
     if score_half.is_empty() {
@@ -326,14 +338,22 @@ fn icet_search(
     // Every tree of the search grows on the same half: they share one split trie.
     let min_objects = GrowParams::new(Criterion::Eg2 { w: 1.0 }).min_objects;
     let ones = vec![1.0; grow_half.len()];
-    let mut splits = Splits::new(frame, &grow_half, &ones, mc, Criterion::Eg2 { w: 1.0 }, min_objects);
+    let mut splits = Splits::new(
+        frame,
+        &grow_half,
+        &ones,
+        mc,
+        Criterion::Eg2 { w: 1.0 },
+        min_objects,
+    );
+    splits.hold_out(&score_half);
     let mut fitness = |genes: &Genes| -> f64 {
         let (biased, w, confidence) = decode(genes, prices);
         let biased = prices.repriced(&biased).unwrap_or_else(|_| prices.clone());
         let grow = GrowParams::new(Criterion::Eg2 { w }).pruned(confidence);
-        let tree = CostTree::grow_in(&mut splits, &biased, mc, &grow);
-        mean_total_cost(&tree, frame, &score_half, prices, mc)
+        CostTree::held_out_cost(&mut splits, &biased, prices, mc, &grow)
     };
+
     let icet = params.icet;
     let size = icet.population.max(2);
     // The first individual is plain EG2 with C4.5's confidence: the search starts from it.

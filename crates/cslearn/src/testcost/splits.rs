@@ -24,6 +24,8 @@ pub(crate) struct Stat {
     pub gain: f64,
     /// C4.5's split information.
     pub split_info: f64,
+    /// `2^gain - 1`, EG2's numerator.
+    pub exp2_gain: f64,
 }
 
 /// The children of a node for one test.
@@ -35,6 +37,8 @@ pub(crate) struct Children {
     pub cells: Vec<Option<u32>>,
     /// The share of the objects with a known value in each branch.
     pub shares: Vec<f64>,
+    /// The held-out objects' weight per class in each branch (empty without them).
+    pub held_out: Vec<Vec<f64>>,
 }
 
 /// A node of the trie: the objects reaching it (with C4.5's weights), what it knows of
@@ -50,6 +54,11 @@ pub(crate) struct Cell {
     pub path: Vec<usize>,
     /// Weight per class.
     pub class_weights: Vec<f64>,
+    /// The held-out objects reaching the cell (scored, never learned from), with weights.
+    held_rows: Vec<u32>,
+    held_weights: Vec<f64>,
+    /// The held-out objects' weight per class.
+    pub held_classes: Vec<f64>,
     stats: Option<Vec<Stat>>,
     children: Vec<Children>,
 }
@@ -187,10 +196,26 @@ impl<'a> Splits<'a> {
             order,
             path: Vec::new(),
             class_weights,
+            held_rows: Vec::new(),
+            held_weights: Vec::new(),
+            held_classes: Vec::new(),
             stats: None,
             children: Vec::new(),
         });
         splits
+    }
+
+    /// Also sends the objects `held_out` of the frame down every split made, to score
+    /// trees on them without classifying them one by one
+    /// ([`CostTree::held_out_cost`](super::CostTree)); call before any split is made.
+    pub fn hold_out(&mut self, held_out: &[usize]) {
+        let rows: Vec<u32> = held_out.iter().map(|&r| r as u32).collect();
+        let weights = vec![1.0; rows.len()];
+        let classes = self.class_weights(&rows, &weights);
+        let root = &mut self.cells[0];
+        root.held_rows = rows;
+        root.held_weights = weights;
+        root.held_classes = classes;
     }
 
     /// Whether the statistics are DTMC's.
@@ -288,6 +313,7 @@ impl<'a> Splits<'a> {
                         at: None,
                         gain: before - after,
                         split_info: 1.0,
+                        exp2_gain: 0.0,
                     });
                 }
                 let after: f64 = (0..v)
@@ -302,6 +328,7 @@ impl<'a> Splits<'a> {
                     at: None,
                     gain,
                     split_info,
+                    exp2_gain: gain.exp2() - 1.0,
                 })
             }
             Column::Numeric(x) => {
@@ -379,6 +406,7 @@ impl<'a> Splits<'a> {
                         at: Some(at),
                         gain: before_cost + quality,
                         split_info: 1.0,
+                        exp2_gain: 0.0,
                     });
                 }
                 let share = known_total / total;
@@ -396,11 +424,11 @@ impl<'a> Splits<'a> {
                     at: Some(at),
                     gain,
                     split_info,
+                    exp2_gain: gain.exp2() - 1.0,
                 })
             }
         }
     }
-
 
     /// The children of cell `c` for `stat`'s test, made on first use: the objects with a
     /// known value go to their branch, the others to every branch with their weight split
@@ -451,14 +479,15 @@ impl<'a> Splits<'a> {
         let cell = &self.cells[c as usize];
         let n = cell.rows.len();
         let mut parts: Vec<(Vec<u32>, Vec<f64>)> = vec![(Vec::new(), Vec::new()); branches];
-        // Where each of the cell's objects sits in each child, u32::MAX if absent.
-        let mut position: Vec<Vec<u32>> = vec![vec![u32::MAX; n]; branches];
+        // Where each of the cell's objects sits in each child (`position[b * n + p]`),
+        // u32::MAX if absent.
+        let mut position: Vec<u32> = vec![u32::MAX; branches * n];
         let mut known_by_branch = vec![0.0; branches];
         let mut unknown: Vec<usize> = Vec::new();
         for (p, (&r, &w)) in cell.rows.iter().zip(&cell.weights).enumerate() {
             match branch_of(r) {
                 Some(b) => {
-                    position[b][p] = parts[b].0.len() as u32;
+                    position[b * n + p] = parts[b].0.len() as u32;
                     parts[b].0.push(r);
                     parts[b].1.push(w);
                     known_by_branch[b] += w;
@@ -471,16 +500,40 @@ impl<'a> Splits<'a> {
         for &p in &unknown {
             for (b, part) in parts.iter_mut().enumerate() {
                 if shares[b] > 0.0 {
-                    position[b][p] = part.0.len() as u32;
+                    position[b * n + p] = part.0.len() as u32;
                     part.0.push(cell.rows[p]);
                     part.1.push(cell.weights[p] * shares[b]);
                 }
             }
         }
+        // The held-out objects follow the same rule, with the training shares.
+        let mut held: Vec<(Vec<u32>, Vec<f64>)> = vec![(Vec::new(), Vec::new()); branches];
+        for (&r, &w) in cell.held_rows.iter().zip(&cell.held_weights) {
+            match branch_of(r) {
+                Some(b) => {
+                    held[b].0.push(r);
+                    held[b].1.push(w);
+                }
+                None => {
+                    for (b, part) in held.iter_mut().enumerate() {
+                        if shares[b] > 0.0 {
+                            part.0.push(r);
+                            part.1.push(w * shares[b]);
+                        }
+                    }
+                }
+            }
+        }
+        let held_out: Vec<Vec<f64>> = held
+            .iter()
+            .map(|(rows, weights)| self.class_weights(rows, weights))
+            .collect();
         let mut path = cell.path.clone();
         path.push(feature);
         let mut made = Vec::with_capacity(branches);
-        for (b, (rows, weights)) in parts.into_iter().enumerate() {
+        for (b, ((rows, weights), (held_rows, held_weights))) in
+            parts.into_iter().zip(held).enumerate()
+        {
             if rows.is_empty() {
                 made.push(None);
                 continue;
@@ -493,7 +546,7 @@ impl<'a> Splits<'a> {
                     sorted
                         .iter()
                         .filter_map(|&p| {
-                            let q = position[b][p as usize];
+                            let q = position[b * n + p as usize];
                             (q != u32::MAX).then_some(q)
                         })
                         .collect()
@@ -506,6 +559,9 @@ impl<'a> Splits<'a> {
                 order,
                 path: path.clone(),
                 class_weights,
+                held_classes: held_out[b].clone(),
+                held_rows,
+                held_weights,
                 stats: None,
                 children: Vec::new(),
             });
@@ -516,6 +572,7 @@ impl<'a> Splits<'a> {
             at: stat.at,
             cells: made,
             shares,
+            held_out,
         }
     }
 }
@@ -533,6 +590,9 @@ impl Cell {
             order: Vec::new(),
             path: Vec::new(),
             class_weights: Vec::new(),
+            held_rows: Vec::new(),
+            held_weights: Vec::new(),
+            held_classes: Vec::new(),
             stats: None,
             children: Vec::new(),
         }

@@ -276,7 +276,14 @@ impl CostTree {
         mc: &MisclassCosts,
         params: &GrowParams,
     ) -> CostTree {
-        let mut splits = Splits::new(frame, rows, weights, mc, params.criterion, params.min_objects);
+        let mut splits = Splits::new(
+            frame,
+            rows,
+            weights,
+            mc,
+            params.criterion,
+            params.min_objects,
+        );
         CostTree::grow_in(&mut splits, prices, mc, params)
     }
 
@@ -288,59 +295,7 @@ impl CostTree {
         mc: &MisclassCosts,
         params: &GrowParams,
     ) -> CostTree {
-        let root = splits.cell(0).class_weights.clone();
-        let mut nodes = vec![TreeNode {
-            label: mc.best(&root).0 as u32,
-            weights: root,
-            split: None,
-        }];
-        let mut stack: Vec<(NodeIndex, u32)> = vec![(0, 0)];
-        while let Some((node, c)) = stack.pop() {
-            let cell = splits.cell(c);
-            let pure = cell.class_weights.iter().filter(|&&w| w > 1e-9).count() <= 1;
-            if pure || cell.path.len() >= params.max_depth {
-                continue;
-            }
-            let node_weights = cell.class_weights.clone();
-            let Some(best) = choose(splits, c, prices, params.criterion) else {
-                continue;
-            };
-            splits.children(c, &best);
-            let splits = &*splits;
-            let Some(children) = splits.cell(c).children_for(best.feature) else {
-                continue;
-            };
-            let mut made = Vec::with_capacity(children.cells.len());
-            for cell in &children.cells {
-                let weights = match cell {
-                    Some(child) => splits.cell(*child).class_weights.clone(),
-                    None => node_weights.clone(),
-                };
-                let index = nodes.len() as NodeIndex;
-                nodes.push(TreeNode {
-                    label: mc.best(&weights).0 as u32,
-                    weights,
-                    split: None,
-                });
-                made.push(index);
-                if let Some(child) = cell {
-                    stack.push((index, *child));
-                }
-            }
-            nodes[node as usize].split = Some(match children.at {
-                Some(at) => Split::Threshold {
-                    feature: children.feature,
-                    at,
-                    children: [made[0], made[1]],
-                    shares: [children.shares[0], children.shares[1]],
-                },
-                None => Split::Nominal {
-                    feature: children.feature,
-                    children: made,
-                    shares: children.shares.clone(),
-                },
-            });
-        }
+        let nodes = grow_nodes(splits, prices, mc, params);
         let mut tree = CostTree {
             nodes,
             mc: mc.clone(),
@@ -349,6 +304,34 @@ impl CostTree {
             tree.prune(confidence);
         }
         tree
+    }
+
+    /// The mean total cost, at `real` prices and `mc`, on the held-out objects of
+    /// `splits` ([`Splits::hold_out`]) of the tree [`grow_in`](CostTree::grow_in) would
+    /// grow: computed from the held-out weights each leaf receives, so without
+    /// classifying the objects one by one. An object whose value is missing at a split
+    /// is spread over the branches as in training and pays each path's tests in
+    /// proportion (classifying it pays the union of the paths' tests once and answers for
+    /// the mix); for objects without missing values the two agree exactly.
+    pub(crate) fn held_out_cost(
+        splits: &mut Splits<'_>,
+        prices: &TestPrices,
+        real: &TestPrices,
+        mc: &MisclassCosts,
+        params: &GrowParams,
+    ) -> f64 {
+        let walk = Walk {
+            scorer: Scorer::new(prices, params.criterion),
+            prices,
+            real,
+            mc,
+            params,
+            coeff: params.confidence.map_or(0.0, |c| deviation(c).powi(2)),
+        };
+        let mut path = Vec::new();
+        let (_, cost) = walk.subtree(splits, 0, &mut path, 0.0);
+        let n: f64 = splits.cell(0).held_classes.iter().sum();
+        if n > 0.0 { cost / n } else { 0.0 }
     }
 
     /// C4.5's pessimistic pruning (subtree replacement): bottom up, a subtree becomes a
@@ -372,6 +355,12 @@ impl CostTree {
     /// assert_eq!(CostTree::grow(&frame, &rows, &prices, &mc, &params.pruned(0.25)).len(), 1);
     /// ```
     pub fn prune(&mut self, confidence: f64) {
+        self.prune_in_place(confidence);
+        self.compact();
+    }
+
+    /// [`prune`](CostTree::prune) without dropping the nodes cut off.
+    fn prune_in_place(&mut self, confidence: f64) {
         let coeff = deviation(confidence).powi(2);
         let n = self.nodes.len();
         let mut estimate = vec![0.0; n];
@@ -385,7 +374,14 @@ impl CostTree {
             match &node.split {
                 None => estimate[i] = as_leaf,
                 Some(split) => {
-                    let subtree: f64 = split.children().iter().map(|&c| estimate[c as usize]).sum();
+                    // A branch no training object reached has no errors to estimate.
+                    let subtree: f64 = split
+                        .children()
+                        .iter()
+                        .zip(split.shares())
+                        .filter(|(_, s)| **s > 0.0)
+                        .map(|(&c, _)| estimate[c as usize])
+                        .sum();
                     if as_leaf <= subtree + 0.1 {
                         self.nodes[i].split = None;
                         estimate[i] = as_leaf;
@@ -395,7 +391,6 @@ impl CostTree {
                 }
             }
         }
-        self.compact();
     }
 
     /// Drops the nodes no longer reachable from the root, keeping parents before children.
@@ -603,11 +598,222 @@ impl CostTree {
     }
 }
 
+/// The nodes of the tree grown through `splits` with these prices, before pruning.
+fn grow_nodes(
+    splits: &mut Splits<'_>,
+    prices: &TestPrices,
+    mc: &MisclassCosts,
+    params: &GrowParams,
+) -> Vec<TreeNode> {
+    let scorer = Scorer::new(prices, params.criterion);
+    let root = splits.cell(0).class_weights.clone();
+    let mut nodes = vec![TreeNode {
+        label: mc.best(&root).0 as u32,
+        weights: root,
+        split: None,
+    }];
+    let mut stack: Vec<(NodeIndex, u32)> = vec![(0, 0)];
+    while let Some((node, c)) = stack.pop() {
+        let cell = splits.cell(c);
+        let pure = cell.class_weights.iter().filter(|&&w| w > 1e-9).count() <= 1;
+        if pure || cell.path.len() >= params.max_depth {
+            continue;
+        }
+        let node_weights = cell.class_weights.clone();
+        let Some(best) = choose(splits, c, prices, params.criterion, &scorer) else {
+            continue;
+        };
+        splits.children(c, &best);
+        let splits = &*splits;
+        let Some(children) = splits.cell(c).children_for(best.feature) else {
+            continue;
+        };
+        let mut made = Vec::with_capacity(children.cells.len());
+        for cell in &children.cells {
+            let weights = match cell {
+                Some(child) => splits.cell(*child).class_weights.clone(),
+                None => node_weights.clone(),
+            };
+            let index = nodes.len() as NodeIndex;
+            nodes.push(TreeNode {
+                label: mc.best(&weights).0 as u32,
+                weights,
+                split: None,
+            });
+            made.push(index);
+            if let Some(child) = cell {
+                stack.push((index, *child));
+            }
+        }
+        nodes[node as usize].split = Some(match children.at {
+            Some(at) => Split::Threshold {
+                feature: children.feature,
+                at,
+                children: [made[0], made[1]],
+                shares: [children.shares[0], children.shares[1]],
+            },
+            None => Split::Nominal {
+                feature: children.feature,
+                children: made,
+                shares: children.shares.clone(),
+            },
+        });
+    }
+    nodes
+}
+
+/// What [`CostTree::held_out_cost`] walks with: the tree is never built, each subtree
+/// reports its pessimistic error estimate and the held-out objects' total cost.
+struct Walk<'a> {
+    scorer: Scorer,
+    prices: &'a TestPrices,
+    real: &'a TestPrices,
+    mc: &'a MisclassCosts,
+    params: &'a GrowParams,
+    coeff: f64,
+}
+
+impl Walk<'_> {
+    /// A leaf with these training weights, reached by these held-out weights after
+    /// paying `paid`: (its error estimate, the held-out total cost).
+    fn leaf(&self, weights: &[f64], label_weights: &[f64], held: &[f64], paid: f64) -> (f64, f64) {
+        let label = self.mc.best(label_weights).0;
+        let reached: f64 = held.iter().sum();
+        let wrong: f64 = held
+            .iter()
+            .enumerate()
+            .map(|(c, w)| w * self.mc.cost(label, c))
+            .sum();
+        let estimate = match self.params.confidence {
+            Some(confidence) => {
+                let total: f64 = weights.iter().sum();
+                let errors = total - weights.iter().copied().fold(0.0, f64::max);
+                errors + added_errors(total, errors, confidence, self.coeff)
+            }
+            None => 0.0,
+        };
+        (estimate, wrong + reached * paid)
+    }
+
+    /// The subtree grown from cell `c`, after the tests `path` that cost `paid`.
+    fn subtree(
+        &self,
+        splits: &mut Splits<'_>,
+        c: u32,
+        path: &mut Vec<usize>,
+        paid: f64,
+    ) -> (f64, f64) {
+        let as_leaf = {
+            let cell = splits.cell(c);
+            self.leaf(
+                &cell.class_weights,
+                &cell.class_weights,
+                &cell.held_classes,
+                paid,
+            )
+        };
+        let cell = splits.cell(c);
+        let pure = cell.class_weights.iter().filter(|&&w| w > 1e-9).count() <= 1;
+        if pure || cell.path.len() >= self.params.max_depth {
+            return as_leaf;
+        }
+        let Some(best) = choose(splits, c, self.prices, self.params.criterion, &self.scorer) else {
+            return as_leaf;
+        };
+        let branches = splits.children(c, &best).cells.len();
+        let feature = best.feature;
+        let bought = !path.contains(&feature);
+        let paid_below = if bought {
+            paid + price_after(self.real, feature, path)
+        } else {
+            paid
+        };
+        if bought {
+            path.push(feature);
+        }
+        let (mut estimate, mut cost) = (0.0, 0.0);
+        for b in 0..branches {
+            let child = splits
+                .cell(c)
+                .children_for(feature)
+                .and_then(|ch| ch.cells[b]);
+            let (e, k) = match child {
+                Some(child) => self.subtree(splits, child, path, paid_below),
+                None => {
+                    let cell = splits.cell(c);
+                    let held = cell
+                        .children_for(feature)
+                        .and_then(|ch| ch.held_out.get(b))
+                        .map_or(&[][..], Vec::as_slice);
+                    // No training object: no errors to estimate, the parent's answer.
+                    let (_, k) = self.leaf(&[], &cell.class_weights, held, paid_below);
+                    (0.0, k)
+                }
+            };
+            estimate += e;
+            cost += k;
+        }
+        if bought {
+            path.pop();
+        }
+        if self.params.confidence.is_some() && as_leaf.0 <= estimate + 0.1 {
+            as_leaf
+        } else {
+            (estimate, cost)
+        }
+    }
+}
+
+/// A criterion's score, with EG2's price factor `(price + 1)^w` computed once per test
+/// and price rather than at every node.
+struct Scorer {
+    criterion: Criterion,
+    /// Per test: its full and discount prices with their EG2 factors.
+    eg2: Vec<[(f64, f64); 2]>,
+}
+
+impl Scorer {
+    fn new(prices: &TestPrices, criterion: Criterion) -> Scorer {
+        let eg2 = match criterion {
+            Criterion::Eg2 { w } => (0..prices.len())
+                .map(|i| {
+                    let t = prices.test(i);
+                    [
+                        (t.full, (t.full + 1.0).powf(w)),
+                        (t.discount, (t.discount + 1.0).powf(w)),
+                    ]
+                })
+                .collect(),
+            _ => Vec::new(),
+        };
+        Scorer { criterion, eg2 }
+    }
+
+    fn score(&self, stat: &Stat, price: f64) -> f64 {
+        match self.criterion {
+            Criterion::Eg2 { w } => {
+                let factor = self.eg2[stat.feature]
+                    .iter()
+                    .find(|(p, _)| *p == price)
+                    .map_or_else(|| (price + 1.0).powf(w), |(_, f)| *f);
+                stat.exp2_gain / factor
+            }
+            c => c.score(stat.gain, stat.split_info, price),
+        }
+    }
+}
+
 /// The test to split cell `c` on with these prices, if any: the best score among the
 /// tests with positive gain (for DTMC, a positive reduction of the expected total cost);
 /// for C4.5 only among those whose gain is at least the average. Ties go to the higher
 /// gain, then to the lower feature index.
-fn choose(splits: &mut Splits<'_>, c: u32, prices: &TestPrices, criterion: Criterion) -> Option<Stat> {
+fn choose(
+    splits: &mut Splits<'_>,
+    c: u32,
+    prices: &TestPrices,
+    criterion: Criterion,
+    scorer: &Scorer,
+) -> Option<Stat> {
     let total = splits.total(c);
     let cost_based = splits.cost_based();
     let path = std::mem::take(&mut splits.cell_mut(c).path);
@@ -619,7 +825,7 @@ fn choose(splits: &mut Splits<'_>, c: u32, prices: &TestPrices, criterion: Crite
             let reduction = stat.gain - price * total;
             (reduction, reduction)
         } else {
-            (stat.gain, criterion.score(stat.gain, stat.split_info, price))
+            (stat.gain, scorer.score(stat, price))
         }
     };
     let stats = splits.stats(c);
