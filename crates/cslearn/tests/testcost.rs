@@ -1,0 +1,358 @@
+//! The test-cost family: each selection function against hand-computed choices, C4.5's
+//! pruning by hand, group discounts, missing values, ICET's seed, the shipped data sets
+//! and the refusals of bad cost files.
+
+use std::path::Path;
+
+use cslearn::testcost::{
+    Catalogue, Column, CostTree, Criterion, FamilyParams, Frame, GrowParams, Method, MisclassCosts,
+    Split, TestPrice, TestPrices, TurneyExtra, fit, standard_cost,
+};
+
+/// Eight objects, four of each class. Feature `a` (price 10) tells the class exactly:
+/// gain 1. Feature `b` (price 1) splits them 3:1 and 1:3: gain 1 - H(1/4) = 0.18872.
+fn two_features() -> Frame {
+    let a = vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0];
+    let b = vec![0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 1.0];
+    Frame::new(
+        vec!["a".into(), "b".into()],
+        vec![Column::Numeric(a), Column::Numeric(b)],
+        vec![0, 0, 0, 0, 1, 1, 1, 1],
+        vec!["no".into(), "yes".into()],
+    )
+    .unwrap()
+}
+
+fn root_test(criterion: Criterion, mc: f64) -> Option<usize> {
+    let frame = two_features();
+    let prices = TestPrices::flat(&[10.0, 1.0]).unwrap();
+    let mc = MisclassCosts::uniform(2, mc).unwrap();
+    let rows: Vec<usize> = (0..8).collect();
+    let tree = CostTree::grow(&frame, &rows, &prices, &mc, &GrowParams::new(criterion));
+    tree.node(0).split.as_ref().map(Split::feature)
+}
+
+#[test]
+fn each_selection_function_picks_the_hand_computed_test() {
+    let gain_b = 1.0 - (-(0.25f64 * 0.25f64.log2() + 0.75 * 0.75f64.log2()));
+    assert!((gain_b - 0.188_72).abs() < 1e-5);
+    // ID3 and C4.5: the larger gain (ratio): a (1 against 0.189).
+    assert_eq!(root_test(Criterion::Id3, 100.0), Some(0));
+    assert_eq!(root_test(Criterion::C45, 100.0), Some(0));
+    // IDX, gain / price: a 1/10 = 0.1, b 0.189 / 1: b.
+    assert_eq!(root_test(Criterion::Idx, 100.0), Some(1));
+    // CS-ID3, gain^2 / price: a 0.1, b 0.0356: a.
+    assert!(gain_b * gain_b < 0.1);
+    assert_eq!(root_test(Criterion::CsId3, 100.0), Some(0));
+    // EG2 (w = 1), (2^gain - 1) / (price + 1): a 1/11 = 0.0909, b 0.1397 / 2 = 0.0698: a;
+    // with w = 0 the price does not count and the gain decides.
+    assert!((gain_b.exp2() - 1.0) / 2.0 < 1.0 / 11.0);
+    assert_eq!(root_test(Criterion::Eg2 { w: 1.0 }, 100.0), Some(0));
+    // DTMC, reduction of expected total cost. mc = 10: as a leaf 4 * 10 = 40; a leaves 0
+    // errors but costs 8 * 10 = 80 (reduction -40); b leaves 2 errors (20) for 8 * 1
+    // (reduction 12): b. mc = 100: a 400 - 80 = 320, b 400 - 200 - 8 = 192: a.
+    assert_eq!(root_test(Criterion::Dtmc, 10.0), Some(1));
+    assert_eq!(root_test(Criterion::Dtmc, 100.0), Some(0));
+    // mc = 1: no test pays for itself (a: 4 - 80, b: 4 - 2 - 8): a leaf.
+    assert_eq!(root_test(Criterion::Dtmc, 1.0), None);
+}
+
+#[test]
+fn pessimistic_pruning_matches_a_hand_computed_tree() {
+    // Ten objects: x < 5 are class a except one b at x = 2; x >= 5 are class b.
+    // The full tree splits at 4.5, then the left side again around the odd object.
+    let x: Vec<f64> = (0..10).map(f64::from).collect();
+    let classes = vec![0, 0, 1, 0, 0, 1, 1, 1, 1, 1];
+    let frame = Frame::new(
+        vec!["x".into()],
+        vec![Column::Numeric(x)],
+        classes,
+        vec!["a".into(), "b".into()],
+    )
+    .unwrap();
+    let prices = TestPrices::flat(&[1.0]).unwrap();
+    let mc = MisclassCosts::uniform(2, 1.0).unwrap();
+    let rows: Vec<usize> = (0..10).collect();
+    let mut params = GrowParams::new(Criterion::Id3);
+    params.min_objects = 1.0;
+    let full = CostTree::grow(&frame, &rows, &prices, &mc, &params);
+    assert!(full.len() > 3, "the full tree isolates the odd object");
+    // By hand, at confidence 0.25 (z = 0.6925, z^2 = 0.4796), estimated errors
+    // N * U(E, N): the left node (5 objects, 1 error) as a leaf, with e = E + 0.5:
+    // (1.5 + 0.2398 + sqrt(0.4796 * (1.5 * 0.7 + 0.1199))) / 5.4796 = 0.4542, so 2.271;
+    // its subtree's three pure leaves of 2, 1 and 2 objects, N (1 - 0.25^(1/N)) each:
+    // 1 + 0.75 + 1 = 2.75. As 2.271 <= 2.75 + 0.1, the left subtree becomes a leaf.
+    // The root (10 objects, 4 errors) as a leaf: 5.587; its subtree: 2.271 + 1.211
+    // (5 pure objects) = 3.482: the root's split stays.
+    let leaf = |n: f64| n * (1.0 - 0.25f64.powf(1.0 / n));
+    assert!((leaf(2.0) - 1.0).abs() < 1e-12 && (leaf(1.0) - 0.75).abs() < 1e-12);
+    let pruned = CostTree::grow(&frame, &rows, &prices, &mc, &params.pruned(0.25));
+    assert_eq!(pruned.len(), 3, "root split kept, the left subtree pruned");
+    let Some(Split::Threshold { at, .. }) = &pruned.node(0).split else {
+        panic!("the root keeps its threshold");
+    };
+    assert_eq!(*at, 4.5);
+}
+
+#[test]
+fn a_group_discount_is_charged_once_per_group_and_object() {
+    // The class is x AND y (each combination twice): the tree tests x, then y where x is
+    // 1. x and y form one group (full 10, discount 2); z, alone at 5, tells nothing.
+    let x = vec![0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 1.0];
+    let y = vec![0.0, 1.0, 0.0, 1.0, 0.0, 1.0, 0.0, 1.0];
+    let z = vec![0.0; 8];
+    let classes = vec![0, 0, 0, 1, 0, 0, 0, 1];
+    let frame = Frame::new(
+        vec!["x".into(), "y".into(), "z".into()],
+        vec![Column::Numeric(x), Column::Numeric(y), Column::Numeric(z)],
+        classes,
+        vec!["no".into(), "yes".into()],
+    )
+    .unwrap();
+    let grouped = |full, discount| TestPrice {
+        full,
+        discount,
+        group: Some(0),
+        delayed: false,
+    };
+    let prices = TestPrices::new(
+        vec![
+            grouped(10.0, 2.0),
+            grouped(10.0, 2.0),
+            TestPrice {
+                full: 5.0,
+                discount: 5.0,
+                group: None,
+                delayed: false,
+            },
+        ],
+        vec!["blood".into()],
+    )
+    .unwrap();
+    assert_eq!(prices.total(), 17.0);
+    let mc = MisclassCosts::uniform(2, 1000.0).unwrap();
+    let rows: Vec<usize> = (0..8).collect();
+    let mut params = GrowParams::new(Criterion::Id3);
+    params.min_objects = 1.0;
+    let tree = CostTree::grow(&frame, &rows, &prices, &mc, &params);
+    for r in 0..8 {
+        let c = tree.classify(&frame, r, &prices);
+        assert_eq!(c.class, frame.class(r));
+        if frame.column(0).is_missing(r) {
+            continue;
+        }
+        let Column::Numeric(x) = frame.column(0) else {
+            unreachable!()
+        };
+        if x[r] == 1.0 {
+            // x in full, then y at its discount: 12, not 20.
+            assert_eq!((c.tests.clone(), c.test_cost), (vec![0, 1], 12.0));
+        } else {
+            assert_eq!((c.tests.clone(), c.test_cost), (vec![0], 10.0));
+        }
+    }
+}
+
+#[test]
+fn a_missing_value_follows_every_branch_and_pays_their_tests() {
+    // x decides the class; y splits the objects with x = 1 again (pure by then, so never).
+    let x = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0, f64::NAN];
+    let frame = Frame::new(
+        vec!["x".into()],
+        vec![Column::Numeric(x)],
+        vec![0, 0, 0, 1, 1, 1, 1],
+        vec!["a".into(), "b".into()],
+    )
+    .unwrap();
+    let prices = TestPrices::flat(&[4.0]).unwrap();
+    let mc = MisclassCosts::from_rows(&[vec![0.0, 1.0], vec![50.0, 0.0]]).unwrap();
+    let rows: Vec<usize> = (0..6).collect();
+    let mut params = GrowParams::new(Criterion::Id3);
+    params.min_objects = 1.0;
+    let tree = CostTree::grow(&frame, &rows, &prices, &mc, &params);
+    let c = tree.classify(&frame, 6, &prices);
+    // It pays for x once, and is answered by the mix (half a, half b): answering a would
+    // cost 0.5 * 50 for the b half, answering b 0.5 * 1: b.
+    assert_eq!((c.test_cost, c.tests.clone()), (4.0, vec![0]));
+    assert_eq!(c.class, 1);
+}
+
+#[test]
+fn icet_is_reproducible_from_its_seed() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/uci");
+    let catalogue = Catalogue::read(&root.join("datasets.toml")).unwrap();
+    let heart = catalogue.load("heart").unwrap();
+    let prices = heart.turney.unwrap();
+    let mc = MisclassCosts::uniform(2, 500.0).unwrap();
+    let rows: Vec<usize> = (0..heart.frame.len()).step_by(2).collect();
+    let mut params = FamilyParams::default();
+    params.icet.generations = 4;
+    params.icet.population = 12;
+    let one = fit(Method::Icet, &heart.frame, &rows, &prices, &mc, &params, 7);
+    let again = fit(Method::Icet, &heart.frame, &rows, &prices, &mc, &params, 7);
+    let other = fit(Method::Icet, &heart.frame, &rows, &prices, &mc, &params, 8);
+    assert_eq!(one.tree, again.tree);
+    assert_eq!(one.genome, again.genome);
+    assert_ne!(one.genome, other.genome);
+    // The search starts from plain EG2, so its best is never worse on its own halves.
+    let genome = one.genome.unwrap();
+    assert!(genome.fitness.is_finite() && genome.fitness > 0.0);
+}
+
+#[test]
+fn every_shipped_data_set_loads_with_its_documented_classes() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/uci");
+    let catalogue = Catalogue::read(&root.join("datasets.toml")).unwrap();
+    let expected: &[(&str, usize, usize)] = &[
+        ("breast-cancer", 286, 2),
+        ("bupa", 345, 2),
+        ("car", 1728, 4),
+        ("flare", 1066, 2),
+        ("glass", 214, 6),
+        ("heart", 303, 2),
+        ("hepatitis", 155, 2),
+        ("iris", 150, 3),
+        ("krk", 28056, 18),
+        ("monks1", 124, 2),
+        ("monks2", 169, 2),
+        ("monks3", 122, 2),
+        ("nursery", 12960, 5),
+        ("pima", 768, 2),
+        ("tae", 151, 3),
+        ("thyroid", 7200, 3),
+        ("tic-tac-toe", 958, 2),
+        ("titanic", 2201, 2),
+    ];
+    assert_eq!(catalogue.sources().len(), expected.len());
+    for &(name, objects, classes) in expected {
+        let loaded = catalogue.load(name).unwrap();
+        assert_eq!(
+            (loaded.frame.len(), loaded.frame.class_count()),
+            (objects, classes),
+            "{name}"
+        );
+    }
+    let heart = catalogue.load("heart").unwrap();
+    assert_eq!(heart.frame.class_totals(), vec![164, 139]);
+    let thyroid = catalogue.load("thyroid").unwrap();
+    let prices = thyroid.turney.unwrap();
+    // 16 history tests at 1, the blood group (TSH, T3, TT4, T4U, FTI) with one draw.
+    let fti = thyroid.frame.feature("FTI").unwrap();
+    assert_eq!(prices.test(fti).group, Some(0));
+    let pima = catalogue.load("pima").unwrap();
+    assert!((pima.turney.unwrap().total() - (6.0 + 17.61 + 20.68)).abs() < 1e-9);
+    // Turney's standard cost on heart at mc 500: all tests 323.97 + (139/303) * 500.
+    let standard = standard_cost(
+        &heart.frame,
+        &heart.turney.unwrap(),
+        &MisclassCosts::uniform(2, 500.0).unwrap(),
+    );
+    assert!((standard - (323.97 + 139.0 / 303.0 * 500.0)).abs() < 1e-9);
+}
+
+fn turney_dir(files: &[(&str, &str)]) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, text) in files {
+        std::fs::write(dir.path().join(name), text).unwrap();
+    }
+    dir
+}
+
+fn read(dir: &tempfile::TempDir) -> Result<TestPrices, cslearn::Error> {
+    let names: Vec<String> = ["age", "chol", "fbs"].map(String::from).to_vec();
+    TestPrices::read_turney(&dir.path().join("t"), &names, &TurneyExtra::default())
+}
+
+#[test]
+fn bad_cost_files_are_refused_naming_file_and_line() {
+    let ok = turney_dir(&[
+        (
+            "t.expense",
+            "age: 1.00, 1.00\nchol: 7.27, 5.17\nfbs: 5.20, 3.10\n",
+        ),
+        ("t.group", "A.\n\nchol: A.\nfbs: A.\n"),
+    ]);
+    let prices = read(&ok).unwrap();
+    assert!((prices.total() - (1.0 + 5.17 + 3.10 + 2.10)).abs() < 1e-9);
+
+    let unknown = turney_dir(&[("t.expense", "age: 1, 1\nchol: 7, 5\nfbs: 5, 3\nzap: 2, 2\n")]);
+    let e = read(&unknown).unwrap_err().to_string();
+    assert!(
+        e.contains("t.expense: line 4") && e.contains("`zap` is not a column"),
+        "{e}"
+    );
+
+    let negative = turney_dir(&[("t.expense", "age: 1, 1\nchol: -7, 5\nfbs: 5, 3\n")]);
+    let e = read(&negative).unwrap_err().to_string();
+    assert!(e.contains("line 2") && e.contains("`-7`"), "{e}");
+
+    let nan = turney_dir(&[("t.expense", "age: 1, 1\nchol: 7, NaN\nfbs: 5, 3\n")]);
+    let e = read(&nan).unwrap_err().to_string();
+    assert!(e.contains("line 2") && e.contains("`NaN`"), "{e}");
+
+    let no_discount = turney_dir(&[
+        ("t.cost", "age: 1\nchol: 7.27\nfbs: 5.20\n"),
+        ("t.group", "A.\nchol: A.\n"),
+    ]);
+    let e = read(&no_discount).unwrap_err().to_string();
+    assert!(
+        e.contains("t.group: line 2") && e.contains("no discount price"),
+        "{e}"
+    );
+
+    let missing = turney_dir(&[("t.expense", "age: 1, 1\nchol: 7, 5\n")]);
+    let e = read(&missing).unwrap_err().to_string();
+    assert!(e.contains("no price for column `fbs`"), "{e}");
+
+    let unknown_group = turney_dir(&[
+        ("t.expense", "age: 1, 1\nchol: 7, 5\nfbs: 5, 3\n"),
+        ("t.group", "A.\nchol: B.\n"),
+    ]);
+    let e = read(&unknown_group).unwrap_err().to_string();
+    assert!(e.contains("line 2") && e.contains("group `B`"), "{e}");
+}
+
+#[test]
+fn bad_misclassification_matrices_are_refused() {
+    assert!(MisclassCosts::from_rows(&[vec![0.0, 1.0], vec![1.0]]).is_err());
+    assert!(MisclassCosts::from_rows(&[vec![0.0, -1.0], vec![1.0, 0.0]]).is_err());
+    assert!(MisclassCosts::from_rows(&[vec![0.0, f64::NAN], vec![1.0, 0.0]]).is_err());
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("mc.csv");
+    let classes = vec!["no".to_string(), "yes".to_string()];
+    std::fs::write(&path, "actual,no,yes\nno,0,10\nyes,100,0\n").unwrap();
+    let mc = MisclassCosts::read_csv(&path, &classes).unwrap();
+    assert_eq!((mc.cost(1, 0), mc.cost(0, 1)), (10.0, 100.0));
+    std::fs::write(&path, "actual,no,yes\nno,0,10\n").unwrap();
+    let e = MisclassCosts::read_csv(&path, &classes)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("no row for class `yes`"), "{e}");
+    std::fs::write(&path, "actual,no,yes\nno,0,-10\nyes,1,0\n").unwrap();
+    let e = MisclassCosts::read_csv(&path, &classes)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("mc.csv: line 2"), "{e}");
+    std::fs::write(&path, "actual,no,yes,maybe\nno,0,1,1\n").unwrap();
+    let e = MisclassCosts::read_csv(&path, &classes)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("line 1") && e.contains("3 class columns"), "{e}");
+}
+
+#[test]
+fn with_zero_test_prices_the_cost_learners_grow_the_information_tree() {
+    // With every price 0, IDX and CS-ID3 rank tests by gain as ID3 does.
+    let frame = two_features();
+    let prices = TestPrices::flat(&[0.0, 0.0]).unwrap();
+    let mc = MisclassCosts::uniform(2, 1.0).unwrap();
+    let rows: Vec<usize> = (0..8).collect();
+    for criterion in [Criterion::Idx, Criterion::CsId3, Criterion::Eg2 { w: 1.0 }] {
+        let tree = CostTree::grow(&frame, &rows, &prices, &mc, &GrowParams::new(criterion));
+        assert_eq!(
+            tree.node(0).split.as_ref().map(Split::feature),
+            Some(0),
+            "{criterion:?}"
+        );
+    }
+}
