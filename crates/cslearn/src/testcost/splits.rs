@@ -444,15 +444,14 @@ impl<'a> Splits<'a> {
             .children
             .iter()
             .position(|ch| ch.feature == stat.feature);
-        let index = match found {
+        match found {
             Some(i) => i,
             None => {
                 let made = self.split(c, stat);
                 self.cells[c as usize].children.push(made);
                 self.cells[c as usize].children.len() - 1
             }
-        };
-        index
+        }
     }
 
     fn split(&mut self, c: u32, stat: &Stat) -> Children {
