@@ -898,7 +898,7 @@ fn encode_column(name: &str, cells: &[&str], binning: Binning) -> (Column, Vec<O
 }
 
 /// The class of every record and the class names.
-fn classes(
+pub(crate) fn classes(
     table: &Table,
     target: usize,
     condition: Option<&Condition>,
@@ -1012,7 +1012,7 @@ fn describe(condition: &Condition) -> String {
 }
 
 /// Read the costs file for the feature columns `names`.
-fn read_costs(
+pub(crate) fn read_costs(
     reader: impl Read,
     path: &Path,
     names: &[&str],

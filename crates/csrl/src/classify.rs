@@ -33,61 +33,145 @@ use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use cslearn::{Dataset, DatasetOptions, LearnerKind};
 
-/// The learners `csrl classify` can run.
+/// The learners `csrl classify` can run: the incremental ones of the paper, and the
+/// batch trees of the test-cost family (`cslearn::testcost`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-enum Learner {
+pub(crate) enum Learner {
     /// CS-ID3: I^2/C selection, cheapest-first discrimination.
     CsId3,
     /// CS-IBL: instances ranked by mismatches, tolerant of wrong values.
     CsIbl,
     /// Cost-blind ID3: every cost taken as equal, random discrimination order.
     Id3,
+    /// Batch tree: C4.5 (gain ratio, pessimistic pruning), cost-blind.
+    #[value(name = "c45")]
+    C45,
+    /// Batch tree: IDX (gain / price), pruned as C4.5.
+    #[value(name = "idx")]
+    Idx,
+    /// Batch tree: CS-ID3's gain^2 / price, pruned as C4.5.
+    #[value(name = "cs-id3-batch")]
+    CsId3Batch,
+    /// Batch tree: EG2 ((2^gain - 1) / (price + 1)), pruned as C4.5.
+    #[value(name = "eg2")]
+    Eg2,
+    /// Batch tree: DTMC (least expected total cost of tests and errors).
+    #[value(name = "dtmc")]
+    Dtmc,
+    /// Batch tree: ICET (EG2 on prices found by a genetic search).
+    #[value(name = "icet")]
+    Icet,
+}
+
+impl Learner {
+    /// The learner of the test-cost family, for a batch tree.
+    pub(crate) fn family(self) -> Option<cslearn::testcost::Method> {
+        use cslearn::testcost::Method;
+        match self {
+            Learner::CsId3 | Learner::CsIbl | Learner::Id3 => None,
+            Learner::C45 => Some(Method::C45),
+            Learner::Idx => Some(Method::Idx),
+            Learner::CsId3Batch => Some(Method::CsId3Batch),
+            Learner::Eg2 => Some(Method::Eg2),
+            Learner::Dtmc => Some(Method::Dtmc),
+            Learner::Icet => Some(Method::Icet),
+        }
+    }
+
+    /// The name `--learner` takes.
+    pub(crate) fn name(self) -> &'static str {
+        match (self, self.family()) {
+            (_, Some(method)) => method.name(),
+            (Learner::CsId3, None) => "cs-id3",
+            (Learner::CsIbl, None) => "cs-ibl",
+            (_, None) => "id3",
+        }
+    }
 }
 
 /// Arguments of `csrl classify`.
 #[derive(Args)]
+#[command(
+    after_help = "The incremental learners (cs-id3, cs-ibl, id3) stream the objects \
+(prequential accuracy, and --holdout or --folds beside it). The batch trees of the test-cost \
+family (c45, idx, cs-id3-batch, eg2, dtmc, icet) are grown on training parts and judged on \
+the held-out objects by the total cost of their tests and errors (10-fold unless --holdout or \
+--folds); they read numeric columns as numbers, --costs also in Turney's format \
+(FILE.expense or FILE.cost) with --groups, and --mc, --mc-matrix and --cost-name. A flag \
+that the chosen learner does not read is refused."
+)]
 pub struct ClassifyArgs {
     /// The data: a CSV file with a header, one object per row; empty cells and `?` are
     /// missing values.
     #[arg(long, value_name = "FILE.csv")]
-    data: PathBuf,
-    /// The price of each feature: a CSV file with the header `feature,cost`.
+    pub(crate) data: PathBuf,
+    /// The price of each feature: a CSV file with the header `feature,cost`; for the
+    /// family learners also Turney's format, a file ending in `.expense` (`name: full,
+    /// discount`) or `.cost` (`name: price`).
     #[arg(long, value_name = "FILE.csv")]
-    costs: PathBuf,
+    pub(crate) costs: PathBuf,
     /// The column holding the class.
     #[arg(long, value_name = "COLUMN")]
-    target: String,
+    pub(crate) target: String,
     /// Make two classes of the target: where EXPR holds and where not. EXPR is `>0`,
     /// `>=1`, `<2`, `<=2`, `==1`, `!=0` or a category name.
     #[arg(long, value_name = "EXPR", allow_hyphen_values = true)]
-    positive_if: Option<String>,
+    pub(crate) positive_if: Option<String>,
     /// The learner.
     #[arg(long, value_enum, default_value_t = Learner::CsId3)]
-    learner: Learner,
-    /// The seed of the random order of the objects (and of ID3's discrimination orders).
+    pub(crate) learner: Learner,
+    /// The seed of the random order of the objects (and of ID3's discrimination orders;
+    /// for the family, of the folds and of ICET's search).
     #[arg(long, default_value_t = 1)]
-    seed: u64,
-    /// CS-IBL only: the most wrong feature values tolerated per object.
-    #[arg(long, default_value_t = 1)]
-    tolerance: u32,
+    pub(crate) seed: u64,
+    /// CS-IBL only: the most wrong feature values tolerated per object (1 unless given).
+    #[arg(long, value_name = "N")]
+    tolerance: Option<u32>,
     /// Also evaluate on held-out data: this share of the objects (seeded) is the test
-    /// part, the rest the training part.
+    /// part, the rest the training part (for the family, a share of each class).
     #[arg(long, value_name = "F", conflicts_with = "folds")]
-    holdout: Option<f64>,
-    /// Also evaluate by K-fold cross-validation (seeded folds).
+    pub(crate) holdout: Option<f64>,
+    /// Also evaluate by K-fold cross-validation (seeded folds; for the family,
+    /// stratified by class, and 10 unless --holdout or --folds is given).
     #[arg(long, value_name = "K")]
-    folds: Option<usize>,
+    pub(crate) folds: Option<usize>,
     /// Print one JSON object instead of a table.
     #[arg(long)]
-    json: bool,
+    pub(crate) json: bool,
     /// CS-ID3 only: write the decision tree grown (I^2/C, observation semantics) from the
     /// library the prequential pass learned, as Graphviz DOT (`dot -Tsvg FILE.dot`).
     #[arg(long, value_name = "FILE.dot")]
     dot: Option<PathBuf>,
     /// Save what the prequential pass learned as a model file (versioned JSON, format
-    /// `csrl-classifier`), for `csrl predict --model FILE`.
+    /// `csrl-classifier`), for `csrl predict --model FILE`; for the family, the tree grown
+    /// on every object (format `csrl-cost-tree`). It may not name an input file.
     #[arg(long, value_name = "MODEL.json")]
-    save: Option<PathBuf>,
+    pub(crate) save: Option<PathBuf>,
+    /// Family only: Turney's groups of tests (a `.group` file: the group names on its
+    /// first line, then `name: group.`); the first test of a group bought for an object
+    /// is paid in full, the others at their discount. Needs --costs FILE.expense.
+    #[arg(long, value_name = "FILE.group")]
+    pub(crate) groups: Option<PathBuf>,
+    /// Family only: what each wrong answer costs, the same for every pair of classes.
+    /// Without --mc or --mc-matrix it is the price of every test together (discounts
+    /// applied; 1 if that is 0), so that one error costs as much as measuring everything.
+    #[arg(
+        long,
+        value_name = "N",
+        conflicts_with = "mc_matrix",
+        allow_negative_numbers = true
+    )]
+    pub(crate) mc: Option<f64>,
+    /// Family only: a misclassification cost matrix, a CSV file with the header
+    /// `actual,<class>,...` and one row `<class>,<costs>...` per class (the cost of each
+    /// answer for an object of that class). Classes are named as the data names them
+    /// (`no` and `yes` with --positive-if).
+    #[arg(long, value_name = "FILE.csv")]
+    pub(crate) mc_matrix: Option<PathBuf>,
+    /// Family only: the price files call data column COLUMN by NAME (repeatable), as in
+    /// `--cost-name thalch=thalach`.
+    #[arg(long, value_name = "COLUMN=NAME")]
+    pub(crate) cost_name: Vec<String>,
 }
 
 /// Accuracy and cost per object on one test part (or summed over folds).
@@ -252,13 +336,14 @@ fn held_out(args: &ClassifyArgs, data: &Dataset) -> Result<Option<(String, HeldO
         let part = match args.learner {
             Learner::CsId3 => split_eval(cslearn::cs_id3(costs), data, train, test, &bar),
             Learner::CsIbl => split_eval(
-                cslearn::cs_ibl(costs, args.tolerance),
+                cslearn::cs_ibl(costs, args.tolerance.unwrap_or(1)),
                 data,
                 train,
                 test,
                 &bar,
             ),
-            Learner::Id3 => split_eval(
+            // Id3 (the family's learners never come here).
+            _ => split_eval(
                 cslearn::id3(
                     costs,
                     rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(
@@ -285,8 +370,85 @@ pub(crate) fn progress_bar(len: usize) -> indicatif::ProgressBar {
     )
 }
 
+/// Refuse a flag the chosen learner does not read, and an output that would overwrite an
+/// input.
+fn check_flags(args: &ClassifyArgs) -> Result<()> {
+    let name = args.learner.name();
+    if args.learner.family().is_some() {
+        anyhow::ensure!(
+            args.tolerance.is_none(),
+            "--tolerance is read by --learner cs-ibl only, not by --learner {name}"
+        );
+        anyhow::ensure!(
+            args.dot.is_none(),
+            "--dot draws CS-ID3's decision tree: it needs --learner cs-id3, not --learner {name}"
+        );
+    } else {
+        let family_only = [
+            ("--groups", args.groups.is_some()),
+            ("--mc", args.mc.is_some()),
+            ("--mc-matrix", args.mc_matrix.is_some()),
+            ("--cost-name", !args.cost_name.is_empty()),
+        ];
+        if let Some((flag, _)) = family_only.iter().find(|(_, given)| *given) {
+            anyhow::bail!(
+                "{flag} is read by the test-cost family only (--learner c45, idx, cs-id3-batch, \
+                 eg2, dtmc, icet), not by --learner {name}"
+            );
+        }
+        anyhow::ensure!(
+            !crate::testcost::is_turney(&args.costs),
+            "--costs {} is in Turney's format, which the test-cost family reads (--learner c45, \
+             idx, cs-id3-batch, eg2, dtmc, icet); --learner {name} reads a `feature,cost` CSV file",
+            args.costs.display()
+        );
+    }
+    let inputs = [
+        ("--data", Some(&args.data)),
+        ("--costs", Some(&args.costs)),
+        ("--groups", args.groups.as_ref()),
+        ("--mc-matrix", args.mc_matrix.as_ref()),
+    ];
+    for (flag, output) in [("--save", &args.save), ("--dot", &args.dot)] {
+        let Some(output) = output else { continue };
+        for (input, path) in inputs {
+            if let Some(path) = path
+                && same_file(output, path)
+            {
+                anyhow::bail!(
+                    "{flag} {} names the {input} file: it would overwrite it; give the output \
+                     a name of its own",
+                    output.display()
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Whether two paths name one existing file (through links too).
+pub(crate) fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
+    let (Ok(x), Ok(y)) = (std::fs::metadata(a), std::fs::metadata(b)) else {
+        return false;
+    };
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        x.dev() == y.dev() && x.ino() == y.ino()
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = (x, y);
+        std::fs::canonicalize(a).ok() == std::fs::canonicalize(b).ok()
+    }
+}
+
 /// Run `csrl classify`.
 pub fn run(args: &ClassifyArgs, out: &mut dyn Write) -> Result<()> {
+    check_flags(args)?;
+    if let Some(method) = args.learner.family() {
+        return crate::testcost::run(args, method, out);
+    }
     let mut options = DatasetOptions::new(args.target.as_str());
     options.positive_if.clone_from(&args.positive_if);
     let data = Dataset::load(&args.data, &args.costs, &options).context("cannot load the data")?;
@@ -294,11 +456,11 @@ pub fn run(args: &ClassifyArgs, out: &mut dyn Write) -> Result<()> {
         Learner::CsId3 => (LearnerKind::CsId3, "cs-id3"),
         Learner::CsIbl => (
             LearnerKind::CsIbl {
-                tolerance: args.tolerance,
+                tolerance: args.tolerance.unwrap_or(1),
             },
             "cs-ibl",
         ),
-        Learner::Id3 => (LearnerKind::Id3, "id3"),
+        _ => (LearnerKind::Id3, "id3"),
     };
     anyhow::ensure!(
         args.dot.is_none() || args.learner == Learner::CsId3,

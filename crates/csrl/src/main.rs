@@ -21,6 +21,7 @@ mod classify;
 mod maps;
 mod predict;
 mod run;
+mod testcost;
 mod worlds;
 
 use std::io::Write;

@@ -10,7 +10,8 @@ use clap::Args;
 /// Arguments of `csrl predict`.
 #[derive(Args)]
 pub struct PredictArgs {
-    /// The model: a file written by `csrl classify --save`.
+    /// The model: a file written by `csrl classify --save` (format `csrl-classifier`, or
+    /// `csrl-cost-tree` for a tree of the test-cost family).
     #[arg(long, value_name = "MODEL.json")]
     model: PathBuf,
     /// The rows to classify: a CSV file with a header. Columns are matched to the model's
@@ -31,9 +32,61 @@ fn field(text: &str) -> String {
     }
 }
 
+/// A model of either format, as `predict` uses it.
+enum Loaded {
+    Classifier(cslearn::Model),
+    Tree(cslearn::testcost::TreeModel),
+}
+
+impl Loaded {
+    fn class_name(&self, class: cslearn::ClassId) -> Option<&str> {
+        match self {
+            Loaded::Classifier(m) => m.class_name(class),
+            Loaded::Tree(m) => m.class_name(class.0),
+        }
+    }
+
+    fn feature_name(&self, feature: cslearn::FeatureId) -> Option<&str> {
+        match self {
+            Loaded::Classifier(m) => m.feature_name(feature),
+            Loaded::Tree(m) => m.feature_names().get(feature.index()).copied(),
+        }
+    }
+
+    fn predict_file_each(
+        &self,
+        path: &std::path::Path,
+        each: &mut dyn FnMut(cslearn::Prediction, usize),
+    ) -> Result<usize, cslearn::Error> {
+        match self {
+            Loaded::Classifier(m) => m.predict_file_each(path, each),
+            Loaded::Tree(m) => m.predict_file_each(path, each),
+        }
+    }
+
+    /// The learner and the size of what it learned, for the summary.
+    fn describe(&self) -> String {
+        match self {
+            Loaded::Classifier(m) => {
+                let name = match m.learner() {
+                    cslearn::LearnerKind::CsId3 => "cs-id3",
+                    cslearn::LearnerKind::CsIbl { .. } => "cs-ibl",
+                    cslearn::LearnerKind::Id3 => "id3",
+                };
+                format!("{name}, {} examples", m.library().len())
+            }
+            Loaded::Tree(m) => format!("{}, {} nodes", m.learner().name(), m.tree().len()),
+        }
+    }
+}
+
 /// Run `csrl predict`.
 pub fn run(args: &PredictArgs, out: &mut dyn Write) -> Result<()> {
-    let model = cslearn::Model::load(&args.model).context("cannot load the model")?;
+    let model =
+        match cslearn::testcost::SavedModel::load(&args.model).context("cannot load the model")? {
+            cslearn::testcost::SavedModel::Classifier(m) => Loaded::Classifier(m),
+            cslearn::testcost::SavedModel::Tree(m) => Loaded::Tree(m),
+        };
     // Rows are written as they are classified, so memory does not grow with the output.
     // The table is read and checked whole before the first row comes, so `--out` is
     // created only then: a refused table leaves an existing file as it was.
@@ -99,18 +152,13 @@ pub fn run(args: &PredictArgs, out: &mut dyn Write) -> Result<()> {
         (Some(e), Some(path)) => return Err(crate::cannot_write(path, e)),
         (Some(e), None) => return Err(e.into()),
     }
-    let name = match model.learner() {
-        cslearn::LearnerKind::CsId3 => "cs-id3",
-        cslearn::LearnerKind::CsIbl { .. } => "cs-ibl",
-        cslearn::LearnerKind::Id3 => "id3",
-    };
     crate::note(format_args!(
-        "classified {} row{} of {} with {} ({name}, {} examples): total cost {}, mean {:.4} per row{}",
+        "classified {} row{} of {} with {} ({}): total cost {}, mean {:.4} per row{}",
         rows,
         if rows == 1 { "" } else { "s" },
         args.data.display(),
         args.model.display(),
-        model.library().len(),
+        model.describe(),
         total,
         total / rows.max(1) as f64,
         args.out

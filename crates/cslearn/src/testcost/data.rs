@@ -344,6 +344,74 @@ impl Frame {
         Frame::from_cells(&path.display().to_string(), columns, &rows, spec)
     }
 
+    /// A frame from a CSV file with a header (the data file of `csrl classify`): numeric
+    /// columns kept as numbers (no binning), the others nominal, as
+    /// [`from_cells`](Frame::from_cells) reads them; with `positive_if` (`>0`, `==sick`,
+    /// ...) two classes, `no` and `yes`, as [`binarise`](Frame::binarise) makes them.
+    /// The file is read as [`Dataset::load`](crate::Dataset::load) reads it (a regular
+    /// file of at most [`MAX_FILE_BYTES`](crate::MAX_FILE_BYTES) bytes and
+    /// [`MAX_CELLS`](crate::MAX_CELLS) cells, quoted cells, trimmed), and every problem
+    /// names the file and, where there is one, the line: a ragged record, a column named
+    /// twice, no class column, an empty class cell, a class that is not a number where
+    /// `positive_if` compares numbers, or a `positive_if` that no class satisfies.
+    ///
+    /// ```
+    /// use cslearn::testcost::{Frame, FrameSpec};
+    /// let dir = tempfile::tempdir().unwrap();
+    /// let path = dir.path().join("d.csv");
+    /// std::fs::write(&path, "size,colour,num\n1.5,red,0\n?,\"blue\",2\n3,red,1\n").unwrap();
+    /// let frame = Frame::read_csv(&path, &FrameSpec::new("num"), Some(">0")).unwrap();
+    /// assert_eq!(frame.classes(), [0, 1, 1]);
+    /// assert!(frame.column(0).is_numeric() && !frame.column(1).is_numeric());
+    /// std::fs::write(&path, "size,num\n1,0\n2,\n").unwrap();
+    /// let err = Frame::read_csv(&path, &FrameSpec::new("num"), None).unwrap_err();
+    /// assert!(err.to_string().ends_with("d.csv: line 3: the target column is empty"));
+    /// ```
+    pub fn read_csv(
+        path: &std::path::Path,
+        spec: &FrameSpec,
+        positive_if: Option<&str>,
+    ) -> Result<Frame, Error> {
+        use crate::dataset::{Condition, classes, open_regular, read_table};
+        let condition = positive_if.map(Condition::parse).transpose()?;
+        let table = read_table(open_regular(path)?, path)?;
+        let at = || path.to_path_buf();
+        let mut seen = std::collections::BTreeSet::new();
+        if let Some(twice) = table.header.iter().find(|h| !seen.insert(h.as_str())) {
+            return Err(Error::DuplicateColumn {
+                path: at(),
+                column: twice.clone(),
+            });
+        }
+        let target = table
+            .header
+            .iter()
+            .position(|h| *h == spec.target)
+            .ok_or_else(|| Error::UnknownTarget {
+                path: at(),
+                target: spec.target.clone(),
+                columns: table.header.clone(),
+            })?;
+        if table.header.len() < 2 {
+            return Err(Error::NoFeatures { path: at() });
+        }
+        if table.is_empty() {
+            return Err(Error::NoRecords { path: at() });
+        }
+        // The class cells, line by line: an empty one, or one the rule cannot compare,
+        // is named with its line here (from_cells knows rows, not lines).
+        classes(&table, target, condition.as_ref(), path)?;
+        let rows: Vec<Vec<&str>> = table
+            .records()
+            .map(|(_, record)| (0..table.header.len()).map(|c| record.get(c)).collect())
+            .collect();
+        let frame = Frame::from_cells(&path.display().to_string(), &table.header, &rows, spec)?;
+        match positive_if {
+            Some(expr) => frame.binarise(expr),
+            None => Ok(frame),
+        }
+    }
+
     /// The number of objects.
     ///
     /// ```

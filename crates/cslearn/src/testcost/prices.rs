@@ -1,7 +1,7 @@
 //! What a classification costs: test prices with groups and discounts (Turney's cost
 //! files), and misclassification costs.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use crate::Error;
 
@@ -222,14 +222,12 @@ impl TestPrices {
         names: &[String],
         extra: &TurneyExtra,
     ) -> Result<TestPrices, Error> {
-        let read = |ext: &str| -> Result<Option<(std::path::PathBuf, String)>, Error> {
+        let read = |ext: &str| -> Result<Option<(PathBuf, String)>, Error> {
             let path = base.with_extension(ext);
             if !path.exists() {
                 return Ok(None);
             }
-            std::fs::read_to_string(&path)
-                .map(|text| Some((path.clone(), text)))
-                .map_err(|source| Error::Io { path, source })
+            read_text(&path).map(|text| Some((path, text)))
         };
         let expense = read("expense")?;
         let cost = if expense.is_none() {
@@ -237,161 +235,268 @@ impl TestPrices {
         } else {
             None
         };
-        let Some((price_path, price_text)) = expense.clone().or(cost) else {
+        let Some(prices) = expense.or(cost) else {
             return Err(Error::BadInput {
                 path: base.to_path_buf(),
                 at: "files".into(),
                 reason: "neither a .expense nor a .cost file".into(),
             });
         };
-        let mut full: Vec<Option<(f64, Option<f64>)>> = vec![None; names.len()];
-        let feature = |path: &Path, line: usize, name: &str| -> Result<usize, Error> {
-            names
-                .iter()
-                .position(|n| n == name)
-                .ok_or_else(|| Error::BadInput {
-                    path: path.to_path_buf(),
-                    at: format!("line {line}"),
-                    reason: format!(
-                        "`{name}` is not a column of the data (columns: {})",
-                        names.join(", ")
-                    ),
-                })
-        };
-        let sources = [
-            (price_path.clone(), price_text),
-            (price_path.with_extension("extra"), extra.prices.clone()),
-        ];
-        for (path, text) in &sources {
-            for (line, name, value) in entries(text) {
-                let at = || format!("line {line}");
-                let i = feature(path, line, name)?;
-                let numbers: Vec<&str> = value.split(',').map(str::trim).collect();
-                let parse = |cell: &str| -> Result<f64, Error> {
-                    cell.parse::<f64>()
-                        .ok()
-                        .filter(|x| x.is_finite() && *x >= 0.0)
-                        .ok_or_else(|| Error::BadInput {
-                            path: path.clone(),
-                            at: at(),
-                            reason: format!(
-                                "the price of `{name}` is `{cell}`, but prices must be finite, non-negative numbers"
-                            ),
-                        })
-                };
-                let entry = match numbers.as_slice() {
-                    [f] => (parse(f)?, None),
-                    [f, d] => (parse(f)?, Some(parse(d)?)),
-                    _ => {
-                        return Err(Error::BadInput {
-                            path: path.clone(),
-                            at: at(),
-                            reason: format!(
-                                "`{value}`: a price line is `name: full` or `name: full, discount`"
-                            ),
-                        });
-                    }
-                };
-                if full[i].is_some() {
+        let groups = read("group")?;
+        let delays = read("delay")?;
+        turney(prices, groups, delays, names, extra)
+    }
+
+    /// Prices in Turney's (1995) format from files named one by one: `prices` in the
+    /// format of `.expense` (`name: full, discount`) or `.cost` (`name: price`), `groups`
+    /// in that of `.group` (the group names on the first line, then `name: group.`) and
+    /// `delays` in that of `.delay` (`name: immediate.` or `name: delayed.`), for the
+    /// features `names` in column order. The same checks as
+    /// [`read_turney`](TestPrices::read_turney), which reads the same files found by
+    /// their extensions: a name that is not a feature, a feature with no price, a bad,
+    /// negative or NaN price, a grouped test without a discount price, or an unknown
+    /// group is refused, naming the file and line. Each file must be a regular file of at
+    /// most [`MAX_FILE_BYTES`](crate::MAX_FILE_BYTES) bytes of UTF-8 text.
+    ///
+    /// ```
+    /// use cslearn::testcost::TestPrices;
+    /// let dir = tempfile::tempdir().unwrap();
+    /// let (prices, groups) = (dir.path().join("p.expense"), dir.path().join("p.group"));
+    /// std::fs::write(&prices, "a: 10, 2\nb: 8, 3\nc: 1\n").unwrap();
+    /// std::fs::write(&groups, "G.\na: G.\nb: G.\n").unwrap();
+    /// let names = ["a", "b", "c"].map(String::from);
+    /// let p = TestPrices::read_turney_files(&prices, Some(&groups), None, &names).unwrap();
+    /// assert_eq!(p.total(), 8.0 + 2.0 + 1.0); // b in full, then a at its discount, and c
+    /// std::fs::write(&prices, "a: 10, 2\nb: 8\nc: 1\n").unwrap();
+    /// let err = TestPrices::read_turney_files(&prices, Some(&groups), None, &names).unwrap_err();
+    /// assert!(err.to_string().contains("p.group: line 3: `b` is in group `G` but"));
+    /// ```
+    pub fn read_turney_files(
+        prices: &Path,
+        groups: Option<&Path>,
+        delays: Option<&Path>,
+        names: &[String],
+    ) -> Result<TestPrices, Error> {
+        let read = |path: &Path| read_text(path).map(|text| (path.to_path_buf(), text));
+        let prices = read(prices)?;
+        let groups = groups.map(read).transpose()?;
+        let delays = delays.map(read).transpose()?;
+        turney(prices, groups, delays, names, &TurneyExtra::default())
+    }
+
+    /// Prices from a CSV file with the header `feature,cost` and one row per feature of
+    /// `names` (the `--costs` file of `csrl classify`'s incremental learners), without
+    /// groups; a row for `target` (the class column) is ignored. A name that is not a
+    /// feature, a second row for one, a feature with no row, or a cost that is not a
+    /// finite, non-negative number is refused, naming the file and line.
+    ///
+    /// ```
+    /// use cslearn::testcost::TestPrices;
+    /// let dir = tempfile::tempdir().unwrap();
+    /// let path = dir.path().join("costs.csv");
+    /// std::fs::write(&path, "feature,cost\nb,2.5\na,1\nclass,9\n").unwrap();
+    /// let names = ["a", "b"].map(String::from);
+    /// let p = TestPrices::read_csv(&path, &names, "class").unwrap();
+    /// assert_eq!((p.test(0).full, p.test(1).full), (1.0, 2.5));
+    /// std::fs::write(&path, "feature,cost\na,1\nb,NaN\n").unwrap();
+    /// let err = TestPrices::read_csv(&path, &names, "class").unwrap_err();
+    /// assert!(err.to_string().contains("costs.csv: line 3: the cost of `b` is `NaN`"));
+    /// ```
+    pub fn read_csv(path: &Path, names: &[String], target: &str) -> Result<TestPrices, Error> {
+        let file = crate::dataset::open_regular(path)?;
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        let costs = crate::dataset::read_costs(file, path, &names, target)?;
+        let prices: Vec<f64> = costs.as_slice().iter().map(|c| c.get()).collect();
+        TestPrices::flat(&prices)
+    }
+
+    /// Whether some test is in a group (so that its discount price is ever charged).
+    ///
+    /// ```
+    /// assert!(!cslearn::testcost::TestPrices::flat(&[1.0]).unwrap().has_groups());
+    /// ```
+    pub fn has_groups(&self) -> bool {
+        self.tests.iter().any(|t| t.group.is_some())
+    }
+
+    /// The same prices, checked as [`new`](TestPrices::new) checks them (for prices read
+    /// from a file by serde, which does not check).
+    pub(crate) fn checked(self) -> Result<TestPrices, Error> {
+        TestPrices::new(self.tests, self.group_names)
+    }
+}
+
+/// The text of a regular file of at most [`MAX_FILE_BYTES`](crate::MAX_FILE_BYTES) bytes,
+/// which must be UTF-8.
+fn read_text(path: &Path) -> Result<String, Error> {
+    let bytes = crate::dataset::read_bounded(crate::dataset::open_regular(path)?, path)?;
+    String::from_utf8(bytes).map_err(|e| Error::NotUtf8 {
+        path: path.to_path_buf(),
+        line: 1 + e.as_bytes()[..e.utf8_error().valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count() as u64,
+    })
+}
+
+/// Turney's prices from the texts of their files (each with its path, for messages), and
+/// the caller's extra lines.
+fn turney(
+    (price_path, price_text): (PathBuf, String),
+    groups: Option<(PathBuf, String)>,
+    delays: Option<(PathBuf, String)>,
+    names: &[String],
+    extra: &TurneyExtra,
+) -> Result<TestPrices, Error> {
+    let mut full: Vec<Option<(f64, Option<f64>)>> = vec![None; names.len()];
+    let feature = |path: &Path, line: usize, name: &str| -> Result<usize, Error> {
+        names
+            .iter()
+            .position(|n| n == name)
+            .ok_or_else(|| Error::BadInput {
+                path: path.to_path_buf(),
+                at: format!("line {line}"),
+                reason: format!(
+                    "`{name}` is not a column of the data (columns: {})",
+                    names.join(", ")
+                ),
+            })
+    };
+    let sources = [
+        (price_path.clone(), price_text),
+        (price_path.with_extension("extra"), extra.prices.clone()),
+    ];
+    for (path, text) in &sources {
+        for (line, name, value) in entries(text) {
+            let at = || format!("line {line}");
+            let i = feature(path, line, name)?;
+            let numbers: Vec<&str> = value.split(',').map(str::trim).collect();
+            let parse = |cell: &str| -> Result<f64, Error> {
+                cell.parse::<f64>()
+                    .ok()
+                    .filter(|x| x.is_finite() && *x >= 0.0)
+                    .ok_or_else(|| Error::BadInput {
+                        path: path.clone(),
+                        at: at(),
+                        reason: format!(
+                            "the price of `{name}` is `{cell}`, but prices must be finite, non-negative numbers"
+                        ),
+                    })
+            };
+            let entry = match numbers.as_slice() {
+                [f] => (parse(f)?, None),
+                [f, d] => (parse(f)?, Some(parse(d)?)),
+                _ => {
                     return Err(Error::BadInput {
                         path: path.clone(),
                         at: at(),
-                        reason: format!("a second price for `{name}`"),
-                    });
-                }
-                full[i] = Some(entry);
-            }
-        }
-        if let Some(i) = full.iter().position(Option::is_none) {
-            return Err(Error::BadInput {
-                path: price_path,
-                at: "end of file".into(),
-                reason: format!("no price for column `{}`", names[i]),
-            });
-        }
-        let mut group_names: Vec<String> = Vec::new();
-        let mut group: Vec<Option<u32>> = vec![None; names.len()];
-        let group_file = read("group")?;
-        let mut group_sources: Vec<(std::path::PathBuf, String)> = group_file.into_iter().collect();
-        group_sources.push((base.with_extension("group.extra"), extra.groups.clone()));
-        for (n, (path, text)) in group_sources.iter().enumerate() {
-            let mut lines = text
-                .lines()
-                .enumerate()
-                .filter(|(_, l)| !l.trim().is_empty());
-            if n == 0
-                && let Some((_, first)) = lines.clone().next()
-                && !first.contains(':')
-            {
-                lines.next();
-                group_names.extend(
-                    first
-                        .trim()
-                        .trim_end_matches('.')
-                        .split(',')
-                        .map(|g| g.trim().to_string())
-                        .filter(|g| !g.is_empty()),
-                );
-            }
-            for (line, name, value) in entries(text) {
-                let i = feature(path, line, name)?;
-                let g = value.trim_end_matches('.').trim();
-                let Some(code) = group_names.iter().position(|n| n == g) else {
-                    return Err(Error::BadInput {
-                        path: path.clone(),
-                        at: format!("line {line}"),
                         reason: format!(
-                            "group `{g}` of `{name}` is not among the groups listed on the first line ({})",
-                            group_names.join(", ")
-                        ),
-                    });
-                };
-                group[i] = Some(code as u32);
-                if full[i].is_some_and(|(_, d)| d.is_none()) {
-                    return Err(Error::BadInput {
-                        path: path.clone(),
-                        at: format!("line {line}"),
-                        reason: format!(
-                            "`{name}` is in group `{g}` but {} gives it no discount price (`name: full, discount`)",
-                            price_path.display()
+                            "`{value}`: a price line is `name: full` or `name: full, discount`"
                         ),
                     });
                 }
+            };
+            if full[i].is_some() {
+                return Err(Error::BadInput {
+                    path: path.clone(),
+                    at: at(),
+                    reason: format!("a second price for `{name}`"),
+                });
             }
+            full[i] = Some(entry);
         }
-        let mut delayed = vec![false; names.len()];
-        if let Some((path, text)) = read("delay")? {
-            for (line, name, value) in entries(&text) {
-                let i = feature(&path, line, name)?;
-                delayed[i] = match value.trim_end_matches('.').trim() {
-                    "immediate" => false,
-                    "delayed" => true,
-                    other => {
-                        return Err(Error::BadInput {
-                            path: path.clone(),
-                            at: format!("line {line}"),
-                            reason: format!("`{other}`: a delay is `immediate` or `delayed`"),
-                        });
-                    }
-                };
-            }
-        }
-        let tests = full
-            .into_iter()
-            .zip(group)
-            .zip(delayed)
-            .map(|((price, group), delayed)| {
-                let (full, discount) = price.unwrap_or((0.0, None));
-                TestPrice {
-                    full,
-                    discount: discount.unwrap_or(full),
-                    group,
-                    delayed,
-                }
-            })
-            .collect();
-        TestPrices::new(tests, group_names)
     }
+    if let Some(i) = full.iter().position(Option::is_none) {
+        return Err(Error::BadInput {
+            path: price_path,
+            at: "end of file".into(),
+            reason: format!("no price for column `{}`", names[i]),
+        });
+    }
+    let mut group_names: Vec<String> = Vec::new();
+    let mut group: Vec<Option<u32>> = vec![None; names.len()];
+    let mut group_sources: Vec<(PathBuf, String)> = groups.into_iter().collect();
+    group_sources.push((
+        price_path.with_extension("group.extra"),
+        extra.groups.clone(),
+    ));
+    for (n, (path, text)) in group_sources.iter().enumerate() {
+        let mut lines = text
+            .lines()
+            .enumerate()
+            .filter(|(_, l)| !l.trim().is_empty());
+        if n == 0
+            && let Some((_, first)) = lines.clone().next()
+            && !first.contains(':')
+        {
+            lines.next();
+            group_names.extend(
+                first
+                    .trim()
+                    .trim_end_matches('.')
+                    .split(',')
+                    .map(|g| g.trim().to_string())
+                    .filter(|g| !g.is_empty()),
+            );
+        }
+        for (line, name, value) in entries(text) {
+            let i = feature(path, line, name)?;
+            let g = value.trim_end_matches('.').trim();
+            let Some(code) = group_names.iter().position(|n| n == g) else {
+                return Err(Error::BadInput {
+                    path: path.clone(),
+                    at: format!("line {line}"),
+                    reason: format!(
+                        "group `{g}` of `{name}` is not among the groups listed on the first line ({})",
+                        group_names.join(", ")
+                    ),
+                });
+            };
+            group[i] = Some(code as u32);
+            if full[i].is_some_and(|(_, d)| d.is_none()) {
+                return Err(Error::BadInput {
+                    path: path.clone(),
+                    at: format!("line {line}"),
+                    reason: format!(
+                        "`{name}` is in group `{g}` but {} gives it no discount price (`name: full, discount`)",
+                        price_path.display()
+                    ),
+                });
+            }
+        }
+    }
+    let mut delayed = vec![false; names.len()];
+    if let Some((path, text)) = delays {
+        for (line, name, value) in entries(&text) {
+            let i = feature(&path, line, name)?;
+            delayed[i] = match value.trim_end_matches('.').trim() {
+                "immediate" => false,
+                "delayed" => true,
+                other => {
+                    return Err(Error::BadInput {
+                        path: path.clone(),
+                        at: format!("line {line}"),
+                        reason: format!("`{other}`: a delay is `immediate` or `delayed`"),
+                    });
+                }
+            };
+        }
+    }
+    let tests = full
+        .into_iter()
+        .zip(group)
+        .zip(delayed)
+        .map(|((price, group), delayed)| {
+            let (full, discount) = price.unwrap_or((0.0, None));
+            TestPrice {
+                full,
+                discount: discount.unwrap_or(full),
+                group,
+                delayed,
+            }
+        })
+        .collect();
+    TestPrices::new(tests, group_names)
 }
 
 /// Lines added to Turney's files by the caller, in the same formats: `prices` as in
@@ -665,6 +770,26 @@ impl MisclassCosts {
         MisclassCosts::from_rows(&rows)
     }
 
+    /// The same costs, checked: a square matrix of finite, non-negative entries (for
+    /// costs read from a file by serde, which does not check).
+    pub(crate) fn checked(self) -> Result<MisclassCosts, Error> {
+        if self.classes.checked_mul(self.classes) != Some(self.by_predicted.len()) {
+            return Err(Error::Invalid {
+                what: "misclassification matrix".into(),
+                reason: format!(
+                    "{} entries, but {} classes need {}",
+                    self.by_predicted.len(),
+                    self.classes,
+                    self.classes.saturating_mul(self.classes)
+                ),
+            });
+        }
+        for &c in &self.by_predicted {
+            check_price(c, "misclassification matrix")?;
+        }
+        Ok(self)
+    }
+
     /// The number of classes.
     ///
     /// ```
@@ -727,5 +852,213 @@ impl MisclassCosts {
     pub fn standard_cost(&self, shares: &[f64], prices: &TestPrices) -> f64 {
         let least = shares.iter().map(|f| 1.0 - f).fold(f64::INFINITY, f64::min);
         prices.total() + least * self.max()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The heart data's feature names, as Turney's files spell them.
+    fn heart_names() -> Vec<String> {
+        [
+            "age", "sex", "cp", "trestbps", "chol", "fbs", "restecg", "thalach", "exang",
+            "oldpeak", "slope", "ca", "thal",
+        ]
+        .map(String::from)
+        .to_vec()
+    }
+
+    fn heart(ext: &str) -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../data/uci/heart-disease/costs/heart-disease")
+            .with_extension(ext)
+    }
+
+    /// Files in a scratch directory, by name.
+    fn files(entries: &[(&str, &str)]) -> tempfile::TempDir {
+        let dir = tempfile::tempdir().unwrap();
+        for (name, text) in entries {
+            std::fs::write(dir.path().join(name), text).unwrap();
+        }
+        dir
+    }
+
+    #[test]
+    fn named_files_read_as_the_files_found_by_extension() {
+        let names = heart_names();
+        let by_base = TestPrices::read_turney(&heart("x"), &names, &TurneyExtra::default())
+            .expect("the shipped heart prices");
+        let named = TestPrices::read_turney_files(
+            &heart("expense"),
+            Some(&heart("group")),
+            Some(&heart("delay")),
+            &names,
+        )
+        .unwrap();
+        assert_eq!(named, by_base);
+        // thalach (102.90, 1.00) and thal (102.90, 1.00) share group B.
+        let thalach = named.test(7);
+        assert_eq!((thalach.full, thalach.discount), (102.9, 1.0));
+        assert_eq!(thalach.group, named.test(12).group);
+        assert!(thalach.delayed && !named.test(0).delayed);
+        assert!(named.has_groups());
+        // Without the group file no discount is ever charged.
+        let flat = TestPrices::read_turney_files(&heart("expense"), None, None, &names).unwrap();
+        assert!(!flat.has_groups());
+        assert!((flat.total() - 600.57).abs() < 1e-9, "{}", flat.total());
+        assert!((named.total() - 323.97).abs() < 1e-9, "{}", named.total());
+        // The .cost file: one price per test, the full ones.
+        let cost = TestPrices::read_turney_files(&heart("cost"), None, None, &names).unwrap();
+        assert_eq!(cost.total(), flat.total());
+    }
+
+    #[test]
+    fn every_fault_names_its_file_and_line() {
+        let names = ["a", "b"].map(String::from).to_vec();
+        let dir = files(&[
+            ("ok.expense", "a: 10, 2\nb: 8, 3\n"),
+            ("unknown.expense", "a: 10, 2\n\nzed: 8, 3\n"),
+            ("negative.expense", "a: 10, -2\nb: 8, 3\n"),
+            ("nan.cost", "a: 1\nb: NaN\n"),
+            ("short.cost", "a: 1\n"),
+            ("twice.cost", "a: 1\nb: 2\na: 3\n"),
+            ("three.expense", "a: 1, 2, 3\nb: 1\n"),
+            ("flat.cost", "a: 10\nb: 8\n"),
+            ("groups.group", "G, H.\na: G.\nb: G.\n"),
+            ("unknown.group", "G.\na: G.\nb: K.\n"),
+            ("column.group", "G.\nc: G.\n"),
+            ("bad.delay", "a: soon.\n"),
+        ]);
+        let at = |name: &str| dir.path().join(name);
+        let err = |prices: &str, groups: Option<&str>, delays: Option<&str>| {
+            let groups = groups.map(at);
+            let delays = delays.map(at);
+            TestPrices::read_turney_files(&at(prices), groups.as_deref(), delays.as_deref(), &names)
+                .unwrap_err()
+                .to_string()
+        };
+        let cases = [
+            (
+                err("unknown.expense", None, None),
+                "unknown.expense: line 3: `zed` is not a column",
+            ),
+            (
+                err("negative.expense", None, None),
+                "negative.expense: line 1: the price of `a` is `-2`",
+            ),
+            (
+                err("nan.cost", None, None),
+                "nan.cost: line 2: the price of `b` is `NaN`",
+            ),
+            (
+                err("short.cost", None, None),
+                "short.cost: end of file: no price for column `b`",
+            ),
+            (
+                err("twice.cost", None, None),
+                "twice.cost: line 3: a second price for `a`",
+            ),
+            (
+                err("three.expense", None, None),
+                "three.expense: line 1: `1, 2, 3`",
+            ),
+            (
+                err("flat.cost", Some("groups.group"), None),
+                "groups.group: line 2: `a` is in group `G` but",
+            ),
+            (
+                err("ok.expense", Some("unknown.group"), None),
+                "unknown.group: line 3: group `K` of `b` is not among the groups",
+            ),
+            (
+                err("ok.expense", Some("column.group"), None),
+                "column.group: line 2: `c` is not a column",
+            ),
+            (
+                err("ok.expense", None, Some("bad.delay")),
+                "bad.delay: line 1: `soon`",
+            ),
+            (
+                err("absent.expense", None, None),
+                "absent.expense: cannot read",
+            ),
+        ];
+        for (message, expected) in cases {
+            assert!(
+                message.contains(expected),
+                "`{expected}` not in `{message}`"
+            );
+        }
+        let ok = TestPrices::read_turney_files(
+            &at("ok.expense"),
+            Some(&at("groups.group")),
+            None,
+            &names,
+        )
+        .unwrap();
+        assert_eq!(ok.group_names(), ["G", "H"]);
+        assert_eq!(ok.total(), 8.0 + 2.0);
+    }
+
+    #[test]
+    fn a_path_that_is_not_a_regular_file_is_refused_before_it_is_read() {
+        let names = ["a"].map(String::from).to_vec();
+        let dir = tempfile::tempdir().unwrap();
+        let err = TestPrices::read_turney_files(dir.path(), None, None, &names).unwrap_err();
+        assert!(matches!(err, Error::NotAFile { .. }), "{err}");
+        let latin = dir.path().join("latin.cost");
+        std::fs::write(&latin, b"a: 1\n# caf\xe9\n").unwrap();
+        let err = TestPrices::read_turney_files(&latin, None, None, &names).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!("{}: line 2: not UTF-8 text", latin.display())
+        );
+    }
+
+    #[test]
+    fn the_feature_cost_csv_reads_as_flat_prices() {
+        let names = ["a", "b"].map(String::from).to_vec();
+        let dir = files(&[
+            ("ok.csv", "feature,cost\nb,2\na,1\nt,7\n"),
+            ("missing.csv", "feature,cost\na,1\n"),
+            ("negative.csv", "feature,cost\na,1\nb,-1\n"),
+        ]);
+        let at = |name: &str| dir.path().join(name);
+        let ok = TestPrices::read_csv(&at("ok.csv"), &names, "t").unwrap();
+        assert_eq!(ok, TestPrices::flat(&[1.0, 2.0]).unwrap());
+        let err = TestPrices::read_csv(&at("missing.csv"), &names, "t").unwrap_err();
+        assert!(
+            err.to_string()
+                .ends_with("missing.csv: no cost for column `b`"),
+            "{err}"
+        );
+        let err = TestPrices::read_csv(&at("negative.csv"), &names, "t").unwrap_err();
+        assert!(
+            err.to_string()
+                .contains("negative.csv: line 3: the cost of `b` is `-1`"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn deserialised_costs_are_checked() {
+        let bad: MisclassCosts =
+            serde_json::from_str(r#"{"classes": 2, "by_predicted": [0.0, 1.0, 1.0]}"#).unwrap();
+        assert!(bad.checked().unwrap_err().to_string().contains("3 entries"));
+        let negative: MisclassCosts =
+            serde_json::from_str(r#"{"classes": 1, "by_predicted": [-1.0]}"#).unwrap();
+        assert!(negative.checked().is_err());
+        let prices: TestPrices = serde_json::from_str(
+            r#"{"tests": [{"full": 1.0, "discount": 1.0, "group": 3, "delayed": false}], "group_names": []}"#,
+        )
+        .unwrap();
+        assert!(
+            prices
+                .checked()
+                .unwrap_err()
+                .to_string()
+                .contains("group 3")
+        );
     }
 }

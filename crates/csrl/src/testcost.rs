@@ -1,0 +1,465 @@
+//! `csrl classify --learner c45|idx|cs-id3-batch|eg2|dtmc|icet`: the batch trees of the
+//! test-cost family (`cslearn::testcost`), grown on training parts and judged on the
+//! held-out objects by what their tests and their errors cost.
+//!
+//! The data is read with its numeric columns as numbers (no binning); the prices come
+//! from a `feature,cost` CSV file or from Turney's files (`.expense` or `.cost`, with
+//! `--groups`); a wrong answer costs `--mc` (by default the price of every test
+//! together) or what `--mc-matrix` says. Every object is classified once by a tree grown
+//! without it (`--folds K`, stratified, 10 by default; or `--holdout F`, a share of each
+//! class), and the report gives, per test object, the price of the tests its tree did,
+//! the error rate, the misclassification cost and their sum, the total cost.
+
+use std::io::Write;
+use std::path::Path;
+
+use anyhow::{Context, Result};
+use cslearn::testcost::{
+    Frame, FrameSpec, IcetGenome, Method, MisclassCosts, TestPrices, TreeModel,
+};
+
+use crate::classify::ClassifyArgs;
+
+/// Folds when neither `--folds` nor `--holdout` is given.
+const DEFAULT_FOLDS: usize = 10;
+
+/// Whether `path` names prices in Turney's format (by its extension).
+pub(crate) fn is_turney(path: &Path) -> bool {
+    matches!(
+        path.extension().and_then(|e| e.to_str()),
+        Some("expense" | "cost")
+    )
+}
+
+/// The training objects and the test objects of one split.
+type TrainTest = (Vec<usize>, Vec<usize>);
+
+/// What one split (a fold, or the holdout) measured on its test part.
+#[derive(Clone, Debug, Default)]
+struct Part {
+    test_objects: usize,
+    errors: usize,
+    test_cost: f64,
+    mc_cost: f64,
+    tree_nodes: usize,
+    genome: Option<IcetGenome>,
+}
+
+/// The feature names the price files use: the data's, renamed by `--cost-name`.
+fn cost_names(args: &ClassifyArgs, frame: &Frame) -> Result<Vec<String>> {
+    let mut names = frame.names().to_vec();
+    let mut renamed = vec![false; names.len()];
+    for rule in &args.cost_name {
+        let Some((column, name)) = rule
+            .split_once('=')
+            .map(|(c, n)| (c.trim(), n.trim()))
+            .filter(|(c, n)| !c.is_empty() && !n.is_empty())
+        else {
+            anyhow::bail!("--cost-name {rule}: give COLUMN=NAME, as in `thalch=thalach`");
+        };
+        let Some(i) = frame.feature(column) else {
+            anyhow::bail!(
+                "--cost-name {rule}: `{column}` is not a feature column of {} (columns: {})",
+                args.data.display(),
+                frame.names().join(", ")
+            );
+        };
+        anyhow::ensure!(
+            !renamed[i],
+            "--cost-name {rule}: column `{column}` is renamed twice"
+        );
+        renamed[i] = true;
+        names[i] = name.to_string();
+    }
+    for (i, name) in names.iter().enumerate() {
+        if let Some(j) = names[i + 1..].iter().position(|n| n == name) {
+            anyhow::bail!(
+                "--cost-name: columns `{}` and `{}` would both be called `{name}` in the price files",
+                frame.names()[i],
+                frame.names()[i + 1 + j]
+            );
+        }
+    }
+    Ok(names)
+}
+
+/// The prices of the data's features.
+fn read_prices(args: &ClassifyArgs, frame: &Frame) -> Result<TestPrices> {
+    let names = cost_names(args, frame)?;
+    let costs = &args.costs;
+    let turney = is_turney(costs);
+    if let Some(groups) = &args.groups {
+        let expense = costs.extension().and_then(|e| e.to_str()) == Some("expense");
+        anyhow::ensure!(
+            expense,
+            "--groups {} needs discount prices: give --costs Turney's .expense file \
+             (`name: full, discount`); {} has one price per test",
+            groups.display(),
+            costs.display()
+        );
+    }
+    let prices = if turney {
+        TestPrices::read_turney_files(costs, args.groups.as_deref(), None, &names)
+    } else {
+        TestPrices::read_csv(costs, &names, &args.target)
+    }
+    .map_err(|e| {
+        if e.to_string().contains("is not a column of the data") {
+            anyhow::anyhow!(
+                "{e}; if the price files call a column by another name, say which with \
+                 --cost-name COLUMN=NAME"
+            )
+        } else {
+            anyhow::Error::new(e)
+        }
+        .context("cannot read the prices")
+    })?;
+    Ok(prices)
+}
+
+/// The misclassification costs, and the one cost of every wrong answer unless they are
+/// a matrix.
+fn read_mc(
+    args: &ClassifyArgs,
+    frame: &Frame,
+    prices: &TestPrices,
+) -> Result<(MisclassCosts, Option<f64>)> {
+    let k = frame.class_count();
+    if let Some(path) = &args.mc_matrix {
+        let mc = MisclassCosts::read_csv(path, frame.class_names())
+            .context("cannot read the misclassification costs")?;
+        return Ok((mc, None));
+    }
+    let mc = args.mc.unwrap_or_else(|| default_mc(prices));
+    let matrix = MisclassCosts::uniform(k, mc).map_err(|e| anyhow::anyhow!("--mc {mc}: {e}"))?;
+    Ok((matrix, Some(mc)))
+}
+
+/// The default misclassification cost: the price of every test together, or 1.
+fn default_mc(prices: &TestPrices) -> f64 {
+    let all = prices.total();
+    if all > 0.0 { all } else { 1.0 }
+}
+
+/// The training and test objects of each split.
+fn splits(args: &ClassifyArgs, frame: &Frame) -> Result<(String, Vec<TrainTest>)> {
+    use rand::{RngExt, SeedableRng};
+    let n = frame.len();
+    let complement = |test: &[usize]| -> Vec<usize> {
+        let mut held = vec![false; n];
+        for &r in test {
+            held[r] = true;
+        }
+        (0..n).filter(|&r| !held[r]).collect()
+    };
+    if let Some(f) = args.holdout {
+        anyhow::ensure!(
+            f > 0.0 && f < 1.0,
+            "--holdout must be a share strictly between 0 and 1, found {f}"
+        );
+        anyhow::ensure!(n >= 2, "--holdout needs at least 2 objects, found {n}");
+        // The same share of each class, shuffled by the seed; each class keeps at least
+        // one object for training.
+        let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(args.seed);
+        let mut by_class: Vec<Vec<usize>> = vec![Vec::new(); frame.class_count()];
+        for r in 0..n {
+            by_class[frame.class(r) as usize].push(r);
+        }
+        let mut test = Vec::new();
+        let mut spare: Vec<usize> = Vec::new();
+        for rows in &mut by_class {
+            for i in (1..rows.len()).rev() {
+                let j = rng.random_range(0..=i);
+                rows.swap(i, j);
+            }
+            let m = rows.len();
+            let take = ((m as f64 * f).round() as usize).min(m.saturating_sub(1));
+            test.extend_from_slice(&rows[..take]);
+            if take + 1 < m {
+                spare.push(rows[take]);
+            }
+        }
+        if test.is_empty() {
+            // A share too small to hold out one object of any class: one object.
+            let Some(&one) = spare.first() else {
+                anyhow::bail!(
+                    "--holdout {f}: no class of {} has 2 objects, so none can be held out",
+                    args.data.display()
+                );
+            };
+            test.push(one);
+        }
+        test.sort_unstable();
+        let train = complement(&test);
+        return Ok((format!("holdout {f}"), vec![(train, test)]));
+    }
+    let k = args.folds.unwrap_or(DEFAULT_FOLDS);
+    anyhow::ensure!(
+        k >= 2 && k <= n,
+        "--folds must be between 2 and the number of objects ({n}), found {k}"
+    );
+    let parts = cslearn::testcost::folds(frame, k, args.seed)
+        .into_iter()
+        .map(|test| (complement(&test), test))
+        .collect();
+    Ok((format!("{k}-fold"), parts))
+}
+
+/// Refuse a split whose training part lacks a class.
+fn check_classes(args: &ClassifyArgs, frame: &Frame, splits: &[TrainTest]) -> Result<()> {
+    let totals = frame.class_totals();
+    for (j, (train, _)) in splits.iter().enumerate() {
+        let mut seen = vec![0usize; frame.class_count()];
+        for &r in train {
+            seen[frame.class(r) as usize] += 1;
+        }
+        if let Some(c) = seen.iter().position(|&m| m == 0) {
+            let name = &frame.class_names()[c];
+            let part = if splits.len() == 1 {
+                "the training part".to_string()
+            } else {
+                format!("the training part of fold {}", j + 1)
+            };
+            anyhow::bail!(
+                "{}: {part} has no object of class `{name}` ({} in the data): a tree must see \
+                 every class it is judged on{}",
+                args.data.display(),
+                totals[c],
+                if totals[c] == 1 {
+                    "; a class of one object cannot be both learned and held out"
+                } else {
+                    ""
+                }
+            );
+        }
+    }
+    Ok(())
+}
+
+/// The genome as JSON: ICET's biased price of each feature, its `w`, confidence and
+/// fitness.
+fn genome_json(genome: &IcetGenome, names: &[String]) -> serde_json::Value {
+    let prices: serde_json::Map<String, serde_json::Value> = names
+        .iter()
+        .zip(&genome.prices)
+        .map(|(n, p)| (n.clone(), serde_json::json!(p)))
+        .collect();
+    serde_json::json!({
+        "prices": prices,
+        "w": genome.w,
+        "confidence": genome.confidence,
+        "fitness": genome.fitness,
+    })
+}
+
+/// The genome as one line of text.
+fn genome_text(genome: &IcetGenome, names: &[String]) -> String {
+    let prices: Vec<String> = names
+        .iter()
+        .zip(&genome.prices)
+        .map(|(n, p)| format!("{n} {p:.2}"))
+        .collect();
+    format!(
+        "w {:.3}, confidence {:.3}, fitness {:.2}; biased prices {}",
+        genome.w,
+        genome.confidence,
+        genome.fitness,
+        prices.join(", ")
+    )
+}
+
+/// Run `csrl classify` with a learner of the family.
+pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> Result<()> {
+    let frame = Frame::read_csv(
+        &args.data,
+        &FrameSpec::new(args.target.as_str()),
+        args.positive_if.as_deref(),
+    )
+    .context("cannot load the data")?;
+    let prices = read_prices(args, &frame)?;
+    let (mc, uniform) = read_mc(args, &frame, &prices)?;
+    // Every total printed must be a true one: at worst an object pays every test in full
+    // and the dearest error.
+    let n = frame.len();
+    let per_object: f64 = (0..prices.len()).map(|t| prices.test(t).full).sum::<f64>() + mc.max();
+    anyhow::ensure!(
+        (per_object * n as f64).is_finite() && per_object * n as f64 <= cslearn::MAX_TOTAL_COST,
+        "{}: the prices and the dearest error sum to {per_object:e} per object, so a total over \
+         the {n} objects cannot be represented (at most {:e})",
+        args.costs.display(),
+        cslearn::MAX_TOTAL_COST
+    );
+    let (scheme, parts) = splits(args, &frame)?;
+    check_classes(args, &frame, &parts)?;
+    let params = cslearn::testcost::FamilyParams::default();
+    let bar = crate::classify::progress_bar(parts.len() + usize::from(args.save.is_some()));
+    let mut results = Vec::with_capacity(parts.len());
+    for (j, (train, test)) in parts.iter().enumerate() {
+        let fitted = cslearn::testcost::fit(
+            method,
+            &frame,
+            train,
+            &prices,
+            &mc,
+            &params,
+            args.seed.wrapping_add(j as u64),
+        );
+        let mut part = Part {
+            test_objects: test.len(),
+            tree_nodes: fitted.tree.len(),
+            genome: fitted.genome.clone(),
+            ..Part::default()
+        };
+        for &r in test {
+            let c = fitted.tree.classify(&frame, r, &prices);
+            let actual = frame.class(r);
+            part.errors += usize::from(c.class != actual);
+            part.test_cost += c.test_cost;
+            part.mc_cost += mc.cost(c.class as usize, actual as usize);
+        }
+        results.push(part);
+        bar.inc(1);
+    }
+    let mut saved = None;
+    if let Some(path) = &args.save {
+        let all: Vec<usize> = (0..n).collect();
+        let fitted = cslearn::testcost::fit(method, &frame, &all, &prices, &mc, &params, args.seed);
+        bar.inc(1);
+        let model = TreeModel::new(
+            method,
+            &frame,
+            &args.target,
+            args.positive_if.as_deref(),
+            &fitted,
+            &prices,
+        );
+        crate::write_file(path, model.to_json())?;
+        crate::note(format_args!(
+            "saved the model ({}, {} nodes, grown on all {n} objects) to {}",
+            method.name(),
+            fitted.tree.len(),
+            path.display()
+        ));
+        saved = Some(fitted);
+    }
+    bar.finish_and_clear();
+
+    let tested: usize = results.iter().map(|p| p.test_objects).sum();
+    let per = |x: f64| x / tested.max(1) as f64;
+    let errors: usize = results.iter().map(|p| p.errors).sum();
+    let test_cost = per(results.iter().map(|p| p.test_cost).sum());
+    let mc_cost = per(results.iter().map(|p| p.mc_cost).sum());
+    let error_rate = errors as f64 / tested.max(1) as f64;
+    let nodes = results.iter().map(|p| p.tree_nodes).sum::<usize>() as f64 / results.len() as f64;
+    let standard = cslearn::testcost::standard_cost(&frame, &prices, &mc);
+    let names = frame.names();
+    if args.json {
+        let mut json = serde_json::json!({
+            "learner": method.name(),
+            "evaluation": scheme,
+            "seed": args.seed,
+            "data": args.data.display().to_string(),
+            "costs": args.costs.display().to_string(),
+            "groups": args.groups.as_ref().map(|p| p.display().to_string()),
+            "features": frame.feature_count(),
+            "classes": frame.class_count(),
+            "class_names": frame.class_names(),
+            "objects": n,
+            "test_objects": tested,
+            "mc": uniform,
+            "mc_matrix": args.mc_matrix.as_ref().map(|p| p.display().to_string()),
+            "all_tests_cost": prices.total(),
+            "test_cost_per_object": test_cost,
+            "errors": errors,
+            "error_rate": error_rate,
+            "misclassification_cost_per_object": mc_cost,
+            "total_cost_per_object": test_cost + mc_cost,
+            "standard_cost": standard,
+            "tree_nodes": nodes,
+            "splits": results.iter().map(|p| {
+                let mut v = serde_json::json!({
+                    "test_objects": p.test_objects,
+                    "errors": p.errors,
+                    "test_cost": p.test_cost,
+                    "misclassification_cost": p.mc_cost,
+                    "tree_nodes": p.tree_nodes,
+                });
+                if let Some(g) = &p.genome {
+                    v["genome"] = genome_json(g, names);
+                }
+                v
+            }).collect::<Vec<_>>(),
+        });
+        if let (Some(path), Some(fitted)) = (&args.save, &saved) {
+            let mut v = serde_json::json!({
+                "path": path.display().to_string(),
+                "tree_nodes": fitted.tree.len(),
+            });
+            if let Some(g) = &fitted.genome {
+                v["genome"] = genome_json(g, names);
+            }
+            json["saved"] = v;
+        }
+        writeln!(out, "{json}")?;
+        return Ok(());
+    }
+    writeln!(out, "learner     {} (seed {})", method.name(), args.seed)?;
+    writeln!(
+        out,
+        "data        {} ({} features, {} classes, {n} objects)",
+        args.data.display(),
+        frame.feature_count(),
+        frame.class_count()
+    )?;
+    writeln!(
+        out,
+        "prices      {}{} (every test: {:.2})",
+        args.costs.display(),
+        args.groups
+            .as_ref()
+            .map_or(String::new(), |g| format!(", groups {}", g.display())),
+        prices.total()
+    )?;
+    match (&args.mc_matrix, args.mc, uniform) {
+        (Some(path), _, _) => writeln!(out, "mc          the matrix of {}", path.display())?,
+        (None, Some(v), _) => writeln!(out, "mc          {v} per wrong answer")?,
+        (None, None, v) => writeln!(
+            out,
+            "mc          {:.2} per wrong answer (the default: the price of every test)",
+            v.unwrap_or_default()
+        )?,
+    }
+    writeln!(
+        out,
+        "evaluation  {scheme}: {tested} test objects, each classified by a tree grown without it"
+    )?;
+    writeln!(out, "test cost   {test_cost:.2} per object")?;
+    writeln!(out, "error rate  {error_rate:.3} ({errors} errors)")?;
+    writeln!(out, "mc cost     {mc_cost:.2} per object")?;
+    writeln!(
+        out,
+        "total cost  {:.2} per object ({:.1}% of Turney's standard cost, {standard:.2})",
+        test_cost + mc_cost,
+        100.0 * (test_cost + mc_cost) / standard.max(f64::MIN_POSITIVE)
+    )?;
+    writeln!(
+        out,
+        "tree size   {nodes:.1} nodes (mean over {} tree{})",
+        results.len(),
+        if results.len() == 1 { "" } else { "s" }
+    )?;
+    for (j, p) in results.iter().enumerate() {
+        if let Some(g) = &p.genome {
+            let at = if results.len() == 1 {
+                "held out".to_string()
+            } else {
+                format!("fold {}", j + 1)
+            };
+            writeln!(out, "genome      {at}: {}", genome_text(g, names))?;
+        }
+    }
+    if let Some(g) = saved.as_ref().and_then(|f| f.genome.as_ref()) {
+        writeln!(out, "genome      saved tree: {}", genome_text(g, names))?;
+    }
+    Ok(())
+}

@@ -1,0 +1,655 @@
+//! `csrl classify --learner c45|idx|cs-id3-batch|eg2|dtmc|icet` and `csrl predict` on the
+//! trees it saves, run as a user runs them: on the shipped heart-disease data with
+//! Turney's prices, and on broken files.
+
+mod common;
+
+use common::{csrl, stderr};
+
+use std::path::PathBuf;
+use std::process::Output;
+
+/// A path of the repository.
+fn repo(path: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .join(path)
+        .to_string_lossy()
+        .into_owned()
+}
+
+/// `classify` on the Cleveland heart data with Turney's prices and groups (the data
+/// calls `thalach` `thalch`), two classes, plus `extra`.
+fn on_heart(learner: &str, extra: &[&str]) -> Output {
+    let (data, costs, groups) = (
+        repo("data/heart-disease/cleveland.csv"),
+        repo("data/uci/heart-disease/costs/heart-disease.expense"),
+        repo("data/uci/heart-disease/costs/heart-disease.group"),
+    );
+    let mut args = vec![
+        "classify",
+        "--data",
+        &data,
+        "--costs",
+        &costs,
+        "--groups",
+        &groups,
+        "--target",
+        "num",
+        "--positive-if",
+        ">0",
+        "--cost-name",
+        "thalch=thalach",
+        "--learner",
+        learner,
+    ];
+    args.extend_from_slice(extra);
+    csrl(&args)
+}
+
+fn heart_json(learner: &str, extra: &[&str]) -> serde_json::Value {
+    let mut args = vec!["--json"];
+    args.extend_from_slice(extra);
+    let out = on_heart(learner, &args);
+    assert!(out.status.success(), "{learner}: {}", stderr(&out));
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+fn f(v: &serde_json::Value, key: &str) -> f64 {
+    v[key]
+        .as_f64()
+        .unwrap_or_else(|| panic!("{key} missing: {v}"))
+}
+
+/// A scratch directory with a small data set: `a` numeric, `b` nominal, class `t`.
+struct Scratch {
+    dir: tempfile::TempDir,
+}
+
+impl Scratch {
+    fn new() -> Scratch {
+        let s = Scratch {
+            dir: tempfile::tempdir().unwrap(),
+        };
+        let mut data = String::from("a,b,t\n");
+        for i in 0..24 {
+            let positive = i % 3 == 0;
+            let b = if positive { "x" } else { "y" };
+            let t = if positive { "p" } else { "n" };
+            data.push_str(&format!("{},{b},{t}\n", i % 7));
+        }
+        s.file("data.csv", &data);
+        s.file("prices.expense", "a: 10, 2\nb: 8, 3\n");
+        s.file("prices.group", "G.\na: G.\nb: G.\n");
+        s
+    }
+
+    fn file(&self, name: &str, text: &str) -> String {
+        let path = self.dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        path.to_string_lossy().into_owned()
+    }
+
+    fn path(&self, name: &str) -> String {
+        self.dir.path().join(name).to_string_lossy().into_owned()
+    }
+
+    /// `classify` on the scratch data with `learner` and `extra`.
+    fn classify(&self, learner: &str, costs: &str, extra: &[&str]) -> Output {
+        let (data, costs) = (self.path("data.csv"), self.path(costs));
+        let mut args = vec![
+            "classify",
+            "--data",
+            &data,
+            "--costs",
+            &costs,
+            "--target",
+            "t",
+            "--learner",
+            learner,
+        ];
+        args.extend_from_slice(extra);
+        csrl(&args)
+    }
+}
+
+/// A run refused with exit code 1 (not a panic's 101, not a usage error's 2) whose message
+/// holds every part of `expected`.
+fn refused(out: &Output, expected: &[&str]) {
+    let message = stderr(out);
+    assert_eq!(out.status.code(), Some(1), "{message}");
+    for part in expected {
+        assert!(message.contains(part), "`{part}` missing in: {message}");
+    }
+    assert!(!message.contains("panicked"), "{message}");
+}
+
+#[test]
+fn every_family_learner_reports_what_its_tests_and_errors_cost() {
+    let mut test_costs = Vec::new();
+    for learner in ["c45", "idx", "cs-id3-batch", "eg2", "dtmc"] {
+        let v = heart_json(learner, &[]);
+        assert_eq!(v["learner"], learner);
+        assert_eq!(v["evaluation"], "10-fold");
+        assert_eq!(
+            (v["objects"].as_u64(), v["test_objects"].as_u64()),
+            (Some(304), Some(304))
+        );
+        assert_eq!(v["classes"], 2);
+        assert_eq!(v["class_names"], serde_json::json!(["no", "yes"]));
+        let (tests, mc, total) = (
+            f(&v, "test_cost_per_object"),
+            f(&v, "misclassification_cost_per_object"),
+            f(&v, "total_cost_per_object"),
+        );
+        assert!((total - (tests + mc)).abs() < 1e-9, "{v}");
+        let errors = v["errors"].as_u64().unwrap();
+        assert!((f(&v, "error_rate") - errors as f64 / 304.0).abs() < 1e-12);
+        // The default misclassification cost is the price of every test, discounts applied.
+        assert_eq!(f(&v, "mc"), f(&v, "all_tests_cost"));
+        assert!((f(&v, "all_tests_cost") - 323.97).abs() < 1e-9, "{v}");
+        assert!((mc - errors as f64 * f(&v, "mc") / 304.0).abs() < 1e-9);
+        assert!(f(&v, "error_rate") < 0.35, "{learner}: {v}");
+        assert_eq!(v["splits"].as_array().unwrap().len(), 10);
+        assert!(f(&v, "tree_nodes") >= 1.0);
+        assert!(v["splits"][0].get("genome").is_none());
+        assert!(total < f(&v, "standard_cost"), "{learner}: {v}");
+        test_costs.push((learner, tests));
+    }
+    // Cost-blind C4.5 pays for far more tests than the cost-sensitive trees.
+    let c45 = test_costs[0].1;
+    for &(learner, cost) in &test_costs[1..] {
+        assert!(cost * 5.0 < c45, "{learner}: {cost} against C4.5's {c45}");
+    }
+}
+
+#[test]
+fn icet_reports_the_genome_its_search_found() {
+    let v = heart_json("icet", &["--holdout", "0.3"]);
+    assert_eq!(v["evaluation"], "holdout 0.3");
+    assert_eq!(v["splits"].as_array().unwrap().len(), 1);
+    // A share of each class: 30% of 165 "no" (49.5, rounded up) and of 139 "yes".
+    assert_eq!(v["test_objects"], 50 + 42);
+    let genome = &v["splits"][0]["genome"];
+    assert_eq!(genome["prices"].as_object().unwrap().len(), 13, "{genome}");
+    assert!(genome["prices"]["thalch"].as_f64().is_some(), "{genome}");
+    for key in ["w", "confidence", "fitness"] {
+        assert!(genome[key].as_f64().is_some_and(f64::is_finite), "{genome}");
+    }
+    let out = on_heart("icet", &["--holdout", "0.3"]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("genome      held out: w "), "{text}");
+}
+
+#[test]
+fn the_same_seed_gives_the_same_report() {
+    let a = heart_json("eg2", &["--seed", "4", "--folds", "5"]);
+    assert_eq!(a, heart_json("eg2", &["--seed", "4", "--folds", "5"]));
+    assert_eq!(a["evaluation"], "5-fold");
+    assert_ne!(
+        a["splits"],
+        heart_json("eg2", &["--seed", "5", "--folds", "5"])["splits"]
+    );
+}
+
+#[test]
+fn text_output_names_every_figure() {
+    let out = on_heart("dtmc", &["--mc", "200"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = String::from_utf8(out.stdout).unwrap();
+    for part in [
+        "learner     dtmc (seed 1)",
+        "304 objects",
+        "every test: 323.97",
+        "mc          200 per wrong answer",
+        "evaluation  10-fold: 304 test objects",
+        "test cost ",
+        "error rate ",
+        "mc cost ",
+        "total cost ",
+        "of Turney's standard cost",
+        "tree size ",
+    ] {
+        assert!(text.contains(part), "`{part}` missing in {text}");
+    }
+}
+
+#[test]
+fn the_feature_cost_csv_and_a_cost_matrix_serve_the_family_too() {
+    let s = Scratch::new();
+    s.file("costs.csv", "feature,cost\na,10\nb,8\n");
+    s.file("mc.csv", "actual,n,p\nn,0,1\np,500,0\n");
+    let out = s.classify("eg2", "costs.csv", &["--folds", "4", "--json"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    // Without groups every test costs its full price; the default mc is their sum.
+    assert_eq!(f(&v, "mc"), 18.0);
+    let out = s.classify(
+        "dtmc",
+        "costs.csv",
+        &["--mc-matrix", &s.path("mc.csv"), "--json"],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(v["mc"].is_null());
+    assert!(v["mc_matrix"].as_str().unwrap().ends_with("mc.csv"));
+    // With groups, the second test of a group costs its discount: every test together is
+    // b in full (8), then a at its discount (2).
+    let out = s.classify(
+        "idx",
+        "prices.expense",
+        &[
+            "--groups",
+            &s.path("prices.group"),
+            "--folds",
+            "3",
+            "--json",
+        ],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(f(&v, "all_tests_cost"), 10.0);
+}
+
+#[test]
+fn a_saved_tree_predicts_new_rows_by_column_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let model = dir.path().join("eg2.json").to_string_lossy().into_owned();
+    let out = on_heart("eg2", &["--save", &model]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("saved the model (eg2, "),
+        "{}",
+        stderr(&out)
+    );
+    let text = std::fs::read_to_string(&model).unwrap();
+    assert!(
+        text.starts_with("{\"format\":\"csrl-cost-tree\",\"version\":1,\"learner\":\"eg2\","),
+        "{text}"
+    );
+    let data = repo("data/heart-disease/cleveland.csv");
+    let out = csrl(&["predict", "--model", &model, "--data", &data]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let all = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<&str> = all.lines().collect();
+    assert_eq!(lines[0], "line,class,cost,measured");
+    assert_eq!(lines.len(), 305);
+    assert!(lines[1].starts_with("2,"), "{all}");
+    assert!(
+        lines[1..]
+            .iter()
+            .all(|l| l.split(',').nth(1).is_some_and(|c| c == "no" || c == "yes")),
+        "{all}"
+    );
+    // The first two rows again, columns in another order, no target; then a row of
+    // missing cells and a category never seen.
+    let rows = dir.path().join("new.csv");
+    std::fs::write(
+        &rows,
+        "sex,age,cp,trestbps,chol,fbs,restecg,thalch,exang,oldpeak,slope,ca,thal\n\
+         Male,63,typical angina,145,233,TRUE,lv hypertrophy,150,FALSE,2.3,downsloping,0,fixed defect\n\
+         Male,67,asymptomatic,160,286,FALSE,lv hypertrophy,108,TRUE,1.5,flat,3,normal\n\
+         ,,,,,,,,,,,,\n\
+         Male,50,martian,,,,,,,,,,\n",
+    )
+    .unwrap();
+    let rows = rows.to_string_lossy().into_owned();
+    let out = csrl(&["predict", "--model", &model, "--data", &rows]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let new = String::from_utf8(out.stdout.clone()).unwrap();
+    let tail = |l: &str| l.split_once(',').unwrap().1.to_string();
+    let new_lines: Vec<&str> = new.lines().collect();
+    assert_eq!(new_lines.len(), 5, "{new}");
+    assert_eq!(tail(new_lines[1]), tail(lines[1]));
+    assert_eq!(tail(new_lines[2]), tail(lines[2]));
+    assert!(
+        stderr(&out).contains("classified 4 rows") && stderr(&out).contains("(eg2, "),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn predict_refuses_broken_trees_naming_the_file() {
+    let s = Scratch::new();
+    let model = s.path("m.json");
+    let out = s.classify("c45", "prices.expense", &["--folds", "3", "--save", &model]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let good = std::fs::read_to_string(&model).unwrap();
+    let data = s.path("data.csv");
+    let predict = |text: &str, data: &str| {
+        let path = s.file("broken.json", text);
+        csrl(&["predict", "--model", &path, "--data", data])
+    };
+    refused(
+        &predict(&good.replace("\"version\":1", "\"version\":2"), &data),
+        &["broken.json", "version 2 is not supported"],
+    );
+    refused(
+        &predict(
+            &good.replace("\"learner\":", "\"colour\":1,\"learner\":"),
+            &data,
+        ),
+        &["broken.json", "unknown field `colour`"],
+    );
+    refused(
+        &predict(&good.replace("\"nodes\":", "\"depth\":3,\"nodes\":"), &data),
+        &[
+            "broken.json",
+            "key `tree.depth`",
+            "not a key of a saved tree",
+        ],
+    );
+    refused(
+        &predict(
+            &good.replace("\"format\":\"csrl-cost-tree\"", "\"format\":\"zip\""),
+            &data,
+        ),
+        &["broken.json", "`zip` is not a model format"],
+    );
+    refused(
+        &predict(
+            &good.replace("\"learner\":\"c45\"", "\"learner\":\"c5\""),
+            &data,
+        ),
+        &["broken.json", "key `learner`"],
+    );
+    refused(
+        &predict(&good.replace("\"full\":10.0", "\"full\":-10.0"), &data),
+        &["broken.json", "key `prices`", "-10"],
+    );
+    let few = s.file("few.csv", "b,t\nx,p\n");
+    refused(
+        &predict(&good, &few),
+        &["few.csv", "no column `a`, which the model reads"],
+    );
+    let words = s.file("words.csv", "a,b\nten,x\n");
+    refused(
+        &predict(&good, &words),
+        &["words.csv", "line 2", "`ten` in column `a` is not a number"],
+    );
+}
+
+#[test]
+fn a_tree_whose_child_does_not_follow_its_parent_is_refused() {
+    let s = Scratch::new();
+    let model = s.path("m.json");
+    let out = s.classify(
+        "dtmc",
+        "prices.expense",
+        &["--mc", "100", "--folds", "3", "--save", &model],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&model).unwrap()).unwrap();
+    let nodes = v["tree"]["nodes"].as_array_mut().unwrap();
+    let split = nodes
+        .iter_mut()
+        .find_map(|n| n["split"].as_object_mut())
+        .expect("the scratch data is split");
+    let (_, inner) = split.iter_mut().next().unwrap();
+    inner["children"][0] = serde_json::json!(0);
+    let broken = s.file("loop.json", &v.to_string());
+    let out = csrl(&["predict", "--model", &broken, "--data", &s.path("data.csv")]);
+    refused(&out, &["loop.json", "tree node", "child 0"]);
+}
+
+#[test]
+fn broken_price_and_cost_files_are_refused_naming_file_and_line() {
+    let s = Scratch::new();
+    s.file("unknown.expense", "a: 10, 2\nbogus: 8, 3\nb: 1\n");
+    refused(
+        &s.classify("eg2", "unknown.expense", &[]),
+        &[
+            "unknown.expense",
+            "line 2",
+            "`bogus` is not a column of the data",
+            "--cost-name",
+        ],
+    );
+    s.file("nodiscount.expense", "a: 10, 2\nb: 8\n");
+    let out = s.classify(
+        "eg2",
+        "nodiscount.expense",
+        &["--groups", &s.path("prices.group")],
+    );
+    refused(
+        &out,
+        &[
+            "prices.group",
+            "line 3",
+            "`b` is in group `G`",
+            "no discount price",
+        ],
+    );
+    s.file("negative.expense", "a: 10, 2\nb: -8, 3\n");
+    refused(
+        &s.classify("eg2", "negative.expense", &[]),
+        &["negative.expense", "line 2", "`-8`", "non-negative"],
+    );
+    s.file("nan.cost", "a: NaN\nb: 3\n");
+    refused(
+        &s.classify("eg2", "nan.cost", &[]),
+        &["nan.cost", "line 1", "`NaN`"],
+    );
+    s.file("short.expense", "a: 10, 2\n");
+    refused(
+        &s.classify("eg2", "short.expense", &[]),
+        &["short.expense", "no price for column `b`"],
+    );
+    s.file("unknown.csv", "feature,cost\na,1\nbogus,2\nb,3\n");
+    refused(
+        &s.classify("c45", "unknown.csv", &[]),
+        &[
+            "unknown.csv",
+            "line 3",
+            "`bogus`",
+            "not a column of the data",
+        ],
+    );
+    s.file("nan.csv", "feature,cost\na,1\nb,NaN\n");
+    refused(
+        &s.classify("c45", "nan.csv", &[]),
+        &["nan.csv", "line 3", "`NaN`"],
+    );
+    let (small, negative, unknown) = (
+        s.file("mc-small.csv", "actual,n\nn,0\n"),
+        s.file("mc-negative.csv", "actual,n,p\nn,0,1\np,-5,0\n"),
+        s.file("mc-unknown.csv", "actual,n,q\nn,0,1\nq,5,0\n"),
+    );
+    refused(
+        &s.classify("dtmc", "prices.expense", &["--mc-matrix", &small]),
+        &["mc-small.csv", "line 1", "1 class columns", "2 classes"],
+    );
+    refused(
+        &s.classify("dtmc", "prices.expense", &["--mc-matrix", &negative]),
+        &["mc-negative.csv", "line 3", "`-5`"],
+    );
+    refused(
+        &s.classify("dtmc", "prices.expense", &["--mc-matrix", &unknown]),
+        &["mc-unknown.csv", "line 1", "`q` is not a class"],
+    );
+    refused(
+        &s.classify("dtmc", "prices.expense", &["--mc", "-1"]),
+        &["--mc -1", "not negative"],
+    );
+    refused(
+        &s.classify("dtmc", "prices.expense", &["--mc", "NaN"]),
+        &["--mc NaN"],
+    );
+}
+
+#[test]
+fn groups_need_discount_prices() {
+    let s = Scratch::new();
+    s.file("costs.csv", "feature,cost\na,10\nb,8\n");
+    s.file("prices.cost", "a: 10\nb: 8\n");
+    for costs in ["costs.csv", "prices.cost"] {
+        refused(
+            &s.classify("eg2", costs, &["--groups", &s.path("prices.group")]),
+            &["--groups", "needs discount prices", costs],
+        );
+    }
+}
+
+#[test]
+fn a_class_missing_from_a_training_part_is_refused() {
+    let s = Scratch::new();
+    let data = s.file("lonely.csv", "a,t\n1,n\n2,n\n3,n\n4,p\n5,n\n6,n\n");
+    s.file("costs.csv", "feature,cost\na,1\n");
+    let costs = s.path("costs.csv");
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "classify",
+            "--data",
+            &data,
+            "--costs",
+            &costs,
+            "--target",
+            "t",
+            "--learner",
+            "eg2",
+        ];
+        args.extend_from_slice(extra);
+        csrl(&args)
+    };
+    refused(
+        &run(&["--folds", "3"]),
+        &[
+            "lonely.csv",
+            "the training part of fold",
+            "class `p`",
+            "1 in the data",
+        ],
+    );
+    // A rule that every object satisfies leaves the other class empty.
+    let positive = s.file("positive.csv", "a,t\n1,1\n2,2\n3,3\n");
+    let out = csrl(&[
+        "classify",
+        "--data",
+        &positive,
+        "--costs",
+        &costs,
+        "--target",
+        "t",
+        "--positive-if",
+        ">0",
+        "--learner",
+        "eg2",
+        "--holdout",
+        "0.5",
+    ]);
+    refused(
+        &out,
+        &[
+            "positive.csv",
+            "the training part has no object of class `no` (0 in the data)",
+        ],
+    );
+    refused(
+        &run(&["--folds", "7"]),
+        &["--folds must be between 2 and the number of objects (6), found 7"],
+    );
+}
+
+#[test]
+fn flags_the_learner_does_not_read_are_refused() {
+    let s = Scratch::new();
+    s.file("costs.csv", "feature,cost\na,10\nb,8\n");
+    let group = s.path("prices.group");
+    for (learner, extra, expected) in [
+        (
+            "cs-id3",
+            vec!["--mc", "5"],
+            "--mc is read by the test-cost family only",
+        ),
+        (
+            "id3",
+            vec!["--groups", &group],
+            "--groups is read by the test-cost family only",
+        ),
+        (
+            "cs-ibl",
+            vec!["--mc-matrix", &group],
+            "--mc-matrix is read by the test-cost family only",
+        ),
+        (
+            "cs-id3",
+            vec!["--cost-name", "a=b"],
+            "--cost-name is read by the test-cost family only",
+        ),
+        (
+            "eg2",
+            vec!["--tolerance", "2"],
+            "--tolerance is read by --learner cs-ibl only",
+        ),
+        (
+            "c45",
+            vec!["--dot", "t.dot"],
+            "--dot draws CS-ID3's decision tree",
+        ),
+    ] {
+        let out = s.classify(learner, "costs.csv", &extra);
+        refused(&out, &[expected, &format!("--learner {learner}")]);
+    }
+    refused(
+        &s.classify("cs-id3", "prices.expense", &[]),
+        &["prices.expense is in Turney's format", "--learner cs-id3"],
+    );
+    let both = s.classify(
+        "eg2",
+        "costs.csv",
+        &["--mc", "5", "--mc-matrix", &s.path("costs.csv")],
+    );
+    assert_eq!(both.status.code(), Some(2), "{}", stderr(&both));
+    refused(
+        &s.classify("eg2", "costs.csv", &["--cost-name", "a"]),
+        &["--cost-name a: give COLUMN=NAME"],
+    );
+    refused(
+        &s.classify("eg2", "costs.csv", &["--cost-name", "z=a"]),
+        &["`z` is not a feature column", "data.csv"],
+    );
+    refused(
+        &s.classify("eg2", "costs.csv", &["--cost-name", "b=a"]),
+        &["columns `a` and `b` would both be called `a`"],
+    );
+}
+
+#[test]
+fn save_never_overwrites_an_input() {
+    let s = Scratch::new();
+    let mc = s.file("mc.csv", "actual,n,p\nn,0,1\np,5,0\n");
+    let inputs = [
+        ("--data", s.path("data.csv")),
+        ("--costs", s.path("prices.expense")),
+        ("--groups", s.path("prices.group")),
+        ("--mc-matrix", mc.clone()),
+    ];
+    for (flag, path) in &inputs {
+        let before = std::fs::read(path).unwrap();
+        let out = s.classify(
+            "eg2",
+            "prices.expense",
+            &[
+                "--groups",
+                &s.path("prices.group"),
+                "--mc-matrix",
+                &mc,
+                "--save",
+                path,
+            ],
+        );
+        refused(&out, &["--save", &format!("names the {flag} file")]);
+        assert_eq!(std::fs::read(path).unwrap(), before);
+    }
+    // The incremental learners too.
+    s.file("costs.csv", "feature,cost\na,10\nb,8\n");
+    let data = s.path("data.csv");
+    let before = std::fs::read(&data).unwrap();
+    refused(
+        &s.classify("cs-id3", "costs.csv", &["--save", &data]),
+        &["--save", "names the --data file"],
+    );
+    assert_eq!(std::fs::read(&data).unwrap(), before);
+}
