@@ -15,7 +15,7 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use cslearn::testcost::{
     Catalogue, CostTree, FamilyParams, Frame, Method, MisclassCosts, TestPrices, fit, folds,
-    random_prices, standard_cost,
+    gain_prices, random_prices, standard_cost,
 };
 use serde::{Deserialize, Serialize};
 
@@ -43,7 +43,12 @@ pub struct TestcostArgs {
     /// Random price assignments per data set.
     #[arg(long, default_value_t = 4)]
     assignments: u64,
-    /// The range random prices are drawn from, uniformly: `LOW,HIGH`.
+    /// How random prices are drawn: `uniform` (each test uniform in the range) or `gain`
+    /// (each test uniform between LOW and a ceiling in proportion to its information gain
+    /// on the whole data set).
+    #[arg(long, default_value = "uniform")]
+    price_draw: String,
+    /// The range random prices are drawn from: `LOW,HIGH`.
     #[arg(long, value_delimiter = ',', default_value = "1,100")]
     price_range: Vec<f64>,
     /// Runs of cross-validation per data set and price assignment.
@@ -84,9 +89,22 @@ pub(crate) struct Definition {
     pub costs: Vec<PriceSet>,
     pub assignments: u64,
     pub price_range: (f64, f64),
+    #[serde(default)]
+    pub price_draw: PriceDraw,
     pub runs: u64,
     pub folds: usize,
     pub seed: u64,
+}
+
+/// How random prices are drawn.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(crate) enum PriceDraw {
+    /// Uniform in the range.
+    #[default]
+    Uniform,
+    /// Uniform below a ceiling in proportion to the test's information gain.
+    Gain,
 }
 
 /// Where a job's prices come from.
@@ -221,12 +239,14 @@ pub(crate) fn job_prices(
     assignment: u64,
 ) -> Result<TestPrices> {
     match costs {
-        PriceSet::Random => Ok(random_prices(
-            frame.feature_count(),
-            def.price_range.0,
-            def.price_range.1,
-            mix(def.seed, name, &[1, assignment]),
-        )),
+        PriceSet::Random => {
+            let seed = mix(def.seed, name, &[1, assignment]);
+            let (low, high) = def.price_range;
+            Ok(match def.price_draw {
+                PriceDraw::Uniform => random_prices(frame.feature_count(), low, high, seed),
+                PriceDraw::Gain => gain_prices(frame, low, high, seed),
+            })
+        }
         PriceSet::Turney => turney
             .cloned()
             .with_context(|| format!("data set `{name}` has no Turney prices")),
@@ -361,6 +381,11 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
         [lo, hi] if lo.is_finite() && hi.is_finite() && 0.0 <= lo && lo <= hi => (lo, hi),
         _ => bail!("--price-range: expected LOW,HIGH with 0 <= LOW <= HIGH, finite"),
     };
+    let price_draw = match args.price_draw.as_str() {
+        "uniform" => PriceDraw::Uniform,
+        "gain" => PriceDraw::Gain,
+        other => bail!("--price-draw: `{other}` is neither `uniform` nor `gain`"),
+    };
     if args.runs == 0 || args.folds < 2 || args.assignments == 0 {
         bail!("testcost needs --runs and --assignments of at least 1 and --folds of at least 2");
     }
@@ -371,6 +396,7 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
         costs,
         assignments: args.assignments,
         price_range,
+        price_draw,
         runs: args.runs,
         folds: args.folds,
         seed: args.seed,
@@ -465,6 +491,15 @@ fn args_line(args: &TestcostArgs) -> String {
     }
     if args.costs.join(",") != "random,turney" {
         let _ = write!(line, " --costs {}", args.costs.join(","));
+    }
+    if args.price_draw != "uniform" {
+        let _ = write!(line, " --price-draw {}", args.price_draw);
+    }
+    if args.price_range != [1.0, 100.0] {
+        let _ = write!(line, " --price-range {},{}", args.price_range[0], args.price_range[1]);
+    }
+    if args.assignments != 4 {
+        let _ = write!(line, " --assignments {}", args.assignments);
     }
     if args.runs != 10 {
         let _ = write!(line, " --runs {}", args.runs);

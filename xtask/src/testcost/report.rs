@@ -229,11 +229,15 @@ fn markdown(
         "Written by `{command}`. Average total cost (tests plus misclassification) as a \
          percentage of Turney's standard cost, lower is better; {} runs of {}-fold stratified \
          cross-validation per data set and price assignment; random prices: {} assignments \
-         per data set, each test uniform in [{}, {}]. Learners: {}. `docs/testcost.md` reads \
+         per data set, each test {} [{}, {}]. Learners: {}. `docs/testcost.md` reads \
          the results.\n",
         def.runs,
         def.folds,
         def.assignments,
+        match def.price_draw {
+            super::PriceDraw::Uniform => "uniform in",
+            super::PriceDraw::Gain => "uniform below a ceiling in proportion to its information gain, within",
+        },
         def.price_range.0,
         def.price_range.1,
         def.learners

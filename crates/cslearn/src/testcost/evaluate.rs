@@ -7,6 +7,8 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use super::data::Frame;
 use super::family::shuffle;
 use super::prices::{MisclassCosts, TestPrices};
+use super::splits::Splits;
+use super::tree::{Criterion, GrowParams};
 
 /// Stratified folds: the objects of each class shuffled by `seed` and dealt in turn,
 /// so every fold has each class in proportion. Returns the test objects of each fold.
@@ -73,4 +75,64 @@ pub fn standard_cost(frame: &Frame, prices: &TestPrices, mc: &MisclassCosts) -> 
     let n = frame.len() as f64;
     let shares: Vec<f64> = frame.class_totals().iter().map(|&c| c as f64 / n).collect();
     mc.standard_cost(&shares, prices)
+}
+
+/// Each feature's information gain on all of `frame`'s objects, as a tree's root would
+/// score it (C4.5's rule for missing values; a numeric feature at its best threshold); 0
+/// for a feature that cannot split them.
+///
+/// ```
+/// # use cslearn::testcost::{feature_gains, Column, Frame};
+/// let frame = Frame::new(vec!["tells".into(), "not".into()],
+///     vec![Column::Numeric(vec![0.0, 0.0, 1.0, 1.0]), Column::Numeric(vec![0.0, 1.0, 0.0, 1.0])],
+///     vec![0, 0, 1, 1], vec!["a".into(), "b".into()]).unwrap();
+/// let gains = feature_gains(&frame);
+/// assert!((gains[0] - 1.0).abs() < 1e-12 && gains[1].abs() < 1e-12);
+/// ```
+pub fn feature_gains(frame: &Frame) -> Vec<f64> {
+    let rows: Vec<usize> = (0..frame.len()).collect();
+    let weights = vec![1.0; rows.len()];
+    let mc = MisclassCosts::uniform(frame.class_count(), 1.0)
+        .unwrap_or_else(|_| unreachable!("a uniform cost of 1 is valid"));
+    let mut params = GrowParams::new(Criterion::Id3);
+    params.min_objects = 1.0;
+    let mut splits = Splits::new(frame, &rows, &weights, &mc, Criterion::Id3, params.min_objects);
+    let mut gains = vec![0.0; frame.feature_count()];
+    for stat in splits.stats(0) {
+        gains[stat.feature] = stat.gain.max(0.0);
+    }
+    gains
+}
+
+/// Random prices that follow information gain: each test's price uniform in
+/// `[low, low + (high - low) * g / g_max]`, with `g` its gain on the whole data set
+/// ([`feature_gains`]) and `g_max` the largest; informative tests may be dear, tests that
+/// tell nothing are cheap. With no gain anywhere, every price is `low`.
+///
+/// ```
+/// # use cslearn::testcost::{gain_prices, Column, Frame};
+/// let frame = Frame::new(vec!["tells".into(), "not".into()],
+///     vec![Column::Numeric(vec![0.0, 0.0, 1.0, 1.0]), Column::Numeric(vec![0.0, 1.0, 0.0, 1.0])],
+///     vec![0, 0, 1, 1], vec!["a".into(), "b".into()]).unwrap();
+/// let prices = gain_prices(&frame, 1.0, 100.0, 3);
+/// assert_eq!(prices.test(1).full, 1.0);
+/// assert!((1.0..=100.0).contains(&prices.test(0).full));
+/// ```
+pub fn gain_prices(frame: &Frame, low: f64, high: f64, seed: u64) -> TestPrices {
+    let (low, high) = (low.max(0.0), high.max(low.max(0.0)));
+    let gains = feature_gains(frame);
+    let top = gains.iter().copied().fold(0.0, f64::max);
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    let prices: Vec<f64> = gains
+        .iter()
+        .map(|&g| {
+            let ceiling = if top > 0.0 { low + (high - low) * g / top } else { low };
+            if ceiling > low {
+                rng.random_range(low..=ceiling)
+            } else {
+                low
+            }
+        })
+        .collect();
+    TestPrices::flat_checked_by_caller(&prices)
 }
