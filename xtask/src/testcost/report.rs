@@ -387,7 +387,12 @@ fn figure(path: &Path, def: &Definition, rows: &[Row]) -> Result<()> {
             .margin(16)
             .x_label_area_size(50)
             .y_label_area_size(70)
-            .build_cartesian_2d((lo / 1.3..hi * 1.3).log_scale(), 0.0..top * 1.1)
+            .build_cartesian_2d(
+                (lo / 1.3..hi * 1.3)
+                    .log_scale()
+                    .with_key_points(def.mc.clone()),
+                0.0..top * 1.1,
+            )
             .map_err(|e| plot_err(&e))?;
         chart
             .configure_mesh()
