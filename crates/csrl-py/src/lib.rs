@@ -13,6 +13,9 @@
 //!   callables.
 //! * [`Classifier`]: CS-ID3 or CS-IBL over integer-coded objects, for the scikit-learn
 //!   estimators.
+//! * [`TestCostTree`]: a tree of the test-cost family (`cslearn::testcost`: ID3, C4.5,
+//!   IDX, batch CS-ID3, EG2, DTMC, ICET) over numeric and nominal columns, for the
+//!   scikit-learn estimators of that family.
 //!
 //! Every error of the Rust crates becomes a Python exception with the same message
 //! (`SettingsError` and `WorldError`, both `ValueError`s; `DataError` for the
@@ -21,6 +24,7 @@
 mod agent;
 mod classifier;
 mod settings;
+mod testcost;
 mod world;
 
 use pyo3::create_exception;
@@ -29,6 +33,7 @@ use pyo3::prelude::*;
 
 pub use agent::PyAgent;
 pub use classifier::Classifier;
+pub use testcost::TestCostTree;
 pub use world::PyWorld;
 
 create_exception!(
@@ -309,6 +314,7 @@ fn _csrl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(world_names, m)?)?;
     m.add_class::<PyWorld>()?;
     m.add_class::<Classifier>()?;
+    m.add_class::<TestCostTree>()?;
     m.add_class::<PyAgent>()?;
     m.add_function(wrap_pyfunction!(value_floor, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -22,7 +22,9 @@ def printed(example: str) -> str:
     return m.group(1)
 
 
-@pytest.mark.parametrize("example", ["taxi.py", "heart_pipeline.py", "sensing_tabular.py", "frozenlake_agent.py"])
+@pytest.mark.parametrize(
+    "example", ["taxi.py", "heart_pipeline.py", "heart_testcost.py", "sensing_tabular.py", "frozenlake_agent.py"]
+)
 def test_example_prints_what_the_docs_show(repo, example):
     out = subprocess.run(
         [sys.executable, str(repo / "crates" / "csrl-py" / "examples" / example)],

@@ -9,8 +9,10 @@ The learning runs in Rust; this package gives it Python's shapes:
   world files, your own arrays, and Gymnasium's toy-text environments.
 * :mod:`csrl.gym` -- ``SensingEnv``, a Gymnasium environment where sensing has a price
   (registered as ``csrl/Sensing-v0``).
-* :mod:`csrl.sklearn` -- ``CsId3Classifier`` and ``CsIblClassifier``, scikit-learn
-  estimators that pay for what they measure.
+* :mod:`csrl.sklearn` -- scikit-learn estimators that pay for what they measure: the
+  paper's ``CsId3Classifier`` and ``CsIblClassifier``, and the test-cost tree family
+  (``C45Classifier``, ``Eg2Classifier``, ``IcetClassifier``, ... and
+  ``TestCostTreeClassifier``).
 
 Errors are Python exceptions carrying the Rust message: :class:`SettingsError`,
 :class:`WorldError` and :class:`SensorError` are ``ValueError``\\ s, :class:`AgentError`

@@ -118,3 +118,37 @@ class Classifier:
     def tree_dot(
         self, feature_names: list[str], value_names: list[list[str]], class_names: list[str]
     ) -> str: ...
+
+# A column for TestCostTree: (None, floats with NaN for missing) for a numeric feature,
+# or (value names, codes: an index into them, -1 for missing, len(names) for a value
+# never seen) for a nominal one.
+_Column = tuple[Optional[list[str]], list[Any]]
+
+class TestCostTree:
+    @staticmethod
+    def fit(
+        learner: str,
+        names: list[str],
+        columns: list[_Column],
+        classes: list[int],
+        class_names: list[str],
+        prices: list[tuple[float, float, Optional[int]]],
+        group_names: list[str],
+        misclassification: list[list[float]],
+        confidence: float = 0.25,
+        w: float = 1.0,
+        seed: int = 0,
+        population: int = 50,
+        generations: int = 20,
+    ) -> TestCostTree: ...
+    def classify(self, columns: list[_Column]) -> tuple[list[int], list[float], list[list[int]]]: ...
+    def nodes(
+        self,
+    ) -> list[tuple[int, list[float], Optional[tuple[int, Optional[float], list[int]]]]]: ...
+    @property
+    def learner(self) -> str: ...
+    @property
+    def icet_genome(self) -> Optional[tuple[list[float], float, float, float]]: ...
+    def state(self) -> Any: ...
+    @staticmethod
+    def from_state(state: Any) -> TestCostTree: ...

@@ -1,0 +1,473 @@
+//! `csrl._csrl.TestCostTree`: a tree of the test-cost family (`cslearn::testcost`: ID3,
+//! C4.5, IDX, batch CS-ID3, EG2, DTMC, ICET) over numeric and nominal columns, for the
+//! scikit-learn estimators of `csrl.sklearn` (which read the data, code nominal values
+//! and classes, and check the parameters with scikit-learn's messages).
+//!
+//! A column crosses the boundary as `(None, cells)` for a numeric feature (floats, NaN
+//! where missing) or `(values, codes)` for a nominal one (value names, and one code per
+//! object: an index into `values`, -1 where missing, `len(values)` for a value the tree
+//! never saw). The fitted tree keeps its prices, column kinds and names, and pickles as
+//! plain Python values (`__reduce__`).
+
+use cslearn::testcost::{
+    Column, CostTree, FamilyParams, Frame, IcetGenome, IcetParams, MISSING, Method, MisclassCosts,
+    Split, TestPrice, TestPrices,
+};
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyType};
+use serde_json::{Value, json};
+
+use crate::{DataError, message};
+
+/// One column as Python hands it over: `(None, cells)` or `(values, codes)`.
+type PyColumn<'py> = (Option<Vec<String>>, Bound<'py, PyAny>);
+
+/// A feature's kind, as the tree was grown on it: numeric, or nominal with these values.
+#[derive(Clone, Debug, PartialEq)]
+enum Kind {
+    Numeric,
+    Nominal(Vec<String>),
+}
+
+fn data_error(e: &cslearn::Error) -> PyErr {
+    DataError::new_err(message(e))
+}
+
+/// The columns as a frame (classes given for training, all 0 for classifying), checked
+/// against `kinds` when the tree already has them.
+fn frame(
+    names: &[String],
+    columns: Vec<PyColumn<'_>>,
+    classes: Vec<u32>,
+    class_names: &[String],
+    kinds: Option<&[Kind]>,
+) -> PyResult<(Frame, Vec<Kind>)> {
+    if columns.len() != names.len() {
+        return Err(DataError::new_err(format!(
+            "{} columns for {} feature names",
+            columns.len(),
+            names.len()
+        )));
+    }
+    let mut out = Vec::with_capacity(columns.len());
+    let mut out_kinds = Vec::with_capacity(columns.len());
+    for (j, (values, cells)) in columns.into_iter().enumerate() {
+        let name = &names[j];
+        let known = kinds.map(|k| &k[j]);
+        match values {
+            None => {
+                if let Some(Kind::Nominal(_)) = known {
+                    return Err(DataError::new_err(format!(
+                        "column `{name}` is numeric, but the tree was grown on it as nominal"
+                    )));
+                }
+                let x: Vec<f64> = cells.extract().map_err(|_| {
+                    DataError::new_err(format!("column `{name}`: numeric cells must be floats"))
+                })?;
+                out.push(Column::Numeric(x));
+                out_kinds.push(Kind::Numeric);
+            }
+            Some(mut values) => {
+                if let Some(Kind::Numeric) = known {
+                    return Err(DataError::new_err(format!(
+                        "column `{name}` is nominal, but the tree was grown on it as numeric"
+                    )));
+                }
+                let raw: Vec<i64> = cells.extract().map_err(|_| {
+                    DataError::new_err(format!("column `{name}`: nominal codes must be ints"))
+                })?;
+                let kind = Kind::Nominal(values.clone());
+                // A value the tree never saw (code `len(values)`) gets a place of its own,
+                // which no branch has: the tree sends it down its largest branch.
+                let seen = values.len() as i64;
+                let mut unseen = false;
+                let codes = raw
+                    .iter()
+                    .map(|&c| match c {
+                        -1 => Ok(MISSING),
+                        c if (0..seen).contains(&c) => Ok(c as u32),
+                        c if c == seen && kinds.is_some() => {
+                            unseen = true;
+                            Ok(c as u32)
+                        }
+                        c => Err(DataError::new_err(format!(
+                            "column `{name}`: code {c} is not -1 (missing) or the index of one of its {seen} values"
+                        ))),
+                    })
+                    .collect::<PyResult<Vec<u32>>>()?;
+                if let Some(Kind::Nominal(fitted)) = known
+                    && *fitted != values
+                {
+                    return Err(DataError::new_err(format!(
+                        "column `{name}`: the values differ from those the tree was grown on"
+                    )));
+                }
+                if unseen {
+                    values.push("(unseen)".to_string());
+                }
+                out.push(Column::Nominal { values, codes });
+                out_kinds.push(kind);
+            }
+        }
+    }
+    let frame = Frame::new(names.to_vec(), out, classes, class_names.to_vec())
+        .map_err(|e| data_error(&e))?;
+    Ok((frame, out_kinds))
+}
+
+/// A fitted tree of the test-cost family with the prices it pays, the kinds of its
+/// columns, and for ICET the individual it was grown from.
+#[pyclass(module = "csrl._csrl", frozen)]
+pub struct TestCostTree {
+    learner: Method,
+    names: Vec<String>,
+    kinds: Vec<Kind>,
+    class_names: Vec<String>,
+    prices: TestPrices,
+    tree: CostTree,
+    genome: Option<IcetGenome>,
+}
+
+impl TestCostTree {
+    fn to_value(&self) -> PyResult<Value> {
+        let ser = |e: serde_json::Error| DataError::new_err(format!("cannot save the tree: {e}"));
+        let kinds: Vec<Value> = self
+            .kinds
+            .iter()
+            .map(|k| match k {
+                Kind::Numeric => Value::Null,
+                Kind::Nominal(values) => json!(values),
+            })
+            .collect();
+        Ok(json!({
+            "learner": self.learner.name(),
+            "names": self.names,
+            "kinds": kinds,
+            "class_names": self.class_names,
+            "prices": serde_json::to_value(&self.prices).map_err(ser)?,
+            "tree": serde_json::to_value(&self.tree).map_err(ser)?,
+            "genome": serde_json::to_value(&self.genome).map_err(ser)?,
+        }))
+    }
+
+    fn from_value(v: &Value) -> Result<TestCostTree, String> {
+        let field = |key: &str| v.get(key).cloned().ok_or(format!("no `{key}`"));
+        let learner: String =
+            serde_json::from_value(field("learner")?).map_err(|e| e.to_string())?;
+        let learner = Method::parse(&learner).map_err(|e| e.to_string())?;
+        let kinds: Vec<Option<Vec<String>>> =
+            serde_json::from_value(field("kinds")?).map_err(|e| e.to_string())?;
+        let tree = TestCostTree {
+            learner,
+            names: serde_json::from_value(field("names")?).map_err(|e| e.to_string())?,
+            kinds: kinds
+                .into_iter()
+                .map(|k| k.map_or(Kind::Numeric, Kind::Nominal))
+                .collect(),
+            class_names: serde_json::from_value(field("class_names")?)
+                .map_err(|e| e.to_string())?,
+            prices: serde_json::from_value(field("prices")?).map_err(|e| e.to_string())?,
+            tree: serde_json::from_value(field("tree")?).map_err(|e| e.to_string())?,
+            genome: serde_json::from_value(field("genome")?).map_err(|e| e.to_string())?,
+        };
+        if tree.kinds.len() != tree.names.len() || tree.prices.len() != tree.names.len() {
+            return Err("the features, their kinds and their prices differ in number".into());
+        }
+        Ok(tree)
+    }
+}
+
+fn check_unit(value: f64, what: &str, low_open: bool, high_open: bool) -> PyResult<()> {
+    let low_ok = if low_open { value > 0.0 } else { value >= 0.0 };
+    let high_ok = if high_open { value < 1.0 } else { value <= 1.0 };
+    if value.is_finite() && low_ok && high_ok {
+        Ok(())
+    } else {
+        let (l, h) = (
+            if low_open { "(" } else { "[" },
+            if high_open { ")" } else { "]" },
+        );
+        Err(DataError::new_err(format!(
+            "{what} must be in {l}0, 1{h}, found {value}"
+        )))
+    }
+}
+
+#[pymethods]
+impl TestCostTree {
+    /// Grow a tree with `learner` ("id3", "c45", "idx", "cs-id3-batch", "eg2", "dtmc",
+    /// "icet") on every object. `prices` is `(full, discount, group)` per feature (group
+    /// an index into `group_names`, or `None`); `misclassification[actual][predicted]`
+    /// the cost of each answer; `confidence` C4.5's pruning confidence, `w` EG2's weight
+    /// of the price; `seed`, `population` and `generations` ICET's search. The GIL is
+    /// released while it grows.
+    #[staticmethod]
+    #[pyo3(signature = (learner, names, columns, classes, class_names, prices, group_names, misclassification, confidence=0.25, w=1.0, seed=0, population=50, generations=20))]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "one argument per setting, all keywords from Python"
+    )]
+    fn fit(
+        py: Python<'_>,
+        learner: &str,
+        names: Vec<String>,
+        columns: Vec<PyColumn<'_>>,
+        classes: Vec<u32>,
+        class_names: Vec<String>,
+        prices: Vec<(f64, f64, Option<u32>)>,
+        group_names: Vec<String>,
+        misclassification: Vec<Vec<f64>>,
+        confidence: f64,
+        w: f64,
+        seed: u64,
+        population: usize,
+        generations: usize,
+    ) -> PyResult<TestCostTree> {
+        let method = Method::parse(learner).map_err(|e| data_error(&e))?;
+        if prices.len() != names.len() {
+            return Err(DataError::new_err(format!(
+                "{} prices for {} features",
+                prices.len(),
+                names.len()
+            )));
+        }
+        check_unit(confidence, "confidence", true, true)?;
+        check_unit(w, "w", false, false)?;
+        if population < 2 || generations < 1 {
+            return Err(DataError::new_err(format!(
+                "ICET needs a population of at least 2 and at least 1 generation, found {population} and {generations}"
+            )));
+        }
+        let prices = TestPrices::new(
+            prices
+                .into_iter()
+                .map(|(full, discount, group)| TestPrice {
+                    full,
+                    discount,
+                    group,
+                    delayed: false,
+                })
+                .collect(),
+            group_names,
+        )
+        .map_err(|e| data_error(&e))?;
+        let mc = MisclassCosts::from_rows(&misclassification).map_err(|e| data_error(&e))?;
+        if mc.classes() != class_names.len() {
+            return Err(DataError::new_err(format!(
+                "a {0}x{0} misclassification matrix for {1} classes",
+                mc.classes(),
+                class_names.len()
+            )));
+        }
+        let (frame, kinds) = frame(&names, columns, classes, &class_names, None)?;
+        let params = FamilyParams {
+            confidence,
+            eg2_w: w,
+            icet: IcetParams {
+                population,
+                generations,
+                ..IcetParams::default()
+            },
+        };
+        let rows: Vec<usize> = (0..frame.len()).collect();
+        let fitted = py
+            .detach(|| cslearn::testcost::fit(method, &frame, &rows, &prices, &mc, &params, seed));
+        Ok(TestCostTree {
+            learner: method,
+            names,
+            kinds,
+            class_names,
+            prices,
+            tree: fitted.tree,
+            genome: fitted.genome,
+        })
+    }
+
+    /// Classify the objects (columns as in `fit`; a nominal column's values must be
+    /// those of `fit`): the class code of each, the price of the tests it paid for, and
+    /// those tests (feature indices, in the order done).
+    #[allow(
+        clippy::type_complexity,
+        reason = "the tuple Python receives: classes, costs, tests"
+    )]
+    fn classify(
+        &self,
+        py: Python<'_>,
+        columns: Vec<PyColumn<'_>>,
+    ) -> PyResult<(Vec<u32>, Vec<f64>, Vec<Vec<usize>>)> {
+        let n = match columns.first() {
+            None => 0,
+            Some((_, cells)) => cells.len()?,
+        };
+        if columns.len() != self.names.len() {
+            return Err(DataError::new_err(format!(
+                "{} columns, but the tree was grown on {} features",
+                columns.len(),
+                self.names.len()
+            )));
+        }
+        if n == 0 {
+            return Ok((Vec::new(), Vec::new(), Vec::new()));
+        }
+        let (frame, _) = frame(
+            &self.names,
+            columns,
+            vec![0; n],
+            &self.class_names,
+            Some(&self.kinds),
+        )?;
+        let (tree, prices) = (&self.tree, &self.prices);
+        Ok(py.detach(|| {
+            let mut classes = Vec::with_capacity(n);
+            let mut costs = Vec::with_capacity(n);
+            let mut tests = Vec::with_capacity(n);
+            for row in 0..n {
+                let c = tree.classify(&frame, row, prices);
+                classes.push(c.class);
+                costs.push(c.test_cost);
+                tests.push(c.tests);
+            }
+            (classes, costs, tests)
+        }))
+    }
+
+    /// The nodes, root first: `(label, weights, split)` with the class code each answers,
+    /// the training weight of each class there, and `None` at a leaf or
+    /// `(feature, threshold, children)` (threshold `None` for a nominal feature, whose
+    /// children follow its values).
+    #[allow(
+        clippy::type_complexity,
+        reason = "the tuples Python receives, one per node"
+    )]
+    fn nodes(&self) -> Vec<(u32, Vec<f64>, Option<(usize, Option<f64>, Vec<u32>)>)> {
+        (0..self.tree.len())
+            .map(|i| {
+                let node = self.tree.node(i);
+                let split = node.split.as_ref().map(|s| match s {
+                    Split::Nominal {
+                        feature, children, ..
+                    } => (*feature, None, children.clone()),
+                    Split::Threshold {
+                        feature,
+                        at,
+                        children,
+                        ..
+                    } => (*feature, Some(*at), children.to_vec()),
+                });
+                (node.label, node.weights.clone(), split)
+            })
+            .collect()
+    }
+
+    /// The learner's name.
+    #[getter]
+    fn learner(&self) -> &'static str {
+        self.learner.name()
+    }
+
+    /// ICET's best individual, `(prices, w, confidence, fitness)`: the biased price of
+    /// each test, EG2's `w`, the pruning confidence and the mean total cost on the
+    /// held-out half; `None` for the other learners.
+    #[getter]
+    fn icet_genome(&self) -> Option<(Vec<f64>, f64, f64, f64)> {
+        self.genome
+            .as_ref()
+            .map(|g| (g.prices.clone(), g.w, g.confidence, g.fitness))
+    }
+
+    /// The tree, its prices and its columns as plain Python values (dicts, lists,
+    /// strings and numbers; floats exact), for pickling.
+    fn state(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
+        to_python(py, &self.to_value()?)
+    }
+
+    /// A tree from what `state` returned.
+    #[staticmethod]
+    fn from_state(state: &Bound<'_, PyAny>) -> PyResult<TestCostTree> {
+        TestCostTree::from_value(&from_python(state)?)
+            .map_err(|e| DataError::new_err(format!("not a saved tree: {e}")))
+    }
+
+    fn __reduce__<'py>(
+        slf: &Bound<'py, Self>,
+    ) -> PyResult<(Bound<'py, PyAny>, (Bound<'py, PyAny>,))> {
+        let cls: Bound<'py, PyType> = slf.get_type();
+        Ok((
+            cls.getattr("from_state")?,
+            (slf.get().state(slf.py())?.into_bound(slf.py()),),
+        ))
+    }
+}
+
+/// A JSON value as Python's dicts, lists, strings and numbers (floats exactly: a text
+/// round trip through serde_json's default parser can move a float by one unit in the
+/// last place, and a threshold with it).
+fn to_python(py: Python<'_>, value: &Value) -> PyResult<Py<PyAny>> {
+    Ok(match value {
+        Value::Null => py.None(),
+        Value::Bool(b) => b.into_pyobject(py)?.to_owned().into_any().unbind(),
+        Value::Number(n) => {
+            if let Some(u) = n.as_u64() {
+                u.into_pyobject(py)?.into_any().unbind()
+            } else if let Some(i) = n.as_i64() {
+                i.into_pyobject(py)?.into_any().unbind()
+            } else {
+                n.as_f64()
+                    .unwrap_or(f64::NAN)
+                    .into_pyobject(py)?
+                    .into_any()
+                    .unbind()
+            }
+        }
+        Value::String(s) => s.into_pyobject(py)?.into_any().unbind(),
+        Value::Array(items) => {
+            let list = PyList::empty(py);
+            for item in items {
+                list.append(to_python(py, item)?)?;
+            }
+            list.into_any().unbind()
+        }
+        Value::Object(map) => {
+            let dict = PyDict::new(py);
+            for (k, v) in map {
+                dict.set_item(k, to_python(py, v)?)?;
+            }
+            dict.into_any().unbind()
+        }
+    })
+}
+
+/// The inverse of [`to_python`].
+fn from_python(obj: &Bound<'_, PyAny>) -> PyResult<Value> {
+    let bad = || DataError::new_err("not a saved tree: a value that is not JSON");
+    Ok(if obj.is_none() {
+        Value::Null
+    } else if let Ok(b) = obj.cast::<PyBool>() {
+        Value::Bool(b.is_true())
+    } else if obj.is_instance_of::<PyInt>() {
+        if let Ok(u) = obj.extract::<u64>() {
+            Value::from(u)
+        } else {
+            Value::from(obj.extract::<i64>().map_err(|_| bad())?)
+        }
+    } else if let Ok(f) = obj.cast::<PyFloat>() {
+        serde_json::Number::from_f64(f.value()).map_or(Value::Null, Value::Number)
+    } else if obj.is_instance_of::<PyString>() {
+        Value::String(obj.extract()?)
+    } else if let Ok(list) = obj.cast::<PyList>() {
+        Value::Array(
+            list.iter()
+                .map(|i| from_python(&i))
+                .collect::<PyResult<_>>()?,
+        )
+    } else if let Ok(dict) = obj.cast::<PyDict>() {
+        let mut map = serde_json::Map::new();
+        for (k, v) in dict.iter() {
+            let key: String = k.extract().map_err(|_| bad())?;
+            map.insert(key, from_python(&v)?);
+        }
+        Value::Object(map)
+    } else {
+        return Err(bad());
+    })
+}

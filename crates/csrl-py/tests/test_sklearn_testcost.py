@@ -1,0 +1,335 @@
+"""csrl.sklearn's test-cost trees: scikit-learn's checks, prices on the path, groups,
+misclassification costs, nominal columns, ICET's seed and pickling."""
+
+import pickle
+import warnings
+
+import numpy as np
+import pandas as pd
+import pytest
+from sklearn.base import clone
+from sklearn.datasets import load_iris, make_blobs
+from sklearn.exceptions import SkipTestWarning
+from sklearn.model_selection import cross_val_score
+from sklearn.preprocessing import StandardScaler
+from sklearn.utils.estimator_checks import check_estimator
+
+import csrl
+from csrl import sklearn as cs
+
+NAMED = {
+    "id3": cs.Id3Classifier,
+    "c45": cs.C45Classifier,
+    "idx": cs.IdxClassifier,
+    "cs-id3-batch": cs.CsId3BatchClassifier,
+    "eg2": cs.Eg2Classifier,
+    "dtmc": cs.DtmcClassifier,
+    "icet": cs.IcetClassifier,
+}
+ESTIMATORS = [cs.TestCostTreeClassifier(), *(cls() for cls in NAMED.values())]
+
+# Checks scikit-learn itself skips here, with its reason.
+SKIPPED = {
+    "check_array_api_input": "needs SCIPY_ARRAY_API and the array API packages; the estimators take numpy arrays",
+}
+
+
+@pytest.mark.parametrize("estimator", ESTIMATORS, ids=lambda e: type(e).__name__)
+def test_scikit_learn_checks(estimator):
+    # IdxClassifier and CsId3BatchClassifier declare the `poor_score` tag (why: the
+    # test below), which skips check_classifiers_train's accuracy bound and nothing else.
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SkipTestWarning)
+        results = check_estimator(estimator, on_fail=None)
+    assert len(results) > 40
+    failed = {
+        r["check_name"]: f"{r['status']}: {r['exception']}"
+        for r in results
+        if r["status"] != "passed" and r["check_name"] not in SKIPPED
+    }
+    assert failed == {}
+
+
+def test_idx_and_batch_cs_id3_split_again_on_a_test_already_paid_for():
+    # scikit-learn's three blobs (check_classifiers_train's data), every price 1: once
+    # x0 is bought it is free on the path, and gain / price prefers any split on it to a
+    # better one on x1. EG2 divides by (price + 1)^w and does not.
+    X, y = make_blobs(n_samples=300, random_state=0)
+    X = StandardScaler().fit_transform(X)
+    for learner in ("idx", "cs-id3-batch"):
+        clf = NAMED[learner]().fit(X, y)
+        assert clf.__sklearn_tags__().classifier_tags.poor_score
+        assert all(t == [0] for t in clf.predict_tests(X))
+        assert clf.score(X, y) < 0.83
+    eg2 = cs.Eg2Classifier().fit(X, y)
+    assert not eg2.__sklearn_tags__().classifier_tags.poor_score
+    assert eg2.score(X, y) > 0.9
+    assert cs.TestCostTreeClassifier(learner="idx").__sklearn_tags__().classifier_tags.poor_score
+
+
+@pytest.mark.parametrize("learner", list(NAMED))
+def test_iris_is_learned_by_every_learner(learner):
+    X, y = load_iris(return_X_y=True)
+    clf = NAMED[learner](feature_costs=[1.0, 2.0, 3.0, 4.0])
+    assert clf.fit(X, y).score(X, y) >= 0.9
+    # IDX and CS-ID3 keep splitting the cheapest feature once bought (see above).
+    assert cross_val_score(clf, X, y, cv=5).mean() > (0.7 if learner in ("idx", "cs-id3-batch") else 0.9)
+    assert set(clf.predict(X)) <= set(clf.classes_)
+    # The named estimator is the general one with its learner fixed.
+    general = cs.TestCostTreeClassifier(learner=learner, feature_costs=[1.0, 2.0, 3.0, 4.0]).fit(X, y)
+    assert general._model.nodes() == clf._model.nodes()
+
+
+def dear_and_cheap(n=200, seed=3):
+    """Feature 0 decides the class and costs 50; feature 1 decides it for 90% of the
+    objects and costs 1."""
+    rng = np.random.default_rng(seed)
+    dear = rng.uniform(0, 10, n)
+    y = (dear > 5).astype(int)
+    cheap = np.where(rng.random(n) < 0.9, y, 1 - y) * 4.0 + rng.uniform(0, 1, n)
+    return np.column_stack([dear, cheap]), y
+
+
+def test_the_cheap_feature_is_preferred_by_eg2_and_idx_but_not_by_c45():
+    X, y = dear_and_cheap()
+    costs = dict(feature_costs=[50.0, 1.0], misclassification_cost=100.0)
+    root = {}
+    for learner in ("c45", "id3", "idx", "eg2"):
+        clf = NAMED[learner](**costs).fit(X, y)
+        root[learner] = clf._model.nodes()[0][2][0]
+        assert clf.predict_cost(X).min() == (50.0 if root[learner] == 0 else 1.0)
+    assert root == {"c45": 0, "id3": 0, "idx": 1, "eg2": 1}
+    c45 = cs.C45Classifier(**costs).fit(X, y)
+    eg2 = cs.Eg2Classifier(**costs).fit(X, y)
+    assert c45.score(X, y) > eg2.score(X, y)  # C4.5 pays for the better test
+    assert eg2.total_cost(X, y) < c45.total_cost(X, y)  # EG2 costs less in all
+    # EG2 with w = 0 does not look at prices.
+    assert cs.Eg2Classifier(w=0.0, **costs).fit(X, y)._model.nodes()[0][2][0] == 0
+
+
+def walk(clf, x):
+    """The features a tree tests for object x (a row of floats, NaN where missing),
+    found by following the tree: every branch below a missing value."""
+    nodes = clf._model.nodes()
+    tested, stack = [], [0]
+    while stack:
+        label, _, split = nodes[stack.pop()]
+        if split is None:
+            continue
+        feature, at, children = split
+        if feature not in tested:
+            tested.append(feature)
+        if np.isnan(x[feature]):
+            stack.extend(children)
+        else:
+            stack.append(children[int(x[feature] > at)])
+    return tested
+
+
+def test_predict_cost_is_the_price_of_the_tests_on_the_path():
+    rng = np.random.default_rng(4)
+    X = rng.uniform(0, 1, size=(300, 5))
+    y = ((X[:, 0] > 0.5) ^ (X[:, 3] > 0.3)) + (X[:, 4] > 0.8)
+    prices = np.array([3.0, 5.0, 7.0, 11.0, 13.0])
+    clf = cs.Id3Classifier(feature_costs=prices.tolist()).fit(X, y)
+    Xt = rng.uniform(0, 1, size=(100, 5))
+    Xt[::7, 0] = np.nan  # missing at the root: every branch's tests are paid for
+    Xt[::5, 3] = np.nan
+    classes, costs = clf.predict_with_cost(Xt)
+    tests = clf.predict_tests(Xt)
+    assert np.array_equal(classes, clf.predict(Xt))
+    for x, cost, done in zip(Xt, costs, tests):
+        path = walk(clf, x)
+        assert sorted(done) == sorted(path)
+        assert cost == pytest.approx(prices[path].sum())
+    # An object missing the root's value pays for the tests of both sides.
+    root, at, _ = clf._model.nodes()[0][2]
+    x = Xt[:1].copy()
+    x[0, root] = np.nan
+    sides = [clf.predict_cost(np.where(np.arange(5) == root, v, x))[0] for v in (at - 0.01, at + 0.01)]
+    assert clf.predict_cost(x)[0] >= max(sides) > min(sides)
+
+
+def test_a_group_is_paid_in_full_once_then_at_its_discount():
+    rng = np.random.default_rng(5)
+    X = rng.uniform(0, 1, size=(400, 3))
+    y = ((X[:, 0] > 0.5) & (X[:, 1] > 0.5)).astype(int)  # needs features 0 and 1
+    full = [10.0, 8.0, 1.0]
+    plain = cs.Id3Classifier(feature_costs=full).fit(X, y)
+    grouped = cs.Id3Classifier(
+        feature_costs=full,
+        feature_groups=["blood", "blood", None],
+        feature_discounts=[2.0, 3.0, None],
+    ).fit(X, y)
+    discount = {0: 2.0, 1: 3.0}
+    both = 0
+    for done, cost, plain_cost in zip(grouped.predict_tests(X), grouped.predict_cost(X), plain.predict_cost(X)):
+        blood = [f for f in done if f in (0, 1)]
+        expected = sum(full[f] for f in done if f == 2)
+        if blood:  # the first test of the group in full, the later one at its discount
+            expected += full[blood[0]] + sum(discount[f] for f in blood[1:])
+        assert cost == pytest.approx(expected)
+        both += len(blood) == 2
+    assert both > 50
+    # Without the groups, both tests are paid in full.
+    assert plain.predict_cost(X).max() == pytest.approx(18.0)
+    assert grouped.predict_cost(X).max() == pytest.approx(13.0)
+
+
+def test_groups_and_prices_by_column_name_with_nominal_strings():
+    X = pd.DataFrame(
+        {
+            "colour": ["red", "blue", "red", None, "blue", "green"] * 10,
+            "size": [1.0, 2.0, np.nan, 4.0, 5.0, 6.0] * 10,
+            "code": [1, 2, 1, 2, 1, 2] * 10,
+        }
+    )
+    y = np.where(X["colour"].eq("red") | X["size"].gt(4.5), "yes", "no")
+    clf = cs.TestCostTreeClassifier(
+        learner="id3",
+        feature_costs={"colour": 2.0, "size": 3.0, "code": 5.0},
+        feature_groups={"colour": "g", "size": "g"},
+        feature_discounts={"size": 1.0},
+        nominal_features=["code"],
+    ).fit(X, y)
+    assert clf.nominal_features_.tolist() == [True, False, True]
+    assert clf.categories_[0].tolist() == ["blue", "green", "red"]
+    assert clf.categories_[2].tolist() == ["1", "2"]
+    assert clf.feature_costs_.tolist() == [2.0, 3.0, 5.0]
+    assert clf.score(X, y) > 0.8
+    # A value never seen goes down the largest branch; it still pays for the test.
+    unseen = pd.DataFrame({"colour": ["purple"], "size": [9.0], "code": [3]})
+    assert clf.predict(unseen)[0] in {"yes", "no"}
+    assert clf.predict_cost(unseen)[0] >= 2.0
+    with pytest.raises(ValueError, match="feature_costs has no entry for the columns"):
+        cs.Id3Classifier(feature_costs={"colour": 1.0}).fit(X, y)
+    with pytest.raises(ValueError, match="names columns X does not have"):
+        cs.Id3Classifier(feature_groups={"weight": "g"}).fit(X, y)
+    with pytest.raises(ValueError, match="is numeric, but X holds 'big'"):
+        clf.predict(pd.DataFrame({"colour": ["red"], "size": ["big"], "code": [1]}))
+    # A list of rows keeps its numbers numbers.
+    rows = [[1.0, "a"], [2.0, "a"], [8.0, "b"], [9.0, "b"]] * 3
+    fitted = cs.Id3Classifier().fit(rows, [0, 0, 1, 1] * 3)
+    assert fitted.nominal_features_.tolist() == [False, True]
+
+
+def test_pandas_nullable_and_category_columns():
+    X = pd.DataFrame(
+        {
+            "count": pd.array([1, None, 3, 4] * 5, dtype="Int64"),  # numeric, NA missing
+            "kind": pd.Categorical([1, 2, 1, 3] * 5),  # nominal for all its numbers
+            "score": [1.5, 2.5, np.nan, 0.0] * 5,
+        }
+    )
+    y = ["p", "q", "p", "q"] * 5
+    clf = cs.Eg2Classifier().fit(X, y)
+    assert clf.nominal_features_.tolist() == [False, True, False]
+    assert clf.categories_[1].tolist() == ["1", "2", "3"]
+    assert clf.score(X, y) == 1.0
+    with pytest.raises(ValueError, match="Feature names must be in the same order"):
+        clf.predict(X[["kind", "count", "score"]])
+
+
+def test_misclassification_costs_label_the_leaves_and_count_in_the_total():
+    X, y = dear_and_cheap()
+    y = np.where(y == 1, "sick", "well")
+    # A missed "sick" costs 1000, a false alarm 1: a stump on nothing answers "sick".
+    matrix = [[0.0, 1000.0], [1.0, 0.0]]  # [actual][predicted], classes_ = [sick, well]
+    clf = cs.DtmcClassifier(feature_costs=[1e6, 1e6], misclassification_cost=matrix).fit(X, y)
+    assert clf.classes_.tolist() == ["sick", "well"]
+    assert set(clf.predict(X)) == {"sick"}
+    assert clf.total_cost(X, y) == pytest.approx(np.mean(y == "well") * 1.0)
+    by_label = {"sick": {"well": 1000.0}, "well": {"sick": 1.0}}
+    same = cs.DtmcClassifier(feature_costs=[1e6, 1e6], misclassification_cost=by_label).fit(X, y)
+    assert np.array_equal(same.misclassification_costs_, np.array(matrix))
+    # total_cost: the tests plus the cost of each answer.
+    eg2 = cs.Eg2Classifier(feature_costs=[50.0, 1.0], misclassification_cost=matrix).fit(X, y)
+    pred, cost = eg2.predict_with_cost(X)
+    wrong = np.where(pred == y, 0.0, np.where(y == "sick", 1000.0, 1.0))
+    assert eg2.total_cost(X, y) == pytest.approx(np.mean(cost + wrong))
+    with pytest.raises(ValueError, match="not fitted on"):
+        eg2.total_cost(X[:2], ["sick", "unknown"])
+
+
+@pytest.mark.parametrize(
+    "params, message",
+    [
+        ({"misclassification_cost": [[0, 1, 1], [1, 0, 1], [1, 1, 0]]}, r"must be 2 x 2, indexed \[actual\]\[predicted\]"),
+        ({"misclassification_cost": [0, 1]}, "must be 2 x 2"),
+        ({"misclassification_cost": -1.0}, "misclassification_cost is -1.0: costs must be finite and not negative"),
+        ({"misclassification_cost": [[0, -5], [1, 0]]}, r"misclassification_cost\[0\]\[1\] is -5.0"),
+        ({"misclassification_cost": {0: {1: 1.0}}}, "no cost for answering 0 to an object of class 1"),
+        ({"feature_costs": [1.0, -2.0]}, "the price of feature 1 is -2.0: costs must be finite and not negative"),
+        ({"feature_costs": [1.0, np.inf]}, "the price of feature 1 is inf"),
+        ({"feature_costs": [1.0]}, "feature_costs has 1 entries but X has 2 features"),
+        ({"feature_costs": {"a": 1.0}}, "needs X with column names"),
+        ({"feature_groups": ["g", "g"], "feature_discounts": [-1.0, None]}, "discount of feature 0 is -1.0"),
+        ({"feature_groups": ["g", "g"], "feature_discounts": [2.0, None]}, "above its full price 1.0"),
+        ({"feature_discounts": [0.5, None]}, "puts it in no group"),
+        ({"feature_groups": [["list"], None]}, "not hashable"),
+        ({"learner": "c5"}, "learner must be one of id3, c45"),
+        ({"confidence": 0.0}, r"confidence must be a number in \(0, 1\)"),
+        ({"w": 2.0}, r"w must be a number in \[0, 1\]"),
+        ({"seed": -1}, "seed must be an integer at least 0"),
+        ({"population": 1}, "population must be an integer at least 2"),
+        ({"nominal_features": [5]}, "5 is not a column index"),
+    ],
+)
+def test_bad_parameters_are_refused_with_a_clear_value_error(params, message):
+    X = np.array([[0.0, 1.0], [1.0, 0.0]] * 4)
+    with pytest.raises(ValueError, match=message):
+        cs.TestCostTreeClassifier(**params).fit(X, [0, 1] * 4)
+
+
+def test_icet_is_reproducible_from_its_seed():
+    X, y = load_iris(return_X_y=True)
+    params = dict(feature_costs=[1.0, 5.0, 20.0, 40.0], misclassification_cost=50.0, population=20, generations=5)
+    a = cs.IcetClassifier(seed=7, **params).fit(X, y)
+    b = cs.IcetClassifier(seed=7, **params).fit(X, y)
+    c = cs.IcetClassifier(seed=8, **params).fit(X, y)
+    assert a._model.nodes() == b._model.nodes()
+    assert a.icet_genome_["w"] == b.icet_genome_["w"]
+    assert np.array_equal(a.icet_genome_["prices"], b.icet_genome_["prices"])
+    assert not np.array_equal(a.icet_genome_["prices"], c.icet_genome_["prices"])
+    assert set(a.icet_genome_) == {"prices", "w", "confidence", "fitness"}
+    assert len(a.icet_genome_["prices"]) == 4 and 0 < a.icet_genome_["confidence"] < 1
+    assert not hasattr(cs.Eg2Classifier().fit(X, y), "icet_genome_")
+
+
+@pytest.mark.parametrize("estimator", ESTIMATORS, ids=lambda e: type(e).__name__)
+def test_pickled_estimator_predicts_the_same(estimator):
+    rng = np.random.default_rng(6)
+    X = np.empty((120, 3), dtype=object)
+    X[:, 0] = rng.normal(size=120)
+    X[:, 1] = rng.choice(["a", "b", "c"], size=120)
+    X[:, 2] = rng.integers(0, 5, size=120).astype(float)
+    X[::11, 0] = np.nan
+    y = np.where((X[:, 0].astype(float) > 0) | (X[:, 1] == "b"), "p", "q")
+    clf = clone(estimator).set_params(feature_costs=[4.0, 1.0, 2.0]).fit(X, y)
+    back = pickle.loads(pickle.dumps(clf))
+    assert back._model.nodes() == clf._model.nodes()
+    for method in ("predict", "predict_cost", "predict_tests"):
+        assert np.array_equal(np.asarray(getattr(back, method)(X), dtype=object), np.asarray(getattr(clf, method)(X), dtype=object))
+    assert back.total_cost(X, y) == clf.total_cost(X, y)
+
+
+def test_a_saved_tree_is_checked_when_loaded():
+    clf = cs.Id3Classifier().fit([[0.0], [1.0]], [0, 1])
+    state = clf._model.state()
+    assert csrl._csrl.TestCostTree.from_state(state).nodes() == clf._model.nodes()
+    with pytest.raises(csrl.DataError, match="not a saved tree: no `kinds`"):
+        csrl._csrl.TestCostTree.from_state({"learner": "id3"})
+    with pytest.raises(csrl.DataError, match="not a saved tree"):
+        csrl._csrl.TestCostTree.from_state({"learner": object()})
+
+
+def test_export_text_names_tests_prices_and_classes():
+    X = pd.DataFrame({"size": [1.0, 2.0, 8.0, 9.0] * 3, "colour": ["red", "blue"] * 6})
+    y = ["small", "small", "big", "big"] * 3
+    text = cs.C45Classifier(feature_costs={"size": 1.5, "colour": 9.0}).fit(X, y).export_text()
+    assert text.splitlines() == [
+        "|--- size <= 5.00 (price 1.5)",
+        "|   |--- class: small",
+        "|--- size > 5.00 (price 1.5)",
+        "|   |--- class: big",
+    ]
