@@ -195,7 +195,7 @@ fn check_unit(value: f64, what: &str, low_open: bool, high_open: bool) -> PyResu
 
 #[pymethods]
 impl TestCostTree {
-    /// Grow a tree with `learner` ("id3", "c45", "idx", "cs-id3-batch", "eg2", "dtmc",
+    /// Grow a tree with `learner` ("id3-batch", "c45", "idx", "cs-id3-batch", "eg2", "dtmc",
     /// "icet") on every object. `prices` is `(full, discount, group)` per feature (group
     /// an index into `group_names`, or `None`); `misclassification[actual][predicted]`
     /// the cost of each answer; `confidence` C4.5's pruning confidence, `w` EG2's weight

@@ -18,7 +18,7 @@ import csrl
 from csrl import sklearn as cs
 
 NAMED = {
-    "id3": cs.Id3Classifier,
+    "id3-batch": cs.Id3Classifier,
     "c45": cs.C45Classifier,
     "idx": cs.IdxClassifier,
     "cs-id3-batch": cs.CsId3BatchClassifier,
@@ -94,11 +94,11 @@ def test_the_cheap_feature_is_preferred_by_eg2_and_idx_but_not_by_c45():
     X, y = dear_and_cheap()
     costs = dict(feature_costs=[50.0, 1.0], misclassification_cost=100.0)
     root = {}
-    for learner in ("c45", "id3", "idx", "eg2"):
+    for learner in ("c45", "id3-batch", "idx", "eg2"):
         clf = NAMED[learner](**costs).fit(X, y)
         root[learner] = clf._model.nodes()[0][2][0]
         assert clf.predict_cost(X).min() == (50.0 if root[learner] == 0 else 1.0)
-    assert root == {"c45": 0, "id3": 0, "idx": 1, "eg2": 1}
+    assert root == {"c45": 0, "id3-batch": 0, "idx": 1, "eg2": 1}
     c45 = cs.C45Classifier(**costs).fit(X, y)
     eg2 = cs.Eg2Classifier(**costs).fit(X, y)
     assert c45.score(X, y) > eg2.score(X, y)  # C4.5 pays for the better test
@@ -186,7 +186,7 @@ def test_groups_and_prices_by_column_name_with_nominal_strings():
     )
     y = np.where(X["colour"].eq("red") | X["size"].gt(4.5), "yes", "no")
     clf = cs.TestCostTreeClassifier(
-        learner="id3",
+        learner="id3-batch",
         feature_costs={"colour": 2.0, "size": 3.0, "code": 5.0},
         feature_groups={"colour": "g", "size": "g"},
         feature_discounts={"size": 1.0},
@@ -267,7 +267,7 @@ def test_misclassification_costs_label_the_leaves_and_count_in_the_total():
         ({"feature_groups": ["g", "g"], "feature_discounts": [2.0, None]}, "above its full price 1.0"),
         ({"feature_discounts": [0.5, None]}, "puts it in no group"),
         ({"feature_groups": [["list"], None]}, "not hashable"),
-        ({"learner": "c5"}, "learner must be one of id3, c45"),
+        ({"learner": "c5"}, "learner must be one of id3-batch, c45"),
         ({"confidence": 0.0}, r"confidence must be a number in \(0, 1\)"),
         ({"w": 2.0}, r"w must be a number in \[0, 1\]"),
         ({"seed": -1}, "seed must be an integer at least 0"),
@@ -318,7 +318,7 @@ def test_a_saved_tree_is_checked_when_loaded():
     state = clf._model.state()
     assert csrl._csrl.TestCostTree.from_state(state).nodes() == clf._model.nodes()
     with pytest.raises(csrl.DataError, match="not a saved tree: no `kinds`"):
-        csrl._csrl.TestCostTree.from_state({"learner": "id3"})
+        csrl._csrl.TestCostTree.from_state({"learner": "id3-batch"})
     with pytest.raises(csrl.DataError, match="not a saved tree"):
         csrl._csrl.TestCostTree.from_state({"learner": object()})
 

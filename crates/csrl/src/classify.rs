@@ -43,6 +43,9 @@ pub(crate) enum Learner {
     CsIbl,
     /// Cost-blind ID3: every cost taken as equal, random discrimination order.
     Id3,
+    /// Batch tree: ID3 (information gain, no pruning), cost-blind.
+    #[value(name = "id3-batch")]
+    Id3Batch,
     /// Batch tree: C4.5 (gain ratio, pessimistic pruning), cost-blind.
     #[value(name = "c45")]
     C45,
@@ -69,6 +72,7 @@ impl Learner {
         use cslearn::testcost::Method;
         match self {
             Learner::CsId3 | Learner::CsIbl | Learner::Id3 => None,
+            Learner::Id3Batch => Some(Method::Id3),
             Learner::C45 => Some(Method::C45),
             Learner::Idx => Some(Method::Idx),
             Learner::CsId3Batch => Some(Method::CsId3Batch),
@@ -94,7 +98,7 @@ impl Learner {
 #[command(
     after_help = "The incremental learners (cs-id3, cs-ibl, id3) stream the objects \
 (prequential accuracy, and --holdout or --folds beside it). The batch trees of the test-cost \
-family (c45, idx, cs-id3-batch, eg2, dtmc, icet) are grown on training parts and judged on \
+family (id3-batch, c45, idx, cs-id3-batch, eg2, dtmc, icet) are grown on training parts and judged on \
 the held-out objects by the total cost of their tests and errors (10-fold unless --holdout or \
 --folds); they read numeric columns as numbers, --costs also in Turney's format \
 (FILE.expense or FILE.cost) with --groups, and --mc, --mc-matrix and --cost-name. A flag \
@@ -392,7 +396,7 @@ fn check_flags(args: &ClassifyArgs) -> Result<()> {
         ];
         if let Some((flag, _)) = family_only.iter().find(|(_, given)| *given) {
             anyhow::bail!(
-                "{flag} is read by the test-cost family only (--learner c45, idx, cs-id3-batch, \
+                "{flag} is read by the test-cost family only (--learner id3-batch, c45, idx, cs-id3-batch, \
                  eg2, dtmc, icet), not by --learner {name}"
             );
         }

@@ -1,4 +1,4 @@
-//! `csrl classify --learner c45|idx|cs-id3-batch|eg2|dtmc|icet`: the batch trees of the
+//! `csrl classify --learner id3-batch|c45|idx|cs-id3-batch|eg2|dtmc|icet`: the batch trees of the
 //! test-cost family (`cslearn::testcost`), grown on training parts and judged on the
 //! held-out objects by what their tests and their errors cost.
 //!

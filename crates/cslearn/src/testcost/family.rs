@@ -56,7 +56,7 @@ impl Method {
     /// ```
     pub fn name(self) -> &'static str {
         match self {
-            Method::Id3 => "id3",
+            Method::Id3 => "id3-batch",
             Method::C45 => "c45",
             Method::Idx => "idx",
             Method::CsId3Batch => "cs-id3-batch",
@@ -442,8 +442,7 @@ mod tests {
             let score: Vec<usize> = (1..frame.len()).step_by(2).collect();
             let ones = vec![1.0; grow.len()];
             let mut rng = Xoshiro256PlusPlus::seed_from_u64(9);
-            let mut splits =
-                Splits::new(&frame, &grow, &ones, &mc, Criterion::Eg2 { w: 1.0 }, 2.0);
+            let mut splits = Splits::new(&frame, &grow, &ones, &mc, Criterion::Eg2 { w: 1.0 }, 2.0);
             splits.hold_out(&score);
             for _ in 0..40 {
                 let genes = random_genes(prices.len(), &mut rng);

@@ -25,7 +25,7 @@
 //!
 //! | learner ([`Method`]) | attend | select ([`Criterion`]) | predict | discriminate | update |
 //! |---|---|---|---|---|---|
-//! | `id3` | reaching objects | gain | least mc cost | stop at no gain | one pass |
+//! | `id3-batch` | reaching objects | gain | least mc cost | stop at no gain | one pass |
 //! | `c45` | same | **gain ratio** among tests of at least average gain, threshold penalty | same | **pessimistic pruning**, confidence 0.25 | one pass |
 //! | `idx` (Norton 1989) | same | **gain / price** | same | pruning as C4.5 | one pass |
 //! | `cs-id3-batch` (Tan 1991) | same | **gain² / price** | same | pruning as C4.5 | one pass |

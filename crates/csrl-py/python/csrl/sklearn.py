@@ -281,7 +281,7 @@ def _fmt(v: Any) -> str:
 
 # --- The test-cost tree family -------------------------------------------------------
 
-_LEARNERS = ("id3", "c45", "idx", "cs-id3-batch", "eg2", "dtmc", "icet")
+_LEARNERS = ("id3-batch", "c45", "idx", "cs-id3-batch", "eg2", "dtmc", "icet")
 
 
 def _is_missing(v: Any) -> bool:
@@ -325,7 +325,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
     have costs, and the tree is grown on all of ``fit``'s objects by the ``learner``
     named (``cslearn::testcost``).
 
-    * ``"id3"``: the test of largest information gain, blind to prices; no pruning.
+    * ``"id3-batch"``: the test of largest information gain, blind to prices; no pruning.
     * ``"c45"``: the gain ratio among tests of at least average gain, blind to prices;
       C4.5's pessimistic pruning at ``confidence``.
     * ``"idx"`` (Norton 1989): gain / price; pruned as C4.5.
@@ -839,9 +839,9 @@ class _Unpruned(TestCostTreeClassifier):
 class Id3Classifier(_Unpruned):
     """ID3 as a batch tree: the test of largest information gain, blind to its price;
     no pruning. The baseline of the family (:class:`TestCostTreeClassifier` with
-    ``learner="id3"``, whose documentation the parameters follow)."""
+    ``learner="id3-batch"``, whose documentation the parameters follow)."""
 
-    _learner = "id3"
+    _learner = "id3-batch"
 
 
 class _Pruned(TestCostTreeClassifier):
