@@ -496,7 +496,11 @@ fn args_line(args: &TestcostArgs) -> String {
         let _ = write!(line, " --price-draw {}", args.price_draw);
     }
     if args.price_range != [1.0, 100.0] {
-        let _ = write!(line, " --price-range {},{}", args.price_range[0], args.price_range[1]);
+        let _ = write!(
+            line,
+            " --price-range {},{}",
+            args.price_range[0], args.price_range[1]
+        );
     }
     if args.assignments != 4 {
         let _ = write!(line, " --assignments {}", args.assignments);

@@ -236,7 +236,8 @@ fn markdown(
         def.assignments,
         match def.price_draw {
             super::PriceDraw::Uniform => "uniform in",
-            super::PriceDraw::Gain => "uniform below a ceiling in proportion to its information gain, within",
+            super::PriceDraw::Gain =>
+                "uniform below a ceiling in proportion to its information gain, within",
         },
         def.price_range.0,
         def.price_range.1,

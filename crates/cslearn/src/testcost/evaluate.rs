@@ -96,7 +96,14 @@ pub fn feature_gains(frame: &Frame) -> Vec<f64> {
         .unwrap_or_else(|_| unreachable!("a uniform cost of 1 is valid"));
     let mut params = GrowParams::new(Criterion::Id3);
     params.min_objects = 1.0;
-    let mut splits = Splits::new(frame, &rows, &weights, &mc, Criterion::Id3, params.min_objects);
+    let mut splits = Splits::new(
+        frame,
+        &rows,
+        &weights,
+        &mc,
+        Criterion::Id3,
+        params.min_objects,
+    );
     let mut gains = vec![0.0; frame.feature_count()];
     for stat in splits.stats(0) {
         gains[stat.feature] = stat.gain.max(0.0);
@@ -126,7 +133,11 @@ pub fn gain_prices(frame: &Frame, low: f64, high: f64, seed: u64) -> TestPrices 
     let prices: Vec<f64> = gains
         .iter()
         .map(|&g| {
-            let ceiling = if top > 0.0 { low + (high - low) * g / top } else { low };
+            let ceiling = if top > 0.0 {
+                low + (high - low) * g / top
+            } else {
+                low
+            };
             if ceiling > low {
                 rng.random_range(low..=ceiling)
             } else {
