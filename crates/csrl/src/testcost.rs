@@ -38,6 +38,8 @@ type TrainTest = (Vec<usize>, Vec<usize>);
 #[derive(Clone, Debug, Default)]
 struct Part {
     test_objects: usize,
+    /// Test objects whose classification waited for a delayed test.
+    delayed: usize,
     errors: usize,
     test_cost: f64,
     mc_cost: f64,
@@ -98,8 +100,11 @@ fn read_prices(args: &ClassifyArgs, frame: &Frame) -> Result<TestPrices> {
             costs.display()
         );
     }
+    // Turney's `.delay` file beside the prices, when there is one: reported, never priced.
+    let delays = costs.with_extension("delay");
+    let delays = (turney && delays.is_file()).then_some(delays);
     let prices = if turney {
-        TestPrices::read_turney_files(costs, args.groups.as_deref(), None, &names)
+        TestPrices::read_turney_files(costs, args.groups.as_deref(), delays.as_deref(), &names)
     } else {
         TestPrices::read_csv(costs, &names, &args.target)
     }
@@ -315,6 +320,7 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
             let actual = frame.class(r);
             part.errors += usize::from(c.class != actual);
             part.test_cost += c.test_cost;
+            part.delayed += usize::from(c.tests.iter().any(|&t| prices.test(t).delayed));
             part.mc_cost += mc.cost(c.class as usize, actual as usize);
         }
         results.push(part);
@@ -347,6 +353,11 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
     let tested: usize = results.iter().map(|p| p.test_objects).sum();
     let per = |x: f64| x / tested.max(1) as f64;
     let errors: usize = results.iter().map(|p| p.errors).sum();
+    let delayed: usize = results.iter().map(|p| p.delayed).sum();
+    let delayed_tests: Vec<&str> = (0..prices.len())
+        .filter(|&t| prices.test(t).delayed)
+        .map(|t| frame.names()[t].as_str())
+        .collect();
     let test_cost = per(results.iter().map(|p| p.test_cost).sum());
     let mc_cost = per(results.iter().map(|p| p.mc_cost).sum());
     let error_rate = errors as f64 / tested.max(1) as f64;
@@ -372,6 +383,8 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
             "test_cost_per_object": test_cost,
             "errors": errors,
             "error_rate": error_rate,
+            "delayed_tests": delayed_tests,
+            "objects_waiting_for_a_delayed_test": delayed,
             "misclassification_cost_per_object": mc_cost,
             "total_cost_per_object": test_cost + mc_cost,
             "standard_cost": standard,
@@ -434,6 +447,13 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
         "evaluation  {scheme}: {tested} test objects, each classified by a tree grown without it"
     )?;
     writeln!(out, "test cost   {test_cost:.2} per object")?;
+    if !delayed_tests.is_empty() {
+        writeln!(
+            out,
+            "delayed     {delayed} of {tested} objects waited for a delayed test ({})",
+            delayed_tests.join(", ")
+        )?;
+    }
     writeln!(out, "error rate  {error_rate:.3} ({errors} errors)")?;
     writeln!(out, "mc cost     {mc_cost:.2} per object")?;
     writeln!(

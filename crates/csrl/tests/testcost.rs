@@ -653,3 +653,67 @@ fn save_never_overwrites_an_input() {
     );
     assert_eq!(std::fs::read(&data).unwrap(), before);
 }
+
+#[test]
+fn turneys_delays_beside_the_prices_are_reported_never_priced() {
+    let json = heart_json("dtmc", &["--mc", "500"]);
+    let delayed: Vec<&str> = json["delayed_tests"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t.as_str().unwrap())
+        .collect();
+    // heart-disease.delay: the first four tests are immediate, the other nine delayed.
+    assert_eq!(
+        delayed,
+        [
+            "chol", "fbs", "restecg", "thalch", "exang", "oldpeak", "slope", "ca", "thal"
+        ]
+    );
+    let waiting = json["objects_waiting_for_a_delayed_test"].as_u64().unwrap();
+    assert!(waiting <= json["test_objects"].as_u64().unwrap());
+    let text = on_heart("dtmc", &["--mc", "500"]);
+    assert!(String::from_utf8_lossy(&text.stdout).contains("waited for a delayed test"));
+    // Delays are never priced: the same prices without their .delay file cost the same.
+    let dir = tempfile::tempdir().unwrap();
+    for ext in ["expense", "group"] {
+        let from = repo(&format!("data/uci/heart-disease/costs/heart-disease.{ext}"));
+        std::fs::copy(from, dir.path().join(format!("heart.{ext}"))).unwrap();
+    }
+    let (data, costs, groups) = (
+        repo("data/heart-disease/cleveland.csv"),
+        dir.path().join("heart.expense").display().to_string(),
+        dir.path().join("heart.group").display().to_string(),
+    );
+    let out = csrl(&[
+        "classify",
+        "--data",
+        &data,
+        "--costs",
+        &costs,
+        "--groups",
+        &groups,
+        "--target",
+        "num",
+        "--positive-if",
+        ">0",
+        "--cost-name",
+        "thalch=thalach",
+        "--learner",
+        "dtmc",
+        "--mc",
+        "500",
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let plain: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(plain["delayed_tests"].as_array().unwrap().len(), 0);
+    assert_eq!(
+        f(&plain, "test_cost_per_object"),
+        f(&json, "test_cost_per_object")
+    );
+    assert_eq!(
+        f(&plain, "total_cost_per_object"),
+        f(&json, "total_cost_per_object")
+    );
+}
