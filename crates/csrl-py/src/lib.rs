@@ -291,10 +291,16 @@ fn world_names() -> Vec<&'static str> {
 }
 
 /// Where `csrl.run` starts Q and V in `world` at discount `gamma` (0 without negative
-/// rewards): `csql::value_floor`.
+/// rewards): `csql::value_floor`. A discount outside [0, 1) is refused: the floor sums
+/// the worst reward forever, which only a discount below 1 keeps finite.
 #[pyfunction]
-fn value_floor(world: PyRef<'_, PyWorld>, gamma: f64) -> f64 {
-    csql::value_floor(&world.world, gamma)
+fn value_floor(world: PyRef<'_, PyWorld>, gamma: f64) -> PyResult<f64> {
+    if !(0.0..1.0).contains(&gamma) {
+        return Err(SettingsError::new_err(format!(
+            "gamma {gamma}: the discount of value_floor must be at least 0 and below 1"
+        )));
+    }
+    Ok(csql::value_floor(&world.world, gamma))
 }
 
 /// The compiled part of the `csrl` package.

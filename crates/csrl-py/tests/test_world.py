@@ -157,3 +157,10 @@ def test_a_world_object_refuses_world_settings():
     w = csrl.World("frozenlake4x4")
     with pytest.raises(csrl.SettingsError, match="csrl.World"):
         csrl.run(world=w, settings={"world": {"slip": 0.1}})
+
+
+@pytest.mark.parametrize("gamma", [1.0, 2.0, -0.5, float("nan"), float("inf")])
+def test_value_floor_refuses_a_discount_outside_zero_to_one(gamma):
+    with pytest.raises(csrl.SettingsError, match="discount of value_floor"):
+        csrl.value_floor(csrl.World("taxi"), gamma)
+    assert csrl.value_floor(csrl.World("taxi"), 0.0) == -1.0
