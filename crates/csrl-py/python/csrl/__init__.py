@@ -203,7 +203,8 @@ def resolve_settings(
 def value_floor(world: World, gamma: float = 0.9) -> float:
     """Where :func:`csrl.run` starts Q and V in ``world`` at discount ``gamma``: the value
     of earning the worst state's best sure reward forever, 0 in worlds without negative
-    rewards (``docs/specification.md``, 1.11).
+    rewards (``docs/specification.md``, 1.11). ``gamma`` must be at least 0 and below 1
+    (:class:`csrl.SettingsError` otherwise).
 
     >>> import csrl
     >>> csrl.value_floor(csrl.World("frozenlake4x4")), round(csrl.value_floor(csrl.World("taxi")), 6)
