@@ -516,3 +516,66 @@ fn args_line(args: &TestcostArgs) -> String {
     }
     line
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(out: &Path, threads: usize) -> TestcostArgs {
+        TestcostArgs {
+            datasets: vec!["iris".into(), "heart".into()],
+            learners: vec!["eg2".into(), "cs-id3-batch".into(), "dtmc".into()],
+            mc: vec![100.0, 500.0],
+            costs: vec!["random".into(), "turney".into()],
+            assignments: 2,
+            price_draw: "uniform".into(),
+            price_range: vec![1.0, 100.0],
+            runs: 1,
+            folds: 3,
+            seed: 5,
+            manifest: Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/uci/datasets.toml"),
+            out: out.to_path_buf(),
+            threads: Some(threads),
+            shard: "1/1".into(),
+            report: false,
+            bless: false,
+        }
+    }
+
+    #[test]
+    fn the_table_does_not_depend_on_the_thread_count_and_has_the_issue_columns() {
+        let (one, two) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
+        testcost(&args(one.path(), 1)).unwrap();
+        testcost(&args(two.path(), 2)).unwrap();
+        let a = std::fs::read_to_string(one.path().join("testcost.csv")).unwrap();
+        let b = std::fs::read_to_string(two.path().join("testcost.csv")).unwrap();
+        assert_eq!(a, b);
+        let mut lines = a.lines();
+        assert_eq!(
+            lines.next().unwrap(),
+            "dataset,costs,mc,learner,runs,folds,normalised_cost,ci95,test_cost,error_rate,ratio_to_cs_id3"
+        );
+        // iris: random prices only; heart: random and Turney's; 2 mc, 3 learners.
+        assert_eq!(lines.clone().count(), (1 + 2) * 2 * 3);
+        for line in lines {
+            let cells: Vec<&str> = line.split(',').collect();
+            assert_eq!(cells.len(), 11, "{line}");
+            let normalised: f64 = cells[6].parse().unwrap();
+            assert!(normalised > 0.0 && normalised < 200.0, "{line}");
+            if cells[3] == "cs-id3-batch" {
+                assert_eq!(cells[10], "1.0000", "{line}");
+            }
+        }
+        // The report names the published figure beside ours where there is one.
+        let md = std::fs::read_to_string(one.path().join("testcost.md")).unwrap();
+        assert!(md.contains("(35.0)"), "heart's published EG2 at mc 500");
+    }
+
+    #[test]
+    fn seeds_depend_on_the_data_set_name_and_the_numbers_only() {
+        assert_eq!(mix(1, "heart", &[1, 0]), mix(1, "heart", &[1, 0]));
+        assert_ne!(mix(1, "heart", &[1, 0]), mix(1, "heart", &[1, 1]));
+        assert_ne!(mix(1, "heart", &[1, 0]), mix(1, "iris", &[1, 0]));
+        assert_ne!(mix(1, "heart", &[1, 0]), mix(2, "heart", &[1, 0]));
+    }
+}
