@@ -118,11 +118,29 @@ impl Serialize for ExampleView<'_> {
     }
 }
 
-/// Only the keys that say what a file is; the others are skipped unread.
+/// Only the keys that say what a file is; the others are skipped unread. Shared by the
+/// readers of both model formats (this one and `testcost`'s saved trees).
 #[derive(Deserialize)]
-struct Probe {
-    format: Option<serde_json::Value>,
-    version: Option<serde_json::Value>,
+pub(crate) struct Probe {
+    pub(crate) format: Option<serde_json::Value>,
+    pub(crate) version: Option<serde_json::Value>,
+}
+
+impl Probe {
+    /// `Err((where, what))` unless the file's `version` is `expected`.
+    pub(crate) fn check_version(&self, expected: u32) -> Result<(), (String, String)> {
+        match self.version.as_ref().and_then(serde_json::Value::as_u64) {
+            Some(v) if v == u64::from(expected) => Ok(()),
+            Some(v) => Err((
+                "key `version`".into(),
+                format!("version {v} is not supported (this build reads version {expected})"),
+            )),
+            None => Err((
+                "key `version`".into(),
+                "missing or not a whole number".into(),
+            )),
+        }
+    }
 }
 
 /// A learned classifier: the learner, the columns it reads (names, prices, how cells
@@ -318,23 +336,9 @@ impl Model {
                 ));
             }
         }
-        match probe.version.as_ref().and_then(serde_json::Value::as_u64) {
-            Some(v) if v == u64::from(MODEL_VERSION) => {}
-            Some(v) => {
-                return Err(bad(
-                    "key `version`".into(),
-                    format!(
-                        "version {v} is not supported (this build reads version {MODEL_VERSION})"
-                    ),
-                ));
-            }
-            None => {
-                return Err(bad(
-                    "key `version`".into(),
-                    "missing or not a whole number".into(),
-                ));
-            }
-        }
+        probe
+            .check_version(MODEL_VERSION)
+            .map_err(|(at, reason)| bad(at, reason))?;
         // Read again as a model, for the line and column of what is wrong.
         let mut file: File = serde_json::from_slice(bytes).map_err(|e| json_error(path, &e))?;
         check(&file).map_err(|(at, reason)| bad(at, reason))?;
@@ -615,7 +619,7 @@ impl Model {
 }
 
 /// A JSON syntax or type error, with its line and column.
-fn json_error(path: &Path, e: &serde_json::Error) -> Error {
+pub(crate) fn json_error(path: &Path, e: &serde_json::Error) -> Error {
     let text = e.to_string();
     let reason = text
         .rsplit_once(" at line ")

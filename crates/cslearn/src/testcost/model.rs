@@ -13,7 +13,7 @@ use crate::dataset::{
     MAX_TOTAL_COST, is_missing, open_regular, parse_number, read_bounded, read_table,
 };
 use crate::error::Error;
-use crate::model::{Model, Prediction};
+use crate::model::{Model, Prediction, Probe, json_error};
 use crate::types::{ClassId, Cost, FeatureId};
 
 /// The `format` of a saved tree of the test-cost family.
@@ -58,13 +58,6 @@ struct TreeFile {
     tree: CostTree,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     genome: Option<IcetGenome>,
-}
-
-/// Only the keys that say what a file is; the others are skipped unread.
-#[derive(Deserialize)]
-struct Probe {
-    format: Option<serde_json::Value>,
-    version: Option<serde_json::Value>,
 }
 
 /// A tree of the test-cost family ([`Method`]) learned from a [`Frame`], with what it
@@ -236,23 +229,9 @@ impl TreeModel {
                 ));
             }
         }
-        match probe.version.as_ref().and_then(serde_json::Value::as_u64) {
-            Some(v) if v == u64::from(TREE_MODEL_VERSION) => {}
-            Some(v) => {
-                return Err(bad(
-                    "key `version`".into(),
-                    format!(
-                        "version {v} is not supported (this build reads version {TREE_MODEL_VERSION})"
-                    ),
-                ));
-            }
-            None => {
-                return Err(bad(
-                    "key `version`".into(),
-                    "missing or not a whole number".into(),
-                ));
-            }
-        }
+        probe
+            .check_version(TREE_MODEL_VERSION)
+            .map_err(|(at, reason)| bad(at, reason))?;
         let file: TreeFile = serde_json::from_slice(bytes).map_err(|e| json_error(path, &e))?;
         // The tree's own types take any key; this file takes none it does not know.
         let value: serde_json::Value =
@@ -517,26 +496,6 @@ impl SavedModel {
             }
             _ => Model::from_json(&bytes, path).map(SavedModel::Classifier),
         }
-    }
-}
-
-/// A JSON syntax or type error, with its line and column.
-fn json_error(path: &Path, e: &serde_json::Error) -> Error {
-    let text = e.to_string();
-    let reason = text
-        .rsplit_once(" at line ")
-        .map_or(text.as_str(), |(r, _)| r)
-        .to_string();
-    let reason = match e.classify() {
-        serde_json::error::Category::Syntax | serde_json::error::Category::Eof => {
-            format!("not valid JSON ({reason})")
-        }
-        _ => reason,
-    };
-    Error::BadModel {
-        path: path.to_path_buf(),
-        at: format!("line {}, column {}", e.line(), e.column()),
-        reason,
     }
 }
 

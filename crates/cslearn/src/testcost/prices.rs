@@ -153,6 +153,25 @@ impl TestPrices {
         &self.group_names
     }
 
+    /// The one pricing rule: nothing if `test` was `done`, its discount if a test of its
+    /// group was bought (`group_bought`), its full price otherwise. [`Basket`] keeps
+    /// counts for it; a tree's path asks it directly.
+    pub(crate) fn price_when(
+        &self,
+        test: usize,
+        done: bool,
+        group_bought: impl Fn(u32) -> bool,
+    ) -> f64 {
+        if done {
+            return 0.0;
+        }
+        let t = &self.tests[test];
+        match t.group {
+            Some(g) if group_bought(g) => t.discount,
+            _ => t.full,
+        }
+    }
+
     /// The price of every test bought for one object, discounts applied: for each group,
     /// the cheapest order (the test that saves least by its discount bought first).
     ///
@@ -563,14 +582,7 @@ impl Basket {
     /// assert_eq!(cslearn::testcost::Basket::new(&prices).price(&prices, 0), 2.0);
     /// ```
     pub fn price(&self, prices: &TestPrices, test: usize) -> f64 {
-        if self.bought[test] {
-            return 0.0;
-        }
-        let t = &prices.tests[test];
-        match t.group {
-            Some(g) if self.groups[g as usize] > 0 => t.discount,
-            _ => t.full,
-        }
+        prices.price_when(test, self.bought[test], |g| self.groups[g as usize] > 0)
     }
 
     /// Whether test `test` was bought.

@@ -37,7 +37,7 @@ pub(crate) struct Children {
     pub cells: Vec<Option<u32>>,
     /// The share of the objects with a known value in each branch.
     pub shares: Vec<f64>,
-    /// The held-out objects' weight per class in each branch (empty without them).
+    /// The held-out objects' weight per class in each branch (no entry without them).
     pub held_out: Vec<Vec<f64>>,
 }
 
@@ -523,10 +523,14 @@ impl<'a> Splits<'a> {
                 }
             }
         }
-        let held_out: Vec<Vec<f64>> = held
-            .iter()
-            .map(|(rows, weights)| self.class_weights(rows, weights))
-            .collect();
+        // Without held-out objects (every tree but ICET's search) there is nothing to count.
+        let held_out: Vec<Vec<f64>> = if cell.held_rows.is_empty() {
+            Vec::new()
+        } else {
+            held.iter()
+                .map(|(rows, weights)| self.class_weights(rows, weights))
+                .collect()
+        };
         let mut path = cell.path.clone();
         path.push(feature);
         let mut made = Vec::with_capacity(branches);
@@ -558,7 +562,7 @@ impl<'a> Splits<'a> {
                 order,
                 path: path.clone(),
                 class_weights,
-                held_classes: held_out[b].clone(),
+                held_classes: held_out.get(b).cloned().unwrap_or_default(),
                 held_rows,
                 held_weights,
                 stats: None,

@@ -860,14 +860,9 @@ fn choose(
 /// The price of `test` after the tests `done`: nothing if it was done, its discount if a
 /// test of its group was, its full price otherwise ([`Basket`]'s rule, for a path).
 fn price_after(prices: &TestPrices, test: usize, done: &[usize]) -> f64 {
-    if done.contains(&test) {
-        return 0.0;
-    }
-    let t = prices.test(test);
-    match t.group {
-        Some(g) if done.iter().any(|&d| prices.test(d).group == Some(g)) => t.discount,
-        _ => t.full,
-    }
+    prices.price_when(test, done.contains(&test), |g| {
+        done.iter().any(|&d| prices.test(d).group == Some(g))
+    })
 }
 
 /// The normal deviate for a one-sided confidence level, by C4.5's table and linear
