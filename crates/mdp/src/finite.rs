@@ -38,6 +38,10 @@ pub const MAX_ACTIONS: usize = 64;
 pub const MAX_FEATURES: usize = 4_096;
 /// The most readings (states times features) a world may have.
 pub const MAX_READINGS: usize = 16_777_216;
+/// The largest reading a feature may have in a state: a feature reads one of
+/// `0..=MAX_READING`, so that its number of readings (one more than its largest) is a
+/// `u32`.
+pub const MAX_READING: u32 = u32::MAX - 1;
 /// How far a list of probabilities may sum from 1 (absolute).
 pub const PROBABILITY_TOLERANCE: f64 = 1e-9;
 /// The most aliased pairs [`FiniteWorld::aliased`] lists (it counts them all).
@@ -259,7 +263,9 @@ pub type TransitionSpec = (u32, u32, Vec<OutcomeSpec>);
 ///   readings (reading `i` is named `readings[i]`; without names a reading is named by
 ///   its number, and with names every reading must have one).
 /// * `readings` has one row per state (terminal ones too), one reading per feature in
-///   the order of `features`.
+///   the order of `features`, each at most [`MAX_READING`].
+/// * Names are distinct: no two state labels, no two actions, no two features and no two
+///   readings of one feature have the same name (reports and policies name them).
 ///
 /// Every probability must be finite and in `[0, 1]`, and every list of probabilities
 /// must sum to 1 within an absolute tolerance of [`PROBABILITY_TOLERANCE`] (1e-9).
@@ -818,6 +824,22 @@ fn validate(spec: &WorldSpec) -> Result<(), WorldError> {
     if na == 0 {
         return Err(invalid("`actions`", "a world needs at least one action"));
     }
+    if let StatesSpec::Labels(labels) = &spec.states {
+        distinct("`states`", "state label", labels.iter())?;
+    }
+    distinct("`actions`", "action name", spec.actions.iter())?;
+    distinct(
+        "`features`",
+        "feature name",
+        spec.features.iter().map(|f| &f.name),
+    )?;
+    for (f, feature) in spec.features.iter().enumerate() {
+        distinct(
+            &format!("`features`[{f}] `{}` `readings`", feature.name),
+            "reading name",
+            feature.readings.iter(),
+        )?;
+    }
     let state = |at: &str, s: u32| -> Result<usize, WorldError> {
         if (s as usize) < n {
             Ok(s as usize)
@@ -942,6 +964,16 @@ fn validate(spec: &WorldSpec) -> Result<(), WorldError> {
             ));
         }
         for (f, (&v, feature)) in row.iter().zip(&spec.features).enumerate() {
+            if v > MAX_READING {
+                return Err(invalid(
+                    format!("`readings`[{s}][{f}]"),
+                    format!(
+                        "state {s} reads {v} on feature `{}`, more than the largest reading \
+                         a feature may have ({MAX_READING})",
+                        feature.name
+                    ),
+                ));
+            }
             if !feature.readings.is_empty() && v as usize >= feature.readings.len() {
                 return Err(invalid(
                     format!("`readings`[{s}][{f}]"),
@@ -952,6 +984,28 @@ fn validate(spec: &WorldSpec) -> Result<(), WorldError> {
                     ),
                 ));
             }
+        }
+    }
+    Ok(())
+}
+
+/// Refuse a name given twice in the list `list` (its items are `what`s), naming both
+/// places.
+fn distinct<'a>(
+    list: &str,
+    what: &str,
+    names: impl Iterator<Item = &'a String>,
+) -> Result<(), WorldError> {
+    let mut seen: BTreeMap<&str, usize> = BTreeMap::new();
+    for (i, name) in names.enumerate() {
+        if let Some(first) = seen.insert(name, i) {
+            return Err(invalid(
+                format!("{list}[{i}]"),
+                format!(
+                    "{what} {name:?} is also {list}[{first}]'s: names must differ, or reports \
+                     and policies would be ambiguous"
+                ),
+            ));
         }
     }
     Ok(())
@@ -1012,7 +1066,8 @@ fn assemble(spec: WorldSpec) -> FiniteWorld {
             let largest = (0..n)
                 .map(|s| readings[s * nf + f])
                 .max()
-                .map_or(0, |m| m + 1);
+                // At most `MAX_READING` (checked), so the count is a `u32`.
+                .map_or(0, |m| m.saturating_add(1));
             named.max(largest)
         })
         .collect();

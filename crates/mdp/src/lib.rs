@@ -114,7 +114,7 @@ pub use belief::{BeliefPlan, CostlyModel, Decision, EVERY_PROBE, ModelParts, Nod
 pub use builtin::{builtin, builtin_names};
 pub use error::{MapError, MdpError, Position};
 pub use finite::{
-    Aliasing, FeatureSpec, FiniteWorld, MAX_ACTIONS, MAX_ALIASED_LISTED, MAX_FEATURES,
+    Aliasing, FeatureSpec, FiniteWorld, MAX_ACTIONS, MAX_ALIASED_LISTED, MAX_FEATURES, MAX_READING,
     MAX_READINGS, MAX_STATES, OutcomeSpec, PROBABILITY_TOLERANCE, StatesSpec, TransitionSpec,
     WORLD_FORMAT, WORLD_VERSION, WorldError, WorldSpec,
 };

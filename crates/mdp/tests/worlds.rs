@@ -771,6 +771,59 @@ fn malformed_world_files_are_refused_clearly() {
 }
 
 #[test]
+fn readings_beyond_the_largest_and_names_given_twice_are_refused() {
+    let refused = |from: &str, to: &str, fragment: &str| {
+        assert!(WORLD.contains(from), "case {from:?} does not apply");
+        let err = FiniteWorld::from_json(&WORLD.replacen(from, to, 1))
+            .expect_err(&format!("{to:?} accepted"))
+            .to_string();
+        assert!(err.contains(fragment), "{to:?}: `{err}` lacks `{fragment}`");
+    };
+    // 4294967295 would make the feature's count of readings wrap to 0.
+    refused(
+        "[1, 0, 3]]",
+        "[1, 0, 4294967295]]",
+        "`readings`[2][2]: state 2 reads 4294967295 on feature `sound`, more than the \
+         largest reading a feature may have (4294967294)",
+    );
+    let w =
+        FiniteWorld::from_json(&WORLD.replacen("[1, 0, 3]]", "[1, 0, 4294967294]]", 1)).unwrap();
+    assert_eq!(w.readings(Feature(2)), u32::MAX);
+    assert_eq!(mdp::MAX_READING, u32::MAX - 1);
+    refused(
+        "\"states\": 3",
+        "\"states\": [\"hall\", \"kitchen\", \"hall\"]",
+        "`states`[2]: state label \"hall\" is also `states`[0]'s",
+    );
+    refused(
+        "[\"stay\", \"go\"]",
+        "[\"go\", \"go\"]",
+        "`actions`[1]: action name \"go\" is also `actions`[0]'s",
+    );
+    refused(
+        "\"name\": \"sound\"",
+        "\"name\": \"light\"",
+        "`features`[2]: feature name \"light\" is also `features`[0]'s",
+    );
+    refused(
+        "[\"off\", \"on\"]",
+        "[\"off\", \"off\"]",
+        "`features`[0] `light` `readings`[1]: reading name \"off\" is also",
+    );
+    // Every built-in world and every built-in map's export has distinct names.
+    for w in every_world() {
+        assert_eq!(FiniteWorld::from_json(&w.to_json()).unwrap(), w);
+    }
+    for name in mdp::builtin_names() {
+        let grid = mdp::GridWorld::new(&mdp::builtin(name).unwrap());
+        let space = mdp::FeatureSpace::new(grid.map(), &mdp::Manhattan).unwrap();
+        let sensed = mdp::SensedGrid::new(&grid, &space, mdp::Slip::default());
+        let w = FiniteWorld::from_grid(&sensed);
+        assert_eq!(FiniteWorld::from_json(&w.to_json()).unwrap(), w, "{name}");
+    }
+}
+
+#[test]
 fn builtin_options_are_checked() {
     let bad = |name: &str, o: WorldOptions, fragment: &str| {
         let err = builtin_world(name, &o).unwrap_err().to_string();
