@@ -71,6 +71,17 @@ pub struct Classification {
     pub cost: f64,
 }
 
+/// The most readings a feature may have for CLASSIFY to use its cache: the cache keeps, at
+/// every node, a child per reading and a count per reading of every feature, so its size
+/// follows the largest reading of any feature. In a world with more (a feature reading
+/// large numbers), CLASSIFY runs the plain procedure, whose memory follows what is
+/// sensed; it measures the same features and finds the same descriptions, only slower.
+///
+/// ```
+/// assert_eq!(csql::CACHE_MAX_READINGS, 64);
+/// ```
+pub const CACHE_MAX_READINGS: u32 = 64;
+
 /// The CLASSIFY perception of CS-QL: the representation, the selection part and the
 /// cache.
 ///
@@ -100,6 +111,10 @@ pub struct Classify {
     probe: Vec<(Feature, Reading)>,
     cache: Cache,
     use_cache: bool,
+    /// Whether the world's features have few enough readings for the cache
+    /// ([`CACHE_MAX_READINGS`]); if not, the plain procedure runs whatever
+    /// [`Classify::with_cache`] asks.
+    cache_fits: bool,
     /// What the learner's sensors make of the world's readings, and how many reads each
     /// measurement is charged for.
     sensor: Sensor,
@@ -141,8 +156,9 @@ impl Classify {
             .map(|&c| Cost::new(c).expect("worlds hold valid prices"))
             .collect();
         let most = features.map(|f| world.readings(f)).max().unwrap_or(1);
+        let cache_fits = most <= CACHE_MAX_READINGS;
         Classify {
-            cache: Cache::new(most),
+            cache: Cache::new(if cache_fits { most } else { 1 }),
             prices,
             costs,
             rep,
@@ -150,7 +166,8 @@ impl Classify {
             attention: Attention::new(),
             measured: Vec::new(),
             probe: Vec::new(),
-            use_cache: true,
+            use_cache: cache_fits,
+            cache_fits,
             sensor: Sensor::exact(),
             matching: Matching::Exact,
             confirm: 1,
@@ -369,7 +386,9 @@ impl Classify {
             .count()
     }
 
-    /// Turn the cache off (every call runs the plain procedure) or on.
+    /// Turn the cache off (every call runs the plain procedure) or on. It stays off for a
+    /// world with a feature of more than [`CACHE_MAX_READINGS`] readings. Either way
+    /// CLASSIFY measures the same features and finds the same descriptions.
     ///
     /// ```
     /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
@@ -378,7 +397,7 @@ impl Classify {
     /// let c = csql::Classify::new(&sensed).with_cache(false);
     /// ```
     pub fn with_cache(mut self, on: bool) -> Classify {
-        self.use_cache = on;
+        self.use_cache = on && self.cache_fits;
         self
     }
 
@@ -743,8 +762,12 @@ impl Classify {
     ) -> Option<DescriptionId> {
         // The learner's number of reads, with the evaluation's noise and generator.
         let mut sensor = Sensor::noisy(noise, rng).with_reads(self.sensor.reads());
-        let tree = (&mut self.cache, &self.rep, &self.costs[..]);
-        let found = walk(tree, &mut self.probe, world, s, &mut sensor);
+        let found = if self.use_cache {
+            let tree = (&mut self.cache, &self.rep, &self.costs[..]);
+            walk(tree, &mut self.probe, world, s, &mut sensor)
+        } else {
+            self.probe_plain(world, s, &mut sensor)
+        };
         if found.is_some() {
             return found;
         }
@@ -803,6 +826,9 @@ impl Classify {
 
     /// The cached walk for `s` read exactly and for free into `probe`: the oracle's view.
     fn walk_free<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> Option<DescriptionId> {
+        if !self.use_cache {
+            return self.probe_plain(world, s, &mut Sensor::<Exact>::exact());
+        }
         let tree = (&mut self.cache, &self.rep, &self.costs[..]);
         walk(
             tree,
@@ -811,6 +837,40 @@ impl Classify {
             s,
             &mut Sensor::<Exact>::exact(),
         )
+    }
+
+    /// The plain procedure for `s` read through `sensor` into `probe`, without charging
+    /// and without adding a description: what the cached walk of the free views finds,
+    /// when the cache is off.
+    fn probe_plain<W: Sensors + ?Sized, G: Rng>(
+        &mut self,
+        world: &W,
+        s: StateId,
+        sensor: &mut Sensor<G>,
+    ) -> Option<DescriptionId> {
+        // The procedure reads what it measured from `measured`: the probe takes its place
+        // for the walk, and the classification's measurements are kept aside.
+        std::mem::swap(&mut self.measured, &mut self.probe);
+        self.measured.clear();
+        RuleAttending.start(self.rep.library(), &mut self.attention);
+        let found = loop {
+            match self.decide() {
+                Step::Found(d) => break Some(d),
+                Step::Create => break None,
+                Step::Measure(f) => {
+                    let v = sensor.read(world, s, f);
+                    self.measured.push((f, v));
+                    RuleAttending.attend(
+                        self.rep.library(),
+                        feature_id(f),
+                        Some(value_of(v)),
+                        &mut self.attention,
+                    );
+                }
+            }
+        };
+        std::mem::swap(&mut self.measured, &mut self.probe);
+        found
     }
 
     /// Add the next cheapest feature a description lacks, valued at state `s`; returns the

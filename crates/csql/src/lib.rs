@@ -225,7 +225,7 @@ mod view;
 
 pub use amrl::{AmrlParams, CostlySummary, Episode, MAX_BIAS, MAX_EPISODES, Measuring, amrl_q};
 pub use belief::{BeliefParams, MAX_BELIEF_UNCERTAIN, belief_planning};
-pub use classify::{Classification, Classify};
+pub use classify::{CACHE_MAX_READINGS, Classification, Classify};
 pub use costly::{CostedReport, CostedRun, costed_episodes, costed_report, costed_report_in};
 pub use detector::{
     ActionDrop, AnyDrop, Detector, DetectorKind, RateParams, RateTest, RunDetector,

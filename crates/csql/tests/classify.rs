@@ -92,3 +92,37 @@ fn the_first_call_creates_the_empty_description_and_refining_splits() {
     let (again, cost) = c.classify(&sensed, top_left, &mut table);
     assert_eq!((again, cost), (d0, 1.0));
 }
+
+/// The free views (the oracle's exact walk, its cost and the noisy walk of an evaluation)
+/// find and charge with the cache off what they find and charge with it on, drawing the
+/// same errors.
+#[test]
+fn the_free_views_are_the_same_with_the_cache_off() {
+    let world = GridWorld::new(&mdp::builtin("tan8x8").unwrap());
+    let space = FeatureSpace::new(world.map(), &Manhattan).unwrap();
+    let sensed = SensedGrid::new(&world, &space, Slip::default());
+    let mut cached = Classify::new(&sensed);
+    let mut plain = Classify::new(&sensed).with_cache(false);
+    let states = world.states();
+    let noise = mdp::SensorNoise::new(0.2).unwrap();
+    for (i, &s) in states.iter().cycle().take(400).enumerate() {
+        let a = cached.classify_state(&sensed, s);
+        assert_eq!(a, plain.classify_state(&sensed, s));
+        if i % 3 == 0 {
+            cached.add_feature(&sensed, a.description, s);
+            plain.add_feature(&sensed, a.description, s);
+        }
+        let t = states[(i * 7) % states.len()];
+        assert_eq!(
+            cached.lookup_cost(&sensed, t),
+            plain.lookup_cost(&sensed, t)
+        );
+        let mut r1 = Xoshiro256PlusPlus::seed_from_u64(i as u64);
+        let mut r2 = r1.clone();
+        assert_eq!(
+            cached.lookup_noisy(&sensed, t, noise, &mut r1),
+            plain.lookup_noisy(&sensed, t, noise, &mut r2)
+        );
+        assert_eq!(r1, r2);
+    }
+}

@@ -240,3 +240,88 @@ fn full_sensing_of_a_huge_world_is_refused_up_front() {
         &["full sensing", "over the limit", "6961158540"],
     );
 }
+
+/// The lake sensed by row and column with a third feature, `far`, reading 0 but where
+/// `odd` says; written to `name` in the test's folder.
+fn lake_with_far(name: &str, odd: &[(usize, u32)]) -> std::path::PathBuf {
+    let mut spec = common::lake().to_spec();
+    spec.features.push(mdp::FeatureSpec {
+        name: "far".into(),
+        price: 3.0,
+        readings: vec![],
+    });
+    for (s, row) in spec.readings.iter_mut().enumerate() {
+        row.push(odd.iter().find(|o| o.0 == s).map_or(0, |o| o.1));
+    }
+    let path = temp(name);
+    std::fs::write(&path, mdp::FiniteWorld::new(spec).unwrap().to_json()).unwrap();
+    path
+}
+
+/// `csrl run --json` on a world file under a 1 GB address-space limit, with the file's
+/// path taken out of the report.
+#[cfg(unix)]
+fn run_in_1gb(world: &std::path::Path, strategy: &str) -> serde_json::Value {
+    let out = std::process::Command::new("sh")
+        .args([
+            "-c",
+            "ulimit -v 1000000 && exec \"$0\" run --world \"$1\" --strategy \"$2\" --json",
+            env!("CARGO_BIN_EXE_csrl"),
+            world.to_str().unwrap(),
+            strategy,
+        ])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{world:?} {strategy}: {err}");
+    let mut v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    v["settings"]["map"] = serde_json::Value::Null;
+    v
+}
+
+/// A large reading costs memory only if it is sensed, and then as much as any other:
+/// the run is the run of the same world with a small reading in its place.
+#[cfg(unix)]
+#[test]
+fn a_large_reading_runs_in_little_memory_and_as_a_small_one() {
+    // State 15 is the goal: terminal, never sensed. State 0 is the start.
+    let small_goal = lake_with_far("small-goal.json", &[(15, 1)]);
+    let large_goal = lake_with_far("large-goal.json", &[(15, 4_000_000_000)]);
+    let small_start = lake_with_far("small-start.json", &[(0, 1)]);
+    let large_start = lake_with_far("large-start.json", &[(0, 100_000_000)]);
+    let mut sensed = 0;
+    for strategy in ["resetting", "lazy", "random", "eager"] {
+        let a = run_in_1gb(&small_goal, strategy);
+        assert_eq!(a, run_in_1gb(&large_goal, strategy), "{strategy}");
+        // A description of the start that requires `far` names the reading.
+        let b = run_in_1gb(&small_start, strategy).to_string();
+        let large = run_in_1gb(&large_start, strategy).to_string();
+        sensed += usize::from(large.contains("\"value\":\"100000000\""));
+        let large = large.replace("\"value\":\"100000000\"", "\"value\":\"1\"");
+        assert_eq!(b, large, "{strategy}");
+    }
+    assert!(sensed > 0, "no run described the start by its large reading");
+    let shown = ok(&["world", "show", large_goal.to_str().unwrap()]);
+    assert!(shown.contains("4000000001"), "{shown}");
+}
+
+/// A reading whose count of readings would not fit in 32 bits is refused by every
+/// command that reads the file, naming the state and the feature.
+#[test]
+fn a_reading_beyond_the_largest_is_refused() {
+    let file = lake_with_far("too-large.json", &[(15, 7)]);
+    let text = std::fs::read_to_string(&file)
+        .unwrap()
+        .replace("[3,3,7]", "[3,3,4294967295]");
+    std::fs::write(&file, text).unwrap();
+    for command in ["check", "show"] {
+        refused(
+            &["world", command, file.to_str().unwrap()],
+            &["state 15 reads 4294967295 on feature `far`", "4294967294"],
+        );
+    }
+    refused(
+        &["run", "--world", file.to_str().unwrap()],
+        &["state 15 reads 4294967295"],
+    );
+}
