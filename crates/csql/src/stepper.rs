@@ -297,11 +297,16 @@ impl Stepper {
     ///
     /// Features are numbered in the caller's order; the stepper takes them by ascending
     /// price (ties in the caller's order), the order of "the next cheapest feature".
+    /// There are at most [`mdp::MAX_ACTIONS`] actions and [`mdp::MAX_FEATURES`] features,
+    /// as in a world; a feature may read any `u32` (CLASSIFY's memory follows what it
+    /// senses, see [`crate::CACHE_MAX_READINGS`]).
     ///
     /// ```
     /// let s = csql::RunSettings::tan1991("any", csql::StrategyKind::Eager, 1);
     /// assert!(csql::Stepper::new(&[2.0, 1.0], &[3, 2], 4, &s).is_ok());
     /// assert!(csql::Stepper::new(&[1.0], &[3, 2], 4, &s).is_err());
+    /// assert!(csql::Stepper::new(&[1.0], &[3], 65, &s).is_err());
+    /// assert!(csql::Stepper::new(&[1.0], &[u32::MAX], 4, &s).is_ok());
     /// ```
     pub fn new(
         prices: &[f64],
@@ -311,6 +316,19 @@ impl Stepper {
     ) -> Result<Stepper, Error> {
         let invalid =
             |value: String, expected: &'static str| Error::InvalidSetting { value, expected };
+        // Sizes first, before anything is built: as many as a world may have.
+        if num_actions > mdp::MAX_ACTIONS {
+            return Err(invalid(
+                format!("{num_actions} actions"),
+                "at most 64 actions (mdp::MAX_ACTIONS, as in a world)",
+            ));
+        }
+        if prices.len() > mdp::MAX_FEATURES || readings.len() > mdp::MAX_FEATURES {
+            return Err(invalid(
+                format!("{} features", prices.len().max(readings.len())),
+                "at most 4096 features (mdp::MAX_FEATURES, as in a world)",
+            ));
+        }
         if prices.len() != readings.len() {
             return Err(invalid(
                 format!("{} prices for {} features", prices.len(), readings.len()),

@@ -233,3 +233,48 @@ fn bad_readings_and_calls_out_of_order_are_errors() {
         Err(csql::StepError::Stopped(_))
     ));
 }
+
+/// Sizes are checked before anything is built: more actions or features than a world
+/// may have are refused, and a feature of 2^32 - 1 readings costs only what is sensed
+/// (CLASSIFY runs without its cache, whose records would be 2^32 words each).
+#[test]
+fn sizes_are_checked_and_a_huge_range_of_readings_costs_what_is_sensed() {
+    let settings = RunSettings::tan1991("any", StrategyKind::Eager, 1);
+    let e = Stepper::new(&[1.0], &[2], 1_000_000_000, &settings).unwrap_err();
+    assert!(e.to_string().contains("1000000000 actions"), "{e}");
+    assert!(e.to_string().contains("at most 64 actions"), "{e}");
+    let many = vec![1.0; 4097];
+    let e = Stepper::new(&many, &vec![2; 4097], 2, &settings).unwrap_err();
+    assert!(e.to_string().contains("4097 features"), "{e}");
+    let mut stepper = Stepper::new(&[1.0, 2.0], &[u32::MAX, u32::MAX], 2, &settings).unwrap();
+    // A corridor 0 -> 1 -> 2 (the goal), cells read as large numbers.
+    let read = |cell: u32| move |_: Moment, f: mdp::Feature| Reading(4_000_000_000 - cell - f.0);
+    for _ in 0..40 {
+        let mut cell = 0u32;
+        for moves in 1..=50 {
+            let a = stepper.act(&mut read(cell)).unwrap();
+            let next = if a.0 == 1 {
+                cell + 1
+            } else {
+                cell.saturating_sub(1)
+            };
+            let goal = next == 2;
+            stepper
+                .update(
+                    f64::from(u8::from(goal)),
+                    goal,
+                    moves == 50,
+                    &mut |at: Moment, f| match at {
+                        Moment::Now => read(next)(at, f),
+                        Moment::Left => read(cell)(at, f),
+                    },
+                )
+                .unwrap();
+            if goal {
+                break;
+            }
+            cell = next;
+        }
+    }
+    assert_eq!(stepper.trials(), 40);
+}
