@@ -94,7 +94,8 @@ fn main() -> ExitCode {
                 ExitCode::from(status.code)
             }
             None => {
-                note(format_args!("error: {}", message(&e)));
+                // What a file put in the message cannot drive the terminal.
+                note(format_args!("error: {}", shown_lines(&message(&e))));
                 let cannot_write = e.chain().any(|c| c.downcast_ref::<CannotWrite>().is_some());
                 ExitCode::from(if cannot_write { 4 } else { 1 })
             }
@@ -150,6 +151,29 @@ pub(crate) fn cannot_write(path: &std::path::Path, source: std::io::Error) -> an
 /// Write `contents` to `path`; a failure is a [`CannotWrite`].
 pub(crate) fn write_file(path: &std::path::Path, contents: impl AsRef<[u8]>) -> anyhow::Result<()> {
     std::fs::write(path, contents).map_err(|source| cannot_write(path, source))
+}
+
+/// `text` as it may reach a terminal: its control characters (escape sequences, a
+/// carriage return, a newline) written as Rust escapes (`\u{1b}`, `\r`, `\n`), the rest
+/// as it is. Names from a world or map file pass through this before they are printed.
+pub(crate) fn shown(text: &str) -> std::borrow::Cow<'_, str> {
+    if !text.chars().any(char::is_control) {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len() + 8);
+    for c in text.chars() {
+        if c.is_control() {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
+        }
+    }
+    std::borrow::Cow::Owned(out)
+}
+
+/// `text` as [`shown`] writes it, but with its newlines kept: lines stay lines.
+pub(crate) fn shown_lines(text: &str) -> String {
+    text.split('\n').map(shown).collect::<Vec<_>>().join("\n")
 }
 
 /// Write a line to stderr. Unlike `eprintln!`, a full or closed stderr is no panic: the

@@ -9,7 +9,7 @@ use anyhow::Result;
 use clap::Args;
 use csql::{Flow, Observer, RunReport, RunSettings, SettingsDraft, StrategyKind, TracePoint};
 
-use crate::Status;
+use crate::{Status, shown, shown_lines};
 
 /// Arguments of `csrl run`.
 #[derive(Args)]
@@ -232,7 +232,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
         writeln!(out)?;
         print_policy(&report, map, out)?;
         writeln!(out)?;
-        write!(out, "{}", csql::descriptions_table(&report))?;
+        write!(out, "{}", shown_lines(&csql::descriptions_table(&report)))?;
     }
     if watch.stopped {
         return Err(Status::interrupted(u64::from(report.trials)).into());
@@ -280,7 +280,11 @@ fn run_on_episodes(
     if args.json {
         writeln!(out, "{}", serde_json::to_string(&report)?)?;
     } else {
-        let (map, seed, n) = (&report.map, report.seed, report.costly.summary.episodes);
+        let (map, seed, n) = (
+            shown(&report.map),
+            report.seed,
+            report.costly.summary.episodes,
+        );
         match &report.settings.learner {
             csql::Learner::Belief(p) => writeln!(
                 out,
@@ -357,8 +361,8 @@ fn print_policy(r: &RunReport, map: Option<&mdp::Map>, out: &mut dyn Write) -> s
         writeln!(
             out,
             "| {} | {} | {} |",
-            st.label.as_deref().unwrap_or("?"),
-            st.greedy_action.as_deref().unwrap_or("none"),
+            shown(st.label.as_deref().unwrap_or("?")),
+            shown(st.greedy_action.as_deref().unwrap_or("none")),
             st.description
                 .map_or("none".to_string(), |d| format!("d{d}"))
         )?;
@@ -367,12 +371,13 @@ fn print_policy(r: &RunReport, map: Option<&mdp::Map>, out: &mut dyn Write) -> s
 }
 
 fn print_report(r: &RunReport, out: &mut dyn Write) -> std::io::Result<()> {
+    let map = shown(&r.map);
     let who = match &r.settings.learner {
-        csql::Learner::CsQl(q) => format!("CS-QL on {} with the {} strategy", r.map, q.strategy),
-        csql::Learner::UTree(_) => format!("U-Tree on {}", r.map),
-        csql::Learner::FullSensing => format!("Full sensing on {}", r.map),
-        csql::Learner::AmrlQ(_) => format!("AMRL-Q on {}", r.map),
-        csql::Learner::Belief(_) => format!("Sensing by belief on {}", r.map),
+        csql::Learner::CsQl(q) => format!("CS-QL on {map} with the {} strategy", q.strategy),
+        csql::Learner::UTree(_) => format!("U-Tree on {map}"),
+        csql::Learner::FullSensing => format!("Full sensing on {map}"),
+        csql::Learner::AmrlQ(_) => format!("AMRL-Q on {map}"),
+        csql::Learner::Belief(_) => format!("Sensing by belief on {map}"),
     };
     // The same three lines for every learner, so that runs compare line by line.
     let verdict = match r.judged_by {

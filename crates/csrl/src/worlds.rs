@@ -8,6 +8,8 @@ use clap::Subcommand;
 use mdp::{ActionId, Feature, FiniteWorld, Oracle, Sensors, StateId, StochasticMdp, World};
 use serde::Serialize;
 
+use crate::shown;
+
 /// The discount `show` and `check` value worlds with (the paper's).
 const GAMMA: f64 = 0.9;
 
@@ -97,7 +99,11 @@ pub fn run(cmd: &WorldCommand, out: &mut dyn Write) -> Result<()> {
             match path {
                 Some(path) => {
                     crate::write_file(path, &text)?;
-                    crate::note(format_args!("wrote {} to {}", w.name(), path.display()));
+                    crate::note(format_args!(
+                        "wrote {} to {}",
+                        shown(w.name()),
+                        path.display()
+                    ));
                 }
                 None => write!(out, "{text}")?,
             }
@@ -115,15 +121,15 @@ pub fn run(cmd: &WorldCommand, out: &mut dyn Write) -> Result<()> {
                     anyhow::bail!(
                         "{world}: {} pairs of states read the same on every feature but are not equivalent (gamma {GAMMA}); the first is {} and {}: no description can tell them apart, which the paper assumes it can",
                         aliased.count,
-                        w.state_label(a),
-                        w.state_label(b)
+                        shown(&w.state_label(a)),
+                        shown(&w.state_label(b))
                     );
                 }
             }
             writeln!(
                 out,
                 "{world}: valid world `{}`, {} states ({} a trial may visit), {} actions, {} features{}",
-                w.name(),
+                shown(w.name()),
                 w.num_states(),
                 w.states().len(),
                 w.num_actions(),
@@ -235,13 +241,14 @@ impl Summary {
     }
 
     fn print(&self, out: &mut dyn Write) -> Result<()> {
-        writeln!(out, "{}", self.name)?;
+        writeln!(out, "{}", shown(&self.name))?;
         writeln!(
             out,
             "states      {} ({} a trial may visit, {} terminal, {} where trials start)",
             self.states, self.visited_states, self.terminal_states, self.start_states
         )?;
-        writeln!(out, "actions     {}", self.actions.join(", "))?;
+        let actions: Vec<_> = self.actions.iter().map(|a| shown(a)).collect();
+        writeln!(out, "actions     {}", actions.join(", "))?;
         writeln!(
             out,
             "dynamics    {}",
@@ -272,7 +279,9 @@ impl Summary {
             writeln!(
                 out,
                 "  {:<12} price {:<6} {} readings",
-                f.name, f.price, f.readings
+                shown(&f.name),
+                f.price,
+                f.readings
             )?;
         }
         if self.features.len() > SHOWN {

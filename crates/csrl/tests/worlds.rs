@@ -300,7 +300,10 @@ fn a_large_reading_runs_in_little_memory_and_as_a_small_one() {
         let large = large.replace("\"value\":\"100000000\"", "\"value\":\"1\"");
         assert_eq!(b, large, "{strategy}");
     }
-    assert!(sensed > 0, "no run described the start by its large reading");
+    assert!(
+        sensed > 0,
+        "no run described the start by its large reading"
+    );
     let shown = ok(&["world", "show", large_goal.to_str().unwrap()]);
     assert!(shown.contains("4000000001"), "{shown}");
 }
@@ -324,4 +327,49 @@ fn a_reading_beyond_the_largest_is_refused() {
         &["run", "--world", file.to_str().unwrap()],
         &["state 15 reads 4294967295"],
     );
+}
+
+/// Names from a world file reach the terminal with their control characters escaped:
+/// `world show`, `world check`, a run's text report and an error.
+#[test]
+fn control_characters_in_names_are_escaped_for_the_terminal() {
+    let mut spec = common::lake().to_spec();
+    spec.name = "lake\u{1b}[2J\r".into();
+    spec.actions[0] = "left\u{7}".into();
+    spec.features[0].name = "row\u{1b}]0;title\u{7}".into();
+    if let mdp::StatesSpec::Labels(labels) = &mut spec.states {
+        labels[0] = "start\u{1b}[31m".into();
+    }
+    let file = temp("control.json");
+    std::fs::write(
+        &file,
+        mdp::FiniteWorld::new(spec.clone()).unwrap().to_json(),
+    )
+    .unwrap();
+    let path = file.to_str().unwrap();
+    let clean = |text: &str| {
+        assert!(
+            !text.chars().any(|c| c.is_control() && c != '\n'),
+            "{text:?}"
+        );
+    };
+    let shown = ok(&["world", "show", path]);
+    clean(&shown);
+    assert!(shown.starts_with("lake\\u{1b}[2J\\r\n"), "{shown}");
+    assert!(shown.contains("left\\u{7}") && shown.contains("row\\u{1b}]0;title\\u{7}"));
+    clean(&ok(&["world", "check", path]));
+    let run = ok(&["run", "--world", path, "--max-trials", "20"]);
+    clean(&run);
+    assert!(run.contains("lake\\u{1b}[2J\\r"), "{run}");
+    // An error that names a feature of the file.
+    spec.features[0].price = -1.5;
+    std::fs::write(&file, serde_json::to_string(&spec).unwrap()).unwrap();
+    let out = csrl(&["world", "check", path]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("row\\u{1b}]0;title\\u{7}`: price -1.5"),
+        "{err}"
+    );
+    clean(&err);
 }
