@@ -323,6 +323,11 @@ fn _csrl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<TestCostTree>()?;
     m.add_class::<PyAgent>()?;
     m.add_function(wrap_pyfunction!(value_floor, m)?)?;
+    // The limits of a world, so that the Python side checks sizes before building one.
+    m.add("MAX_STATES", mdp::MAX_STATES)?;
+    m.add("MAX_ACTIONS", mdp::MAX_ACTIONS)?;
+    m.add("MAX_FEATURES", mdp::MAX_FEATURES)?;
+    m.add("MAX_READING", mdp::MAX_READING)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

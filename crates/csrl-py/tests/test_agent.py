@@ -143,3 +143,23 @@ def test_errors_are_exceptions_with_the_rust_message():
         csrl.CsQlAgent([1.0], [2], 2, settings={"world": {"slip": 0.1}})
     with pytest.raises(csrl.SettingsError, match="one price and one number of readings"):
         csrl.CsQlAgent([1.0], [2, 2], 2)
+
+
+def test_sizes_are_checked_before_anything_is_built():
+    with pytest.raises(csrl.SettingsError, match="1000000000 actions"):
+        csrl.CsQlAgent([1.0], [2], num_actions=10**9)
+    with pytest.raises(csrl.SettingsError, match="4097 features"):
+        csrl.CsQlAgent([1.0] * 4097, [2] * 4097, num_actions=2)
+    # A feature of 2**32 - 1 readings learns in the memory of what it senses.
+    agent = csrl.CsQlAgent([1.0], [2**32 - 1], num_actions=2, strategy="lazy", seed=1)
+    for episode in range(20):
+        cell = 0
+        for t in range(50):
+            a = agent.act(lambda f, c=cell: 2**32 - 2 - c)
+            nxt = cell + 1 if a == 1 else max(cell - 1, 0)
+            goal = nxt == 3
+            agent.update(float(goal), goal, t == 49, sensor=lambda f, c=nxt: 2**32 - 2 - c)
+            if goal:
+                break
+            cell = nxt
+    assert agent.trials == 20

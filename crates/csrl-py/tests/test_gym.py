@@ -108,3 +108,21 @@ def test_renders():
     after = env.render()
     assert before.shape == (16, 32, 3) and before.dtype == np.uint8
     assert not np.array_equal(before, after)
+
+
+def test_counts_and_actions_are_integers_never_truncated():
+    for bad in (0, -1, 1.5, True, "3"):
+        with pytest.raises(ValueError, match="max_steps"):
+            csrl.gym.SensingEnv("frozenlake4x4", sensing="factors", max_steps=bad)
+    for bad in (0, -3, 1.7):
+        with pytest.raises(ValueError, match="max_moves"):
+            csrl.gym.SensingEnv("frozenlake4x4", sensing="factors", max_moves=bad)
+    env = csrl.gym.SensingEnv("frozenlake4x4", sensing="factors", max_steps=np.int64(4))
+    assert env.max_steps == 4
+    env.reset(seed=0)
+    for bad in (1.7, 1.0, True, "1", None):
+        with pytest.raises(ValueError, match="action"):
+            env.step(bad)
+    # A refused action is no step.
+    _obs, _r, _term, trunc, _info = env.step(np.int64(1))
+    assert env._steps == 1 and not trunc

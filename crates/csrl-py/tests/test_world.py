@@ -164,3 +164,112 @@ def test_value_floor_refuses_a_discount_outside_zero_to_one(gamma):
     with pytest.raises(csrl.SettingsError, match="discount of value_floor"):
         csrl.value_floor(csrl.World("taxi"), gamma)
     assert csrl.value_floor(csrl.World("taxi"), 0.0) == -1.0
+
+
+class _Huge:
+    """A sequence that says it is long and holds nothing: reading it would fail."""
+
+    def __init__(self, n):
+        self.n = n
+
+    def __len__(self):
+        return self.n
+
+    def __iter__(self):
+        raise AssertionError("a size beyond the limit was read instead of refused")
+
+    def __getitem__(self, i):
+        raise AssertionError("a size beyond the limit was read instead of refused")
+
+
+def test_sizes_beyond_the_limits_are_refused_before_anything_is_built():
+    T, R, terminal, readings = corridor()
+    with pytest.raises(csrl.WorldError, match="states: 10000000, more than the limit of 65536"):
+        csrl.World.from_arrays(_Huge(10**7), R, _Huge(10**7), readings, [1.0])
+    with pytest.raises(csrl.WorldError, match="features: 5000, more than the limit of 4096"):
+        csrl.World.from_arrays(T, R, terminal, readings, _Huge(5000))
+
+    class Space:
+        def __init__(self, n):
+            self.n = n
+
+    class Env:
+        def __init__(self, states, actions):
+            self.unwrapped = self
+            self.P = {}
+            self.observation_space = Space(states)
+            self.action_space = Space(actions)
+
+    with pytest.raises(csrl.WorldError, match="states: 1000000000"):
+        csrl.World.from_gymnasium(Env(10**9, 4), lambda s: [s], [1.0])
+    with pytest.raises(csrl.WorldError, match="actions: 100, more than the limit of 64"):
+        csrl.World.from_gymnasium(Env(4, 100), lambda s: [s], [1.0])
+
+
+def test_from_arrays_refuses_what_it_would_coerce():
+    T, R, terminal, readings = corridor()
+
+    def refused(match, T=T, R=R, readings=readings, **kw):
+        with pytest.raises(csrl.WorldError, match=match):
+            csrl.World.from_arrays(T, R, terminal, readings, kw.pop("costs", [1.0]), **kw)
+
+    rows = np.zeros((4, 2, 4))
+    for s in range(4):
+        for a in range(2):
+            for p, t in T[s][a]:
+                rows[s, a, t] += p
+    for bad in (np.nan, -0.5, np.inf):
+        r = rows.copy()
+        r[1, 0, 2] = bad
+        refused(r"transitions\[1\]\[0\]\[2\]: probability", T=r)
+    pairs = [[list(o) for o in row] for row in T]
+    pairs[1][1] = [(float("nan"), 2)]
+    refused(r"transitions\[1\]\[1\], outcome 0: probability nan", T=pairs)
+    pairs[1][1] = [(1.0, 1.7)]
+    refused(r"state 1, action 1, outcome 0: next state 1.7 is not an integer", T=pairs)
+    pairs[1][1] = [(1.0, 9)]
+    refused(r"next state 9 is not in 0 to 3", T=pairs)
+    bad = readings.astype(float)
+    bad[2, 0] = 1.7
+    refused(r"readings\[0\]\[0\]: reading 0.0 is not an integer", readings=bad)
+    refused(r"readings\[2\]\[0\]: reading 4294967295 is not in 0 to 4294967294",
+            readings=[[0], [1], [2**32 - 1], [3]])
+    refused(r"readings\[1\]\[0\]: reading -1", readings=[[0], [-1], [2], [3]])
+    refused(r"feature_costs\[0\]: price nan is not finite", costs=[float("nan")])
+    refused(r"rewards\[2\]\[1\], outcome 0: reward inf", R=[[0.0, 0.0], [0.0, 0.0], [0.0, float("inf")], [0.0, 0.0]])
+    refused(r"start: state 1.5 is not an integer", start=1.5)
+    refused(r"start\[0\]: probability -1.0", start=[(-1.0, 0), (2.0, 1)])
+    # Names given twice.
+    refused('action name "go" is also', action_names=["go", "go"])
+    refused('feature name "x" is also', T=T, readings=[[0, 0], [1, 1], [2, 2], [3, 3]],
+            costs=[1.0, 1.0], feature_names=["x", "x"])
+    refused('state label "a" is also', state_labels=["a", "b", "a", "c"])
+    # A large reading is a reading: the world runs, and says how many readings it has.
+    w = csrl.World.from_arrays(T, R, terminal, [[0], [1], [2], [2**32 - 2]], [1.0])
+    assert w.arities == [2**32 - 1]
+    assert csrl.run(world=w, strategy="lazy", seed=1)["converged"]
+
+
+def test_from_gymnasium_refuses_what_it_would_coerce():
+    env = gym.make("FrozenLake-v1", is_slippery=False)
+    u = env.unwrapped
+    saved = u.P[0][0]
+    try:
+        u.P[0][0] = [(float("nan"), 0, 0.0, False)]
+        with pytest.raises(csrl.WorldError, match=r"P\[0\]\[0\]\[0\]: probability nan"):
+            csrl.World.from_gymnasium(env, lake_features, [1.0, 1.0])
+        u.P[0][0] = [(1.0, 0.5, 0.0, False)]
+        with pytest.raises(csrl.WorldError, match=r"P\[0\]\[0\]\[0\]: next state 0.5 is not an integer"):
+            csrl.World.from_gymnasium(env, lake_features, [1.0, 1.0])
+    finally:
+        u.P[0][0] = saved
+    with pytest.raises(csrl.WorldError, match=r"features\(0\)\[1\]: reading 0.5"):
+        csrl.World.from_gymnasium(env, lambda s: (s // 4, s % 4 + 0.5), [1.0, 1.0])
+    start = u.initial_state_distrib.copy()
+    try:
+        u.initial_state_distrib[1] = -0.5
+        with pytest.raises(csrl.WorldError, match=r"initial_state_distrib\[1\]: probability -0.5"):
+            csrl.World.from_gymnasium(env, lake_features, [1.0, 1.0])
+    finally:
+        u.initial_state_distrib[:] = start
+    assert csrl.World.from_gymnasium(env, lake_features, [1.0, 1.0]).num_states == 16

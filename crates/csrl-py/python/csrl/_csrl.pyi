@@ -5,6 +5,15 @@ from typing import Any, Callable, Optional, Union
 
 __version__: str
 
+MAX_STATES: int
+"""The most states a world may have."""
+MAX_ACTIONS: int
+"""The most actions a world (or an agent) may have."""
+MAX_FEATURES: int
+"""The most features a world (or an agent) may have."""
+MAX_READING: int
+"""The largest reading a feature may have in a state."""
+
 class SettingsError(ValueError):
     """Settings that cannot be used (the message names them)."""
 

@@ -16,6 +16,7 @@ Importing this module registers it as ``csrl/Sensing-v0``:
 from __future__ import annotations
 
 import bisect
+import operator
 from typing import Any, Optional, Union
 
 import gymnasium
@@ -41,6 +42,20 @@ _PALETTE = np.array(
     dtype=np.uint8,
 )
 _UNKNOWN = np.array([150, 150, 150], dtype=np.uint8)
+
+
+def _count(name: str, value: Any) -> int:
+    """``value`` as a count of at least 1: an int (or a numpy integer), not a float that
+    would be truncated nor a bool."""
+    if isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name} must be an integer of at least 1, found {value!r}")
+    try:
+        n = operator.index(value)
+    except TypeError:
+        raise ValueError(f"{name} must be an integer of at least 1, found {value!r}") from None
+    if n < 1:
+        raise ValueError(f"{name} must be at least 1, found {value!r}")
+    return n
 
 
 class SensingEnv(gymnasium.Env):
@@ -95,8 +110,9 @@ class SensingEnv(gymnasium.Env):
             )
         if not (isinstance(cost_scale, (int, float)) and np.isfinite(cost_scale) and cost_scale >= 0):
             raise ValueError(f"cost_scale must be a finite number at least 0, found {cost_scale!r}")
-        if int(max_moves) < 1:
-            raise ValueError(f"max_moves must be at least 1, found {max_moves!r}")
+        max_moves = _count("max_moves", max_moves)
+        if max_steps is not None:
+            max_steps = _count("max_steps", max_steps)
         nf = world.num_features
         if nf == 0:
             raise ValueError(f"world {world.name!r} has no features to sense")
@@ -170,8 +186,16 @@ class SensingEnv(gymnasium.Env):
     def step(self, action: Any):
         """Sense feature ``action`` (below ``num_features``) or make move
         ``action - num_features``."""
-        a = int(action)
+        # An action is an int (or a numpy integer): 1.7 is no action, nor is True.
+        if isinstance(action, (bool, np.bool_)):
+            raise ValueError(f"action {action!r} is not in {self.action_space}")
+        try:
+            a = operator.index(action)
+        except TypeError:
+            raise ValueError(f"action {action!r} is not an integer in {self.action_space}") from None
         nf = self.num_features
+        if not 0 <= a < self.action_space.n:
+            raise ValueError(f"action {action!r} is not in {self.action_space}")
         self._steps += 1
         if 0 <= a < nf:
             self._values[a] = self._readings[self._state][a]
@@ -179,8 +203,6 @@ class SensingEnv(gymnasium.Env):
             self._last = f"sensed {self._feature_names[a]}"
             truncated = self._steps >= self.max_steps
             return self._obs(), self._penalty[a], False, truncated, {"sensing_cost": self._prices[a]}
-        if not 0 <= a < self.action_space.n:
-            raise ValueError(f"action {action!r} is not in {self.action_space}")
         cum, outs = self._moves[self._state][a - nf]
         nxt, reward, terminated = outs[self._draw(cum)]
         self._state = nxt

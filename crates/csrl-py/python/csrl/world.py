@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import json
+import math
+import numbers
 import os
 from typing import Any, Callable, Iterable, Mapping, Optional, Sequence, Union
 
@@ -16,6 +18,45 @@ def _tolist(x: Any) -> Any:
     """Lists (and numbers) from numpy arrays, or ``x`` itself."""
     tolist = getattr(x, "tolist", None)
     return tolist() if callable(tolist) else x
+
+
+def _is_bool(x: Any) -> bool:
+    return isinstance(x, bool) or type(x).__name__ == "bool_"
+
+
+def _integer(x: Any, at: str, what: str, below: int) -> int:
+    """``x`` as an int in ``range(below)``: an int or a numpy integer, never a float that
+    would be truncated nor a bool."""
+    if _is_bool(x) or not isinstance(x, numbers.Integral):
+        raise WorldError(f"{at}: {what} {x!r} is not an integer")
+    v = int(x)
+    if not 0 <= v < below:
+        raise WorldError(f"{at}: {what} {v} is not in 0 to {below - 1}")
+    return v
+
+
+def _real(x: Any, at: str, what: str) -> float:
+    """``x`` as a finite float (an int, a float or a numpy number, not a bool)."""
+    if _is_bool(x) or not isinstance(x, numbers.Real):
+        raise WorldError(f"{at}: {what} {x!r} is not a number")
+    v = float(x)
+    if not math.isfinite(v):
+        raise WorldError(f"{at}: {what} {v} is not finite")
+    return v
+
+
+def _probability(x: Any, at: str) -> float:
+    """``x`` as a probability: a finite number in [0, 1]."""
+    p = _real(x, at, "probability")
+    if not 0.0 <= p <= 1.0:
+        raise WorldError(f"{at}: probability {p} is not in [0, 1]")
+    return p
+
+
+def _at_most(count: int, limit: int, what: str) -> None:
+    """Refuse a size beyond a world's limit before anything is built."""
+    if count > limit:
+        raise WorldError(f"{what}: {count}, more than the limit of {limit}")
 
 
 class World:
@@ -135,12 +176,22 @@ class World:
         >>> w.states(), w.outcomes(1, 1)
         ([0, 1], [(1.0, 2, 1.0, True)])
         """
-        terminal = [bool(t) for t in _tolist(terminal)]
+        # Sizes first, before anything is built.
         n = len(terminal)
+        _at_most(n, _csrl.MAX_STATES, "states")
+        nf = len(feature_costs)
+        _at_most(nf, _csrl.MAX_FEATURES, "features")
+        terminal = [bool(t) for t in _tolist(terminal)]
         transitions = _tolist(transitions)
         rewards = _tolist(rewards)
-        readings = [list(map(int, row)) for row in _tolist(readings)]
-        costs = [float(c) for c in _tolist(feature_costs)]
+        readings = [
+            [
+                _integer(v, f"readings[{s}][{f}]", "reading", _csrl.MAX_READING + 1)
+                for f, v in enumerate(_tolist(row))
+            ]
+            for s, row in enumerate(_tolist(readings))
+        ]
+        costs = [_real(c, f"feature_costs[{f}]", "price") for f, c in enumerate(_tolist(feature_costs))]
         if len(transitions) != n or len(rewards) != n or len(readings) != n:
             raise WorldError(
                 f"terminal has {n} states but transitions has {len(transitions)}, "
@@ -154,6 +205,7 @@ class World:
             row = transitions[s]
             if num_actions is None:
                 num_actions = len(row)
+                _at_most(num_actions, _csrl.MAX_ACTIONS, "actions")
             if len(row) != num_actions:
                 raise WorldError(
                     f"state {s} has {len(row)} actions in transitions, state "
@@ -161,9 +213,18 @@ class World:
                 )
             for a, outs in enumerate(row):
                 outs = _tolist(outs)
+                at = f"transitions[{s}][{a}]"
                 if outs and not isinstance(outs[0], (list, tuple)):
                     # A row of probabilities over the next states.
-                    outs = [(p, t) for t, p in enumerate(outs) if p > 0]
+                    if len(outs) != n:
+                        raise WorldError(
+                            f"{at}: a row of {len(outs)} probabilities, but there are {n} states"
+                        )
+                    outs = [(p, t) for t, p in enumerate(outs) if _probability(p, f"{at}[{t}]") > 0]
+                else:
+                    for j, o in enumerate(outs):
+                        if len(o) != 2:
+                            raise WorldError(f"{at}[{j}]: {o!r} is not a (probability, next_state) pair")
                 r = rewards[s][a] if a < len(rewards[s]) else None
                 if r is None:
                     raise WorldError(f"state {s}, action {a}: rewards has no entry")
@@ -174,21 +235,21 @@ class World:
                         f"state {s}, action {a}: {len(outs)} outcomes but {len(per)} rewards"
                     )
                 out = []
-                for (p, t), rew in zip(outs, per):
-                    t = int(t)
-                    if not 0 <= t < n:
-                        raise WorldError(
-                            f"state {s}, action {a}: next state {t} is not one of the {n} states"
-                        )
-                    out.append([float(p), t, float(rew), terminal[t]])
+                for j, ((p, t), rew) in enumerate(zip(outs, per)):
+                    p = _probability(p, f"{at}, outcome {j}")
+                    t = _integer(t, f"state {s}, action {a}, outcome {j}", "next state", n)
+                    rew = _real(rew, f"rewards[{s}][{a}], outcome {j}", "reward")
+                    out.append([p, t, rew, terminal[t]])
                 spec_transitions.append([s, a, out])
         if num_actions is None:
             num_actions = 1
-        if isinstance(start, (int,)) or hasattr(start, "__index__"):
-            start_pairs = [[1.0, int(start)]]
+        if isinstance(start, numbers.Number) or hasattr(start, "__index__"):
+            start_pairs = [[1.0, _integer(start, "start", "state", n)]]
         else:
-            start_pairs = [[float(p), int(s)] for p, s in _tolist(start)]
-        nf = len(costs)
+            start_pairs = [
+                [_probability(p, f"start[{i}]"), _integer(s, f"start[{i}]", "state", n)]
+                for i, (p, s) in enumerate(_tolist(start))
+            ]
         names = list(feature_names) if feature_names is not None else [f"f{i}" for i in range(nf)]
         if len(names) != nf:
             raise WorldError(f"{len(names)} feature names for {nf} features")
@@ -249,19 +310,42 @@ class World:
             raise WorldError(
                 "from_gymnasium needs Discrete observation and action spaces"
             ) from None
+        # Sizes first, before anything is built.
+        _at_most(n, _csrl.MAX_STATES, "states")
+        _at_most(na, _csrl.MAX_ACTIONS, "actions")
         terminal = [False] * n
+        model = []
         for s in range(n):
+            row = []
             for a in range(na):
-                for p, t, _r, done in P[s][a]:
+                outs = []
+                for j, (p, t, r, done) in enumerate(P[s][a]):
+                    at = f"P[{s}][{a}][{j}]"
+                    p = _probability(p, at)
+                    t = _integer(t, at, "next state", n)
+                    outs.append((p, t, _real(r, at, "reward"), bool(done)))
                     if done and p > 0:
-                        terminal[int(t)] = True
+                        terminal[t] = True
+                row.append(outs)
+            model.append(row)
         start_dist = getattr(u, "initial_state_distrib", None)
         if start_dist is None:
             raise WorldError(
                 f"{type(u).__name__} has no initial_state_distrib: build the world with "
                 "csrl.World.from_arrays and a start of your own"
             )
-        start = [[float(p), s] for s, p in enumerate(_tolist(start_dist)) if p > 0]
+        start_dist = _tolist(start_dist)
+        if len(start_dist) != n:
+            raise WorldError(
+                f"initial_state_distrib has {len(start_dist)} entries, but there are {n} states"
+            )
+        start = [
+            [p, s]
+            for s, p in enumerate(
+                _probability(p, f"initial_state_distrib[{s}]") for s, p in enumerate(start_dist)
+            )
+            if p > 0
+        ]
         # The states a trial can reach: there an outcome must say `terminated` exactly
         # when it enters a terminal state. Elsewhere (Taxi's states with the passenger
         # already delivered, for instance) the flag is taken from the state entered:
@@ -275,35 +359,39 @@ class World:
             if terminal[s]:
                 continue
             for a in range(na):
-                for p, t, _r, _d in P[s][a]:
-                    if p > 0 and not reachable[int(t)]:
-                        reachable[int(t)] = True
-                        todo.append(int(t))
+                for p, t, _r, _d in model[s][a]:
+                    if p > 0 and not reachable[t]:
+                        reachable[t] = True
+                        todo.append(t)
         transitions = []
         for s in range(n):
             if terminal[s]:
                 continue
             for a in range(na):
                 out = []
-                for p, t, r, done in P[s][a]:
-                    t = int(t)
-                    if reachable[s] and bool(done) != terminal[t]:
+                for p, t, r, done in model[s][a]:
+                    if reachable[s] and done != terminal[t]:
                         raise WorldError(
                             f"P[{s}][{a}]: an outcome enters state {t} with terminated={bool(done)}, "
                             f"but another outcome enters it with terminated={not done}: "
                             "a csrl world ends a trial by the state entered"
                         )
-                    out.append([float(p), t, float(r), terminal[t]])
+                    out.append([p, t, r, terminal[t]])
                 transitions.append([s, a, out])
         readings = []
         for s in range(n):
-            row = [int(v) for v in _tolist(features(s))]
+            row = [
+                _integer(v, f"features({s})[{f}]", "reading", _csrl.MAX_READING + 1)
+                for f, v in enumerate(_tolist(features(s)))
+            ]
+            if not readings:
+                _at_most(len(row), _csrl.MAX_FEATURES, "features")
             if readings and len(row) != len(readings[0]):
                 raise WorldError(
                     f"features({s}) gave {len(row)} readings, features(0) gave {len(readings[0])}"
                 )
             readings.append(row)
-        costs = [float(c) for c in _tolist(feature_costs)]
+        costs = [_real(c, f"feature_costs[{f}]", "price") for f, c in enumerate(_tolist(feature_costs))]
         nf = len(readings[0]) if readings else 0
         if len(costs) != nf:
             raise WorldError(f"features gives {nf} readings per state but feature_costs has {len(costs)} prices")
