@@ -33,7 +33,8 @@ class CsQlAgent:
     * ``feature_costs[i]``: the price of measuring feature ``i``; ``feature_values[i]``:
       how many values it reads (``0`` to ``feature_values[i] - 1``). The agent takes "the
       next cheapest feature" by ascending price, ties in your order.
-    * ``num_actions``: actions are ``0`` to ``num_actions - 1``.
+    * ``num_actions``: actions are ``0`` to ``num_actions - 1``; at most 64 actions and
+      4096 features, as in a world (:data:`csrl._csrl.MAX_ACTIONS`, ``MAX_FEATURES``).
     * ``strategy``, ``seed`` and ``settings`` as :func:`csrl.run` takes them (the paper's
       parameters by default; ``[world]`` settings, ``learner``, ``predict_sensing`` and
       ``memory`` are refused: the agent senses your environment, with CLASSIFY).

@@ -166,7 +166,11 @@ class World:
         * ``feature_costs[f]``: the price of measuring feature ``f``.
         * ``start``: a start state, or ``(probability, state)`` pairs.
 
-        Arrays may be numpy arrays. Errors name the state, action or feature at fault.
+        Arrays may be numpy arrays. Nothing is coerced: probabilities are finite numbers
+        in [0, 1], rewards and prices finite numbers, states and readings integers (a
+        float such as ``1.7`` is refused, not truncated), names distinct, and sizes within
+        a world's limits (checked before anything is built). Errors name the argument
+        and the index, or the state, action or feature at fault.
 
         >>> import csrl
         >>> # A corridor 0 - 1 - 2 where 2 is the goal; one feature (the position) at price 1.
