@@ -14,8 +14,8 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use cslearn::testcost::{
-    Catalogue, CostTree, FamilyParams, Frame, Method, MisclassCosts, TestPrices, fit, folds,
-    gain_prices, random_prices, standard_cost,
+    Catalogue, CostTree, FamilyParams, Frame, Method, MisclassCosts, SelectionPrices, TestPrices,
+    fit, folds, gain_prices, random_prices, standard_cost,
 };
 use serde::{Deserialize, Serialize};
 
@@ -48,6 +48,11 @@ pub struct TestcostArgs {
     /// on the whole data set).
     #[arg(long, default_value = "uniform")]
     price_draw: String,
+    /// The price selection functions see: `listed` (each test's listed price whatever
+    /// the path, as the published implementations score tests) or `path` (after the
+    /// node's path, the library's default). Objects always pay after their path.
+    #[arg(long, default_value = "listed")]
+    selection_prices: String,
     /// The range random prices are drawn from: `LOW,HIGH`.
     #[arg(long, value_delimiter = ',', default_value = "1,100")]
     price_range: Vec<f64>,
@@ -91,6 +96,9 @@ pub(crate) struct Definition {
     pub price_range: (f64, f64),
     #[serde(default)]
     pub price_draw: PriceDraw,
+    /// Results written before this setting existed were priced after the path.
+    #[serde(default)]
+    pub selection_prices: SelectionPrices,
     pub runs: u64,
     pub folds: usize,
     pub seed: u64,
@@ -264,7 +272,10 @@ fn run_job(
 ) -> Result<JobResult> {
     let method = def.learners[job.learner];
     let prices = job_prices(def, name, frame, turney, job.costs, job.assignment)?;
-    let params = FamilyParams::default();
+    let params = FamilyParams {
+        selection_prices: def.selection_prices,
+        ..FamilyParams::default()
+    };
     let k = frame.class_count();
     let mcs: Vec<MisclassCosts> = def
         .mc
@@ -386,6 +397,8 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
         "gain" => PriceDraw::Gain,
         other => bail!("--price-draw: `{other}` is neither `uniform` nor `gain`"),
     };
+    let selection_prices = SelectionPrices::parse(&args.selection_prices)
+        .map_err(|e| anyhow::anyhow!("--selection-prices: {e}"))?;
     if args.runs == 0 || args.folds < 2 || args.assignments == 0 {
         bail!("testcost needs --runs and --assignments of at least 1 and --folds of at least 2");
     }
@@ -397,6 +410,7 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
         assignments: args.assignments,
         price_range,
         price_draw,
+        selection_prices,
         runs: args.runs,
         folds: args.folds,
         seed: args.seed,
@@ -495,6 +509,9 @@ fn args_line(args: &TestcostArgs) -> String {
     if args.price_draw != "uniform" {
         let _ = write!(line, " --price-draw {}", args.price_draw);
     }
+    if args.selection_prices != "listed" {
+        let _ = write!(line, " --selection-prices {}", args.selection_prices);
+    }
     if args.price_range != [1.0, 100.0] {
         let _ = write!(
             line,
@@ -529,6 +546,7 @@ mod tests {
             costs: vec!["random".into(), "turney".into()],
             assignments: 2,
             price_draw: "uniform".into(),
+            selection_prices: "listed".into(),
             price_range: vec![1.0, 100.0],
             runs: 1,
             folds: 3,

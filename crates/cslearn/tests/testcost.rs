@@ -6,7 +6,7 @@ use std::path::Path;
 
 use cslearn::testcost::{
     Catalogue, Column, CostTree, Criterion, FamilyParams, Frame, GrowParams, Method, MisclassCosts,
-    Split, TestPrice, TestPrices, TurneyExtra, fit, standard_cost,
+    SelectionPrices, Split, TestPrice, TestPrices, TurneyExtra, fit, standard_cost,
 };
 
 /// Eight objects, four of each class. Feature `a` (price 10) tells the class exactly:
@@ -55,6 +55,61 @@ fn each_selection_function_picks_the_hand_computed_test() {
     assert_eq!(root_test(Criterion::Dtmc, 100.0), Some(0));
     // mc = 1: no test pays for itself (a: 4 - 80, b: 4 - 2 - 8): a leaf.
     assert_eq!(root_test(Criterion::Dtmc, 1.0), None);
+}
+
+/// The root's feature, the feature tested in its upper branch and what object 6 pays, in
+/// an unpruned IDX tree over twelve objects: `x` (price 1) is 0..=11, `y` (price 2) is 1
+/// for x <= 3 and then tells the class exactly.
+fn idx_test_above_the_root(selection: SelectionPrices) -> (usize, Option<usize>, f64) {
+    let x: Vec<f64> = (0..12).map(f64::from).collect();
+    // Classes by x: 0..=3 no; then no no yes no yes yes no yes.
+    let class = vec![0, 0, 0, 0, 0, 0, 1, 0, 1, 1, 0, 1];
+    let y: Vec<f64> = (0..12)
+        .map(|i| if i < 4 { 1.0 } else { f64::from(class[i]) })
+        .collect();
+    let frame = Frame::new(
+        vec!["x".into(), "y".into()],
+        vec![Column::Numeric(x), Column::Numeric(y)],
+        class.iter().map(|&c| c as u32).collect(),
+        vec!["no".into(), "yes".into()],
+    )
+    .unwrap();
+    let prices = TestPrices::flat(&[1.0, 2.0]).unwrap();
+    let mc = MisclassCosts::uniform(2, 100.0).unwrap();
+    let rows: Vec<usize> = (0..12).collect();
+    let grow = GrowParams::new(Criterion::Idx).selecting_at(selection);
+    let tree = CostTree::grow(&frame, &rows, &prices, &mc, &grow);
+    let Some(Split::Threshold {
+        feature, children, ..
+    }) = tree.node(0).split.clone()
+    else {
+        panic!("the root should split on a threshold: {:?}", tree.node(0));
+    };
+    let below = tree
+        .node(children[1] as usize)
+        .split
+        .as_ref()
+        .map(Split::feature);
+    // What object 6 (x = 6, class yes) pays on its way down.
+    let paid = tree.classify(&frame, 6, &prices).test_cost;
+    (feature, below, paid)
+}
+
+#[test]
+fn selection_prices_listed_charge_a_numeric_re_test_where_path_prices_do_not() {
+    // At the root (8 no, 4 yes; H = 0.9183): x at 5.5 leaves 6 no | 2 no 4 yes, gain
+    // 0.9183 - 6/12 H(1/3) = 0.4591, IDX 0.4591 / 1; y leaves 4 no | 4 no 4 yes, gain
+    // 0.2516, IDX 0.2516 / 2: x, either way.
+    // Above 5.5 (2 no, 4 yes): y tells the class, gain 0.9183, IDX 0.9183 / 2 = 0.4591; x
+    // again at its best threshold, 6.5 (1 yes | 2 no 3 yes), gains 0.9183 - 5/6 H(2/5) =
+    // 0.1092. After the path x is free, so IDX splits on it again.
+    let (root, below, _) = idx_test_above_the_root(SelectionPrices::Path);
+    assert_eq!((root, below), (0, Some(0)));
+    // At its listed price x scores 0.1092 / 1 < 0.4591: y.
+    let (root, below, paid) = idx_test_above_the_root(SelectionPrices::Listed);
+    assert_eq!((root, below), (0, Some(1)));
+    // The object still pays each test once: x, then y.
+    assert_eq!(paid, 3.0);
 }
 
 #[test]

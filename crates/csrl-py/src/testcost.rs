@@ -268,6 +268,7 @@ impl TestCostTree {
                 generations,
                 ..IcetParams::default()
             },
+            ..FamilyParams::default()
         };
         let rows: Vec<usize> = (0..frame.len()).collect();
         let fitted = py

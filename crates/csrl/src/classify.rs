@@ -176,6 +176,12 @@ pub struct ClassifyArgs {
     /// `--cost-name thalch=thalach`.
     #[arg(long, value_name = "COLUMN=NAME")]
     pub(crate) cost_name: Vec<String>,
+    /// Family only: the price the selection functions see for a test: `path` (after the
+    /// node's path: a test done once is free further down; the default) or `listed`
+    /// (its listed price whatever the path, as the published implementations score
+    /// tests). An object pays after its path either way.
+    #[arg(long, value_name = "path|listed")]
+    pub(crate) selection_prices: Option<String>,
 }
 
 /// Accuracy and cost per object on one test part (or summed over folds).
@@ -393,6 +399,7 @@ fn check_flags(args: &ClassifyArgs) -> Result<()> {
             ("--mc", args.mc.is_some()),
             ("--mc-matrix", args.mc_matrix.is_some()),
             ("--cost-name", !args.cost_name.is_empty()),
+            ("--selection-prices", args.selection_prices.is_some()),
         ];
         if let Some((flag, _)) = family_only.iter().find(|(_, given)| *given) {
             anyhow::bail!(

@@ -296,7 +296,15 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
     );
     let (scheme, parts) = splits(args, &frame)?;
     check_classes(args, &frame, &parts)?;
-    let params = cslearn::testcost::FamilyParams::default();
+    let selection_prices = match &args.selection_prices {
+        Some(name) => cslearn::testcost::SelectionPrices::parse(name)
+            .map_err(|e| anyhow::anyhow!("--selection-prices: {e}"))?,
+        None => cslearn::testcost::SelectionPrices::default(),
+    };
+    let params = cslearn::testcost::FamilyParams {
+        selection_prices,
+        ..cslearn::testcost::FamilyParams::default()
+    };
     let bar = crate::classify::progress_bar(parts.len() + usize::from(args.save.is_some()));
     let mut results = Vec::with_capacity(parts.len());
     for (j, (train, test)) in parts.iter().enumerate() {
@@ -379,6 +387,7 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
             "test_objects": tested,
             "mc": uniform,
             "mc_matrix": args.mc_matrix.as_ref().map(|p| p.display().to_string()),
+            "selection_prices": params.selection_prices.name(),
             "all_tests_cost": prices.total(),
             "test_cost_per_object": test_cost,
             "errors": errors,

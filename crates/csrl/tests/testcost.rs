@@ -164,6 +164,32 @@ fn every_family_learner_reports_what_its_tests_and_errors_cost() {
 }
 
 #[test]
+fn selection_prices_are_a_family_setting_reported_with_the_results() {
+    let path = heart_json("cs-id3-batch", &[]);
+    assert_eq!(path["selection_prices"], "path");
+    let listed = heart_json("cs-id3-batch", &["--selection-prices", "listed"]);
+    assert_eq!(listed["selection_prices"], "listed");
+    // A numeric test bought once is free further down the path; seen at its listed price
+    // it is bought less often again, so the tree buys other, dearer tests.
+    let (p, l) = (
+        f(&path, "test_cost_per_object"),
+        f(&listed, "test_cost_per_object"),
+    );
+    assert!(
+        p != l,
+        "path {p} and listed {l} should grow different trees"
+    );
+    assert_eq!(
+        heart_json("cs-id3-batch", &["--selection-prices", "path"])["total_cost_per_object"],
+        path["total_cost_per_object"]
+    );
+    refused(
+        &on_heart("eg2", &["--selection-prices", "free"]),
+        &["--selection-prices", "`free`", "`path` or `listed`"],
+    );
+}
+
+#[test]
 fn icet_reports_the_genome_its_search_found() {
     let v = heart_json("icet", &["--holdout", "0.3"]);
     assert_eq!(v["evaluation"], "holdout 0.3");

@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use anyhow::{Result, anyhow};
-use cslearn::testcost::Method;
+use cslearn::testcost::{Method, SelectionPrices};
 use plotters::prelude::*;
 
 use super::published;
@@ -229,8 +229,9 @@ fn markdown(
         "Written by `{command}`. Average total cost (tests plus misclassification) as a \
          percentage of Turney's standard cost, lower is better; {} runs of {}-fold stratified \
          cross-validation per data set and price assignment; random prices: {} assignments \
-         per data set, each test {} [{}, {}]. Learners: {}. `docs/testcost.md` reads \
-         the results.\n",
+         per data set, each test {} [{}, {}]. Learners: {}. Selection functions see {}; \
+         an object always pays after its path (a test done once is free further down). \
+         `docs/testcost.md` reads the results.\n",
         def.runs,
         def.folds,
         def.assignments,
@@ -245,7 +246,11 @@ fn markdown(
             .iter()
             .map(|m| m.name())
             .collect::<Vec<_>>()
-            .join(", ")
+            .join(", "),
+        match def.selection_prices {
+            SelectionPrices::Listed => "each test's listed price, whatever the path",
+            SelectionPrices::Path => "a test's price after the node's path",
+        }
     );
     for &mc in &def.mc {
         if !def.costs.contains(&PriceSet::Random) {

@@ -6,7 +6,7 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use super::data::Frame;
 use super::prices::{MisclassCosts, TestPrices};
 use super::splits::Splits;
-use super::tree::{CostTree, Criterion, GrowParams};
+use super::tree::{CostTree, Criterion, GrowParams, SelectionPrices};
 use crate::Error;
 
 /// A learner of the family.
@@ -103,14 +103,15 @@ impl Method {
     /// ```
     pub fn grow_params(self, params: &FamilyParams) -> GrowParams {
         let pruned = |c| GrowParams::new(c).pruned(params.confidence);
-        match self {
+        let grow = match self {
             Method::Id3 => GrowParams::new(Criterion::Id3),
             Method::C45 => pruned(Criterion::C45),
             Method::Idx => pruned(Criterion::Idx),
             Method::CsId3Batch => pruned(Criterion::CsId3),
             Method::Eg2 | Method::Icet => pruned(Criterion::Eg2 { w: params.eg2_w }),
             Method::Dtmc => GrowParams::new(Criterion::Dtmc),
-        }
+        };
+        grow.selecting_at(params.selection_prices)
     }
 }
 
@@ -128,6 +129,10 @@ pub struct FamilyParams {
     pub eg2_w: f64,
     /// ICET's search.
     pub icet: IcetParams,
+    /// The price every learner's selection function sees for a test: after the node's
+    /// path (the default) or as listed.
+    #[serde(default)]
+    pub selection_prices: SelectionPrices,
 }
 
 impl Default for FamilyParams {
@@ -136,6 +141,7 @@ impl Default for FamilyParams {
             confidence: 0.25,
             eg2_w: 1.0,
             icet: IcetParams::default(),
+            selection_prices: SelectionPrices::Path,
         }
     }
 }
@@ -233,7 +239,9 @@ pub fn fit(
         let biased = prices
             .repriced(&genome.prices)
             .unwrap_or_else(|_| prices.clone());
-        let grow = GrowParams::new(Criterion::Eg2 { w: genome.w }).pruned(genome.confidence);
+        let grow = GrowParams::new(Criterion::Eg2 { w: genome.w })
+            .pruned(genome.confidence)
+            .selecting_at(params.selection_prices);
         return Fitted {
             tree: CostTree::grow(frame, rows, &biased, mc, &grow),
             genome: Some(genome),
@@ -350,7 +358,9 @@ fn icet_search(
     let mut fitness = |genes: &Genes| -> f64 {
         let (biased, w, confidence) = decode(genes, prices);
         let biased = prices.repriced(&biased).unwrap_or_else(|_| prices.clone());
-        let grow = GrowParams::new(Criterion::Eg2 { w }).pruned(confidence);
+        let grow = GrowParams::new(Criterion::Eg2 { w })
+            .pruned(confidence)
+            .selecting_at(params.selection_prices);
         CostTree::held_out_cost(&mut splits, &biased, prices, mc, &grow)
     };
 

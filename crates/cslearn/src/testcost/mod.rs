@@ -77,4 +77,6 @@ pub use evaluate::{feature_gains, folds, gain_prices, random_prices, standard_co
 pub use family::{FamilyParams, Fitted, IcetGenome, IcetParams, Method, fit, mean_total_cost};
 pub use model::{SavedModel, TREE_MODEL_FORMAT, TREE_MODEL_VERSION, TreeModel};
 pub use prices::{Basket, MisclassCosts, TestPrice, TestPrices, TurneyExtra};
-pub use tree::{Classification, CostTree, Criterion, GrowParams, NodeIndex, Split, TreeNode};
+pub use tree::{
+    Classification, CostTree, Criterion, GrowParams, NodeIndex, SelectionPrices, Split, TreeNode,
+};

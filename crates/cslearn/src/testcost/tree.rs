@@ -7,6 +7,7 @@
 use super::data::{Column, Frame};
 use super::prices::{MisclassCosts, TestPrices};
 use super::splits::{Splits, Stat};
+use crate::Error;
 
 /// How a test is scored at a node: the selection function of each learner.
 ///
@@ -87,6 +88,71 @@ pub struct GrowParams {
     pub min_objects: f64,
     /// The deepest a path may be (guards against runaway growth; 64 by default).
     pub max_depth: usize,
+    /// The price the selection function sees for a test (what an object pays is always
+    /// priced after its path).
+    #[serde(default)]
+    pub selection_prices: SelectionPrices,
+}
+
+/// The price a selection function scores a test at, at a node.
+///
+/// Either way, what an object pays is priced after its path (a test done once is free
+/// further down, a group's later tests at their discount); this only changes which test
+/// the tree prefers.
+///
+/// ```
+/// use cslearn::testcost::SelectionPrices;
+/// assert_eq!(SelectionPrices::default(), SelectionPrices::Path);
+/// assert_eq!(SelectionPrices::parse("listed").unwrap(), SelectionPrices::Listed);
+/// assert!(SelectionPrices::parse("free").is_err());
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SelectionPrices {
+    /// After the node's path, as the object will pay: a test already on the path (a
+    /// numeric feature split again at another threshold) is free, a test of a group
+    /// already bought is at its discount. The default.
+    #[default]
+    Path,
+    /// The test's listed full price whatever the path: a selection function written as
+    /// a fixed function of gain and listed cost, as in the published implementations of
+    /// the family that the test-cost benchmark compares with.
+    Listed,
+}
+
+impl SelectionPrices {
+    /// Every way, in the order [`SelectionPrices::name`] lists them.
+    pub const ALL: [SelectionPrices; 2] = [SelectionPrices::Path, SelectionPrices::Listed];
+
+    /// The name the command line and the benchmark use (`path`, `listed`).
+    ///
+    /// ```
+    /// assert_eq!(cslearn::testcost::SelectionPrices::Listed.name(), "listed");
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            SelectionPrices::Path => "path",
+            SelectionPrices::Listed => "listed",
+        }
+    }
+
+    /// The way named `name`.
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] naming the accepted names.
+    ///
+    /// ```
+    /// assert!(cslearn::testcost::SelectionPrices::parse("path").is_ok());
+    /// ```
+    pub fn parse(name: &str) -> Result<SelectionPrices, Error> {
+        SelectionPrices::ALL
+            .into_iter()
+            .find(|p| p.name() == name)
+            .ok_or_else(|| Error::Invalid {
+                what: format!("selection prices `{name}`"),
+                reason: "expected `path` or `listed`".into(),
+            })
+    }
 }
 
 impl GrowParams {
@@ -102,6 +168,7 @@ impl GrowParams {
             confidence: None,
             min_objects: 2.0,
             max_depth: 64,
+            selection_prices: SelectionPrices::Path,
         }
     }
 
@@ -113,6 +180,18 @@ impl GrowParams {
     /// ```
     pub fn pruned(mut self, confidence: f64) -> GrowParams {
         self.confidence = Some(confidence);
+        self
+    }
+
+    /// The same, its selection function seeing `prices`.
+    ///
+    /// ```
+    /// use cslearn::testcost::{Criterion, GrowParams, SelectionPrices};
+    /// let p = GrowParams::new(Criterion::Idx).selecting_at(SelectionPrices::Listed);
+    /// assert_eq!(p.selection_prices, SelectionPrices::Listed);
+    /// ```
+    pub fn selecting_at(mut self, prices: SelectionPrices) -> GrowParams {
+        self.selection_prices = prices;
         self
     }
 }
@@ -620,7 +699,7 @@ fn grow_nodes(
             continue;
         }
         let node_weights = cell.class_weights.clone();
-        let Some(best) = choose(splits, c, prices, params.criterion, &scorer) else {
+        let Some(best) = choose(splits, c, prices, params, &scorer) else {
             continue;
         };
         splits.children(c, &best);
@@ -717,7 +796,7 @@ impl Walk<'_> {
         if pure || cell.path.len() >= self.params.max_depth {
             return as_leaf;
         }
-        let Some(best) = choose(splits, c, self.prices, self.params.criterion, &self.scorer) else {
+        let Some(best) = choose(splits, c, self.prices, self.params, &self.scorer) else {
             return as_leaf;
         };
         let branches = splits.children(c, &best).cells.len();
@@ -811,16 +890,20 @@ fn choose(
     splits: &mut Splits<'_>,
     c: u32,
     prices: &TestPrices,
-    criterion: Criterion,
+    params: &GrowParams,
     scorer: &Scorer,
 ) -> Option<Stat> {
+    let criterion = params.criterion;
     let total = splits.total(c);
     let cost_based = splits.cost_based();
     let path = std::mem::take(&mut splits.cell_mut(c).path);
     // (value, score) of a test: the gain (DTMC: the reduction of the expected total cost)
     // and the criterion's score at the test's price on this path.
     let judge = |stat: &Stat| -> (f64, f64) {
-        let price = price_after(prices, stat.feature, &path);
+        let price = match params.selection_prices {
+            SelectionPrices::Path => price_after(prices, stat.feature, &path),
+            SelectionPrices::Listed => prices.test(stat.feature).full,
+        };
         if cost_based {
             let reduction = stat.gain - price * total;
             (reduction, reduction)
