@@ -91,9 +91,64 @@ pub(crate) fn check_world_object(s: &mut RunSettings, world: &mdp::FiniteWorld) 
     Ok(())
 }
 
-/// A Python mapping of settings (nested mappings for tables) as TOML text.
+/// How deep a settings mapping may nest (a table in a table, a list in a list): a
+/// settings file has tables of values and no more, so this is far beyond any real one,
+/// and low enough that walking it cannot exhaust the stack.
+pub(crate) const MAX_SETTINGS_DEPTH: usize = 64;
+
+/// How deep a value given to `dumps` may nest: serde_json's own limit when it reads, so
+/// whatever `run_json` writes and `json.loads` reads back is written again.
+pub(crate) const MAX_JSON_DEPTH: usize = 128;
+
+/// The containers (lists, tuples, dicts) on the way from the top of a Python value to
+/// the one being read: a container met again on its own way down contains itself.
+struct Nesting {
+    /// The addresses of the containers being read, outermost first.
+    open: Vec<usize>,
+    /// How deep the value may nest.
+    limit: usize,
+    /// What the errors call the value ("settings", "cannot write JSON").
+    what: &'static str,
+}
+
+impl Nesting {
+    fn new(limit: usize, what: &'static str) -> Self {
+        Self {
+            open: Vec::new(),
+            limit,
+            what,
+        }
+    }
+
+    /// Enter the container `obj` (at `at`), refusing a cycle and a nesting past the limit.
+    fn enter(&mut self, obj: &Bound<'_, PyAny>, at: &str) -> PyResult<()> {
+        let id = obj.as_ptr() as usize;
+        if self.open.contains(&id) {
+            return Err(SettingsError::new_err(format!(
+                "{}: {at} contains itself (a cycle of lists or dicts)",
+                self.what
+            )));
+        }
+        if self.open.len() >= self.limit {
+            return Err(SettingsError::new_err(format!(
+                "{}: {at} nests lists or dicts deeper than {} levels",
+                self.what, self.limit
+            )));
+        }
+        self.open.push(id);
+        Ok(())
+    }
+
+    fn leave(&mut self) {
+        self.open.pop();
+    }
+}
+
+/// A Python mapping of settings (nested mappings for tables) as TOML text. A mapping
+/// that contains itself, or nests deeper than [`MAX_SETTINGS_DEPTH`], is refused.
 pub(crate) fn to_toml(obj: &Bound<'_, PyAny>) -> PyResult<String> {
-    let table = match to_value(obj, "settings")? {
+    let mut nesting = Nesting::new(MAX_SETTINGS_DEPTH, "settings");
+    let table = match to_value(obj, "settings", &mut nesting)? {
         toml::Value::Table(t) => t,
         _ => {
             return Err(SettingsError::new_err(
@@ -104,7 +159,7 @@ pub(crate) fn to_toml(obj: &Bound<'_, PyAny>) -> PyResult<String> {
     toml::to_string(&table).map_err(|e| SettingsError::new_err(format!("settings: {e}")))
 }
 
-fn to_value(obj: &Bound<'_, PyAny>, at: &str) -> PyResult<toml::Value> {
+fn to_value(obj: &Bound<'_, PyAny>, at: &str, nesting: &mut Nesting) -> PyResult<toml::Value> {
     // bool before int: Python's True is an int too.
     if obj.is_instance_of::<PyBool>() {
         return Ok(toml::Value::Boolean(obj.extract()?));
@@ -122,13 +177,16 @@ fn to_value(obj: &Bound<'_, PyAny>, at: &str) -> PyResult<toml::Value> {
         return Ok(toml::Value::String(obj.extract()?));
     }
     if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
+        nesting.enter(obj, at)?;
         let mut items = Vec::new();
         for (i, item) in obj.try_iter()?.enumerate() {
-            items.push(to_value(&item?, &format!("{at}[{i}]"))?);
+            items.push(to_value(&item?, &format!("{at}[{i}]"), nesting)?);
         }
+        nesting.leave();
         return Ok(toml::Value::Array(items));
     }
     if let Ok(dict) = obj.cast::<PyDict>() {
+        nesting.enter(obj, at)?;
         let mut table = toml::Table::new();
         for (k, v) in dict.iter() {
             let key: String = k.extract().map_err(|_| {
@@ -139,8 +197,9 @@ fn to_value(obj: &Bound<'_, PyAny>, at: &str) -> PyResult<toml::Value> {
             } else {
                 format!("{at}.{key}")
             };
-            table.insert(key, to_value(&v, &here)?);
+            table.insert(key, to_value(&v, &here, nesting)?);
         }
+        nesting.leave();
         return Ok(toml::Value::Table(table));
     }
     let kind = obj
@@ -153,8 +212,23 @@ fn to_value(obj: &Bound<'_, PyAny>, at: &str) -> PyResult<toml::Value> {
 }
 
 /// Write a Python JSON value (None, bool, int, float, str, list, tuple, dict with str keys)
-/// as serde_json writes the same value: compact, floats in their shortest form.
+/// as serde_json writes the same value: compact, floats in their shortest form. A value
+/// that contains itself, or nests deeper than [`MAX_JSON_DEPTH`], is refused.
 pub(crate) fn write_json(obj: &Bound<'_, PyAny>, out: &mut String) -> PyResult<()> {
+    write_json_in(
+        obj,
+        "the value",
+        out,
+        &mut Nesting::new(MAX_JSON_DEPTH, "cannot write JSON"),
+    )
+}
+
+fn write_json_in(
+    obj: &Bound<'_, PyAny>,
+    at: &str,
+    out: &mut String,
+    nesting: &mut Nesting,
+) -> PyResult<()> {
     let json = |e: serde_json::Error| SettingsError::new_err(format!("cannot write JSON: {e}"));
     if obj.is_none() {
         out.push_str("null");
@@ -174,15 +248,18 @@ pub(crate) fn write_json(obj: &Bound<'_, PyAny>, out: &mut String) -> PyResult<(
     } else if obj.is_instance_of::<PyString>() {
         out.push_str(&serde_json::to_string(&obj.extract::<String>()?).map_err(json)?);
     } else if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
+        nesting.enter(obj, at)?;
         out.push('[');
         for (i, item) in obj.try_iter()?.enumerate() {
             if i > 0 {
                 out.push(',');
             }
-            write_json(&item?, out)?;
+            write_json_in(&item?, &format!("{at}[{i}]"), out, nesting)?;
         }
         out.push(']');
+        nesting.leave();
     } else if let Ok(dict) = obj.cast::<PyDict>() {
+        nesting.enter(obj, at)?;
         out.push('{');
         for (i, (k, v)) in dict.iter().enumerate() {
             if i > 0 {
@@ -193,9 +270,10 @@ pub(crate) fn write_json(obj: &Bound<'_, PyAny>, out: &mut String) -> PyResult<(
                 .map_err(|_| SettingsError::new_err("cannot write JSON: a key is not a string"))?;
             out.push_str(&serde_json::to_string(&key).map_err(json)?);
             out.push(':');
-            write_json(&v, out)?;
+            write_json_in(&v, &format!("{at}[{key:?}]"), out, nesting)?;
         }
         out.push('}');
+        nesting.leave();
     } else {
         return Err(SettingsError::new_err(
             "cannot write JSON: a value is not None, a bool, an int, a float, a str, a list or a dict",
