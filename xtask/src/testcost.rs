@@ -14,8 +14,8 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use cslearn::testcost::{
-    Catalogue, CostTree, FamilyParams, Frame, Method, MisclassCosts, SelectionPrices, TestPrices,
-    fit, folds, gain_prices, random_prices, standard_cost,
+    Catalogue, CostTree, FamilyParams, Frame, IcetParams, Method, MisclassCosts, Pruning,
+    SelectionPrices, TestPrices, fit, folds, gain_prices, random_prices, standard_cost,
 };
 use serde::{Deserialize, Serialize};
 
@@ -53,6 +53,11 @@ pub struct TestcostArgs {
     /// node's path, the library's default). Objects always pay after their path.
     #[arg(long, default_value = "listed")]
     selection_prices: String,
+    /// How ICET prunes: `costs` (a test must pay for itself at the real prices, which
+    /// reproduces the published ICET's ratios) or `errors` (C4.5's, Turney's own and the
+    /// library's default).
+    #[arg(long, default_value = "costs")]
+    icet_pruning: String,
     /// The range random prices are drawn from: `LOW,HIGH`.
     #[arg(long, value_delimiter = ',', default_value = "1,100")]
     price_range: Vec<f64>,
@@ -99,6 +104,9 @@ pub(crate) struct Definition {
     /// Results written before this setting existed were priced after the path.
     #[serde(default)]
     pub selection_prices: SelectionPrices,
+    /// Results written before this setting existed were pruned by errors.
+    #[serde(default)]
+    pub icet_pruning: Pruning,
     pub runs: u64,
     pub folds: usize,
     pub seed: u64,
@@ -274,6 +282,10 @@ fn run_job(
     let prices = job_prices(def, name, frame, turney, job.costs, job.assignment)?;
     let params = FamilyParams {
         selection_prices: def.selection_prices,
+        icet: IcetParams {
+            pruning: def.icet_pruning,
+            ..IcetParams::default()
+        },
         ..FamilyParams::default()
     };
     let k = frame.class_count();
@@ -399,6 +411,8 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
     };
     let selection_prices = SelectionPrices::parse(&args.selection_prices)
         .map_err(|e| anyhow::anyhow!("--selection-prices: {e}"))?;
+    let icet_pruning =
+        Pruning::parse(&args.icet_pruning).map_err(|e| anyhow::anyhow!("--icet-pruning: {e}"))?;
     if args.runs == 0 || args.folds < 2 || args.assignments == 0 {
         bail!("testcost needs --runs and --assignments of at least 1 and --folds of at least 2");
     }
@@ -411,6 +425,7 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
         price_range,
         price_draw,
         selection_prices,
+        icet_pruning,
         runs: args.runs,
         folds: args.folds,
         seed: args.seed,
@@ -512,6 +527,9 @@ fn args_line(args: &TestcostArgs) -> String {
     if args.selection_prices != "listed" {
         let _ = write!(line, " --selection-prices {}", args.selection_prices);
     }
+    if args.icet_pruning != "costs" {
+        let _ = write!(line, " --icet-pruning {}", args.icet_pruning);
+    }
     if args.price_range != [1.0, 100.0] {
         let _ = write!(
             line,
@@ -547,6 +565,7 @@ mod tests {
             assignments: 2,
             price_draw: "uniform".into(),
             selection_prices: "listed".into(),
+            icet_pruning: "costs".into(),
             price_range: vec![1.0, 100.0],
             runs: 1,
             folds: 3,

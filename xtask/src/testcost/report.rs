@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use anyhow::{Result, anyhow};
-use cslearn::testcost::{Method, SelectionPrices};
+use cslearn::testcost::{Method, Pruning, SelectionPrices};
 use plotters::prelude::*;
 
 use super::published;
@@ -231,6 +231,7 @@ fn markdown(
          cross-validation per data set and price assignment; random prices: {} assignments \
          per data set, each test {} [{}, {}]. Learners: {}. Selection functions see {}; \
          an object always pays after its path (a test done once is free further down). \
+         ICET prunes by {}. \
          `docs/testcost.md` reads the results.\n",
         def.runs,
         def.folds,
@@ -250,6 +251,10 @@ fn markdown(
         match def.selection_prices {
             SelectionPrices::Listed => "each test's listed price, whatever the path",
             SelectionPrices::Path => "a test's price after the node's path",
+        },
+        match def.icet_pruning {
+            Pruning::Costs => "total cost (a test must pay for itself at the real prices)",
+            Pruning::Errors => "errors, as C4.5",
         }
     );
     for &mc in &def.mc {

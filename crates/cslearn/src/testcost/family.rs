@@ -6,7 +6,7 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use super::data::Frame;
 use super::prices::{MisclassCosts, TestPrices};
 use super::splits::Splits;
-use super::tree::{CostTree, Criterion, GrowParams, SelectionPrices};
+use super::tree::{CostTree, Criterion, GrowParams, Pruning, SelectionPrices};
 use crate::Error;
 
 /// A learner of the family.
@@ -169,6 +169,11 @@ pub struct IcetParams {
     /// stratified; the final tree grows on all of them. 400 by default, which leaves
     /// Turney's smaller data sets whole and keeps the search's cost bounded on large ones.
     pub search_objects: usize,
+    /// How its trees are pruned: by errors, as C4.5 and Turney's ICET (the default), or
+    /// by total cost at the real prices ([`Pruning::Costs`]), which lets the search cut a
+    /// test that does not pay for itself.
+    #[serde(default)]
+    pub pruning: Pruning,
 }
 
 impl Default for IcetParams {
@@ -179,6 +184,7 @@ impl Default for IcetParams {
             crossover: 0.6,
             mutation: 0.05,
             search_objects: 400,
+            pruning: Pruning::Errors,
         }
     }
 }
@@ -242,14 +248,40 @@ pub fn fit(
         let grow = GrowParams::new(Criterion::Eg2 { w: genome.w })
             .pruned(genome.confidence)
             .selecting_at(params.selection_prices);
+        let grow = grow.pruning_by(params.icet.pruning);
         return Fitted {
-            tree: CostTree::grow(frame, rows, &biased, mc, &grow),
+            tree: icet_tree(frame, rows, &biased, prices, mc, &grow),
             genome: Some(genome),
         };
     }
     Fitted {
         tree: CostTree::grow(frame, rows, prices, mc, &method.grow_params(params)),
         genome: None,
+    }
+}
+
+/// ICET's tree: grown by `grow` at the `biased` prices; pruned by errors, or by total
+/// cost at the `real` prices (tests are chosen at the biased prices and must pay for
+/// themselves at the real ones), as its search's fitness prunes it.
+fn icet_tree(
+    frame: &Frame,
+    rows: &[usize],
+    biased: &TestPrices,
+    real: &TestPrices,
+    mc: &MisclassCosts,
+    grow: &GrowParams,
+) -> CostTree {
+    match (grow.pruning, grow.confidence) {
+        (Pruning::Costs, Some(confidence)) => {
+            let unpruned = GrowParams {
+                confidence: None,
+                ..*grow
+            };
+            let mut tree = CostTree::grow(frame, rows, biased, mc, &unpruned);
+            tree.prune_by_cost(confidence, real);
+            tree
+        }
+        _ => CostTree::grow(frame, rows, biased, mc, grow),
     }
 }
 
@@ -360,7 +392,8 @@ fn icet_search(
         let biased = prices.repriced(&biased).unwrap_or_else(|_| prices.clone());
         let grow = GrowParams::new(Criterion::Eg2 { w })
             .pruned(confidence)
-            .selecting_at(params.selection_prices);
+            .selecting_at(params.selection_prices)
+            .pruning_by(params.icet.pruning);
         CostTree::held_out_cost(&mut splits, &biased, prices, mc, &grow)
     };
 
@@ -454,17 +487,21 @@ mod tests {
             let mut rng = Xoshiro256PlusPlus::seed_from_u64(9);
             let mut splits = Splits::new(&frame, &grow, &ones, &mc, Criterion::Eg2 { w: 1.0 }, 2.0);
             splits.hold_out(&score);
-            for _ in 0..40 {
+            for i in 0..40 {
                 let genes = random_genes(prices.len(), &mut rng);
                 let (biased, w, confidence) = decode(&genes, &prices);
                 let biased = prices.repriced(&biased).unwrap();
-                let params = GrowParams::new(Criterion::Eg2 { w }).pruned(confidence);
+                // Every way of pricing a selection and of pruning, in turn.
+                let params = GrowParams::new(Criterion::Eg2 { w })
+                    .pruned(confidence)
+                    .selecting_at(SelectionPrices::ALL[i % 2])
+                    .pruning_by(Pruning::ALL[(i / 2) % 2]);
                 let walked = CostTree::held_out_cost(&mut splits, &biased, &prices, &mc, &params);
-                let tree = CostTree::grow(&frame, &grow, &biased, &mc, &params);
+                let tree = icet_tree(&frame, &grow, &biased, &prices, &mc, &params);
                 let direct = mean_total_cost(&tree, &frame, &score, &prices, &mc);
                 assert!(
                     (walked - direct).abs() < 1e-9 * direct.max(1.0),
-                    "{name}: walked {walked}, classified {direct}"
+                    "{name}: walked {walked}, classified {direct} ({params:?})"
                 );
             }
         }

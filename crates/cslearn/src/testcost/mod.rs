@@ -78,5 +78,6 @@ pub use family::{FamilyParams, Fitted, IcetGenome, IcetParams, Method, fit, mean
 pub use model::{SavedModel, TREE_MODEL_FORMAT, TREE_MODEL_VERSION, TreeModel};
 pub use prices::{Basket, MisclassCosts, TestPrice, TestPrices, TurneyExtra};
 pub use tree::{
-    Classification, CostTree, Criterion, GrowParams, NodeIndex, SelectionPrices, Split, TreeNode,
+    Classification, CostTree, Criterion, GrowParams, NodeIndex, Pruning, SelectionPrices, Split,
+    TreeNode,
 };

@@ -92,6 +92,67 @@ pub struct GrowParams {
     /// priced after its path).
     #[serde(default)]
     pub selection_prices: SelectionPrices,
+    /// What pessimistic pruning weighs (when `confidence` is set).
+    #[serde(default)]
+    pub pruning: Pruning,
+}
+
+/// What pessimistic pruning weighs a subtree against a leaf by.
+///
+/// ```
+/// use cslearn::testcost::Pruning;
+/// assert_eq!(Pruning::default(), Pruning::Errors);
+/// assert_eq!(Pruning::parse("costs").unwrap().name(), "costs");
+/// assert!(Pruning::parse("none").is_err());
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Pruning {
+    /// C4.5's: the leaf's estimated errors against the subtree's plus 0.1. The default.
+    #[default]
+    Errors,
+    /// Total cost: the leaf's estimated misclassification cost against the subtree's plus
+    /// the price, after the node's path, of the node's test for every object that reaches
+    /// it. A leaf's estimate is the misclassification cost of its training objects plus
+    /// C4.5's added errors (at the confidence) priced at the leaf's dearest error; with a
+    /// uniform `mc` that is `mc` times C4.5's estimate. A test that does not pay for
+    /// itself is cut even where it removes errors.
+    Costs,
+}
+
+impl Pruning {
+    /// Every way, in order.
+    pub const ALL: [Pruning; 2] = [Pruning::Errors, Pruning::Costs];
+
+    /// The name the command line and the benchmark use (`errors`, `costs`).
+    ///
+    /// ```
+    /// assert_eq!(cslearn::testcost::Pruning::Errors.name(), "errors");
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            Pruning::Errors => "errors",
+            Pruning::Costs => "costs",
+        }
+    }
+
+    /// The way named `name`.
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] naming the accepted names.
+    ///
+    /// ```
+    /// assert!(cslearn::testcost::Pruning::parse("errors").is_ok());
+    /// ```
+    pub fn parse(name: &str) -> Result<Pruning, Error> {
+        Pruning::ALL
+            .into_iter()
+            .find(|p| p.name() == name)
+            .ok_or_else(|| Error::Invalid {
+                what: format!("pruning `{name}`"),
+                reason: "expected `errors` or `costs`".into(),
+            })
+    }
 }
 
 /// The price a selection function scores a test at, at a node.
@@ -169,6 +230,7 @@ impl GrowParams {
             min_objects: 2.0,
             max_depth: 64,
             selection_prices: SelectionPrices::Path,
+            pruning: Pruning::Errors,
         }
     }
 
@@ -192,6 +254,18 @@ impl GrowParams {
     /// ```
     pub fn selecting_at(mut self, prices: SelectionPrices) -> GrowParams {
         self.selection_prices = prices;
+        self
+    }
+
+    /// The same, pruning by `pruning` (it takes effect with a confidence).
+    ///
+    /// ```
+    /// use cslearn::testcost::{Criterion, GrowParams, Pruning};
+    /// let p = GrowParams::new(Criterion::Eg2 { w: 1.0 }).pruned(0.25).pruning_by(Pruning::Costs);
+    /// assert_eq!((p.confidence, p.pruning), (Some(0.25), Pruning::Costs));
+    /// ```
+    pub fn pruning_by(mut self, pruning: Pruning) -> GrowParams {
+        self.pruning = pruning;
         self
     }
 }
@@ -380,7 +454,10 @@ impl CostTree {
             mc: mc.clone(),
         };
         if let Some(confidence) = params.confidence {
-            tree.prune(confidence);
+            match params.pruning {
+                Pruning::Errors => tree.prune(confidence),
+                Pruning::Costs => tree.prune_by_cost(confidence, prices),
+            }
         }
         tree
     }
@@ -435,6 +512,81 @@ impl CostTree {
     /// ```
     pub fn prune(&mut self, confidence: f64) {
         self.prune_in_place(confidence);
+        self.compact();
+    }
+
+    /// Pessimistic pruning by total cost ([`Pruning::Costs`]): bottom up, a subtree
+    /// becomes a leaf when the leaf's estimated misclassification cost is at most the
+    /// subtree's plus what its test costs, at `prices` after the node's path, for the
+    /// training weight that reaches it.
+    ///
+    /// ```
+    /// use cslearn::testcost::{Column, CostTree, Criterion, Frame, GrowParams, MisclassCosts, TestPrices};
+    /// // x tells the class of 20 objects exactly; an error costs 10.
+    /// let x: Vec<f64> = (0..20).map(f64::from).collect();
+    /// let classes = (0..20).map(|i| u32::from(i >= 10)).collect();
+    /// let frame = Frame::new(vec!["x".into()], vec![Column::Numeric(x)], classes,
+    ///     vec!["a".into(), "b".into()]).unwrap();
+    /// let mc = MisclassCosts::uniform(2, 10.0).unwrap();
+    /// let rows: Vec<usize> = (0..20).collect();
+    /// let grown = |price: f64| {
+    ///     let prices = TestPrices::flat(&[price]).unwrap();
+    ///     let mut tree = CostTree::grow(&frame, &rows, &prices, &mc, &GrowParams::new(Criterion::Id3));
+    ///     tree.prune_by_cost(0.25, &prices);
+    ///     tree.len()
+    /// };
+    /// // As a leaf: (10 errors + 1.98 added) * 10 = 119.8. Split: two pure leaves of 10
+    /// // with 1.29 added errors each (25.9) plus 20 tests: the test pays at a price of 1
+    /// // (45.9), not at 10 (225.9).
+    /// assert_eq!(grown(1.0), 3);
+    /// assert_eq!(grown(10.0), 1);
+    /// ```
+    pub fn prune_by_cost(&mut self, confidence: f64, prices: &TestPrices) {
+        let coeff = deviation(confidence).powi(2);
+        let n = self.nodes.len();
+        // The price of each inner node's test after its path (parents come first).
+        let mut price_here = vec![0.0; n];
+        let mut paths: Vec<Vec<usize>> = vec![Vec::new(); n];
+        for i in 0..n {
+            let Some(split) = &self.nodes[i].split else {
+                continue;
+            };
+            let feature = split.feature();
+            let path = std::mem::take(&mut paths[i]);
+            price_here[i] = price_after(prices, feature, &path);
+            let mut below = path;
+            if !below.contains(&feature) {
+                below.push(feature);
+            }
+            for &c in split.children() {
+                paths[c as usize].clone_from(&below);
+            }
+        }
+        let mut estimate = vec![0.0; n];
+        for i in (0..n).rev() {
+            let node = &self.nodes[i];
+            let as_leaf = estimated_cost(&self.mc, &node.weights, confidence, coeff);
+            match &node.split {
+                None => estimate[i] = as_leaf,
+                Some(split) => {
+                    let total: f64 = node.weights.iter().sum();
+                    let subtree: f64 = split
+                        .children()
+                        .iter()
+                        .zip(split.shares())
+                        .filter(|(_, s)| **s > 0.0)
+                        .map(|(&c, _)| estimate[c as usize])
+                        .sum::<f64>()
+                        + price_here[i] * total;
+                    if as_leaf <= subtree {
+                        self.nodes[i].split = None;
+                        estimate[i] = as_leaf;
+                    } else {
+                        estimate[i] = subtree;
+                    }
+                }
+            }
+        }
         self.compact();
     }
 
@@ -763,13 +915,16 @@ impl Walk<'_> {
             .enumerate()
             .map(|(c, w)| w * self.mc.cost(label, c))
             .sum();
-        let estimate = match self.params.confidence {
-            Some(confidence) => {
+        let estimate = match (self.params.confidence, self.params.pruning) {
+            (Some(confidence), Pruning::Errors) => {
                 let total: f64 = weights.iter().sum();
                 let errors = total - weights.iter().copied().fold(0.0, f64::max);
                 errors + added_errors(total, errors, confidence, self.coeff)
             }
-            None => 0.0,
+            (Some(confidence), Pruning::Costs) => {
+                estimated_cost(self.mc, weights, confidence, self.coeff)
+            }
+            (None, _) => 0.0,
         };
         (estimate, wrong + reached * paid)
     }
@@ -802,11 +957,12 @@ impl Walk<'_> {
         let branches = splits.children(c, &best).cells.len();
         let feature = best.feature;
         let bought = !path.contains(&feature);
-        let paid_below = if bought {
-            paid + price_after(self.real, feature, path)
+        let price = if bought {
+            price_after(self.real, feature, path)
         } else {
-            paid
+            0.0
         };
+        let paid_below = if bought { paid + price } else { paid };
         if bought {
             path.push(feature);
         }
@@ -835,10 +991,21 @@ impl Walk<'_> {
         if bought {
             path.pop();
         }
-        if self.params.confidence.is_some() && as_leaf.0 <= estimate + 0.1 {
-            as_leaf
-        } else {
-            (estimate, cost)
+        if self.params.confidence.is_none() {
+            return (estimate, cost);
+        }
+        match self.params.pruning {
+            Pruning::Errors if as_leaf.0 <= estimate + 0.1 => as_leaf,
+            Pruning::Errors => (estimate, cost),
+            Pruning::Costs => {
+                let total: f64 = splits.cell(c).class_weights.iter().sum();
+                let subtree = estimate + price * total;
+                if as_leaf.0 <= subtree {
+                    as_leaf
+                } else {
+                    (subtree, cost)
+                }
+            }
         }
     }
 }
@@ -964,6 +1131,27 @@ fn deviation(confidence: f64) -> f64 {
 
 /// C4.5's `AddErrs`: the extra errors to add to `errors` among `n` objects for the upper
 /// limit of the confidence interval.
+/// A leaf's pessimistic misclassification cost ([`Pruning::Costs`]): the cost of its
+/// training weights under its label, plus C4.5's added errors at the dearest error of
+/// that label.
+fn estimated_cost(mc: &MisclassCosts, weights: &[f64], confidence: f64, coeff: f64) -> f64 {
+    let total: f64 = weights.iter().sum();
+    if total <= 0.0 {
+        return 0.0;
+    }
+    let label = mc.best(weights).0;
+    let seen: f64 = weights
+        .iter()
+        .enumerate()
+        .map(|(c, w)| w * mc.cost(label, c))
+        .sum();
+    let errors = total - weights[label];
+    let dearest = (0..weights.len())
+        .map(|c| mc.cost(label, c))
+        .fold(0.0, f64::max);
+    seen + added_errors(total, errors, confidence, coeff) * dearest
+}
+
 fn added_errors(n: f64, errors: f64, confidence: f64, coeff: f64) -> f64 {
     if n <= 0.0 {
         return 0.0;
