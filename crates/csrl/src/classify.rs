@@ -182,6 +182,10 @@ pub struct ClassifyArgs {
     /// tests). An object pays after its path either way.
     #[arg(long, value_name = "path|listed")]
     pub(crate) selection_prices: Option<String>,
+    /// ICET only: how its trees are pruned: `errors` (C4.5's, Turney's; the default) or
+    /// `costs` (a test must pay for itself at the real prices).
+    #[arg(long, value_name = "errors|costs")]
+    pub(crate) icet_pruning: Option<String>,
 }
 
 /// Accuracy and cost per object on one test part (or summed over folds).
@@ -400,6 +404,7 @@ fn check_flags(args: &ClassifyArgs) -> Result<()> {
             ("--mc-matrix", args.mc_matrix.is_some()),
             ("--cost-name", !args.cost_name.is_empty()),
             ("--selection-prices", args.selection_prices.is_some()),
+            ("--icet-pruning", args.icet_pruning.is_some()),
         ];
         if let Some((flag, _)) = family_only.iter().find(|(_, given)| *given) {
             anyhow::bail!(

@@ -301,8 +301,21 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
             .map_err(|e| anyhow::anyhow!("--selection-prices: {e}"))?,
         None => cslearn::testcost::SelectionPrices::default(),
     };
+    let pruning = match &args.icet_pruning {
+        Some(_) if method != cslearn::testcost::Method::Icet => anyhow::bail!(
+            "--icet-pruning is read by --learner icet only, not by --learner {}",
+            method.name()
+        ),
+        Some(name) => cslearn::testcost::Pruning::parse(name)
+            .map_err(|e| anyhow::anyhow!("--icet-pruning: {e}"))?,
+        None => cslearn::testcost::Pruning::default(),
+    };
     let params = cslearn::testcost::FamilyParams {
         selection_prices,
+        icet: cslearn::testcost::IcetParams {
+            pruning,
+            ..cslearn::testcost::IcetParams::default()
+        },
         ..cslearn::testcost::FamilyParams::default()
     };
     let bar = crate::classify::progress_bar(parts.len() + usize::from(args.save.is_some()));
@@ -388,6 +401,7 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
             "mc": uniform,
             "mc_matrix": args.mc_matrix.as_ref().map(|p| p.display().to_string()),
             "selection_prices": params.selection_prices.name(),
+            "icet_pruning": (method == cslearn::testcost::Method::Icet).then(|| params.icet.pruning.name()),
             "all_tests_cost": prices.total(),
             "test_cost_per_object": test_cost,
             "errors": errors,

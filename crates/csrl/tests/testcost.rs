@@ -190,6 +190,32 @@ fn selection_prices_are_a_family_setting_reported_with_the_results() {
 }
 
 #[test]
+fn icet_pruned_by_costs_pays_for_fewer_tests_than_pruned_by_errors() {
+    let errors = heart_json("icet", &["--holdout", "0.3", "--mc", "100"]);
+    assert_eq!(errors["icet_pruning"], "errors");
+    let costs = heart_json(
+        "icet",
+        &["--holdout", "0.3", "--mc", "100", "--icet-pruning", "costs"],
+    );
+    assert_eq!(costs["icet_pruning"], "costs");
+    // At mc 100 an error costs less than a third of the tests: cut by cost, the tree
+    // keeps only tests that pay for themselves.
+    let (e, c) = (
+        f(&errors, "test_cost_per_object"),
+        f(&costs, "test_cost_per_object"),
+    );
+    assert!(c < e, "pruned by costs {c}, by errors {e}");
+    refused(
+        &on_heart("eg2", &["--icet-pruning", "costs"]),
+        &["--icet-pruning", "--learner icet only"],
+    );
+    refused(
+        &on_heart("icet", &["--icet-pruning", "leaves"]),
+        &["--icet-pruning", "`leaves`", "`errors` or `costs`"],
+    );
+}
+
+#[test]
 fn icet_reports_the_genome_its_search_found() {
     let v = heart_json("icet", &["--holdout", "0.3"]);
     assert_eq!(v["evaluation"], "holdout 0.3");
