@@ -106,8 +106,11 @@ pub enum StepError {
         /// Its largest reading.
         last: u32,
     },
-    /// A reward that is not a finite number.
-    #[error("reward {0} is not a finite number")]
+    /// A reward that is not a finite number, or larger in size than [`mdp::MAX_REWARD`]
+    /// (whose sums could overflow).
+    #[error(
+        "reward {0:e} is not a finite number of at most 1e200 in size (mdp::MAX_REWARD, so that the values learned from it stay finite)"
+    )]
     Reward(f64),
     /// The stepper stopped at an earlier error (its learning may hold a reading that was
     /// never made) and takes no more calls.
@@ -335,10 +338,13 @@ impl Stepper {
                 "one price and one number of readings per feature",
             ));
         }
-        if let Some(p) = prices.iter().find(|p| !(p.is_finite() && **p >= 0.0)) {
+        if let Some(p) = prices
+            .iter()
+            .find(|p| !(p.is_finite() && (0.0..=mdp::MAX_PRICE).contains(*p)))
+        {
             return Err(invalid(
-                format!("price {p}"),
-                "a finite price of at least 0",
+                format!("price {p:e}"),
+                "a finite price of at least 0 and at most 1e200 (mdp::MAX_PRICE, so that the total cost stays finite)",
             ));
         }
         if let Some(n) = readings.iter().find(|&&n| n == 0) {
@@ -517,7 +523,7 @@ impl Stepper {
         sense: &mut dyn Sense,
     ) -> Result<(), StepError> {
         self.check("update", false)?;
-        if !reward.is_finite() {
+        if !(reward.is_finite() && reward.abs() <= mdp::MAX_REWARD) {
             return Err(StepError::Reward(reward));
         }
         let (Some(mut t), Some(m)) = (self.trial.take(), self.chosen.take()) else {

@@ -278,3 +278,41 @@ fn sizes_are_checked_and_a_huge_range_of_readings_costs_what_is_sensed() {
     }
     assert_eq!(stepper.trials(), 40);
 }
+
+#[test]
+fn rewards_and_prices_whose_sums_could_overflow_are_refused() {
+    let settings = RunSettings::tan1991("any", StrategyKind::Eager, 1);
+    for price in [1e308, 1.5e200, f64::MAX] {
+        let Err(err) = Stepper::new(&[1.0, price], &[2, 2], 2, &settings) else {
+            panic!("a price of {price:e} was accepted");
+        };
+        let err = err.to_string();
+        assert!(err.contains("mdp::MAX_PRICE"), "{err}");
+    }
+    assert!(Stepper::new(&[1.0, mdp::MAX_PRICE], &[2, 2], 2, &settings).is_ok());
+    let mut stepper = Stepper::new(&[1.0, 1.0], &[2, 2], 2, &settings).unwrap();
+    let mut read = |_: Moment, _| Reading(1);
+    stepper.act(&mut read).unwrap();
+    for reward in [1e308, -1e308, 1.5e200] {
+        let err = stepper.update(reward, false, false, &mut read).unwrap_err();
+        assert!(matches!(err, csql::StepError::Reward(_)), "{err}");
+        assert!(err.to_string().contains("mdp::MAX_REWARD"), "{err}");
+    }
+    // The largest reward, learned from again and again, leaves every value finite.
+    stepper
+        .update(mdp::MAX_REWARD, false, false, &mut read)
+        .unwrap();
+    for _ in 0..1000 {
+        stepper.act(&mut read).unwrap();
+        stepper
+            .update(mdp::MAX_REWARD, false, false, &mut read)
+            .unwrap();
+    }
+    let t = stepper.table();
+    assert!(
+        t.q_values()
+            .iter()
+            .chain(t.v_values())
+            .all(|v| v.is_finite())
+    );
+}

@@ -235,7 +235,7 @@ impl PyAgent {
                 expected: "act",
             }));
         }
-        if !reward.is_finite() {
+        if !(reward.is_finite() && reward.abs() <= mdp::MAX_REWARD) {
             return Err(step_error(&StepError::Reward(reward)));
         }
         match sensor {

@@ -17,6 +17,10 @@ enum Inner {
 pub struct Classifier {
     inner: Inner,
     costs: FeatureCosts,
+    /// The most every `learn` so far could have charged: the summed prices times the
+    /// objects learned. Kept at most [`cslearn::MAX_TOTAL_COST`], so that any sum of what
+    /// `learn` returned is finite.
+    most_charged: f64,
 }
 
 type Rows = Vec<Vec<Option<u32>>>;
@@ -84,6 +88,14 @@ impl Classifier {
     fn new(kind: &str, costs: Vec<f64>, tolerance: u32) -> PyResult<Classifier> {
         let costs = FeatureCosts::from_f64(&costs)
             .map_err(|e| DataError::new_err(format!("feature_costs: {e}")))?;
+        let per_object: f64 = costs.as_slice().iter().map(|c| c.get()).sum();
+        if !(per_object.is_finite() && per_object <= cslearn::MAX_TOTAL_COST) {
+            return Err(DataError::new_err(format!(
+                "feature_costs: the prices sum to {per_object:e}, more than {:e} \
+                 (cslearn::MAX_TOTAL_COST, so that the cost of learning stays finite)",
+                cslearn::MAX_TOTAL_COST
+            )));
+        }
         let inner = match kind {
             "cs-id3" => Inner::Id3(cslearn::cs_id3_indexed(costs.clone())),
             "cs-ibl" => Inner::Ibl(cslearn::cs_ibl(costs.clone(), tolerance)),
@@ -93,11 +105,16 @@ impl Classifier {
                 )));
             }
         };
-        Ok(Classifier { inner, costs })
+        Ok(Classifier {
+            inner,
+            costs,
+            most_charged: 0.0,
+        })
     }
 
     /// Learn the objects in order, each predicted and then learned (the paper's cycle),
-    /// and return the wrong predictions and what was charged.
+    /// and return the wrong predictions and what was charged. Refused when the summed
+    /// prices times every object learned so far would pass [`cslearn::MAX_TOTAL_COST`].
     fn learn(&mut self, py: Python<'_>, rows: Rows, classes: Vec<u32>) -> PyResult<(usize, f64)> {
         if rows.len() != classes.len() {
             return Err(DataError::new_err(format!(
@@ -106,7 +123,18 @@ impl Classifier {
                 classes.len()
             )));
         }
+        let per_object: f64 = self.costs.as_slice().iter().map(|c| c.get()).sum();
+        let most = self.most_charged + per_object * rows.len() as f64;
+        if !(most.is_finite() && most <= cslearn::MAX_TOTAL_COST) {
+            return Err(DataError::new_err(format!(
+                "{} objects at prices summing to {per_object:e} could cost {most:e} in all, \
+                 more than {:e} (cslearn::MAX_TOTAL_COST, so that the cost of learning stays finite)",
+                rows.len(),
+                cslearn::MAX_TOTAL_COST
+            )));
+        }
         let rows = self.check(&rows)?;
+        self.most_charged = most;
         let inner = &mut self.inner;
         Ok(py.detach(|| {
             let mut errors = 0;

@@ -328,6 +328,9 @@ fn _csrl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("MAX_ACTIONS", mdp::MAX_ACTIONS)?;
     m.add("MAX_FEATURES", mdp::MAX_FEATURES)?;
     m.add("MAX_READING", mdp::MAX_READING)?;
+    m.add("MAX_REWARD", mdp::MAX_REWARD)?;
+    m.add("MAX_PRICE", mdp::MAX_PRICE)?;
+    m.add("MAX_TOTAL_COST", cslearn::MAX_TOTAL_COST)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

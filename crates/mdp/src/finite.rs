@@ -42,6 +42,24 @@ pub const MAX_READINGS: usize = 16_777_216;
 /// `0..=MAX_READING`, so that its number of readings (one more than its largest) is a
 /// `u32`.
 pub const MAX_READING: u32 = u32::MAX - 1;
+/// The largest size a reward may have. Every sum of rewards a run makes stays far below
+/// `f64::MAX`: a return over at most 2^64 moves, a value discounted by a `gamma` below 1
+/// (at most 2^53 rewards' worth), their differences and ratios (the policy quality).
+/// Larger rewards are refused rather than summed to infinity.
+///
+/// ```
+/// assert_eq!(mdp::MAX_REWARD, 1e200);
+/// ```
+pub const MAX_REWARD: f64 = 1e200;
+/// The largest price a feature may have: a run's total sensing cost, every feature
+/// charged at every one of at most 2^64 moves (each read as often as a sensor repeats
+/// it), stays far below `f64::MAX`. Larger prices are refused rather than summed to
+/// infinity.
+///
+/// ```
+/// assert_eq!(mdp::MAX_PRICE, 1e200);
+/// ```
+pub const MAX_PRICE: f64 = 1e200;
 /// How far a list of probabilities may sum from 1 (absolute).
 pub const PROBABILITY_TOLERANCE: f64 = 1e-9;
 /// The most aliased pairs [`FiniteWorld::aliased`] lists (it counts them all).
@@ -269,7 +287,9 @@ pub type TransitionSpec = (u32, u32, Vec<OutcomeSpec>);
 ///
 /// Every probability must be finite and in `[0, 1]`, and every list of probabilities
 /// must sum to 1 within an absolute tolerance of [`PROBABILITY_TOLERANCE`] (1e-9).
-/// Rewards must be finite, prices finite and at least 0. Unknown keys are refused. A
+/// Rewards must be finite and at most [`MAX_REWARD`] in size, prices finite, at least 0
+/// and at most [`MAX_PRICE`] (so that every sum a run makes stays finite). Unknown keys are
+/// refused. A
 /// world has at most [`MAX_STATES`] states, [`MAX_ACTIONS`] actions, [`MAX_FEATURES`]
 /// features and [`MAX_READINGS`] readings (states times features); a file has at most
 /// [`crate::MAX_FILE_BYTES`] bytes. Errors say what is wrong and where: the state, the
@@ -916,6 +936,15 @@ fn validate(spec: &WorldSpec) -> Result<(), WorldError> {
             if !reward.is_finite() {
                 return Err(invalid(at, format!("reward {reward} is not finite")));
             }
+            if reward.abs() > MAX_REWARD {
+                return Err(invalid(
+                    at,
+                    format!(
+                        "reward {reward:e} is larger in size than {MAX_REWARD:e} (mdp::MAX_REWARD, \
+                         so that its sums over a run stay finite)"
+                    ),
+                ));
+            }
             if terminated != terminal[next] {
                 return Err(invalid(
                     at,
@@ -947,6 +976,16 @@ fn validate(spec: &WorldSpec) -> Result<(), WorldError> {
             return Err(invalid(
                 format!("`features`[{f}] `{}`", feature.name),
                 format!("price {} is not a finite number >= 0", feature.price),
+            ));
+        }
+        if feature.price > MAX_PRICE {
+            return Err(invalid(
+                format!("`features`[{f}] `{}`", feature.name),
+                format!(
+                    "price {:e} is more than {MAX_PRICE:e} (mdp::MAX_PRICE, so that a run's \
+                     total cost stays finite)",
+                    feature.price
+                ),
             ));
         }
     }

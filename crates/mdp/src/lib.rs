@@ -114,9 +114,9 @@ pub use belief::{BeliefPlan, CostlyModel, Decision, EVERY_PROBE, ModelParts, Nod
 pub use builtin::{builtin, builtin_names};
 pub use error::{MapError, MdpError, Position};
 pub use finite::{
-    Aliasing, FeatureSpec, FiniteWorld, MAX_ACTIONS, MAX_ALIASED_LISTED, MAX_FEATURES, MAX_READING,
-    MAX_READINGS, MAX_STATES, OutcomeSpec, PROBABILITY_TOLERANCE, StatesSpec, TransitionSpec,
-    WORLD_FORMAT, WORLD_VERSION, WorldError, WorldSpec,
+    Aliasing, FeatureSpec, FiniteWorld, MAX_ACTIONS, MAX_ALIASED_LISTED, MAX_FEATURES, MAX_PRICE,
+    MAX_READING, MAX_READINGS, MAX_REWARD, MAX_STATES, OutcomeSpec, PROBABILITY_TOLERANCE,
+    StatesSpec, TransitionSpec, WORLD_FORMAT, WORLD_VERSION, WorldError, WorldSpec,
 };
 pub use format::MAX_FILE_BYTES;
 pub use geometry::{Cell, Offset, Pos};

@@ -81,7 +81,9 @@ impl Feature {
 /// assert!(err.to_string().contains("-1"));
 /// ```
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("the cost model gives offset {offset} the cost {cost}; costs must be finite and >= 0")]
+#[error(
+    "the cost model gives offset {offset} the cost {cost}; costs must be finite, >= 0 and at most 1e200 (mdp::MAX_PRICE)"
+)]
 pub struct BadCost {
     /// The offset.
     pub offset: Offset,
@@ -127,7 +129,7 @@ impl FeatureSpace {
                 }
                 let o = Offset::new(dx, dy);
                 let cost = model.cost(o);
-                if !(cost.is_finite() && cost >= 0.0) {
+                if !(cost.is_finite() && (0.0..=crate::MAX_PRICE).contains(&cost)) {
                     return Err(BadCost { offset: o, cost });
                 }
                 entries.push((o, cost));

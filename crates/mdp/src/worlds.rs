@@ -185,6 +185,16 @@ pub fn builtin_world(name: &str, options: &WorldOptions) -> Result<FiniteWorld, 
                     format!("cost {i} is {x}; costs must be finite and >= 0"),
                 ));
             }
+            if let Some((i, x)) = c.iter().enumerate().find(|(_, x)| **x > crate::MAX_PRICE) {
+                return Err(bad(
+                    "factor_costs",
+                    format!(
+                        "cost {i} is {x:e}; costs must be at most {:e} (mdp::MAX_PRICE, so \
+                         that a run's total cost stays finite)",
+                        crate::MAX_PRICE
+                    ),
+                ));
+            }
             c.clone()
         }
         (None, _) => vec![1.0; factors],

@@ -13,6 +13,12 @@ MAX_FEATURES: int
 """The most features a world (or an agent) may have."""
 MAX_READING: int
 """The largest reading a feature may have in a state."""
+MAX_REWARD: float
+"""The largest size a reward may have (so that its sums over a run stay finite)."""
+MAX_PRICE: float
+"""The largest price a feature may have (so that a run's total cost stays finite)."""
+MAX_TOTAL_COST: float
+"""The most a classifier's learning may cost in all: the summed prices times the objects."""
 
 class SettingsError(ValueError):
     """Settings that cannot be used (the message names them)."""

@@ -142,6 +142,15 @@ class _CostSensitiveClassifier(ClassifierMixin, BaseEstimator):
         rows = self._encode(X)
         labels = [int(c) for c in y_codes]
         model = self._new_model(costs)
+        # What every pass could charge in all, checked before the first: the training
+        # cost is a sum of it, finite below the bound.
+        most = float(sum(costs)) * len(rows) * int(passes)
+        if not most <= _csrl.MAX_TOTAL_COST:
+            raise _csrl.DataError(
+                f"{len(rows)} objects at prices summing to {float(sum(costs)):g} over up to "
+                f"{passes} passes could cost {most:g} in all, more than "
+                f"{_csrl.MAX_TOTAL_COST:g} (so that training_cost_ stays finite)"
+            )
         self.feature_costs_ = np.asarray(costs)
         self.training_errors_ = []
         self.training_cost_ = 0.0
