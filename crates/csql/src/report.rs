@@ -184,6 +184,12 @@ pub struct RunReport {
     /// (`[costly]`; specification 6.12). Absent otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub costly: Option<crate::CostedRun>,
+    /// Why `costly` is absent although the settings price sensing: the run was stopped
+    /// (Ctrl-C, SIGTERM, an observer's no) before its trials were played again to be
+    /// scored, or it went beyond [`crate::MAX_EPISODES`] trials, more than a report lists.
+    /// Absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub costly_missing: Option<String>,
 }
 
 impl RunReport {
@@ -600,5 +606,6 @@ pub(crate) fn report<W: World + ?Sized, P: Perception + Describes + crate::view:
             )
         }),
         costly: None,
+        costly_missing: None,
     }
 }

@@ -206,10 +206,28 @@ fn run_classify<W: World + ?Sized>(
     // costed return: the same trials, as `costed_episodes` plays them from the same
     // generator. Every learner and setting it refuses was refused by
     // `RunSettings::validate` already.
+    // A run stopped from outside is not played again (that would take as long as the
+    // run did, after the stop): its report says why `costly` is missing, as it does for
+    // a run of more trials than a report lists.
     if settings.costly.is_some() {
-        report.costly = crate::costly::costed_run(scene.world, settings, report.trials)
-            .ok()
-            .flatten();
+        if observer.keep_going() {
+            match crate::costly::costed_run(scene.world, settings, report.trials) {
+                Ok(costly) => report.costly = costly,
+                Err(e) => {
+                    report.costly_missing = Some(format!(
+                        "the {} trials were not scored by their costed return: {e}",
+                        report.trials
+                    ));
+                }
+            }
+        } else {
+            report.costly_missing = Some(format!(
+                "the run was stopped (Ctrl-C or SIGTERM) before its {} trials were played \
+                 again to be scored by their costed return; run it again with max_trials = {} \
+                 to have them",
+                report.trials, report.trials
+            ));
+        }
     }
     (report, rep)
 }

@@ -40,7 +40,8 @@ use clap::{Parser, Subcommand};
     after_help = "Exit codes: 0 success; 1 an input that cannot be read or is not valid; \
 2 a usage error; 3 `run --require-convergence` on a run that did not converge; \
 4 an output file that cannot be written; 130 a run stopped by Ctrl-C or SIGTERM \
-(after its report)."
+(after its report). With CSRL_READY_LINE set, `run` writes a line to stderr once a stop \
+would be honoured."
 )]
 struct Cli {
     #[command(subcommand)]

@@ -126,6 +126,42 @@ struct Watch {
     keep_trace: bool,
     stop: Arc<AtomicBool>,
     stopped: bool,
+    /// Whether the ready line is still to be written ([`READY_VARIABLE`] set, and not
+    /// written yet).
+    ready: bool,
+    /// Write it at the first question to stop, not after the first trial: a learner
+    /// played on episodes is asked before every episode and calls no trial.
+    ready_at_first_check: bool,
+}
+
+/// The environment variable that asks `csrl run` for its ready line: set (to anything),
+/// the program writes [`READY_LINE`] to stderr once the run is under way with its stop
+/// handler installed (after the first trial of learning; before the first episode of a
+/// learner played on episodes), so that a script or a test can send Ctrl-C or SIGTERM
+/// knowing it will be honoured, without waiting a fixed time.
+pub(crate) const READY_VARIABLE: &str = "CSRL_READY_LINE";
+
+/// The ready line (see [`READY_VARIABLE`]).
+pub(crate) const READY_LINE: &str = "csrl: under way (Ctrl-C or SIGTERM stops with the report)";
+
+impl Watch {
+    fn new(bar: indicatif::ProgressBar, keep_trace: bool, ready_at_first_check: bool) -> Watch {
+        Watch {
+            bar,
+            keep_trace,
+            stop: ctrl_c_flag(),
+            stopped: false,
+            ready: std::env::var_os(READY_VARIABLE).is_some(),
+            ready_at_first_check,
+        }
+    }
+
+    fn announce(&mut self) {
+        if self.ready {
+            self.ready = false;
+            crate::note(format_args!("{READY_LINE}"));
+        }
+    }
 }
 
 impl Observer for Watch {
@@ -134,6 +170,7 @@ impl Observer for Watch {
     }
 
     fn trial(&mut self, point: &TracePoint) -> Flow {
+        self.announce();
         self.bar.set_position(u64::from(point.trial));
         if point.trial.is_multiple_of(16) {
             self.bar.set_message(format!(
@@ -149,6 +186,9 @@ impl Observer for Watch {
     }
 
     fn keep_going(&mut self) -> bool {
+        if self.ready_at_first_check {
+            self.announce();
+        }
         if self.stop.load(Ordering::Relaxed) {
             self.stopped = true;
         }
@@ -193,12 +233,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
         }
         .into());
     }
-    let mut watch = Watch {
-        bar: progress_bar(settings.max_trials.get()),
-        keep_trace: args.trace,
-        stop: ctrl_c_flag(),
-        stopped: false,
-    };
+    let mut watch = Watch::new(progress_bar(settings.max_trials.get()), args.trace, false);
     let report = match &resolved {
         csql::Resolved::Grid(setup) => csql::run_observed(setup, &settings, &mut watch),
         csql::Resolved::Finite { world, oracle } => {
@@ -270,12 +305,7 @@ fn run_on_episodes(
             .into());
         }
     }
-    let mut watch = Watch {
-        bar: indicatif::ProgressBar::hidden(),
-        keep_trace: false,
-        stop: ctrl_c_flag(),
-        stopped: false,
-    };
+    let mut watch = Watch::new(indicatif::ProgressBar::hidden(), false, true);
     let report = csql::costed_report_in(resolved, settings, &mut watch)?;
     if args.json {
         writeln!(out, "{}", serde_json::to_string(&report)?)?;
@@ -413,6 +443,9 @@ fn print_report(r: &RunReport, out: &mut dyn Write) -> std::io::Result<()> {
     }
     if let Some(c) = &r.costly {
         print_costly(c, out)?;
+    }
+    if let Some(why) = &r.costly_missing {
+        writeln!(out, "Costed returns missing: {why}")?;
     }
     if let Some(p) = &r.prediction {
         let narrowed = if p.narrowed > 0 {

@@ -68,31 +68,48 @@ fn a_message_says_a_thing_once() {
     }
 }
 
-/// Run `csrl` with `args`, send it SIGTERM once it is under way (time for the handler to
-/// be installed and the run to start), and wait for it, for a minute at most.
+/// Run `csrl` with `args`, send it SIGTERM once it says it is under way (the ready line
+/// it writes to stderr with `CSRL_READY_LINE` set, after its stop handler is installed),
+/// and wait for it. No fixed wait: the signal goes when the program is ready for it, and
+/// the runs given would go on for days without it, so their ending proves it honoured.
 #[cfg(unix)]
-fn terminated(args: &[&std::ffi::OsStr]) -> std::process::Output {
+fn terminated(args: &[&std::ffi::OsStr]) -> (std::process::ExitStatus, Vec<u8>, String) {
+    use std::io::{BufRead, Read};
     let mut child = Command::new(env!("CARGO_BIN_EXE_csrl"))
         .args(args)
+        .env("CSRL_READY_LINE", "1")
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(1500));
+    // Read stdout on its own thread, so that a long report never blocks the program.
+    let mut stdout = child.stdout.take().unwrap();
+    let reader = std::thread::spawn(move || {
+        let mut out = Vec::new();
+        stdout.read_to_end(&mut out).unwrap();
+        out
+    });
+    let mut stderr = std::io::BufReader::new(child.stderr.take().unwrap());
+    let mut err = String::new();
+    loop {
+        let mut line = String::new();
+        if stderr.read_line(&mut line).unwrap() == 0 {
+            let _ = child.kill();
+            panic!("{args:?} ended before its ready line: {err}");
+        }
+        err.push_str(&line);
+        if line.trim_end() == "csrl: under way (Ctrl-C or SIGTERM stops with the report)" {
+            break;
+        }
+    }
     let kill = Command::new("kill")
         .args(["-TERM", &child.id().to_string()])
         .status()
         .unwrap();
     assert!(kill.success());
-    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
-    while child.try_wait().unwrap().is_none() {
-        if std::time::Instant::now() > deadline {
-            let _ = child.kill();
-            panic!("SIGTERM did not stop {args:?} within a minute");
-        }
-        std::thread::sleep(std::time::Duration::from_millis(50));
-    }
-    child.wait_with_output().unwrap()
+    stderr.read_to_string(&mut err).unwrap();
+    let status = child.wait().unwrap();
+    (status, reader.join().unwrap(), err)
 }
 
 /// SIGTERM, as Ctrl-C: the run stops, prints the report it reached, and exits 130.
@@ -106,16 +123,54 @@ fn sigterm_stops_a_run_with_its_report() {
         "--max-trials",
         "1000000",
     ];
-    let out = terminated(&args.map(std::ffi::OsStr::new));
-    let err = stderr(&out);
-    assert_eq!(out.status.code(), Some(130), "{err}");
+    let (status, stdout, err) = terminated(&args.map(std::ffi::OsStr::new));
+    assert_eq!(status.code(), Some(130), "{err}");
     assert!(err.contains("interrupted after"), "{err}");
-    assert!(!out.stdout.is_empty(), "no report: {err}");
+    assert!(!stdout.is_empty(), "no report: {err}");
 }
 
-/// SIGTERM during the navigation after learning stops it too. Learning ends in three
-/// trials; navigation, 10,000 trials from each state of a policy that has learned
-/// nothing with a move cap of four billion, would run for days.
+/// A run priced by `[costly]` and stopped by SIGTERM says that its costed returns are
+/// missing and why, in the text and in the JSON.
+#[cfg(unix)]
+#[test]
+fn sigterm_on_a_priced_run_says_its_costed_returns_are_missing() {
+    let dir = tempfile::tempdir().unwrap();
+    let config = dir.path().join("priced.toml");
+    std::fs::write(&config, "[costly]\nprice = 0.01\n").unwrap();
+    for json in [false, true] {
+        let mut args = vec![
+            std::ffi::OsStr::new("run"),
+            "--map".as_ref(),
+            "random:48x48:0.2:1".as_ref(),
+            "--max-trials".as_ref(),
+            "1000000".as_ref(),
+            "--config".as_ref(),
+            config.as_os_str(),
+        ];
+        if json {
+            args.push("--json".as_ref());
+        }
+        let (status, stdout, err) = terminated(&args);
+        assert_eq!(status.code(), Some(130), "{err}");
+        let text = String::from_utf8(stdout).unwrap();
+        if json {
+            let report: serde_json::Value = serde_json::from_str(&text).unwrap();
+            assert!(report.get("costly").is_none(), "{report}");
+            let why = report["costly_missing"].as_str().unwrap();
+            assert!(why.contains("stopped (Ctrl-C or SIGTERM)"), "{why}");
+        } else {
+            assert!(
+                text.contains("Costed returns missing: the run was stopped"),
+                "{text}"
+            );
+        }
+    }
+}
+
+/// SIGTERM during the navigation after learning stops it too. Learning ends after its
+/// one trial (the ready line comes after it); navigation, 10,000 trials from each state
+/// of a policy that has learned nothing with a move cap of four billion, would run for
+/// days.
 #[cfg(unix)]
 #[test]
 fn sigterm_stops_navigation_after_learning() {
@@ -133,17 +188,16 @@ fn sigterm_stops_navigation_after_learning() {
         "--strategy",
         "resetting",
         "--max-trials",
-        "3",
+        "1",
         "--predict-sensing",
         "learned",
         "--json",
         "--config",
     ]
     .map(std::ffi::OsStr::new);
-    let out = terminated(&[&args[..], &[config.as_os_str()]].concat());
-    let err = stderr(&out);
-    assert_eq!(out.status.code(), Some(130), "{err}");
-    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert_eq!(report["trials"], 3, "{err}");
+    let (status, stdout, err) = terminated(&[&args[..], &[config.as_os_str()]].concat());
+    assert_eq!(status.code(), Some(130), "{err}");
+    let report: serde_json::Value = serde_json::from_slice(&stdout).unwrap();
+    assert_eq!(report["trials"], 1, "{err}");
     assert!(report["navigation_success"].is_number(), "{report}");
 }
