@@ -1,5 +1,5 @@
-//! No module of `csql` or of `xtask` uses a module that uses it back, directly or
-//! through others: one checker for both crates.
+//! No module of any crate of the workspace (every `crates/*`, and `xtask`) uses a module
+//! that uses it back, directly or through others: one checker for every crate.
 //!
 //! Each file under a crate's `src/` is a node (`classify/cache.rs` is `classify::cache`);
 //! a node
@@ -234,25 +234,62 @@ fn show(graph: &BTreeMap<String, BTreeSet<String>>) -> String {
         .collect()
 }
 
-/// Fails with the first cycle among the modules of the crate whose sources are `src`
-/// (relative to the workspace) and whose root file is `root`.
-fn assert_acyclic(src: &str, root: &str) {
+/// The first cycle among the modules of the crate whose sources are `src` (relative to
+/// the workspace) and whose root file is `root`, shown with the graph; and how many
+/// modules the crate has.
+fn find_cycle(src: &str, root: &str) -> (usize, Option<String>) {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(src);
     let g = graph(&src, root);
-    assert!(
-        g.len() > 5,
-        "no modules found in {}:\n{}",
-        src.display(),
-        show(&g)
-    );
-    if let Some(c) = cycle(&g) {
-        panic!(
+    let found = cycle(&g).map(|c| {
+        format!(
             "a cycle of modules in {}: {}\n\nthe graph:\n{}",
             src.display(),
             c.join(" -> "),
             show(&g)
-        );
+        )
+    });
+    (g.len(), found)
+}
+
+/// Fails with the first cycle among the modules of the crate whose sources are `src`
+/// (relative to the workspace) and whose root file is `root`.
+fn assert_acyclic(src: &str, root: &str) {
+    let (modules, found) = find_cycle(src, root);
+    assert!(modules > 5, "no modules found in {src}");
+    if let Some(c) = found {
+        panic!("{c}");
     }
+}
+
+/// Every crate of the workspace: `xtask` and each folder of `crates/`, with the root
+/// files its `src` has (`lib`, `main`; both when it has both).
+fn every_crate() -> Vec<(String, &'static str)> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let mut out = vec![("xtask/src".to_string(), "main")];
+    let mut names: Vec<String> = std::fs::read_dir(root.join("crates"))
+        .expect("a readable crates folder")
+        .map(|e| {
+            e.expect("a readable entry")
+                .file_name()
+                .to_string_lossy()
+                .into_owned()
+        })
+        .collect();
+    names.sort();
+    for name in names {
+        for file in ["lib", "main"] {
+            if root
+                .join("crates")
+                .join(&name)
+                .join("src")
+                .join(format!("{file}.rs"))
+                .is_file()
+            {
+                out.push((format!("crates/{name}/src"), file));
+            }
+        }
+    }
+    out
 }
 
 #[test]
@@ -263,6 +300,48 @@ fn the_modules_of_xtask_use_each_other_without_cycles() {
 #[test]
 fn the_modules_of_csql_use_each_other_without_cycles() {
     assert_acyclic("crates/csql/src", "lib");
+}
+
+/// The uses that close a cycle known and not yet broken, as (the crate's sources, the
+/// module, the module it uses): the every-crate check leaves these out and fails on any
+/// other cycle, and fails when one of them is gone, so that the list only shrinks.
+///
+/// * `cslearn`: `testcost::splits` uses `testcost::tree`'s `Criterion`, and the tree
+///   grows through the splits;
+/// * `csrl`: `classify` hands the test-cost family to `testcost`, which takes
+///   `classify`'s arguments and progress bar.
+const KNOWN_CYCLES: &[(&str, &str, &str)] = &[
+    ("crates/cslearn/src", "testcost::splits", "testcost::tree"),
+    ("crates/csrl/src", "testcost", "classify"),
+];
+
+/// Every crate, whatever its size: a new crate is checked without a line here.
+#[test]
+fn the_modules_of_every_crate_use_each_other_without_cycles() {
+    let crates = every_crate();
+    assert!(crates.len() >= 7, "{crates:?}");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let mut found = Vec::new();
+    for (src, file) in &crates {
+        let mut g = graph(&root.join(src), file);
+        for &(in_src, from, to) in KNOWN_CYCLES {
+            if in_src == src {
+                let removed = g.get_mut(from).is_some_and(|uses| uses.remove(to));
+                assert!(
+                    removed,
+                    "{src}: {from} no longer uses {to}: take it off KNOWN_CYCLES"
+                );
+            }
+        }
+        if let Some(c) = cycle(&g) {
+            found.push(format!(
+                "a cycle of modules in {src}: {}\n\nthe graph:\n{}",
+                c.join(" -> "),
+                show(&g)
+            ));
+        }
+    }
+    assert!(found.is_empty(), "{}", found.join("\n\n"));
 }
 
 /// The checker sees uses through every kind of path, and finds a cycle when there is one.

@@ -24,11 +24,11 @@
 
 use std::collections::BTreeMap;
 
-use crate::process::{ActionId, StateId};
-use crate::reference::{
+use crate::costly::{
     BELIEF_QUANTUM, MAX_MENU_FEATURES, ReferenceError, ReferenceOptions, SensingMenu, SensingRule,
     bad, check_horizon, check_menu,
 };
+use crate::process::{ActionId, StateId};
 use crate::sensing::Feature;
 use crate::world::World;
 

@@ -22,9 +22,9 @@ use crate::format::{MAX_FILE_BYTES, ReadFailure, read_regular_file};
 use crate::grid::Action;
 use crate::oracle::Oracle;
 use crate::process::{ActionId, Mdp, StateId, Step};
-use crate::sensing::Feature;
+use crate::sensing::{Feature, MAX_PRICE, Reading};
 use crate::stochastic::{StochasticMdp, perpendicular};
-use crate::world::{Reading, SensedGrid, Sensors, World};
+use crate::world::{SensedGrid, Sensors, World};
 
 /// The `format` of a world file.
 pub const WORLD_FORMAT: &str = "csrl-world";
@@ -51,15 +51,6 @@ pub const MAX_READING: u32 = u32::MAX - 1;
 /// assert_eq!(mdp::MAX_REWARD, 1e200);
 /// ```
 pub const MAX_REWARD: f64 = 1e200;
-/// The largest price a feature may have: a run's total sensing cost, every feature
-/// charged at every one of at most 2^64 moves (each read as often as a sensor repeats
-/// it), stays far below `f64::MAX`. Larger prices are refused rather than summed to
-/// infinity.
-///
-/// ```
-/// assert_eq!(mdp::MAX_PRICE, 1e200);
-/// ```
-pub const MAX_PRICE: f64 = 1e200;
 /// How far a list of probabilities may sum from 1 (absolute).
 pub const PROBABILITY_TOLERANCE: f64 = 1e-9;
 /// The most aliased pairs [`FiniteWorld::aliased`] lists (it counts them all).

@@ -92,6 +92,7 @@
 
 mod belief;
 mod builtin;
+mod costly;
 mod error;
 mod finite;
 mod format;
@@ -112,11 +113,15 @@ mod worlds;
 
 pub use belief::{BeliefPlan, CostlyModel, Decision, EVERY_PROBE, ModelParts, NodeId, PlanOptions};
 pub use builtin::{builtin, builtin_names};
+pub use costly::{
+    BELIEF_QUANTUM, DEFAULT_MAX_BELIEFS, DEFAULT_MAX_PLANS, MAX_MENU_FEATURES, ReferenceError,
+    ReferenceOptions, SensingMenu, SensingRule,
+};
 pub use error::{MapError, MdpError, Position};
 pub use finite::{
-    Aliasing, FeatureSpec, FiniteWorld, MAX_ACTIONS, MAX_ALIASED_LISTED, MAX_FEATURES, MAX_PRICE,
-    MAX_READING, MAX_READINGS, MAX_REWARD, MAX_STATES, OutcomeSpec, PROBABILITY_TOLERANCE,
-    StatesSpec, TransitionSpec, WORLD_FORMAT, WORLD_VERSION, WorldError, WorldSpec,
+    Aliasing, FeatureSpec, FiniteWorld, MAX_ACTIONS, MAX_ALIASED_LISTED, MAX_FEATURES, MAX_READING,
+    MAX_READINGS, MAX_REWARD, MAX_STATES, OutcomeSpec, PROBABILITY_TOLERANCE, StatesSpec,
+    TransitionSpec, WORLD_FORMAT, WORLD_VERSION, WorldError, WorldSpec,
 };
 pub use format::MAX_FILE_BYTES;
 pub use geometry::{Cell, Offset, Pos};
@@ -126,17 +131,16 @@ pub use oracle::Oracle;
 pub use process::{ActionId, Mdp, StateId, Step};
 pub use random::RandomMap;
 pub use reference::{
-    BELIEF_QUANTUM, BestSensing, DEFAULT_MAX_BELIEFS, DEFAULT_MAX_PLANS, MAX_MENU_FEATURES,
-    OpenLoop, ReferenceError, ReferenceOptions, ReferencePoints, SensingMenu, SensingRule,
-    always_measuring, best_sensing, free_sensing, open_loop, reference_points, sensing_ceiling,
+    BestSensing, OpenLoop, ReferencePoints, always_measuring, best_sensing, free_sensing,
+    open_loop, reference_points, sensing_ceiling,
 };
 pub use render::{Overlay, render_svg, render_text};
-pub use sensing::{BadCost, CostModel, Feature, FeatureSpace, Manhattan};
+pub use sensing::{BadCost, CostModel, Feature, FeatureSpace, MAX_PRICE, Manhattan, Reading};
 pub use spec::{MAX_GOAL_MOVES, resolve};
 pub use stochastic::{
     SensorNoise, Slip, SlipperyGrid, StochasticMdp, evaluate_policy, evaluate_stochastic_policy,
     follow_policy,
 };
 pub use tabular::{NegativeRewards, TabularMdp};
-pub use world::{Reading, SensedGrid, Sensors, World};
+pub use world::{SensedGrid, Sensors, World};
 pub use worlds::{SensingModel, WorldOptions, builtin_world, builtin_world_names};

@@ -74,186 +74,10 @@
 //! ```
 
 use crate::belief::{CostlyModel, PlanOptions, solve};
-use crate::sensing::Feature;
-use crate::world::{Sensors, World};
-
-/// The rounding of belief probabilities for telling beliefs apart: `2^-40`.
-pub const BELIEF_QUANTUM: f64 = 1.0 / 1_099_511_627_776.0;
-/// The default cap on the beliefs of [`best_sensing`] (nodes of its graph). On the 4x4
-/// slippery lake 685,436 beliefs (K = 8) take 1.1 GB and a minute on one core.
-pub const DEFAULT_MAX_BELIEFS: usize = 1_000_000;
-/// The default cap on the plans [`open_loop`] keeps at each step.
-pub const DEFAULT_MAX_PLANS: usize = 2_000;
-/// The most features [`SensingMenu::Features`] takes under [`SensingRule::WithMove`] (it
-/// tries every subset of them with every move).
-pub const MAX_MENU_FEATURES: usize = 12;
-
-/// What an agent may measure, and at what price (reward units).
-///
-/// ```
-/// let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions {
-///     sensing: Some(mdp::SensingModel::Factors),
-///     factor_costs: Some(vec![0.025, 0.025]),
-///     ..Default::default()
-/// }).unwrap();
-/// assert_eq!(mdp::SensingMenu::whole(&lake), mdp::SensingMenu::Whole { price: 0.05 });
-/// assert_eq!(mdp::SensingMenu::whole(&lake).whole_price(&lake), 0.05);
-/// assert_eq!(mdp::SensingMenu::Features.whole_price(&lake), 0.05);
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum SensingMenu {
-    /// One measurement reveals the state, at this price.
-    Whole {
-        /// The price of one measurement (finite, at least 0).
-        price: f64,
-    },
-    /// Any set of the world's features, each at its price; the whole state is all of them.
-    Features,
-}
-
-impl SensingMenu {
-    /// The whole state at the sum of the world's feature prices.
-    ///
-    /// ```
-    /// let w = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions {
-    ///     sensing: Some(mdp::SensingModel::Factors), ..Default::default() }).unwrap();
-    /// assert_eq!(mdp::SensingMenu::whole(&w), mdp::SensingMenu::Whole { price: 2.0 });
-    /// ```
-    pub fn whole<W: Sensors>(world: &W) -> SensingMenu {
-        let price = (0..world.num_features())
-            .map(|f| world.price(Feature(f as u32)))
-            .sum();
-        SensingMenu::Whole { price }
-    }
-
-    /// What measuring the whole state costs: the price of [`SensingMenu::Whole`], or the
-    /// sum of the feature prices.
-    ///
-    /// ```
-    /// let w = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions::default()).unwrap();
-    /// assert_eq!(mdp::SensingMenu::Whole { price: 0.5 }.whole_price(&w), 0.5);
-    /// ```
-    pub fn whole_price<W: Sensors>(&self, world: &W) -> f64 {
-        match *self {
-            SensingMenu::Whole { price } => price,
-            SensingMenu::Features => match SensingMenu::whole(world) {
-                SensingMenu::Whole { price } => price,
-                SensingMenu::Features => 0.0,
-            },
-        }
-    }
-}
-
-/// When the decision to sense is taken (see [`reference_points`]).
-///
-/// ```
-/// assert_ne!(mdp::SensingRule::WithMove, mdp::SensingRule::AfterOutcome);
-/// assert_eq!(mdp::SensingRule::WithMove.name(), "with-move");
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum SensingRule {
-    /// Chosen with the move, before its outcome; paid even when the move ends the episode.
-    WithMove,
-    /// Chosen after the outcome, one measurement at a time; nothing once the episode ended.
-    AfterOutcome,
-}
-
-impl SensingRule {
-    /// A short name: `with-move` or `after-outcome`.
-    ///
-    /// ```
-    /// assert_eq!(mdp::SensingRule::AfterOutcome.name(), "after-outcome");
-    /// ```
-    pub fn name(self) -> &'static str {
-        match self {
-            SensingRule::WithMove => "with-move",
-            SensingRule::AfterOutcome => "after-outcome",
-        }
-    }
-}
-
-/// The settings of the reference points.
-///
-/// ```
-/// let o = mdp::ReferenceOptions::default();
-/// assert_eq!((o.horizon, o.max_uncertain), (100, Some(3)));
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ReferenceOptions {
-    /// `H`: the most moves an episode has (at least 1); it is truncated after them.
-    pub horizon: u32,
-    /// `K`: the most steps in a row after which the agent may be uncertain of the state
-    /// (its belief has more than one state); `None` is no bound but the horizon, and then
-    /// the search is exact over every policy but may well pass the cap on beliefs. A step after which the agent is certain (it measured,
-    /// or the move could lead to one state only) resets the count.
-    pub max_uncertain: Option<u32>,
-    /// The most beliefs [`best_sensing`] may visit before it refuses.
-    pub max_beliefs: usize,
-    /// The most plans [`open_loop`] keeps at each step; beyond it the value is a lower
-    /// bound ([`OpenLoop::exact`] is false).
-    pub max_plans: usize,
-}
-
-impl Default for ReferenceOptions {
-    fn default() -> Self {
-        ReferenceOptions {
-            horizon: 100,
-            max_uncertain: Some(3),
-            max_beliefs: DEFAULT_MAX_BELIEFS,
-            max_plans: DEFAULT_MAX_PLANS,
-        }
-    }
-}
-
-/// Why a reference point could not be computed.
-///
-/// ```
-/// let w = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions::default()).unwrap();
-/// let o = mdp::ReferenceOptions { horizon: 0, ..Default::default() };
-/// let err = mdp::open_loop(&w, &o).unwrap_err();
-/// assert!(err.to_string().contains("horizon"), "{err}");
-/// ```
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[non_exhaustive]
-pub enum ReferenceError {
-    /// A setting out of its range.
-    #[error("{what}: {problem}")]
-    BadSetting {
-        /// Which setting.
-        what: &'static str,
-        /// What is wrong.
-        problem: String,
-    },
-    /// Something of the world the computation cannot use.
-    #[error("the world: {0}")]
-    BadWorld(String),
-    /// The belief graph grew past its cap.
-    #[error(
-        "more than {cap} beliefs are reachable with at most {k} uncertain steps in a row; lower the bound or raise the cap"
-    )]
-    TooManyBeliefs {
-        /// The cap.
-        cap: usize,
-        /// The bound on uncertain steps, as text (`unbounded` for none).
-        k: String,
-    },
-    /// No policy keeps within the bound on uncertain steps.
-    #[error(
-        "no policy keeps the agent uncertain for at most {k} steps in a row (measuring every feature does not tell some states apart)"
-    )]
-    Infeasible {
-        /// The bound.
-        k: u32,
-    },
-}
-
-pub(crate) fn bad(what: &'static str, problem: impl Into<String>) -> ReferenceError {
-    ReferenceError::BadSetting {
-        what,
-        problem: problem.into(),
-    }
-}
+use crate::costly::{
+    ReferenceError, ReferenceOptions, SensingMenu, SensingRule, bad, check_horizon, check_menu,
+};
+use crate::world::World;
 
 /// The value of the best open-loop plan.
 ///
@@ -323,7 +147,7 @@ pub struct ReferencePoints {
 /// state is known to the agent (a start distribution is averaged over, each start known).
 ///
 /// What can be measured ([`SensingMenu`]): the whole state at one price, or any set of the
-/// world's features, each at its [`Sensors::price`]. Measuring feature `f` and reading `v`
+/// world's features, each at its [`Sensors::price`](crate::Sensors::price). Measuring feature `f` and reading `v`
 /// narrows the belief to its states that read `v` on `f`, renormalised.
 ///
 /// When the decision to sense is taken ([`SensingRule`]):
@@ -365,7 +189,7 @@ pub struct ReferencePoints {
 ///
 /// A belief is a list of `(state, probability)` pairs sorted by state, without zeros,
 /// summing to 1. Two beliefs are the same node of the graph when they have the same states
-/// and each probability rounds to the same multiple of [`BELIEF_QUANTUM`] (`2^-40`, about
+/// and each probability rounds to the same multiple of [`BELIEF_QUANTUM`](crate::BELIEF_QUANTUM) (`2^-40`, about
 /// `9.1e-13`); the first one reached stands for both. Rounding only ever merges beliefs
 /// that agree to that tolerance, so a value differs from the unrounded one by at most
 /// about `H * BELIEF_QUANTUM` times the largest return.
@@ -409,22 +233,6 @@ pub fn reference_points<W: World>(
         open_loop: open_loop(world, options)?,
         best_sensing: best_sensing(world, menu, rule, options)?,
     })
-}
-
-pub(crate) fn check_horizon(options: &ReferenceOptions) -> Result<(), ReferenceError> {
-    if options.horizon == 0 {
-        return Err(bad("horizon", "0 moves; an episode needs at least one"));
-    }
-    Ok(())
-}
-
-pub(crate) fn check_menu(menu: SensingMenu) -> Result<(), ReferenceError> {
-    if let SensingMenu::Whole { price } = menu
-        && !(price.is_finite() && price >= 0.0)
-    {
-        return Err(bad("price", format!("{price} is not a finite number >= 0")));
-    }
-    Ok(())
 }
 
 /// The best expected costed return of a policy that measures the whole state after every
@@ -638,7 +446,7 @@ fn compare(a: &[f64], b: &[f64]) -> std::cmp::Ordering {
 ///
 /// Under [`SensingRule::WithMove`] a choice is a move and a set of probes (with
 /// [`SensingMenu::Whole`]: nothing or the whole state; with [`SensingMenu::Features`]:
-/// any subset of the features, at most [`MAX_MENU_FEATURES`] of them). Under
+/// any subset of the features, at most [`MAX_MENU_FEATURES`](crate::MAX_MENU_FEATURES) of them). Under
 /// [`SensingRule::AfterOutcome`] a move is followed, if the episode goes on, by probes one
 /// at a time, each chosen after the readings before it.
 ///

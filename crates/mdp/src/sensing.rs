@@ -17,6 +17,44 @@ use crate::grid::GridWorld;
 use crate::map::Map;
 use crate::process::StateId;
 
+/// The largest price a feature may have: a run's total sensing cost, every feature
+/// charged at every one of at most 2^64 moves (each read as often as a sensor repeats
+/// it), stays far below `f64::MAX`. Larger prices are refused rather than summed to
+/// infinity.
+///
+/// ```
+/// assert_eq!(mdp::MAX_PRICE, 1e200);
+/// ```
+pub const MAX_PRICE: f64 = 1e200;
+
+/// What a feature reads in a state: a small integer whose meaning the world names
+/// ([`Sensors::reading_name`](crate::Sensors::reading_name)). On grids it is a [`Cell::code`].
+///
+/// ```
+/// let r = mdp::Reading::from(mdp::Cell::Goal);
+/// assert_eq!(r.0, 2);
+/// assert_eq!(mdp::Cell::try_from(r), Ok(mdp::Cell::Goal));
+/// ```
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Default, Serialize, Deserialize,
+)]
+#[serde(transparent)]
+pub struct Reading(pub u32);
+
+impl From<Cell> for Reading {
+    fn from(c: Cell) -> Reading {
+        Reading(c.code())
+    }
+}
+
+impl TryFrom<Reading> for Cell {
+    type Error = Reading;
+    /// The cell a grid reading stands for; the reading itself if it stands for none.
+    fn try_from(r: Reading) -> Result<Cell, Reading> {
+        Cell::from_code(r.0).ok_or(r)
+    }
+}
+
 /// The price of sensing the cell at an offset. Implement it to change the cost model.
 ///
 /// Costs must be finite and non-negative; [`FeatureSpace::new`] checks.
@@ -129,7 +167,7 @@ impl FeatureSpace {
                 }
                 let o = Offset::new(dx, dy);
                 let cost = model.cost(o);
-                if !(cost.is_finite() && (0.0..=crate::MAX_PRICE).contains(&cost)) {
+                if !(cost.is_finite() && (0.0..=MAX_PRICE).contains(&cost)) {
                     return Err(BadCost { offset: o, cost });
                 }
                 entries.push((o, cost));

@@ -16,7 +16,7 @@ use crate::error::MdpError;
 use crate::geometry::Cell;
 use crate::grid::{Action, GridWorld};
 use crate::process::{ActionId, Mdp, StateId, Step};
-use crate::world::Reading;
+use crate::sensing::Reading;
 
 fn probability(name: &'static str, value: f64) -> Result<f64, MdpError> {
     if (0.0..=1.0).contains(&value) {

@@ -19,41 +19,12 @@
 //! worlds from files and the built-in worlds beyond grids are another.
 
 use rand::{Rng, RngExt};
-use serde::{Deserialize, Serialize};
 
 use crate::geometry::Cell;
 use crate::grid::{Action, GridWorld};
 use crate::process::{ActionId, StateId, Step};
-use crate::sensing::{Feature, FeatureSpace};
+use crate::sensing::{Feature, FeatureSpace, Reading};
 use crate::stochastic::{SlipperyGrid, StochasticMdp};
-
-/// What a feature reads in a state: a small integer whose meaning the world names
-/// ([`Sensors::reading_name`]). On grids it is a [`Cell::code`].
-///
-/// ```
-/// let r = mdp::Reading::from(mdp::Cell::Goal);
-/// assert_eq!(r.0, 2);
-/// assert_eq!(mdp::Cell::try_from(r), Ok(mdp::Cell::Goal));
-/// ```
-#[derive(
-    Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Default, Serialize, Deserialize,
-)]
-#[serde(transparent)]
-pub struct Reading(pub u32);
-
-impl From<Cell> for Reading {
-    fn from(c: Cell) -> Reading {
-        Reading(c.code())
-    }
-}
-
-impl TryFrom<Reading> for Cell {
-    type Error = Reading;
-    /// The cell a grid reading stands for; the reading itself if it stands for none.
-    fn try_from(r: Reading) -> Result<Cell, Reading> {
-        Cell::from_code(r.0).ok_or(r)
-    }
-}
 
 /// A finite list of features, each with a price, and what each reads in each state.
 ///
