@@ -4,11 +4,12 @@
 use rand::{RngExt, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
+use super::criterion::Criterion;
 use super::data::Frame;
 use super::family::shuffle;
 use super::prices::{MisclassCosts, TestPrices};
 use super::splits::Splits;
-use super::tree::{Criterion, GrowParams};
+use super::tree::GrowParams;
 
 /// Stratified folds: the objects of each class shuffled by `seed` and dealt in turn,
 /// so every fold has each class in proportion. Returns the test objects of each fold.

@@ -3,10 +3,11 @@
 use rand::{RngExt, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
+use super::criterion::Criterion;
 use super::data::Frame;
 use super::prices::{MisclassCosts, TestPrices};
 use super::splits::Splits;
-use super::tree::{CostTree, Criterion, GrowParams, Pruning, SelectionPrices};
+use super::tree::{CostTree, GrowParams, Pruning, SelectionPrices};
 use crate::Error;
 
 /// A learner of the family.

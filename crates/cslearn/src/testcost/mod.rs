@@ -63,6 +63,7 @@
 //! ```
 
 mod catalogue;
+mod criterion;
 mod data;
 mod evaluate;
 mod family;
@@ -72,12 +73,12 @@ mod splits;
 mod tree;
 
 pub use catalogue::{Catalogue, Loaded, Source};
+pub use criterion::Criterion;
 pub use data::{Column, Frame, FrameSpec, MISSING, read_rows};
 pub use evaluate::{feature_gains, folds, gain_prices, random_prices, standard_cost};
 pub use family::{FamilyParams, Fitted, IcetGenome, IcetParams, Method, fit, mean_total_cost};
 pub use model::{SavedModel, TREE_MODEL_FORMAT, TREE_MODEL_VERSION, TreeModel};
 pub use prices::{Basket, MisclassCosts, TestPrice, TestPrices, TurneyExtra};
 pub use tree::{
-    Classification, CostTree, Criterion, GrowParams, NodeIndex, Pruning, SelectionPrices, Split,
-    TreeNode,
+    Classification, CostTree, GrowParams, NodeIndex, Pruning, SelectionPrices, Split, TreeNode,
 };

@@ -9,9 +9,9 @@
 //! prices of the moment. A single tree grown through the trie costs what growing it
 //! directly costs.
 
+use super::criterion::Criterion;
 use super::data::{Column, Frame, MISSING};
 use super::prices::MisclassCosts;
-use super::tree::Criterion;
 
 /// The statistics of the best split of one feature at a node.
 #[derive(Clone, Copy, Debug)]
