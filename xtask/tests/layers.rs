@@ -302,16 +302,6 @@ fn the_modules_of_csql_use_each_other_without_cycles() {
     assert_acyclic("crates/csql/src", "lib");
 }
 
-/// The uses that close a cycle known and not yet broken, as (the crate's sources, the
-/// module, the module it uses): the every-crate check leaves these out and fails on any
-/// other cycle, and fails when one of them is gone, so that the list only shrinks.
-///
-/// * `cslearn`: `testcost::splits` uses `testcost::tree`'s `Criterion`, and the tree
-///   grows through the splits;
-/// * `csrl`: `classify` hands the test-cost family to `testcost`, which takes
-///   `classify`'s arguments and progress bar.
-const KNOWN_CYCLES: &[(&str, &str, &str)] = &[("crates/csrl/src", "testcost", "classify")];
-
 /// Every crate, whatever its size: a new crate is checked without a line here.
 #[test]
 fn the_modules_of_every_crate_use_each_other_without_cycles() {
@@ -320,16 +310,7 @@ fn the_modules_of_every_crate_use_each_other_without_cycles() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let mut found = Vec::new();
     for (src, file) in &crates {
-        let mut g = graph(&root.join(src), file);
-        for &(in_src, from, to) in KNOWN_CYCLES {
-            if in_src == src {
-                let removed = g.get_mut(from).is_some_and(|uses| uses.remove(to));
-                assert!(
-                    removed,
-                    "{src}: {from} no longer uses {to}: take it off KNOWN_CYCLES"
-                );
-            }
-        }
+        let g = graph(&root.join(src), file);
         if let Some(c) = cycle(&g) {
             found.push(format!(
                 "a cycle of modules in {src}: {}\n\nthe graph:\n{}",

@@ -25,168 +25,14 @@
 //! not by the tree. This is CS-ID3 as the paper defines it, not a defect of the tree; the
 //! learner's own prediction (`Learner::classify`) is what the held-out figures use.
 
-use std::path::PathBuf;
-
 use std::io::Write;
 
 use anyhow::{Context, Result};
-use clap::{Args, ValueEnum};
 use cslearn::{Dataset, DatasetOptions, LearnerKind};
 
-/// The learners `csrl classify` can run: the incremental ones of the paper, and the
-/// batch trees of the test-cost family (`cslearn::testcost`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub(crate) enum Learner {
-    /// CS-ID3: I^2/C selection, cheapest-first discrimination.
-    CsId3,
-    /// CS-IBL: instances ranked by mismatches, tolerant of wrong values.
-    CsIbl,
-    /// Cost-blind ID3: every cost taken as equal, random discrimination order.
-    Id3,
-    /// Batch tree: ID3 (information gain, no pruning), cost-blind.
-    #[value(name = "id3-batch")]
-    Id3Batch,
-    /// Batch tree: C4.5 (gain ratio, pessimistic pruning), cost-blind.
-    #[value(name = "c45")]
-    C45,
-    /// Batch tree: IDX (gain / price), pruned as C4.5.
-    #[value(name = "idx")]
-    Idx,
-    /// Batch tree: CS-ID3's gain^2 / price, pruned as C4.5.
-    #[value(name = "cs-id3-batch")]
-    CsId3Batch,
-    /// Batch tree: EG2 ((2^gain - 1) / (price + 1)), pruned as C4.5.
-    #[value(name = "eg2")]
-    Eg2,
-    /// Batch tree: DTMC (least expected total cost of tests and errors).
-    #[value(name = "dtmc")]
-    Dtmc,
-    /// Batch tree: ICET (EG2 on prices found by a genetic search).
-    #[value(name = "icet")]
-    Icet,
-}
-
-impl Learner {
-    /// The learner of the test-cost family, for a batch tree.
-    pub(crate) fn family(self) -> Option<cslearn::testcost::Method> {
-        use cslearn::testcost::Method;
-        match self {
-            Learner::CsId3 | Learner::CsIbl | Learner::Id3 => None,
-            Learner::Id3Batch => Some(Method::Id3),
-            Learner::C45 => Some(Method::C45),
-            Learner::Idx => Some(Method::Idx),
-            Learner::CsId3Batch => Some(Method::CsId3Batch),
-            Learner::Eg2 => Some(Method::Eg2),
-            Learner::Dtmc => Some(Method::Dtmc),
-            Learner::Icet => Some(Method::Icet),
-        }
-    }
-
-    /// The name `--learner` takes.
-    pub(crate) fn name(self) -> &'static str {
-        match (self, self.family()) {
-            (_, Some(method)) => method.name(),
-            (Learner::CsId3, None) => "cs-id3",
-            (Learner::CsIbl, None) => "cs-ibl",
-            (_, None) => "id3",
-        }
-    }
-}
-
-/// Arguments of `csrl classify`.
-#[derive(Args)]
-#[command(
-    after_help = "The incremental learners (cs-id3, cs-ibl, id3) stream the objects \
-(prequential accuracy, and --holdout or --folds beside it). The batch trees of the test-cost \
-family (id3-batch, c45, idx, cs-id3-batch, eg2, dtmc, icet) are grown on training parts and judged on \
-the held-out objects by the total cost of their tests and errors (10-fold unless --holdout or \
---folds); they read numeric columns as numbers, --costs also in Turney's format \
-(FILE.expense or FILE.cost) with --groups, and --mc, --mc-matrix and --cost-name. A flag \
-that the chosen learner does not read is refused."
-)]
-pub struct ClassifyArgs {
-    /// The data: a CSV file with a header, one object per row; empty cells and `?` are
-    /// missing values.
-    #[arg(long, value_name = "FILE.csv")]
-    pub(crate) data: PathBuf,
-    /// The price of each feature: a CSV file with the header `feature,cost`; for the
-    /// family learners also Turney's format, a file ending in `.expense` (`name: full,
-    /// discount`) or `.cost` (`name: price`).
-    #[arg(long, value_name = "FILE.csv")]
-    pub(crate) costs: PathBuf,
-    /// The column holding the class.
-    #[arg(long, value_name = "COLUMN")]
-    pub(crate) target: String,
-    /// Make two classes of the target: where EXPR holds and where not. EXPR is `>0`,
-    /// `>=1`, `<2`, `<=2`, `==1`, `!=0` or a category name.
-    #[arg(long, value_name = "EXPR", allow_hyphen_values = true)]
-    pub(crate) positive_if: Option<String>,
-    /// The learner.
-    #[arg(long, value_enum, default_value_t = Learner::CsId3)]
-    pub(crate) learner: Learner,
-    /// The seed of the random order of the objects (and of ID3's discrimination orders;
-    /// for the family, of the folds and of ICET's search).
-    #[arg(long, default_value_t = 1)]
-    pub(crate) seed: u64,
-    /// CS-IBL only: the most wrong feature values tolerated per object (1 unless given).
-    #[arg(long, value_name = "N")]
-    tolerance: Option<u32>,
-    /// Also evaluate on held-out data: this share of the objects (seeded) is the test
-    /// part, the rest the training part (for the family, a share of each class).
-    #[arg(long, value_name = "F", conflicts_with = "folds")]
-    pub(crate) holdout: Option<f64>,
-    /// Also evaluate by K-fold cross-validation (seeded folds; for the family,
-    /// stratified by class, and 10 unless --holdout or --folds is given).
-    #[arg(long, value_name = "K")]
-    pub(crate) folds: Option<usize>,
-    /// Print one JSON object instead of a table.
-    #[arg(long)]
-    pub(crate) json: bool,
-    /// CS-ID3 only: write the decision tree grown (I^2/C, observation semantics) from the
-    /// library the prequential pass learned, as Graphviz DOT (`dot -Tsvg FILE.dot`).
-    #[arg(long, value_name = "FILE.dot")]
-    dot: Option<PathBuf>,
-    /// Save what the prequential pass learned as a model file (versioned JSON, format
-    /// `csrl-classifier`), for `csrl predict --model FILE`; for the family, the tree grown
-    /// on every object (format `csrl-cost-tree`). It may not name an input file.
-    #[arg(long, value_name = "MODEL.json")]
-    pub(crate) save: Option<PathBuf>,
-    /// Family only: Turney's groups of tests (a `.group` file: the group names on its
-    /// first line, then `name: group.`); the first test of a group bought for an object
-    /// is paid in full, the others at their discount. Needs --costs FILE.expense.
-    #[arg(long, value_name = "FILE.group")]
-    pub(crate) groups: Option<PathBuf>,
-    /// Family only: what each wrong answer costs, the same for every pair of classes.
-    /// Without --mc or --mc-matrix it is the price of every test together (discounts
-    /// applied; 1 if that is 0), so that one error costs as much as measuring everything.
-    #[arg(
-        long,
-        value_name = "N",
-        conflicts_with = "mc_matrix",
-        allow_negative_numbers = true
-    )]
-    pub(crate) mc: Option<f64>,
-    /// Family only: a misclassification cost matrix, a CSV file with the header
-    /// `actual,<class>,...` and one row `<class>,<costs>...` per class (the cost of each
-    /// answer for an object of that class). Classes are named as the data names them
-    /// (`no` and `yes` with --positive-if).
-    #[arg(long, value_name = "FILE.csv")]
-    pub(crate) mc_matrix: Option<PathBuf>,
-    /// Family only: the price files call data column COLUMN by NAME (repeatable), as in
-    /// `--cost-name thalch=thalach`.
-    #[arg(long, value_name = "COLUMN=NAME")]
-    pub(crate) cost_name: Vec<String>,
-    /// Family only: the price the selection functions see for a test: `path` (after the
-    /// node's path: a test done once is free further down; the default) or `listed`
-    /// (its listed price whatever the path, as the published implementations score
-    /// tests). An object pays after its path either way.
-    #[arg(long, value_name = "path|listed")]
-    pub(crate) selection_prices: Option<String>,
-    /// ICET only: how its trees are pruned: `errors` (C4.5's, Turney's; the default) or
-    /// `costs` (a test must pay for itself at the real prices).
-    #[arg(long, value_name = "errors|costs")]
-    pub(crate) icet_pruning: Option<String>,
-}
+pub use crate::classify_args::ClassifyArgs;
+use crate::classify_args::Learner;
+use crate::progress::progress_bar;
 
 /// Accuracy and cost per object on one test part (or summed over folds).
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
@@ -374,14 +220,6 @@ fn held_out(args: &ClassifyArgs, data: &Dataset) -> Result<Option<(String, HeldO
     }
     bar.finish_and_clear();
     Ok(Some((scheme, total)))
-}
-
-/// A sign of life on long work: a bar on a terminal's stderr, nothing otherwise.
-pub(crate) fn progress_bar(len: usize) -> indicatif::ProgressBar {
-    indicatif::ProgressBar::with_draw_target(
-        Some(len as u64),
-        indicatif::ProgressDrawTarget::stderr(),
-    )
 }
 
 /// Refuse a flag the chosen learner does not read, and an output that would overwrite an

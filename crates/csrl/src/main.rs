@@ -18,8 +18,10 @@
 //! explains is not repeated.
 
 mod classify;
+mod classify_args;
 mod maps;
 mod predict;
+mod progress;
 mod run;
 mod testcost;
 mod worlds;

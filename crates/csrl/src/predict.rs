@@ -112,7 +112,7 @@ pub fn run(args: &PredictArgs, out: &mut dyn Write) -> Result<()> {
             failed = Some(e);
         }
     };
-    let bar = crate::classify::progress_bar(0);
+    let bar = crate::progress::progress_bar(0);
     let mut total = 0.0;
     let mut line = String::new();
     let rows = model

@@ -18,7 +18,7 @@ use cslearn::testcost::{
     Frame, FrameSpec, IcetGenome, Method, MisclassCosts, TestPrices, TreeModel,
 };
 
-use crate::classify::ClassifyArgs;
+use crate::classify_args::ClassifyArgs;
 
 /// Folds when neither `--folds` nor `--holdout` is given.
 const DEFAULT_FOLDS: usize = 10;
@@ -318,7 +318,7 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
         },
         ..cslearn::testcost::FamilyParams::default()
     };
-    let bar = crate::classify::progress_bar(parts.len() + usize::from(args.save.is_some()));
+    let bar = crate::progress::progress_bar(parts.len() + usize::from(args.save.is_some()));
     let mut results = Vec::with_capacity(parts.len());
     for (j, (train, test)) in parts.iter().enumerate() {
         let fitted = cslearn::testcost::fit(
