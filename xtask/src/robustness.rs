@@ -17,7 +17,7 @@
 //!   would be `lazy`);
 //! * `u-tree`: the U-Tree baseline; `full-sensing`: Q-learning on the whole sensable view.
 //!
-//! Every run is judged by the policy quality (`extensions.judge_by_quality`), evaluated
+//! Every run is judged by the policy quality (`judge.judge_by_quality`), evaluated
 //! every `--quality-every` trials, and ends once it has stayed at or above 0.95 for
 //! `--patience` evaluations, or at the trial cap. Under slip or noise every learner uses
 //! beta 0.2 (with beta 1 a stochastic target overwrites Q at every update); elsewhere the

@@ -13,8 +13,9 @@ fn main() -> Result<(), csql::Error> {
     let first: u64 = args.get(2).and_then(|a| a.parse().ok()).unwrap_or(1);
     let seeds: u64 = args.get(3).and_then(|a| a.parse().ok()).unwrap_or(10);
     let only = args.get(4).cloned();
-    let noise = "beta = 0.2\nmax_trials = 1500\n[world]\nsensor_noise = 0.05\n[extensions]\nquality_every = 25";
-    let radius = "max_trials = 1500\n[world]\nsensing_radius = 1\n[extensions]\nquality_every = 25";
+    let noise =
+        "beta = 0.2\nmax_trials = 1500\n[world]\nsensor_noise = 0.05\n[judge]\nquality_every = 25";
+    let radius = "max_trials = 1500\n[world]\nsensing_radius = 1\n[judge]\nquality_every = 25";
     let configs: Vec<(&str, String)> = vec![
         ("deterministic beta 1", String::new()),
         ("deterministic beta 0.2", "beta = 0.2".into()),

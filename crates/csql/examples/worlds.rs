@@ -75,7 +75,7 @@ fn configs() -> Vec<Config> {
                 sensing,
                 dynamics,
                 toml: format!(
-                    "beta = 0.02\nmax_trials = 20000\n[world]\nsensing = \"{sensing}\"\n{world}\n[extensions]\nquality_every = 100"
+                    "beta = 0.02\nmax_trials = 20000\n[world]\nsensing = \"{sensing}\"\n{world}\n[judge]\nquality_every = 100"
                 ),
             });
         }

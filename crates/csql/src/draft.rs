@@ -1,12 +1,13 @@
 //! The settings file's form, and the one conversion from it to [`RunSettings`].
 //!
 //! A settings file (and a report's `settings`) is flat: the learner's keys sit beside the
-//! others (`strategy`, `predict_sensing`, the tables `[prediction]` and `[u_tree]`, the
-//! CS-QL keys of `[extensions]`). A [`SettingsDraft`] holds what was given, from a file
-//! and from flags over it; [`SettingsDraft::build`] gives each learner only its own
+//! others (`strategy`, `predict_sensing`, the tables `[prediction]`, `[extensions]` and
+//! `[u_tree]`, how a run is judged in `[judge]`). Which learner reads which key is one
+//! table, [`SETTING_KEYS`]. A [`SettingsDraft`] holds what was given, from a file and from
+//! flags over it; [`SettingsDraft::build`] refuses every key given that the learner chosen
+//! does not read, naming the key and the learner, gives each learner only its own
 //! settings, fills what was not given with the paper's values, and checks everything
-//! once, so that a key that means nothing for the learner chosen is refused with a
-//! message that names both.
+//! once.
 
 use std::io::Read;
 use std::path::Path;
@@ -93,9 +94,12 @@ pub struct SettingsDraft {
     /// The table `[world]`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub world: Option<WorldExtras>,
-    /// The table `[extensions]`: CS-QL's extensions and how the run is judged.
+    /// The table `[extensions]`: CS-QL's extensions (CS-QL only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub extensions: Option<ExtensionsTable>,
+    /// The table `[judge]`: how the run is judged (the learners of [`crate::run`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub judge: Option<JudgeSettings>,
     /// `learner`: `cs-ql` (when absent), `u-tree`, `full-sensing`, `amrl-q` or `belief`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub learner: Option<LearnerKind>,
@@ -139,13 +143,13 @@ pub struct CostlyTable {
     pub rule: Option<mdp::SensingRule>,
 }
 
-/// The settings file's table `[extensions]`: CS-QL's extensions ([`Extensions`]) and how
-/// the run is judged ([`JudgeSettings`]), each key optional and at its default when
-/// absent (and then left out of a report's JSON).
+/// The settings file's table `[extensions]`: CS-QL's extensions ([`Extensions`]), each
+/// key optional and at its default when absent (and then left out of a report's JSON).
+/// How a run is judged is the table `[judge]` ([`JudgeSettings`]).
 ///
 /// ```
-/// let t = csql::ExtensionsTable::from_parts(csql::Extensions::default(), csql::JudgeSettings::default());
-/// assert_eq!(t.split(), (csql::Extensions::default(), csql::JudgeSettings::default()));
+/// let t = csql::ExtensionsTable::from(csql::Extensions::default());
+/// assert_eq!(t.extensions(), csql::Extensions::default());
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -168,15 +172,6 @@ pub struct ExtensionsTable {
     /// `memory` ([`Extensions::memory`]).
     #[serde(skip_serializing_if = "is_default")]
     pub memory: u32,
-    /// `judge_by_quality` ([`JudgeSettings::judge_by_quality`]).
-    #[serde(skip_serializing_if = "is_default")]
-    pub judge_by_quality: bool,
-    /// `quality_every` ([`JudgeSettings::quality_every`]).
-    #[serde(skip_serializing_if = "is_default_every")]
-    pub quality_every: u32,
-    /// `quality_patience` ([`JudgeSettings::quality_patience`]).
-    #[serde(skip_serializing_if = "is_default_patience")]
-    pub quality_patience: u32,
 }
 
 fn is_default<T: Default + PartialEq>(x: &T) -> bool {
@@ -185,44 +180,21 @@ fn is_default<T: Default + PartialEq>(x: &T) -> bool {
 fn is_one(x: &u32) -> bool {
     *x == 1
 }
-fn is_default_every(x: &u32) -> bool {
-    *x == JudgeSettings::default().quality_every
-}
-fn is_default_patience(x: &u32) -> bool {
-    *x == JudgeSettings::default().quality_patience
-}
 
 impl Default for ExtensionsTable {
     fn default() -> ExtensionsTable {
-        ExtensionsTable::from_parts(Extensions::default(), JudgeSettings::default())
+        ExtensionsTable::from(Extensions::default())
     }
 }
 
-/// The keys of CS-QL's extensions that are not at their defaults.
-fn cs_ql_extension_keys(e: &Extensions) -> Vec<&'static str> {
-    let d = Extensions::default();
-    [
-        ("detector", e.detector != d.detector),
-        ("rate", e.rate != d.rate),
-        ("matching", e.matching != d.matching),
-        ("confirm_new", e.confirm_new != d.confirm_new),
-        ("reads", e.reads != d.reads),
-        ("memory", e.memory != d.memory),
-    ]
-    .into_iter()
-    .filter_map(|(key, given)| given.then_some(key))
-    .collect()
-}
-
-impl ExtensionsTable {
-    /// The table of CS-QL's extensions and the judging.
-    ///
-    /// ```
-    /// let mut j = csql::JudgeSettings::default();
-    /// j.judge_by_quality = true;
-    /// assert!(csql::ExtensionsTable::from_parts(csql::Extensions::default(), j).judge_by_quality);
-    /// ```
-    pub fn from_parts(e: Extensions, j: JudgeSettings) -> ExtensionsTable {
+/// The table of CS-QL's extensions.
+///
+/// ```
+/// let e = csql::Extensions { reads: 3, ..Default::default() };
+/// assert_eq!(csql::ExtensionsTable::from(e).reads, 3);
+/// ```
+impl From<Extensions> for ExtensionsTable {
+    fn from(e: Extensions) -> ExtensionsTable {
         ExtensionsTable {
             detector: e.detector,
             rate: e.rate,
@@ -230,162 +202,331 @@ impl ExtensionsTable {
             confirm_new: e.confirm_new,
             reads: e.reads,
             memory: e.memory,
-            judge_by_quality: j.judge_by_quality,
-            quality_every: j.quality_every,
-            quality_patience: j.quality_patience,
         }
-    }
-
-    /// CS-QL's extensions and the judging, apart.
-    ///
-    /// ```
-    /// let (e, _) = csql::ExtensionsTable::default().split();
-    /// assert_eq!(e, csql::Extensions::default());
-    /// ```
-    pub fn split(&self) -> (Extensions, JudgeSettings) {
-        (
-            Extensions {
-                detector: self.detector,
-                rate: self.rate,
-                matching: self.matching,
-                confirm_new: self.confirm_new,
-                reads: self.reads,
-                memory: self.memory,
-            },
-            JudgeSettings {
-                judge_by_quality: self.judge_by_quality,
-                quality_every: self.quality_every,
-                quality_patience: self.quality_patience,
-            },
-        )
     }
 }
 
-/// The tables of a settings file and the keys each takes: where a key given in the
-/// wrong place belongs (a test checks every key here is read in its table).
-const TABLES: &[(&str, &[&str])] = &[
-    (
-        "world",
-        &[
-            "slip",
-            "sensor_noise",
-            "sensing_radius",
-            "slide",
-            "sensing",
-            "factor_costs",
-        ],
-    ),
-    (
-        "extensions",
-        &[
-            "detector",
-            "rate",
-            "matching",
-            "confirm_new",
-            "reads",
-            "memory",
-            "judge_by_quality",
-            "quality_every",
-            "quality_patience",
-        ],
-    ),
-    (
-        "prediction",
-        &[
-            "confirmations",
-            "recheck",
-            "max_skips",
-            "verify",
-            "navigation_trials",
-            "memory_moves",
-        ],
-    ),
-    (
-        "u_tree",
-        &[
-            "fringe",
-            "alpha",
-            "window",
-            "test_every",
-            "min_group",
-            "patience",
-        ],
-    ),
-    (
-        "amrl_q",
-        &[
-            "learning_rate",
-            "epsilon",
-            "discount",
-            "measure_bias",
-            "greedy_share",
-            "measuring",
-        ],
-    ),
-    ("costly", &["price", "rule"]),
-    (
-        "belief",
-        &[
-            "max_uncertain",
-            "trust",
-            "prior",
-            "optimism",
-            "whole_state",
-            "max_beliefs",
-            "move_cost",
-        ],
-    ),
+impl ExtensionsTable {
+    /// CS-QL's extensions of the table.
+    ///
+    /// ```
+    /// assert_eq!(csql::ExtensionsTable::default().extensions(), csql::Extensions::default());
+    /// ```
+    pub fn extensions(&self) -> Extensions {
+        Extensions {
+            detector: self.detector,
+            rate: self.rate,
+            matching: self.matching,
+            confirm_new: self.confirm_new,
+            reads: self.reads,
+            memory: self.memory,
+        }
+    }
+}
+
+/// One key of a settings file: where it is written and which learners read it. The
+/// settings' keys are [`SETTING_KEYS`].
+///
+/// ```
+/// let beta = csql::setting_key(None, "beta").unwrap();
+/// assert!(beta.reads(csql::LearnerKind::UTree) && !beta.reads(csql::LearnerKind::AmrlQ));
+/// assert_eq!(csql::setting_key(Some("u_tree"), "fringe").unwrap().path(), "u_tree.fringe");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SettingKey {
+    /// The table the key is written in (`[world]` is `Some("world")`), or `None` for the
+    /// top level.
+    pub table: Option<&'static str>,
+    /// The key's name.
+    pub name: &'static str,
+    /// The learners that read it: given with any other, the key is refused
+    /// ([`SettingsDraft::build`]).
+    pub read_by: &'static [LearnerKind],
+}
+
+impl SettingKey {
+    /// Whether learner `kind` reads the key.
+    ///
+    /// ```
+    /// let strategy = csql::setting_key(None, "strategy").unwrap();
+    /// assert!(strategy.reads(csql::LearnerKind::CsQl) && !strategy.reads(csql::LearnerKind::UTree));
+    /// ```
+    pub fn reads(&self, kind: LearnerKind) -> bool {
+        self.read_by.contains(&kind)
+    }
+
+    /// The key as a report's JSON and the messages name it: `beta`, `world.slip`.
+    ///
+    /// ```
+    /// assert_eq!(csql::setting_key(None, "seed").unwrap().path(), "seed");
+    /// ```
+    pub fn path(&self) -> String {
+        match self.table {
+            Some(table) => format!("{table}.{}", self.name),
+            None => self.name.to_string(),
+        }
+    }
+}
+
+/// Every learner.
+const EVERY: &[LearnerKind] = &[
+    LearnerKind::CsQl,
+    LearnerKind::UTree,
+    LearnerKind::FullSensing,
+    LearnerKind::AmrlQ,
+    LearnerKind::Belief,
+];
+/// The learners of [`crate::run`], judged over trials of Q-learning.
+const TRIALS: &[LearnerKind] = &[
+    LearnerKind::CsQl,
+    LearnerKind::UTree,
+    LearnerKind::FullSensing,
+];
+/// The learners scored on sensing priced in reward units (U-Tree is not).
+const PRICED: &[LearnerKind] = &[
+    LearnerKind::CsQl,
+    LearnerKind::FullSensing,
+    LearnerKind::AmrlQ,
+    LearnerKind::Belief,
+];
+const CS_QL: &[LearnerKind] = &[LearnerKind::CsQl];
+const U_TREE: &[LearnerKind] = &[LearnerKind::UTree];
+const AMRL_Q: &[LearnerKind] = &[LearnerKind::AmrlQ];
+const BELIEF: &[LearnerKind] = &[LearnerKind::Belief];
+
+const fn top(name: &'static str, read_by: &'static [LearnerKind]) -> SettingKey {
+    SettingKey {
+        table: None,
+        name,
+        read_by,
+    }
+}
+
+const fn inner(
+    table: &'static str,
+    name: &'static str,
+    read_by: &'static [LearnerKind],
+) -> SettingKey {
+    SettingKey {
+        table: Some(table),
+        name,
+        read_by,
+    }
+}
+
+/// Every key of a settings file, where it is written, and which learners read it: the one
+/// definition that [`SettingsDraft::build`] refuses by (a key given that the learner does
+/// not read), that [`SettingsDraft::from_toml`] places keys by (a key in the wrong table
+/// says where it belongs), and that `csrl run --help` prints. A test holds it to the
+/// fields of the settings, to the learners' code, to `csrl run --help` and to the
+/// specification's list (6.9).
+///
+/// AMRL-Q and sensing by belief play episodes of their own (`max_trials` of at most
+/// `max_moves` moves): they read no key of Q-learning, convergence or judging, nor
+/// sensor noise (their worlds are read exactly).
+///
+/// ```
+/// use csql::{LearnerKind, SETTING_KEYS};
+/// let read = |kind| SETTING_KEYS.iter().filter(|k| k.reads(kind)).count();
+/// assert!(read(LearnerKind::CsQl) > read(LearnerKind::FullSensing));
+/// assert!(SETTING_KEYS.iter().all(|k| !k.read_by.is_empty()));
+/// ```
+pub const SETTING_KEYS: &[SettingKey] = &[
+    top("map", EVERY),
+    top("learner", EVERY),
+    top("seed", EVERY),
+    top("max_moves", EVERY),
+    top("max_trials", EVERY),
+    top("beta", TRIALS),
+    top("gamma", TRIALS),
+    top("temperature", TRIALS),
+    top("tolerance", TRIALS),
+    top("decrease_threshold", TRIALS),
+    top("max_rows", TRIALS),
+    top("strategy", CS_QL),
+    top("random_moves", CS_QL),
+    top("predict_sensing", CS_QL),
+    inner("world", "slip", EVERY),
+    inner("world", "sensing_radius", EVERY),
+    inner("world", "slide", EVERY),
+    inner("world", "sensing", EVERY),
+    inner("world", "factor_costs", EVERY),
+    inner("world", "sensor_noise", TRIALS),
+    inner("judge", "judge_by_quality", TRIALS),
+    inner("judge", "quality_every", TRIALS),
+    inner("judge", "quality_patience", TRIALS),
+    inner("costly", "price", PRICED),
+    inner("costly", "rule", PRICED),
+    inner("extensions", "detector", CS_QL),
+    inner("extensions", "rate", CS_QL),
+    inner("extensions", "matching", CS_QL),
+    inner("extensions", "confirm_new", CS_QL),
+    inner("extensions", "reads", CS_QL),
+    inner("extensions", "memory", CS_QL),
+    inner("prediction", "confirmations", CS_QL),
+    inner("prediction", "recheck", CS_QL),
+    inner("prediction", "max_skips", CS_QL),
+    inner("prediction", "verify", CS_QL),
+    inner("prediction", "navigation_trials", CS_QL),
+    inner("prediction", "memory_moves", CS_QL),
+    inner("u_tree", "fringe", U_TREE),
+    inner("u_tree", "alpha", U_TREE),
+    inner("u_tree", "window", U_TREE),
+    inner("u_tree", "test_every", U_TREE),
+    inner("u_tree", "min_group", U_TREE),
+    inner("u_tree", "patience", U_TREE),
+    inner("amrl_q", "learning_rate", AMRL_Q),
+    inner("amrl_q", "epsilon", AMRL_Q),
+    inner("amrl_q", "discount", AMRL_Q),
+    inner("amrl_q", "measure_bias", AMRL_Q),
+    inner("amrl_q", "greedy_share", AMRL_Q),
+    inner("amrl_q", "measuring", AMRL_Q),
+    inner("belief", "max_uncertain", BELIEF),
+    inner("belief", "trust", BELIEF),
+    inner("belief", "prior", BELIEF),
+    inner("belief", "optimism", BELIEF),
+    inner("belief", "whole_state", BELIEF),
+    inner("belief", "max_beliefs", BELIEF),
+    inner("belief", "move_cost", BELIEF),
 ];
 
-/// The keys of the top level that are not tables.
-const TOP: &[&str] = &[
-    "map",
-    "strategy",
-    "beta",
-    "gamma",
-    "temperature",
-    "max_moves",
-    "random_moves",
-    "tolerance",
-    "decrease_threshold",
-    "max_trials",
-    "seed",
-    "predict_sensing",
-    "learner",
-    "max_rows",
-];
+/// The key `name` of `table` (`None`: the top level), if there is one.
+///
+/// ```
+/// assert!(csql::setting_key(Some("world"), "slip").is_some());
+/// assert!(csql::setting_key(None, "slip").is_none());
+/// ```
+pub fn setting_key(table: Option<&str>, name: &str) -> Option<&'static SettingKey> {
+    SETTING_KEYS
+        .iter()
+        .find(|k| k.table == table && k.name == name)
+}
+
+/// The tables of a settings file, in the order of [`SETTING_KEYS`].
+///
+/// ```
+/// let tables: Vec<_> = csql::setting_tables().collect();
+/// assert_eq!(tables[0], "world");
+/// assert!(tables.contains(&"judge") && tables.len() == 8);
+/// ```
+pub fn setting_tables() -> impl Iterator<Item = &'static str> {
+    let mut seen: Vec<&'static str> = Vec::new();
+    SETTING_KEYS.iter().filter_map(move |k| {
+        let t = k.table?;
+        (!seen.contains(&t)).then(|| {
+            seen.push(t);
+            t
+        })
+    })
+}
+
+/// The learners that read some key of `table`.
+fn table_read_by(table: &str, kind: LearnerKind) -> bool {
+    SETTING_KEYS
+        .iter()
+        .any(|k| k.table == Some(table) && k.reads(kind))
+}
+
+/// The keys of the settings, for `csrl run --help`: the top level's, then each table's,
+/// each with the learners that read it where not every learner does.
+///
+/// ```
+/// let help = csql::settings_keys_help();
+/// assert!(help.contains("[u_tree]: fringe") && help.contains("(u-tree)"));
+/// assert!(help.lines().next().unwrap().starts_with("top level: map"));
+/// ```
+pub fn settings_keys_help() -> String {
+    let tables = std::iter::once(None).chain(setting_tables().map(Some));
+    let mut lines = Vec::new();
+    for table in tables {
+        // Runs of keys read by the same learners, in order.
+        let mut groups: Vec<(&[LearnerKind], Vec<&str>)> = Vec::new();
+        for k in SETTING_KEYS.iter().filter(|k| k.table == table) {
+            match groups.last_mut() {
+                Some((readers, names)) if *readers == k.read_by => names.push(k.name),
+                _ => groups.push((k.read_by, vec![k.name])),
+            }
+        }
+        let groups: Vec<String> = groups
+            .into_iter()
+            .map(|(readers, names)| {
+                let names = names.join(", ");
+                if readers == EVERY {
+                    names
+                } else {
+                    let readers: Vec<&str> = readers.iter().map(|k| k.name()).collect();
+                    format!("{names} ({})", readers.join(", "))
+                }
+            })
+            .collect();
+        let head = table.map_or("top level".to_string(), |t| format!("[{t}]"));
+        lines.push(format!("{head}: {}", groups.join("; ")));
+    }
+    lines.join("\n")
+}
+
+/// Table `table` named with its keys that are not at their defaults: `[u_tree] fringe`,
+/// or `[u_tree]` when all are.
+fn table_named<T: Serialize + Default>(table: &str, value: &T) -> String {
+    let keys = match (
+        toml::Table::try_from(value),
+        toml::Table::try_from(T::default()),
+    ) {
+        (Ok(given), Ok(default)) => given
+            .iter()
+            .filter(|(k, v)| default.get(k.as_str()) != Some(*v))
+            .map(|(k, _)| k.as_str())
+            .collect::<Vec<_>>()
+            .join(", "),
+        _ => String::new(),
+    };
+    if keys.is_empty() {
+        format!("[{table}]")
+    } else {
+        format!("[{table}] {keys}")
+    }
+}
 
 /// Tables are tables (`world = [0.3, 0.1]` would set fields by position), and a key in
 /// the wrong place says where it belongs.
 fn check_layout(layout: &toml::Table) -> Result<(), SettingsProblem> {
+    let is_top = |key: &str| setting_key(None, key).is_some();
+    let home_of = |key: &str, not: Option<&str>| {
+        SETTING_KEYS
+            .iter()
+            .find(|k| k.table.is_some() && k.table != not && k.name == key)
+            .and_then(|k| k.table)
+    };
     for (key, value) in layout {
-        if let Some((table, _)) = TABLES.iter().find(|(t, _)| t == key) {
+        if let Some(table) = setting_tables().find(|t| t == key) {
             let Some(inner) = value.as_table() else {
                 return Err(SettingsProblem::Layout(format!(
                     "`{key}` must be a table: write [{key}] and its settings by name, one per line"
                 )));
             };
             for inner_key in inner.keys() {
-                if TOP.contains(&inner_key.as_str()) {
+                if is_top(inner_key) {
                     return Err(SettingsProblem::Layout(format!(
                         "`{inner_key}` is a setting of the top level, not of [{table}]: write it before any table"
                     )));
                 }
-                if let Some((home, _)) = TABLES
-                    .iter()
-                    .find(|(t, keys)| t != table && keys.contains(&inner_key.as_str()))
-                {
+                if let Some(home) = home_of(inner_key, Some(table)) {
+                    if table == "extensions" && home == "judge" {
+                        return Err(SettingsProblem::Layout(format!(
+                            "`{inner_key}` moved from [extensions] to a table of its own: write it under [judge]"
+                        )));
+                    }
                     return Err(SettingsProblem::Layout(format!(
                         "`{inner_key}` is a setting of the [{home}] table, not of [{table}]"
                     )));
                 }
             }
-            if *table == "belief" && inner.contains_key("price_scale") {
+            if table == "belief" && inner.contains_key("price_scale") {
                 return Err(SettingsProblem::Layout(
                     "`price_scale` is not a setting of [belief]: sensing by belief prices a feature at its cost times [costly] price".to_string(),
                 ));
             }
-            if *table == "extensions"
+            if table == "extensions"
                 && let Some(rate) = inner.get("rate")
                 && !rate.is_table()
             {
@@ -393,8 +534,8 @@ fn check_layout(layout: &toml::Table) -> Result<(), SettingsProblem> {
                     "`rate` in [extensions] must be a table: write [extensions.rate] and its settings by name".to_string(),
                 ));
             }
-        } else if !TOP.contains(&key.as_str())
-            && let Some((home, _)) = TABLES.iter().find(|(_, keys)| keys.contains(&key.as_str()))
+        } else if !is_top(key)
+            && let Some(home) = home_of(key, None)
         {
             return Err(SettingsProblem::Layout(format!(
                 "`{key}` is a setting of the [{home}] table: write it under [{home}]"
@@ -497,6 +638,7 @@ impl SettingsDraft {
             prediction,
             world,
             extensions,
+            judge,
             learner,
             u_tree,
             max_rows,
@@ -506,25 +648,127 @@ impl SettingsDraft {
         );
     }
 
-    /// Forget the keys that belong to a learner (before another learner is chosen).
-    fn forget_learner_keys(&mut self) {
-        self.strategy = None;
-        self.random_moves = None;
-        self.predict_sensing = None;
-        self.prediction = None;
-        self.u_tree = None;
-        self.amrl_q = None;
-        self.belief = None;
-        if let Some(table) = &mut self.extensions {
-            let (_, judge) = table.split();
-            *table = ExtensionsTable::from_parts(Extensions::default(), judge);
+    /// The first key given that learner `kind` does not read ([`SETTING_KEYS`]), as a
+    /// message names it: the key and its value at the top level, a table given at all
+    /// when the learner reads none of it (even empty, or at its defaults), a key of
+    /// `[world]` given other than its default.
+    fn unread_given(&self, kind: LearnerKind) -> Option<String> {
+        SETTING_KEYS
+            .iter()
+            .filter(|k| !k.reads(kind))
+            .find_map(|k| self.given(k, kind))
+    }
+
+    /// Key `k` as given, named with its value (see [`SettingsDraft::unread_given`]).
+    fn given(&self, k: &SettingKey, kind: LearnerKind) -> Option<String> {
+        let named = |value: Option<String>| value.map(|v| format!("{} = {v}", k.name));
+        match k.table {
+            None => match k.name {
+                "map" => named(self.map.as_ref().map(|m| m.to_string())),
+                "learner" => named(self.learner.map(|l| l.to_string())),
+                "seed" => named(self.seed.map(|n| n.to_string())),
+                "max_moves" => named(self.max_moves.map(|n| n.get().to_string())),
+                "max_trials" => named(self.max_trials.map(|n| n.get().to_string())),
+                "beta" => named(self.beta.map(|x| x.get().to_string())),
+                "gamma" => named(self.gamma.map(|x| x.get().to_string())),
+                "temperature" => named(self.temperature.map(|x| x.get().to_string())),
+                "tolerance" => named(self.tolerance.map(|x| x.get().to_string())),
+                "decrease_threshold" => named(self.decrease_threshold.map(|x| x.get().to_string())),
+                "max_rows" => named(self.max_rows.map(|n| n.to_string())),
+                "strategy" => named(self.strategy.map(|x| x.to_string())),
+                "random_moves" => named(self.random_moves.map(|n| n.to_string())),
+                "predict_sensing" => named(self.predict_sensing.map(|x| x.to_string())),
+                _ => None,
+            },
+            // A key of [world] is known by its value: the table's keys are defaults
+            // when absent.
+            Some("world") if table_read_by("world", kind) => {
+                let w = self.world.as_ref()?;
+                let d = WorldExtras::default();
+                let given = match k.name {
+                    "slip" => w.slip != d.slip,
+                    "sensing_radius" => w.sensing_radius.is_some(),
+                    "slide" => w.slide != d.slide,
+                    "sensing" => w.sensing.is_some(),
+                    "factor_costs" => w.factor_costs.is_some(),
+                    "sensor_noise" => w.sensor_noise != d.sensor_noise,
+                    _ => false,
+                };
+                given.then(|| format!("[world] {}", k.name))
+            }
+            Some(table) => self.table_given(table),
+        }
+    }
+
+    /// Table `table` as given: named with the keys that are not at their defaults.
+    fn table_given(&self, table: &str) -> Option<String> {
+        match table {
+            "world" => self.world.as_ref().map(|t| table_named(table, t)),
+            "judge" => self.judge.as_ref().map(|t| table_named(table, t)),
+            "costly" => self.costly.as_ref().map(|t| table_named(table, t)),
+            "extensions" => self.extensions.as_ref().map(|t| table_named(table, t)),
+            "prediction" => self.prediction.as_ref().map(|t| table_named(table, t)),
+            "u_tree" => self.u_tree.as_ref().map(|t| table_named(table, t)),
+            "amrl_q" => self.amrl_q.as_ref().map(|t| table_named(table, t)),
+            "belief" => self.belief.as_ref().map(|t| table_named(table, t)),
+            _ => None,
+        }
+    }
+
+    /// Forget every key that learner `kind` does not read (before it is chosen in place
+    /// of another, or when settings are written out).
+    fn forget_unread(&mut self, kind: LearnerKind) {
+        for k in SETTING_KEYS.iter().filter(|k| !k.reads(kind)) {
+            match (k.table, k.name) {
+                (None, "map") => self.map = None,
+                (None, "learner") => self.learner = None,
+                (None, "seed") => self.seed = None,
+                (None, "max_moves") => self.max_moves = None,
+                (None, "max_trials") => self.max_trials = None,
+                (None, "beta") => self.beta = None,
+                (None, "gamma") => self.gamma = None,
+                (None, "temperature") => self.temperature = None,
+                (None, "tolerance") => self.tolerance = None,
+                (None, "decrease_threshold") => self.decrease_threshold = None,
+                (None, "max_rows") => self.max_rows = None,
+                (None, "strategy") => self.strategy = None,
+                (None, "random_moves") => self.random_moves = None,
+                (None, "predict_sensing") => self.predict_sensing = None,
+                (Some("world"), name) if table_read_by("world", kind) => {
+                    if let Some(w) = &mut self.world {
+                        let d = WorldExtras::default();
+                        match name {
+                            "slip" => w.slip = d.slip,
+                            "sensing_radius" => w.sensing_radius = d.sensing_radius,
+                            "slide" => w.slide = d.slide,
+                            "sensing" => w.sensing = d.sensing,
+                            "factor_costs" => w.factor_costs = d.factor_costs,
+                            "sensor_noise" => w.sensor_noise = d.sensor_noise,
+                            _ => {}
+                        }
+                    }
+                    if self.world.as_ref().is_some_and(WorldExtras::is_default) {
+                        self.world = None;
+                    }
+                }
+                (Some("world"), _) => self.world = None,
+                (Some("judge"), _) => self.judge = None,
+                (Some("costly"), _) => self.costly = None,
+                (Some("extensions"), _) => self.extensions = None,
+                (Some("prediction"), _) => self.prediction = None,
+                (Some("u_tree"), _) => self.u_tree = None,
+                (Some("amrl_q"), _) => self.amrl_q = None,
+                (Some("belief"), _) => self.belief = None,
+                _ => {}
+            }
         }
     }
 
     /// The run's settings: each learner with only its own keys, everything not given at
     /// the paper's value, and every combination checked once
-    /// ([`RunSettings::validate`]). A key of one learner given with another is refused,
-    /// naming both.
+    /// ([`RunSettings::validate`]). A key that the learner chosen does not read
+    /// ([`SETTING_KEYS`]) is refused, naming the key and the learner; so is a table of
+    /// another learner given at all, even empty or at its defaults.
     ///
     /// ```
     /// let d = csql::SettingsDraft::from_toml("learner = \"u-tree\"\n[u_tree]\nfringe = 3", "f").unwrap();
@@ -532,35 +776,21 @@ impl SettingsDraft {
     /// assert!(matches!(s.learner, csql::Learner::UTree(p) if p.fringe == 3));
     /// let d = csql::SettingsDraft::from_toml("[u_tree]\nfringe = 3", "f").unwrap();
     /// assert!(d.build().unwrap_err().to_string().contains("learner = cs-ql"));
+    /// let d = csql::SettingsDraft::from_toml("learner = \"amrl-q\"\ngamma = 0.9\n[costly]\nprice = 1", "f").unwrap();
+    /// let err = d.build().unwrap_err().to_string();
+    /// assert!(err.starts_with("gamma = 0.9 and learner = amrl-q cannot be used together"), "{err}");
     /// ```
     pub fn build(&self) -> Result<RunSettings, Error> {
         let kind = self.learner.unwrap_or_default();
-        let (extensions, judge) = self.extensions.unwrap_or_default().split();
-        let conflict = |first: String, why: &'static str| {
-            Err(Error::Conflict {
+        if let Some(first) = self.unread_given(kind) {
+            return Err(Error::Conflict {
                 first,
                 second: format!("learner = {kind}"),
-                why,
-            })
-        };
-        if kind != LearnerKind::UTree && self.u_tree.is_some_and(|p| !p.is_default()) {
-            return conflict(
-                "[u_tree] settings".to_string(),
-                "[u_tree] tunes learner = \"u-tree\"",
-            );
+                why: "the learner does not read it (csrl run --help lists the keys each learner reads)",
+            });
         }
-        if kind != LearnerKind::AmrlQ && self.amrl_q.is_some_and(|p| !p.is_default()) {
-            return conflict(
-                "[amrl_q] settings".to_string(),
-                "[amrl_q] tunes learner = \"amrl-q\"",
-            );
-        }
-        if kind != LearnerKind::Belief && self.belief.is_some_and(|p| !p.is_default()) {
-            return conflict(
-                "[belief] settings".to_string(),
-                "[belief] tunes learner = \"belief\"",
-            );
-        }
+        let extensions = self.extensions.unwrap_or_default().extensions();
+        let judge = self.judge.unwrap_or_default();
         let costly = match self.costly {
             None => None,
             Some(CostlyTable { price: None, .. }) => {
@@ -585,40 +815,15 @@ impl SettingsDraft {
                 prediction: self.prediction.unwrap_or_default(),
                 extensions,
             }),
-            LearnerKind::UTree
-            | LearnerKind::FullSensing
-            | LearnerKind::AmrlQ
-            | LearnerKind::Belief => {
-                let why =
-                    "it is a setting of CS-QL, and the baselines have none of CS-QL's settings";
-                if let Some(k) = self.strategy {
-                    return conflict(format!("strategy = {k}"), why);
-                }
-                if let Some(n) = self.random_moves {
-                    return conflict(format!("random_moves = {n}"), why);
-                }
-                if let Some(level) = self.predict_sensing.filter(|l| !l.is_off()) {
-                    return conflict(format!("predict_sensing = {level}"), why);
-                }
-                if self.prediction.is_some_and(|p| !p.is_default()) {
-                    return conflict("[prediction] settings".to_string(), why);
-                }
-                let given = cs_ql_extension_keys(&extensions);
-                if !given.is_empty() {
-                    return conflict(format!("[extensions] {}", given.join(", ")), why);
-                }
-                match kind {
-                    LearnerKind::UTree => Learner::UTree(self.u_tree.unwrap_or_default()),
-                    LearnerKind::AmrlQ => Learner::AmrlQ(self.amrl_q.unwrap_or_default()),
-                    // Features priced at `[costly] price` (which the learner needs: refused
-                    // without it below).
-                    LearnerKind::Belief => Learner::Belief(crate::BeliefParams {
-                        price_scale: costly.map_or(1.0, |c: CostlySettings| c.price),
-                        ..self.belief.unwrap_or_default()
-                    }),
-                    _ => Learner::FullSensing,
-                }
-            }
+            LearnerKind::UTree => Learner::UTree(self.u_tree.unwrap_or_default()),
+            LearnerKind::FullSensing => Learner::FullSensing,
+            LearnerKind::AmrlQ => Learner::AmrlQ(self.amrl_q.unwrap_or_default()),
+            // Features priced at `[costly] price` (which the learner needs: refused
+            // without it by `validate`).
+            LearnerKind::Belief => Learner::Belief(crate::BeliefParams {
+                price_scale: costly.map_or(1.0, |c: CostlySettings| c.price),
+                ..self.belief.unwrap_or_default()
+            }),
         };
         let paper = RunSettings::tan1991(DEFAULT_MAP, StrategyKind::Resetting, 1);
         let settings = RunSettings {
@@ -642,20 +847,28 @@ impl SettingsDraft {
     }
 }
 
-/// Every key of the settings, as a report's JSON has them: the learner's own keys, and
-/// the settings beyond the paper only where they are not at their defaults.
+/// Every key of the settings that the learner reads ([`SETTING_KEYS`]), as a report's
+/// JSON has them: the learner's own keys, the keys it shares with others, and the
+/// settings beyond the paper only where they are not at their defaults. Built again
+/// ([`SettingsDraft::build`]), they give the same settings.
 ///
 /// ```
 /// let s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
 /// let d = csql::SettingsDraft::from(&s);
 /// assert_eq!(d.build().unwrap(), s);
-/// assert!(d.extensions.is_none() && d.learner.is_none());
+/// assert!(d.extensions.is_none() && d.learner.is_none() && d.judge.is_none());
+/// // AMRL-Q reads no key of Q-learning: its settings leave them out.
+/// let mut a = s.with_learner(csql::LearnerKind::AmrlQ);
+/// a.costly = Some(csql::CostlySettings::new(0.5));
+/// let d = csql::SettingsDraft::from(&a);
+/// assert!(d.beta.is_none() && d.gamma.is_none() && d.seed == Some(1));
+/// assert_eq!(d.build().unwrap(), a);
 /// ```
 impl From<&RunSettings> for SettingsDraft {
     fn from(s: &RunSettings) -> SettingsDraft {
         let q = s.cs_ql();
-        let table = ExtensionsTable::from_parts(s.extensions(), s.judge);
-        SettingsDraft {
+        let kind = s.learner.kind();
+        let mut draft = SettingsDraft {
             map: Some(s.map.clone()),
             strategy: q.map(|q| q.strategy),
             beta: Some(s.beta),
@@ -670,8 +883,11 @@ impl From<&RunSettings> for SettingsDraft {
             predict_sensing: q.map(|q| q.predict_sensing).filter(|l| !l.is_off()),
             prediction: q.map(|q| q.prediction).filter(|p| !p.is_default()),
             world: Some(s.world.clone()).filter(|w| !w.is_default()),
-            extensions: Some(table).filter(|t| *t != ExtensionsTable::default()),
-            learner: Some(s.learner.kind()).filter(|k| !k.is_cs_ql()),
+            extensions: q
+                .map(|q| ExtensionsTable::from(q.extensions))
+                .filter(|t| *t != ExtensionsTable::default()),
+            judge: Some(s.judge).filter(|j| *j != JudgeSettings::default()),
+            learner: Some(kind).filter(|k| !k.is_cs_ql()),
             u_tree: match s.learner {
                 Learner::UTree(p) if !p.is_default() => Some(p),
                 _ => None,
@@ -689,7 +905,9 @@ impl From<&RunSettings> for SettingsDraft {
                 Learner::Belief(p) if !p.is_default() => Some(p),
                 _ => None,
             },
-        }
+        };
+        draft.forget_unread(kind);
+        draft
     }
 }
 
@@ -740,8 +958,8 @@ impl RunSettings {
 
     fn apply(&mut self, file: SettingsDraft) -> Result<(), Error> {
         let mut draft = SettingsDraft::from(&*self);
-        if file.learner.is_some_and(|k| k != self.learner.kind()) {
-            draft.forget_learner_keys();
+        if let Some(kind) = file.learner.filter(|k| *k != self.learner.kind()) {
+            draft.forget_unread(kind);
         }
         draft.overlay(file);
         *self = draft.build()?;

@@ -110,8 +110,8 @@ pub enum Matching {
     Nearest,
 }
 
-/// CS-QL's remedies beyond the paper (specification §6), the CS-QL-only keys of the TOML
-/// table `[extensions]`. All off by default.
+/// CS-QL's remedies beyond the paper (specification §6), the keys of the TOML table
+/// `[extensions]` (CS-QL only). All off by default.
 ///
 /// ```
 /// let mut s = csql::RunSettings::tan1991("tan8x8", csql::StrategyKind::Lazy, 1);

@@ -136,8 +136,7 @@ pub struct CsQlSettings {
     /// The confidence rule, re-check rates and navigation trials of prediction (the
     /// TOML table `[prediction]`; only with `predict_sensing` other than `off`).
     pub prediction: Prediction,
-    /// CS-QL's remedies beyond the paper (the CS-QL keys of the TOML table
-    /// `[extensions]`).
+    /// CS-QL's remedies beyond the paper (the TOML table `[extensions]`).
     pub extensions: Extensions,
 }
 

@@ -230,7 +230,10 @@ pub use costly::{CostedReport, CostedRun, costed_episodes, costed_report, costed
 pub use detector::{
     ActionDrop, AnyDrop, Detector, DetectorKind, RateParams, RateTest, RunDetector,
 };
-pub use draft::{CostlyTable, DEFAULT_MAP, ExtensionsTable, SettingsDraft};
+pub use draft::{
+    CostlyTable, DEFAULT_MAP, ExtensionsTable, SETTING_KEYS, SettingKey, SettingsDraft,
+    setting_key, setting_tables, settings_keys_help,
+};
 pub use error::{Error, SettingsProblem};
 pub use extensions::{Extensions, Matching, WorldExtras};
 pub use figure::{descriptions_svg, descriptions_table, policy_svg};

@@ -128,7 +128,7 @@ pub(crate) fn check_with_world(
         && settings.judge.quality_patience != defaults.quality_patience
     {
         return Err(Error::Conflict {
-            first: "extensions.quality_patience".to_string(),
+            first: "judge.quality_patience".to_string(),
             second: "a run the oracle judges (a deterministic world, the paper's setting)"
                 .to_string(),
             why: "the oracle's convergence ends such a run; the quality is measured there, every quality_every trials, but judges only runs beyond the paper (slip, slide, noise, a sensing range, an extension, or judge_by_quality = true)",

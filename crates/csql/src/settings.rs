@@ -285,7 +285,7 @@ pub struct RunSettings {
     pub seed: u64,
     /// The world's departures from the paper (TOML table `[world]`).
     pub world: WorldExtras,
-    /// How the run is judged (the judging keys of the TOML table `[extensions]`).
+    /// How the run is judged (the TOML table `[judge]`).
     pub judge: JudgeSettings,
     /// The most rows the representation may reach before the run ends, saying so (at
     /// least 1, at most and by default [`MAX_ROWS`]).
@@ -327,8 +327,10 @@ impl CostlySettings {
 }
 
 /// How a run is judged: one explicit choice, `judge_by_quality`, and the schedule of the
-/// policy quality (the keys `judge_by_quality`, `quality_every` and `quality_patience` of
-/// the TOML table `[extensions]`; specification §6.3).
+/// policy quality (the TOML table `[judge]`: `judge_by_quality`, `quality_every` and
+/// `quality_patience`, each at its default when absent and then left out of a report's
+/// JSON; specification §6.3). The learners played on costed episodes (`amrl-q`,
+/// `belief`) are not judged and refuse the table.
 ///
 /// By default a run in a deterministic world in the paper's setting is judged by the
 /// oracle's convergence, and any other by the quality; `judge_by_quality = true` judges
@@ -338,19 +340,35 @@ impl CostlySettings {
 /// ```
 /// let j = csql::JudgeSettings::default();
 /// assert_eq!((j.judge_by_quality, j.quality_every, j.quality_patience), (false, 10, 20));
+/// let s = csql::SettingsDraft::from_toml("[judge]\nquality_every = 5", "f").unwrap();
+/// assert_eq!(s.build().unwrap().judge.quality_every, 5);
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
 pub struct JudgeSettings {
     /// Judge the run by the policy quality even in the paper's world (as every run beyond
     /// it is judged), so that runs in and beyond it are measured alike. Off by default:
     /// the paper's runs are judged by the oracle's convergence.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub judge_by_quality: bool,
     /// Trials between two evaluations of the policy quality (at least 1).
+    #[serde(skip_serializing_if = "JudgeSettings::is_default_every")]
     pub quality_every: u32,
     /// Where the quality judges: the run ends once the quality has stayed at or above
     /// 0.95 for this many consecutive evaluations (at least 1; refused where the oracle
     /// judges).
+    #[serde(skip_serializing_if = "JudgeSettings::is_default_patience")]
     pub quality_patience: u32,
+}
+
+impl JudgeSettings {
+    fn is_default_every(n: &u32) -> bool {
+        *n == JudgeSettings::default().quality_every
+    }
+
+    fn is_default_patience(n: &u32) -> bool {
+        *n == JudgeSettings::default().quality_patience
+    }
 }
 
 impl Default for JudgeSettings {
@@ -541,10 +559,10 @@ impl RunSettings {
             );
         }
         if self.judge.quality_every == 0 {
-            return refuse("extensions.quality_every = 0".into(), "at least 1");
+            return refuse("judge.quality_every = 0".into(), "at least 1");
         }
         if self.judge.quality_patience == 0 {
-            return refuse("extensions.quality_patience = 0".into(), "at least 1");
+            return refuse("judge.quality_patience = 0".into(), "at least 1");
         }
         if !(1..=MAX_ROWS).contains(&self.max_rows) {
             return refuse(

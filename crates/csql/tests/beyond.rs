@@ -36,29 +36,29 @@ fn each_extension_changes_the_run_only_when_on() {
     let base = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 2);
     // (the extension on, the same settings with it at its default); both judged alike,
     // so that only the extension itself can tell the two runs apart.
-    let common = "max_trials = 100\n[extensions]\njudge_by_quality = true\nquality_every = 50";
-    let noisy = "max_trials = 100\n[world]\nsensor_noise = 0.05\n[extensions]\nquality_every = 50";
-    let near = "max_trials = 100\n[world]\nsensing_radius = 1\n[extensions]\nquality_every = 50";
+    let common = "max_trials = 100\n[judge]\njudge_by_quality = true\nquality_every = 50";
+    let noisy = "max_trials = 100\n[world]\nsensor_noise = 0.05\n[judge]\nquality_every = 50";
+    let near = "max_trials = 100\n[world]\nsensing_radius = 1\n[judge]\nquality_every = 50";
     let tweaks = [
         (
-            "max_trials = 100\n[world]\nslip = 0.1\n[extensions]\njudge_by_quality = true\nquality_every = 50".to_string(),
+            "max_trials = 100\n[world]\nslip = 0.1\n[judge]\njudge_by_quality = true\nquality_every = 50".to_string(),
             common.to_string(),
         ),
         (noisy.to_string(), common.to_string()),
         (near.to_string(), common.to_string()),
         (
-            format!("{common}\ndetector = \"statistical\""),
+            format!("{common}\n[extensions]\ndetector = \"statistical\""),
             common.to_string(),
         ),
         (
-            format!("{noisy}\nmatching = \"nearest\""),
+            format!("{noisy}\n[extensions]\nmatching = \"nearest\""),
             noisy.to_string(),
         ),
-        (format!("{noisy}\nconfirm_new = 3"), noisy.to_string()),
-        (format!("{common}\nreads = 3"), common.to_string()),
-        (format!("{near}\nmemory = 2"), near.to_string()),
+        (format!("{noisy}\n[extensions]\nconfirm_new = 3"), noisy.to_string()),
+        (format!("{common}\n[extensions]\nreads = 3"), common.to_string()),
+        (format!("{near}\n[extensions]\nmemory = 2"), near.to_string()),
         (
-            "max_trials = 100\n[extensions]\njudge_by_quality = true".to_string(),
+            "max_trials = 100\n[judge]\njudge_by_quality = true".to_string(),
             "max_trials = 100".to_string(),
         ),
         (
@@ -90,7 +90,7 @@ fn each_extension_changes_the_run_only_when_on() {
 fn runs_beyond_the_paper_are_pure_functions_of_their_settings() {
     let mut s = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 5);
     s.apply_toml(
-        "max_trials = 60\n[world]\nslip = 0.1\nsensor_noise = 0.05\n[extensions]\nquality_every = 30\ndetector = \"statistical\"\nmatching = \"nearest\"",
+        "max_trials = 60\n[world]\nslip = 0.1\nsensor_noise = 0.05\n[extensions]\ndetector = \"statistical\"\nmatching = \"nearest\"\n[judge]\nquality_every = 30",
         "t",
     )
     .unwrap();
@@ -124,7 +124,7 @@ fn nearest_matching_makes_fewer_descriptions_under_noise() {
     let mut exact = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 4);
     exact
         .apply_toml(
-            "max_trials = 150\n[world]\nsensor_noise = 0.05\n[extensions]\nquality_every = 150",
+            "max_trials = 150\n[world]\nsensor_noise = 0.05\n[judge]\nquality_every = 150",
             "t",
         )
         .unwrap();
@@ -165,7 +165,7 @@ fn new_settings_at_their_defaults_change_nothing() {
     let mut explicit = plain.clone();
     explicit
         .apply_toml(
-            "learner = \"cs-ql\"\n[extensions]\nconfirm_new = 1\nreads = 1\nmemory = 0\njudge_by_quality = false",
+            "learner = \"cs-ql\"\n[extensions]\nconfirm_new = 1\nreads = 1\nmemory = 0\n[judge]\njudge_by_quality = false",
             "t",
         )
         .unwrap();
@@ -207,7 +207,7 @@ fn confirming_new_descriptions_keeps_misreadings_out() {
     let mut plain = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 4);
     plain
         .apply_toml(
-            "beta = 0.2\nmax_trials = 300\n[world]\nsensor_noise = 0.05\n[extensions]\nquality_every = 300\nmatching = \"nearest\"",
+            "beta = 0.2\nmax_trials = 300\n[world]\nsensor_noise = 0.05\n[extensions]\nmatching = \"nearest\"\n[judge]\nquality_every = 300",
             "t",
         )
         .unwrap();
@@ -228,7 +228,7 @@ fn memory_tells_apart_what_a_radius_of_one_cannot() {
     let mut plain = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 1);
     plain
         .apply_toml(
-            "max_trials = 300\n[world]\nsensing_radius = 1\n[extensions]\nquality_every = 300",
+            "max_trials = 300\n[world]\nsensing_radius = 1\n[judge]\nquality_every = 300",
             "t",
         )
         .unwrap();
@@ -313,9 +313,9 @@ fn cs_ql_extensions_are_refused_with_another_learner() {
 fn settings_that_mean_nothing_are_refused() {
     let cases = [
         ("[extensions]\nrate = { window = 10 }", "rate"),
-        ("[extensions]\nquality_patience = 3", "quality_patience"),
+        ("[judge]\nquality_patience = 3", "quality_patience"),
         // The quality is measured in every run, on this schedule.
-        ("[extensions]\nquality_every = 11", ""),
+        ("[judge]\nquality_every = 11", ""),
         ("[extensions]\nmemory = 2", "memory"),
         ("[u_tree]\nfringe = 3", "u_tree"),
         ("[prediction]\nmax_skips = 3", "prediction"),

@@ -34,9 +34,13 @@ fn run_hash(map: &str, strategy: StrategyKind, seed: u64) -> (u64, usize) {
 /// after the pins were taken (they measure the learned policy, they do not change it):
 /// the final `policy_quality` (checked on its own where it is known), `judged_by`, and,
 /// in a run the oracle judges, the `quality` block; in a run judged by the quality, that
-/// block's cost per state kept its old name, `sensing_cost_per_state`.
+/// block's cost per state kept its old name, `sensing_cost_per_state`. The judging keys,
+/// echoed in the settings' table `[judge]` since they left `[extensions]`, are put back
+/// at the end of `[extensions]`, where they were pinned (every pinned run that has them
+/// has an extension too).
 fn pinned_json(report: &csql::RunReport) -> String {
     let json = serde_json::to_string(report).unwrap();
+    let json = json.replacen("},\"judge\":{", ",", 1);
     let json = cut(&json, ",\"policy_quality\":");
     let json = cut(&json, ",\"judged_by\":");
     match report.judged_by {
@@ -312,7 +316,7 @@ const BEYOND: &[(&str, StrategyKind, u64, &str, u64, usize)] = &[
         "tan8x8",
         StrategyKind::Lazy,
         3,
-        "beta = 0.2\nmax_trials = 200\n[world]\nsensor_noise = 0.05\n[extensions]\nmatching = \"nearest\"\nconfirm_new = 3\nreads = 5\nquality_every = 50",
+        "beta = 0.2\nmax_trials = 200\n[world]\nsensor_noise = 0.05\n[extensions]\nmatching = \"nearest\"\nconfirm_new = 3\nreads = 5\n[judge]\nquality_every = 50",
         0x20ea7bbb365a3db9,
         61451,
     ),
@@ -320,7 +324,7 @@ const BEYOND: &[(&str, StrategyKind, u64, &str, u64, usize)] = &[
         "tan8x8",
         StrategyKind::Lazy,
         4,
-        "max_trials = 200\n[world]\nsensing_radius = 1\n[extensions]\nmemory = 2\nquality_every = 50",
+        "max_trials = 200\n[world]\nsensing_radius = 1\n[extensions]\nmemory = 2\n[judge]\nquality_every = 50",
         0x53312e21d5cd158b,
         181084,
     ),

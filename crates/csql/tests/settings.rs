@@ -66,7 +66,7 @@ fn each_learner_takes_only_its_own_keys() {
 fn the_judging_is_every_learners() {
     for learner in LearnerKind::ALL {
         let text = format!(
-            "learner = \"{learner}\"\n[extensions]\njudge_by_quality = true\nquality_every = 5\nquality_patience = 3"
+            "learner = \"{learner}\"\n[judge]\njudge_by_quality = true\nquality_every = 5\nquality_patience = 3"
         );
         let s = SettingsDraft::from_toml(&text, "f")
             .unwrap()
@@ -77,8 +77,11 @@ fn the_judging_is_every_learners() {
         assert_eq!((s.judge.quality_every, s.judge.quality_patience), (5, 3));
     }
     let mut s = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
-    s.apply_toml("[extensions]\nreads = 3\njudge_by_quality = true", "f")
-        .unwrap();
+    s.apply_toml(
+        "[extensions]\nreads = 3\n[judge]\njudge_by_quality = true",
+        "f",
+    )
+    .unwrap();
     // Another learner starts from its defaults: CS-QL's reads are gone, the judging stays.
     s.apply_toml("learner = \"u-tree\"", "f").unwrap();
     assert_eq!(s.learner, Learner::UTree(UTreeParams::default()));
@@ -121,8 +124,8 @@ fn settings_round_trip_through_their_json() {
         "",
         "strategy = \"random\"\nrandom_moves = 5\nbeta = 0.5",
         "predict_sensing = \"learned\"\n[prediction]\nrecheck = 0.1",
-        "beta = 0.2\n[world]\nsensor_noise = 0.05\n[extensions]\nmatching = \"nearest\"\nreads = 3\nquality_every = 50",
-        "learner = \"u-tree\"\nmax_rows = 500\n[u_tree]\nalpha = 0.05\n[extensions]\njudge_by_quality = true",
+        "beta = 0.2\n[world]\nsensor_noise = 0.05\n[extensions]\nmatching = \"nearest\"\nreads = 3\n[judge]\nquality_every = 50",
+        "learner = \"u-tree\"\nmax_rows = 500\n[u_tree]\nalpha = 0.05\n[judge]\njudge_by_quality = true",
         "learner = \"full-sensing\"\n[world]\nslip = 0.1",
     ];
     for text in texts {
