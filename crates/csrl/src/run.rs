@@ -28,12 +28,9 @@ pub struct RunArgs {
     /// The seed of the run (default: the config's, else 1).
     #[arg(long)]
     seed: Option<u64>,
-    /// A TOML file of settings that override the paper's (beta, gamma, temperature,
-    /// max_moves, random_moves, tolerance, decrease_threshold, max_trials, map,
-    /// strategy, seed, predict_sensing, learner and the tables `[prediction]`,
-    /// `[world]`, `[extensions]`, `[u_tree]`, `[amrl_q]`, `[belief]` and `[costly]`); flags given
-    /// here override the file.
-    #[arg(long)]
+    /// A TOML file of settings that override the paper's; flags given here override the
+    /// file (`--help` lists the keys, and the learners that read each).
+    #[arg(long, long_help = config_help())]
     config: Option<PathBuf>,
     /// off, learned, motion or belief: predict the next description instead of sensing
     /// it (default: the config's `predict_sensing`, else off; the `[prediction]` table of
@@ -108,6 +105,17 @@ impl RunArgs {
         }
         Ok(draft.build()?)
     }
+}
+
+/// The long help of `--config`: the keys of a settings file, from the one table of them
+/// ([`csql::SETTING_KEYS`]).
+fn config_help() -> String {
+    format!(
+        "A TOML file of settings that override the paper's; flags given here override the file. \
+         A key the learner does not read is refused (with its learners in parentheses where \
+         not every learner reads it), and so is a table of another learner:\n{}",
+        csql::settings_keys_help()
+    )
 }
 
 /// `--sensing-rule`.
