@@ -807,6 +807,28 @@ impl SettingsDraft {
                 rule: rule.unwrap_or(mdp::SensingRule::WithMove),
             }),
         };
+        // Within CS-QL, two keys are read only with another: given without it (even at
+        // their defaults) they would be ignored.
+        let strategy = self.strategy.unwrap_or(StrategyKind::Resetting);
+        if let Some(n) = self.random_moves
+            && strategy != StrategyKind::Random
+        {
+            return Err(Error::Conflict {
+                first: format!("random_moves = {n}"),
+                second: format!("strategy = {strategy}"),
+                why: "random moves follow a refinement of the random strategy only",
+            });
+        }
+        let level = self.predict_sensing.unwrap_or_default();
+        if let Some(p) = &self.prediction
+            && level.is_off()
+        {
+            return Err(Error::Conflict {
+                first: table_named("prediction", p),
+                second: "predict_sensing = off".to_string(),
+                why: "[prediction] tunes predict_sensing = \"learned\", \"motion\" or \"belief\"",
+            });
+        }
         let learner = match kind {
             LearnerKind::CsQl => Learner::CsQl(CsQlSettings {
                 strategy: self.strategy.unwrap_or(StrategyKind::Resetting),
@@ -875,7 +897,9 @@ impl From<&RunSettings> for SettingsDraft {
             gamma: Some(s.gamma),
             temperature: Some(s.temperature),
             max_moves: Some(s.max_moves),
-            random_moves: q.map(|q| q.random_moves),
+            random_moves: q
+                .filter(|q| q.strategy == StrategyKind::Random)
+                .map(|q| q.random_moves),
             tolerance: Some(s.tolerance),
             decrease_threshold: Some(s.decrease_threshold),
             max_trials: Some(s.max_trials),
@@ -960,6 +984,14 @@ impl RunSettings {
         let mut draft = SettingsDraft::from(&*self);
         if let Some(kind) = file.learner.filter(|k| *k != self.learner.kind()) {
             draft.forget_unread(kind);
+        }
+        // Another strategy, chosen over the random one at the paper's random moves,
+        // leaves them (other random moves are refused with it, as they mean nothing).
+        if file.strategy.is_some()
+            && file.random_moves.is_none()
+            && draft.random_moves == Some(PAPER_RANDOM_MOVES)
+        {
+            draft.random_moves = None;
         }
         draft.overlay(file);
         *self = draft.build()?;

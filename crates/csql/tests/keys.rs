@@ -324,6 +324,29 @@ fn settings_of_every_learner_round_trip_and_change_learner() {
         s.apply_toml("gamma = 0.5\nlearner = \"belief\"", "d")
             .is_err()
     );
+    // The random strategy's random moves, echoed with it only, at the paper's value are
+    // left when another strategy is chosen; given with another, they are refused.
+    let mut s = RunSettings::tan1991("tan3x3", StrategyKind::Random, 4);
+    assert!(toml::to_string(&s).unwrap().contains("random_moves = 20"));
+    s.apply_toml("strategy = \"lazy\"", "e").unwrap();
+    assert!(!toml::to_string(&s).unwrap().contains("random_moves"));
+    let err = s
+        .apply_toml("random_moves = 20", "f")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.starts_with("random_moves = 20 and strategy = lazy"),
+        "{err}"
+    );
+    let err = SettingsDraft::from_toml("[prediction]", "g")
+        .unwrap()
+        .build()
+        .unwrap_err();
+    assert!(
+        err.to_string()
+            .starts_with("[prediction] and predict_sensing = off"),
+        "{err}"
+    );
 }
 
 /// The specification's list of keys (6.9) is the table of keys: every key, with the

@@ -37,10 +37,19 @@ fn run_hash(map: &str, strategy: StrategyKind, seed: u64) -> (u64, usize) {
 /// block's cost per state kept its old name, `sensing_cost_per_state`. The judging keys,
 /// echoed in the settings' table `[judge]` since they left `[extensions]`, are put back
 /// at the end of `[extensions]`, where they were pinned (every pinned run that has them
-/// has an extension too).
+/// has an extension too). CS-QL's `random_moves`, echoed since only with the random
+/// strategy (the only one that reads it), is put back where it was pinned: at its
+/// default, after `max_moves`.
 fn pinned_json(report: &csql::RunReport) -> String {
     let json = serde_json::to_string(report).unwrap();
     let json = json.replacen("},\"judge\":{", ",", 1);
+    let json = match report.settings.cs_ql() {
+        Some(q) if q.strategy != StrategyKind::Random => {
+            assert!(!json.contains("\"random_moves\""));
+            json.replacen(",\"tolerance\":", ",\"random_moves\":20,\"tolerance\":", 1)
+        }
+        _ => json,
+    };
     let json = cut(&json, ",\"policy_quality\":");
     let json = cut(&json, ",\"judged_by\":");
     match report.judged_by {
