@@ -105,6 +105,13 @@ def test_world_file_runs_as_the_cli_runs_it(cli, tmp_path):
         (dict(world="tan3x3", learner="u-tree", strategy="lazy"),
          ["--world", "tan3x3", "--learner", "u-tree", "--strategy", "lazy"], csrl.SettingsError),
         (dict(world="tan3x3", settings={"gamma": 1.0}), None, csrl.SettingsError),
+        # A key the learner does not read, from the settings or an argument.
+        (dict(world="tan3x3", settings={"learner": "belief", "gamma": 0.9, "costly": {"price": 0.1}}),
+         None, csrl.SettingsError),
+        (dict(world="frozenlake4x4", learner="amrl-q", predict_sensing="off"),
+         ["--world", "frozenlake4x4", "--learner", "amrl-q", "--predict-sensing", "off"], csrl.SettingsError),
+        # The judging keys moved to [judge].
+        (dict(world="tan3x3", settings={"extensions": {"judge_by_quality": True}}), None, csrl.SettingsError),
     ],
 )
 def test_errors_are_value_errors_with_the_cli_message(cli, tmp_path, kwargs, flags, exc):
@@ -240,6 +247,8 @@ def test_belief_on_a_world_object():
     report = csrl.run(world=lake, learner="belief", seed=2, max_trials=30, settings={"costly": {"price": 0.025}})
     assert report["map"] == "frozenlake4x4" and report["learner"] == "belief"
     assert len(report["costly"]["returns"]) == 30
+    # Only the keys the learner reads are echoed.
+    assert "gamma" not in report["settings"] and report["settings"]["max_trials"] == 30
 
 
 def test_belief_refusals_are_settings_errors(cli):
