@@ -58,6 +58,12 @@ pub struct TestcostArgs {
     /// library's default).
     #[arg(long, default_value = "costs")]
     icet_pruning: String,
+    /// The most training objects ICET's search uses (half to grow, half to score); the
+    /// final tree always grows on every training object. 1000 here (the library's
+    /// default is 400): on the large data sets the search then sees trees of the size
+    /// the final one has, which reproduces the published ICET at mc 1000.
+    #[arg(long, default_value_t = 1000)]
+    icet_search_objects: usize,
     /// The range random prices are drawn from: `LOW,HIGH`.
     #[arg(long, value_delimiter = ',', default_value = "1,100")]
     price_range: Vec<f64>,
@@ -107,9 +113,17 @@ pub(crate) struct Definition {
     /// Results written before this setting existed were pruned by errors.
     #[serde(default)]
     pub icet_pruning: Pruning,
+    /// Results written before this setting existed searched on at most 400 objects.
+    #[serde(default = "library_search_objects")]
+    pub icet_search_objects: usize,
     pub runs: u64,
     pub folds: usize,
     pub seed: u64,
+}
+
+/// ICET's search size in the library's defaults.
+fn library_search_objects() -> usize {
+    IcetParams::default().search_objects
 }
 
 /// How random prices are drawn.
@@ -284,6 +298,7 @@ fn run_job(
         selection_prices: def.selection_prices,
         icet: IcetParams {
             pruning: def.icet_pruning,
+            search_objects: def.icet_search_objects,
             ..IcetParams::default()
         },
         ..FamilyParams::default()
@@ -413,6 +428,9 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
         .map_err(|e| anyhow::anyhow!("--selection-prices: {e}"))?;
     let icet_pruning =
         Pruning::parse(&args.icet_pruning).map_err(|e| anyhow::anyhow!("--icet-pruning: {e}"))?;
+    if args.icet_search_objects < 2 {
+        bail!("--icet-search-objects: ICET's search needs at least 2 objects (one per half)");
+    }
     if args.runs == 0 || args.folds < 2 || args.assignments == 0 {
         bail!("testcost needs --runs and --assignments of at least 1 and --folds of at least 2");
     }
@@ -426,6 +444,7 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
         price_draw,
         selection_prices,
         icet_pruning,
+        icet_search_objects: args.icet_search_objects,
         runs: args.runs,
         folds: args.folds,
         seed: args.seed,
@@ -530,6 +549,9 @@ fn args_line(args: &TestcostArgs) -> String {
     if args.icet_pruning != "costs" {
         let _ = write!(line, " --icet-pruning {}", args.icet_pruning);
     }
+    if args.icet_search_objects != 1000 {
+        let _ = write!(line, " --icet-search-objects {}", args.icet_search_objects);
+    }
     if args.price_range != [1.0, 100.0] {
         let _ = write!(
             line,
@@ -566,6 +588,7 @@ mod tests {
             price_draw: "uniform".into(),
             selection_prices: "listed".into(),
             icet_pruning: "costs".into(),
+            icet_search_objects: 400,
             price_range: vec![1.0, 100.0],
             runs: 1,
             folds: 3,

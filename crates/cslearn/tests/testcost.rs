@@ -232,6 +232,70 @@ fn a_missing_value_follows_every_branch_and_pays_their_tests() {
     assert_eq!(c.class, 1);
 }
 
+/// ACT's choice by hand, on `two_features` with `a` at 30 and `b` at 1, samples of 5.
+/// EG2 takes `b` (0.1398 / 2 = 0.070 against 1 / 31 = 0.032). ACT prices each candidate
+/// by its price for the 8 objects plus the cheapest sampled subtree per branch, a leaf
+/// costing its pessimistic errors (confidence 0.25) times `mc`:
+/// - `a`: 30 * 8 + two pure leaves of 4 (1.172 added errors each) = 240 + 2.343 mc;
+/// - `b`: 1 * 8 + two leaves of 4 with one error (2.189 each; `a` cannot split them,
+///   a branch of 1 is below the least of 2) = 8 + 4.379 mc;
+/// - a leaf at the root (4 errors of 8, 5.416) = 5.416 mc.
+///
+/// So ACT takes `a` when 2.036 mc > 232 (mc = 500: 1412 against 2198) and `b` below
+/// (mc = 50: 357 against 227, the leaf 271).
+#[test]
+fn act_splits_where_the_sampled_subtrees_cost_least() {
+    let frame = two_features();
+    let prices = TestPrices::flat(&[30.0, 1.0]).unwrap();
+    let rows: Vec<usize> = (0..8).collect();
+    let root = |method: Method, mc: f64| {
+        let mc = MisclassCosts::uniform(2, mc).unwrap();
+        let fitted = fit(
+            method,
+            &frame,
+            &rows,
+            &prices,
+            &mc,
+            &FamilyParams::default(),
+            3,
+        );
+        fitted.tree.node(0).split.as_ref().map(Split::feature)
+    };
+    assert_eq!(root(Method::Eg2, 500.0), Some(1));
+    assert_eq!(root(Method::Act, 500.0), Some(0));
+    assert_eq!(root(Method::Act, 50.0), Some(1));
+    // Where errors are nearly free, no test pays for itself: 5.416 * 5 = 27.1 against
+    // 8 + 21.9 for `b`.
+    assert_eq!(root(Method::Act, 5.0), None);
+}
+
+/// ACT's samples flow from its seed: the same seed grows the same tree, and on a data
+/// set with many candidate tests another seed grows another.
+#[test]
+fn act_is_reproducible_from_its_seed() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/uci");
+    let catalogue = Catalogue::read(&root.join("datasets.toml")).unwrap();
+    let heart = catalogue.load("heart").unwrap();
+    let prices = heart.turney.unwrap();
+    let mc = MisclassCosts::uniform(2, 500.0).unwrap();
+    let rows: Vec<usize> = (0..heart.frame.len()).step_by(2).collect();
+    let params = FamilyParams::default();
+    let grown = |seed| {
+        fit(
+            Method::Act,
+            &heart.frame,
+            &rows,
+            &prices,
+            &mc,
+            &params,
+            seed,
+        )
+        .tree
+    };
+    assert_eq!(grown(7), grown(7));
+    assert!((1..6).any(|seed| grown(seed) != grown(7)));
+}
+
 #[test]
 fn icet_is_reproducible_from_its_seed() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/uci");

@@ -243,17 +243,19 @@ fn check_flags(args: &ClassifyArgs) -> Result<()> {
             ("--cost-name", !args.cost_name.is_empty()),
             ("--selection-prices", args.selection_prices.is_some()),
             ("--icet-pruning", args.icet_pruning.is_some()),
+            ("--act-samples", args.act_samples.is_some()),
         ];
+        let family = cslearn::testcost::Method::ALL.map(cslearn::testcost::Method::name);
+        let family = family.join(", ");
         if let Some((flag, _)) = family_only.iter().find(|(_, given)| *given) {
             anyhow::bail!(
-                "{flag} is read by the test-cost family only (--learner id3-batch, c45, idx, cs-id3-batch, \
-                 eg2, dtmc, icet), not by --learner {name}"
+                "{flag} is read by the test-cost family only (--learner {family}), not by --learner {name}"
             );
         }
         anyhow::ensure!(
             !crate::testcost::is_turney(&args.costs),
-            "--costs {} is in Turney's format, which the test-cost family reads (--learner c45, \
-             idx, cs-id3-batch, eg2, dtmc, icet); --learner {name} reads a `feature,cost` CSV file",
+            "--costs {} is in Turney's format, which the test-cost family reads (--learner \
+             {family}); --learner {name} reads a `feature,cost` CSV file",
             args.costs.display()
         );
     }

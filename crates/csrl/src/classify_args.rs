@@ -36,6 +36,9 @@ pub(crate) enum Learner {
     /// Batch tree: ICET (EG2 on prices found by a genetic search).
     #[value(name = "icet")]
     Icet,
+    /// Batch tree: ACT (each split by the cost of stochastic EG2 trees sampled under it).
+    #[value(name = "act")]
+    Act,
 }
 
 impl Learner {
@@ -51,6 +54,7 @@ impl Learner {
             Learner::Eg2 => Some(Method::Eg2),
             Learner::Dtmc => Some(Method::Dtmc),
             Learner::Icet => Some(Method::Icet),
+            Learner::Act => Some(Method::Act),
         }
     }
 
@@ -70,7 +74,7 @@ impl Learner {
 #[command(
     after_help = "The incremental learners (cs-id3, cs-ibl, id3) stream the objects \
 (prequential accuracy, and --holdout or --folds beside it). The batch trees of the test-cost \
-family (id3-batch, c45, idx, cs-id3-batch, eg2, dtmc, icet) are grown on training parts and judged on \
+family (id3-batch, c45, idx, cs-id3-batch, eg2, dtmc, icet, act) are grown on training parts and judged on \
 the held-out objects by the total cost of their tests and errors (10-fold unless --holdout or \
 --folds); they read numeric columns as numbers, --costs also in Turney's format \
 (FILE.expense or FILE.cost) with --groups, and --mc, --mc-matrix and --cost-name. A flag \
@@ -158,4 +162,8 @@ pub struct ClassifyArgs {
     /// `costs` (a test must pay for itself at the real prices).
     #[arg(long, value_name = "errors|costs")]
     pub(crate) icet_pruning: Option<String>,
+    /// ACT only: the trees sampled under each branch of each candidate test (its `r`;
+    /// default 5). More samples, better estimates, more time.
+    #[arg(long, value_name = "R")]
+    pub(crate) act_samples: Option<usize>,
 }

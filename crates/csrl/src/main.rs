@@ -68,7 +68,7 @@ enum Command {
     /// Run CS-QL (or a baseline, `--learner`) once and report the measures of the paper's Table 1.
     Run(run::RunArgs),
     /// Stream a CSV table through a cost-sensitive learner and report errors and costs.
-    Classify(classify::ClassifyArgs),
+    Classify(Box<classify::ClassifyArgs>),
     /// Classify new rows with a model saved by `classify --save`: each row's class and
     /// what its measurements cost, as CSV (`line,class,cost,measured`).
     Predict(predict::PredictArgs),

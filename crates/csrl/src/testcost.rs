@@ -310,12 +310,28 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
             .map_err(|e| anyhow::anyhow!("--icet-pruning: {e}"))?,
         None => cslearn::testcost::Pruning::default(),
     };
+    let act = match args.act_samples {
+        Some(_) if method != cslearn::testcost::Method::Act => anyhow::bail!(
+            "--act-samples is read by --learner act only, not by --learner {}",
+            method.name()
+        ),
+        Some(samples) if samples > cslearn::testcost::ActParams::MAX_SAMPLES => anyhow::bail!(
+            "--act-samples {samples}: at most {} trees per branch (each one is grown at every candidate test of every node)",
+            cslearn::testcost::ActParams::MAX_SAMPLES
+        ),
+        Some(samples) => cslearn::testcost::ActParams {
+            samples,
+            ..cslearn::testcost::ActParams::default()
+        },
+        None => cslearn::testcost::ActParams::default(),
+    };
     let params = cslearn::testcost::FamilyParams {
         selection_prices,
         icet: cslearn::testcost::IcetParams {
             pruning,
             ..cslearn::testcost::IcetParams::default()
         },
+        act,
         ..cslearn::testcost::FamilyParams::default()
     };
     let bar = crate::progress::progress_bar(parts.len() + usize::from(args.save.is_some()));
@@ -402,6 +418,7 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
             "mc_matrix": args.mc_matrix.as_ref().map(|p| p.display().to_string()),
             "selection_prices": params.selection_prices.name(),
             "icet_pruning": (method == cslearn::testcost::Method::Icet).then(|| params.icet.pruning.name()),
+            "act_samples": (method == cslearn::testcost::Method::Act).then_some(params.act.samples),
             "all_tests_cost": prices.total(),
             "test_cost_per_object": test_cost,
             "errors": errors,

@@ -216,6 +216,30 @@ fn icet_pruned_by_costs_pays_for_fewer_tests_than_pruned_by_errors() {
 }
 
 #[test]
+fn act_samples_are_an_act_setting_reported_with_the_results() {
+    let act = heart_json("act", &["--holdout", "0.3", "--mc", "500"]);
+    assert_eq!(act["act_samples"], 5);
+    let c45 = heart_json("c45", &["--holdout", "0.3", "--mc", "500"]);
+    assert!(c45["act_samples"].is_null());
+    // Turney's heart prices: ACT buys a few cheap tests where C4.5 buys most of them.
+    let (a, c) = (
+        f(&act, "test_cost_per_object"),
+        f(&c45, "test_cost_per_object"),
+    );
+    assert!(a < c / 4.0, "ACT pays {a} for tests, C4.5 {c}");
+    let one = heart_json("act", &["--holdout", "0.3", "--act-samples", "1"]);
+    assert_eq!(one["act_samples"], 1);
+    refused(
+        &on_heart("eg2", &["--act-samples", "3"]),
+        &["--act-samples", "--learner act only"],
+    );
+    refused(
+        &on_heart("act", &["--act-samples", "1001"]),
+        &["--act-samples 1001", "at most 1000"],
+    );
+}
+
+#[test]
 fn icet_reports_the_genome_its_search_found() {
     let v = heart_json("icet", &["--holdout", "0.3"]);
     assert_eq!(v["evaluation"], "holdout 0.3");

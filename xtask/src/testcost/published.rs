@@ -90,6 +90,7 @@ pub fn column(method: Method) -> Option<usize> {
         Method::Eg2 => Some(4),
         Method::Dtmc => Some(5),
         Method::Icet => Some(6),
+        Method::Act => Some(7),
         Method::Id3 => None,
     }
 }

@@ -3,6 +3,7 @@
 use rand::{RngExt, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
+use super::act::{ActParams, act_tree};
 use super::criterion::Criterion;
 use super::data::Frame;
 use super::prices::{MisclassCosts, TestPrices};
@@ -36,11 +37,13 @@ pub enum Method {
     Dtmc,
     /// ICET: EG2 with prices, w and pruning confidence found by a genetic search.
     Icet,
+    /// ACT: each split chosen by the cost of stochastic EG2 trees sampled under it.
+    Act,
 }
 
 impl Method {
     /// Every learner, in the order of the benchmark's tables.
-    pub const ALL: [Method; 7] = [
+    pub const ALL: [Method; 8] = [
         Method::C45,
         Method::Id3,
         Method::Idx,
@@ -48,6 +51,7 @@ impl Method {
         Method::Eg2,
         Method::Dtmc,
         Method::Icet,
+        Method::Act,
     ];
 
     /// The learner's name, as `csrl classify --learner` and `cargo xtask testcost` spell it.
@@ -64,6 +68,7 @@ impl Method {
             Method::Eg2 => "eg2",
             Method::Dtmc => "dtmc",
             Method::Icet => "icet",
+            Method::Act => "act",
         }
     }
 
@@ -85,7 +90,7 @@ impl Method {
             })
     }
 
-    /// Whether the tree's shape depends on the misclassification costs (DTMC and ICET);
+    /// Whether the tree's shape depends on the misclassification costs (DTMC, ICET, ACT);
     /// the others grow the same tree whatever they are and only label it by them.
     ///
     /// ```
@@ -93,10 +98,11 @@ impl Method {
     /// assert!(!cslearn::testcost::Method::Eg2.depends_on_mc());
     /// ```
     pub fn depends_on_mc(self) -> bool {
-        matches!(self, Method::Dtmc | Method::Icet)
+        matches!(self, Method::Dtmc | Method::Icet | Method::Act)
     }
 
-    /// How the learner grows its tree (ICET: the start of its search).
+    /// How the learner grows its tree (ICET: the start of its search; ACT: the EG2 it
+    /// samples with, and its pruning).
     ///
     /// ```
     /// use cslearn::testcost::{FamilyParams, Method};
@@ -111,6 +117,9 @@ impl Method {
             Method::CsId3Batch => pruned(Criterion::CsId3),
             Method::Eg2 | Method::Icet => pruned(Criterion::Eg2 { w: params.eg2_w }),
             Method::Dtmc => GrowParams::new(Criterion::Dtmc),
+            Method::Act => GrowParams::new(Criterion::Eg2 { w: params.eg2_w })
+                .pruned(params.act.confidence)
+                .pruning_by(Pruning::Costs),
         };
         grow.selecting_at(params.selection_prices)
     }
@@ -130,6 +139,9 @@ pub struct FamilyParams {
     pub eg2_w: f64,
     /// ICET's search.
     pub icet: IcetParams,
+    /// ACT's sampling.
+    #[serde(default)]
+    pub act: ActParams,
     /// The price every learner's selection function sees for a test: after the node's
     /// path (the default) or as listed.
     #[serde(default)]
@@ -142,6 +154,7 @@ impl Default for FamilyParams {
             confidence: 0.25,
             eg2_w: 1.0,
             icet: IcetParams::default(),
+            act: ActParams::default(),
             selection_prices: SelectionPrices::Path,
         }
     }
@@ -218,7 +231,7 @@ pub struct Fitted {
 }
 
 /// Learns a tree with `method` on the objects `rows` of `frame`. `seed` matters only to
-/// ICET (its halves and its search).
+/// ICET (its halves and its search) and ACT (its samples).
 ///
 /// ```
 /// use cslearn::testcost::{fit, Column, FamilyParams, Frame, Method, MisclassCosts, TestPrices};
@@ -241,6 +254,13 @@ pub fn fit(
     params: &FamilyParams,
     seed: u64,
 ) -> Fitted {
+    if method == Method::Act {
+        let sampling = (params.eg2_w, params.selection_prices);
+        return Fitted {
+            tree: act_tree(frame, rows, prices, mc, &params.act, sampling, seed),
+            genome: None,
+        };
+    }
     if method == Method::Icet {
         let genome = icet_search(frame, rows, prices, mc, params, seed);
         let biased = prices

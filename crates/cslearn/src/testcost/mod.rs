@@ -32,6 +32,7 @@
 //! | `eg2` (Núñez 1991) | same | **(2^gain − 1) / (price + 1)^w**, w = 1 | same | pruning as C4.5 | one pass |
 //! | `dtmc` (Ling et al. 2004) | same | **reduction of expected total cost** | same | **stop when no test reduces it**, no pruning | one pass |
 //! | `icet` (Turney 1995) | same | EG2 over **biased prices** | same | pruning at a **searched confidence** | **genetic search** of prices, w and confidence |
+//! | `act` (Esmeir and Markovitch 2008) | same | **least cost of stochastic EG2 trees sampled** under each test | same | **stop when a leaf costs less**, pruning by cost | one pass |
 //!
 //! The price a learner sees at a node is the test's price on that node's path: 0 for a
 //! test already done (a numeric feature split again), the discount after another test of
@@ -62,6 +63,7 @@
 //! assert_eq!(eg2.tree.classify(&frame, test[0], &prices).test_cost, 2.0);
 //! ```
 
+mod act;
 mod catalogue;
 mod criterion;
 mod data;
@@ -72,6 +74,7 @@ mod prices;
 mod splits;
 mod tree;
 
+pub use act::ActParams;
 pub use catalogue::{Catalogue, Loaded, Source};
 pub use criterion::Criterion;
 pub use data::{Column, Frame, FrameSpec, MISSING, read_rows};

@@ -378,6 +378,14 @@ impl CostTree {
         CostTree::grow_in(&mut splits, prices, mc, params)
     }
 
+    /// The tree of these nodes (parents before children), labelled by `mc`.
+    pub(super) fn from_nodes(nodes: Vec<TreeNode>, mc: &MisclassCosts) -> CostTree {
+        CostTree {
+            nodes,
+            mc: mc.clone(),
+        }
+    }
+
     /// Grows a tree by walking the split trie `splits` (made with the same objects, `mc`,
     /// criterion kind and `min_objects`), choosing each test by `prices` and `params`.
     pub(crate) fn grow_in(
@@ -775,6 +783,19 @@ fn grow_nodes(
     params: &GrowParams,
 ) -> Vec<TreeNode> {
     let scorer = Scorer::new(prices, params.criterion);
+    grow_nodes_by(splits, mc, params.max_depth, |splits, c| {
+        choose(splits, c, prices, params, &scorer)
+    })
+}
+
+/// The nodes of the tree grown through `splits`, splitting each impure cell above
+/// `max_depth` on the test `choose` picks for it (a leaf where it picks none).
+pub(super) fn grow_nodes_by(
+    splits: &mut Splits<'_>,
+    mc: &MisclassCosts,
+    max_depth: usize,
+    mut choose: impl FnMut(&mut Splits<'_>, u32) -> Option<Stat>,
+) -> Vec<TreeNode> {
     let root = splits.cell(0).class_weights.clone();
     let mut nodes = vec![TreeNode {
         label: mc.best(&root).0 as u32,
@@ -784,12 +805,11 @@ fn grow_nodes(
     let mut stack: Vec<(NodeIndex, u32)> = vec![(0, 0)];
     while let Some((node, c)) = stack.pop() {
         let cell = splits.cell(c);
-        let pure = cell.class_weights.iter().filter(|&&w| w > 1e-9).count() <= 1;
-        if pure || cell.path.len() >= params.max_depth {
+        if is_pure(&cell.class_weights) || cell.path.len() >= max_depth {
             continue;
         }
         let node_weights = cell.class_weights.clone();
-        let Some(best) = choose(splits, c, prices, params, &scorer) else {
+        let Some(best) = choose(splits, c) else {
             continue;
         };
         splits.children(c, &best);
@@ -829,6 +849,11 @@ fn grow_nodes(
         });
     }
     nodes
+}
+
+/// Whether weights per class hold a single class.
+pub(super) fn is_pure(class_weights: &[f64]) -> bool {
+    class_weights.iter().filter(|&&w| w > 1e-9).count() <= 1
 }
 
 /// What [`CostTree::held_out_cost`] walks with: the tree is never built, each subtree
@@ -885,8 +910,7 @@ impl Walk<'_> {
             )
         };
         let cell = splits.cell(c);
-        let pure = cell.class_weights.iter().filter(|&&w| w > 1e-9).count() <= 1;
-        if pure || cell.path.len() >= self.params.max_depth {
+        if is_pure(&cell.class_weights) || cell.path.len() >= self.params.max_depth {
             return as_leaf;
         }
         let Some(best) = choose(splits, c, self.prices, self.params, &self.scorer) else {
@@ -950,14 +974,14 @@ impl Walk<'_> {
 
 /// A criterion's score, with EG2's price factor `(price + 1)^w` computed once per test
 /// and price rather than at every node.
-struct Scorer {
+pub(super) struct Scorer {
     criterion: Criterion,
     /// Per test: its full and discount prices with their EG2 factors.
     eg2: Vec<[(f64, f64); 2]>,
 }
 
 impl Scorer {
-    fn new(prices: &TestPrices, criterion: Criterion) -> Scorer {
+    pub(super) fn new(prices: &TestPrices, criterion: Criterion) -> Scorer {
         let eg2 = match criterion {
             Criterion::Eg2 { w } => (0..prices.len())
                 .map(|i| {
@@ -973,7 +997,7 @@ impl Scorer {
         Scorer { criterion, eg2 }
     }
 
-    fn score(&self, stat: &Stat, price: f64) -> f64 {
+    pub(super) fn score(&self, stat: &Stat, price: f64) -> f64 {
         match self.criterion {
             Criterion::Eg2 { w } => {
                 let factor = self.eg2[stat.feature]
@@ -1047,7 +1071,7 @@ fn choose(
 
 /// The price of `test` after the tests `done`: nothing if it was done, its discount if a
 /// test of its group was, its full price otherwise ([`Basket`]'s rule, for a path).
-fn price_after(prices: &TestPrices, test: usize, done: &[usize]) -> f64 {
+pub(super) fn price_after(prices: &TestPrices, test: usize, done: &[usize]) -> f64 {
     prices.price_when(test, done.contains(&test), |g| {
         done.iter().any(|&d| prices.test(d).group == Some(g))
     })
@@ -1055,7 +1079,7 @@ fn price_after(prices: &TestPrices, test: usize, done: &[usize]) -> f64 {
 
 /// The normal deviate for a one-sided confidence level, by C4.5's table and linear
 /// interpolation.
-fn deviation(confidence: f64) -> f64 {
+pub(super) fn deviation(confidence: f64) -> f64 {
     const VAL: [f64; 9] = [0.0, 0.001, 0.005, 0.01, 0.05, 0.10, 0.20, 0.40, 1.00];
     const DEV: [f64; 9] = [4.0, 3.09, 2.58, 2.33, 1.65, 1.28, 0.84, 0.25, 0.00];
     let cf = confidence.clamp(0.0, 1.0);
@@ -1067,12 +1091,15 @@ fn deviation(confidence: f64) -> f64 {
     DEV[i] + (DEV[i + 1] - DEV[i]) * (cf - VAL[i]) / (VAL[i + 1] - VAL[i])
 }
 
-/// C4.5's `AddErrs`: the extra errors to add to `errors` among `n` objects for the upper
-/// limit of the confidence interval.
 /// A leaf's pessimistic misclassification cost ([`Pruning::Costs`]): the cost of its
 /// training weights under its label, plus C4.5's added errors at the dearest error of
 /// that label.
-fn estimated_cost(mc: &MisclassCosts, weights: &[f64], confidence: f64, coeff: f64) -> f64 {
+pub(super) fn estimated_cost(
+    mc: &MisclassCosts,
+    weights: &[f64],
+    confidence: f64,
+    coeff: f64,
+) -> f64 {
     let total: f64 = weights.iter().sum();
     if total <= 0.0 {
         return 0.0;
@@ -1090,6 +1117,8 @@ fn estimated_cost(mc: &MisclassCosts, weights: &[f64], confidence: f64, coeff: f
     seen + added_errors(total, errors, confidence, coeff) * dearest
 }
 
+/// C4.5's `AddErrs`: the extra errors to add to `errors` among `n` objects for the upper
+/// limit of the confidence interval.
 fn added_errors(n: f64, errors: f64, confidence: f64, coeff: f64) -> f64 {
     if n <= 0.0 {
         return 0.0;

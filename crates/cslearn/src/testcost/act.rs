@@ -1,0 +1,203 @@
+//! ACT (Esmeir and Markovitch 2008): a split chosen by the cost of the trees sampled
+//! under it.
+//!
+//! At each node ACT prices every candidate test by a lookahead: for each branch of the
+//! test it grows `r` trees with a stochastic EG2 (each test drawn with probability in
+//! proportion to its EG2 score) and keeps the cheapest; the candidate's cost is its own
+//! price for every object reaching the node plus the cheapest sampled subtree of each
+//! branch. The node splits on the cheapest candidate, or stays a leaf when answering
+//! there is cheaper still. A tree, sampled or final, is valued at its expected total cost
+//! on the training objects: the tests each object pays along its path, plus at each
+//! leaf the misclassification cost of its objects with C4.5's pessimistic added errors
+//! priced at the leaf's dearest error ([`Pruning::Costs`](super::Pruning)); a sampled
+//! subtree is cut back wherever a leaf is cheaper, and the final tree is pruned the same
+//! way. More samples give a better estimate for more time: ACT is anytime in `r`.
+
+use rand::{RngExt, SeedableRng};
+use rand_xoshiro::Xoshiro256PlusPlus;
+
+use super::criterion::Criterion;
+use super::data::Frame;
+use super::prices::{MisclassCosts, TestPrices};
+use super::splits::{Splits, Stat};
+use super::tree::{
+    CostTree, GrowParams, Scorer, SelectionPrices, deviation, estimated_cost, grow_nodes_by,
+    is_pure, price_after,
+};
+
+/// ACT's settings.
+///
+/// ```
+/// let p = cslearn::testcost::ActParams::default();
+/// assert_eq!((p.samples, p.confidence), (5, 0.25));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ActParams {
+    /// Trees sampled under each branch of each candidate test (`r`). 5 by default, the
+    /// sample size of the published comparison; 0 values each branch as a leaf (a
+    /// one-step lookahead).
+    pub samples: usize,
+    /// The confidence of the pessimistic error estimate (C4.5's 0.25).
+    pub confidence: f64,
+}
+
+impl ActParams {
+    /// The most samples the front ends accept: each is a tree grown at every candidate
+    /// test of every node.
+    pub const MAX_SAMPLES: usize = 1000;
+}
+
+impl Default for ActParams {
+    fn default() -> ActParams {
+        ActParams {
+            samples: 5,
+            confidence: 0.25,
+        }
+    }
+}
+
+/// ACT's tree on the objects `rows` of `frame`, sampling with EG2's `w` and the
+/// selection prices `selection`, from the seed `seed`.
+pub(super) fn act_tree(
+    frame: &Frame,
+    rows: &[usize],
+    prices: &TestPrices,
+    mc: &MisclassCosts,
+    params: &ActParams,
+    (w, selection): (f64, SelectionPrices),
+    seed: u64,
+) -> CostTree {
+    let grow = GrowParams::new(Criterion::Eg2 { w }).selecting_at(selection);
+    let ones = vec![1.0; rows.len()];
+    let mut splits = Splits::new(frame, rows, &ones, mc, grow.criterion, grow.min_objects);
+    let sampler = Sampler {
+        scorer: Scorer::new(prices, grow.criterion),
+        prices,
+        mc,
+        selection,
+        confidence: params.confidence,
+        coeff: deviation(params.confidence).powi(2),
+        max_depth: grow.max_depth,
+        samples: params.samples,
+    };
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    let nodes = grow_nodes_by(&mut splits, mc, grow.max_depth, |splits, c| {
+        sampler.choose(splits, c, &mut rng)
+    });
+    let mut tree = CostTree::from_nodes(nodes, mc);
+    tree.prune_by_cost(params.confidence, prices);
+    tree
+}
+
+/// What ACT values trees with.
+struct Sampler<'a> {
+    scorer: Scorer,
+    prices: &'a TestPrices,
+    mc: &'a MisclassCosts,
+    selection: SelectionPrices,
+    confidence: f64,
+    coeff: f64,
+    max_depth: usize,
+    samples: usize,
+}
+
+impl Sampler<'_> {
+    /// A leaf's pessimistic misclassification cost for cell `c`.
+    fn leaf(&self, splits: &Splits<'_>, c: u32) -> f64 {
+        estimated_cost(
+            self.mc,
+            &splits.cell(c).class_weights,
+            self.confidence,
+            self.coeff,
+        )
+    }
+
+    /// The tests that can split cell `c` (a positive gain and EG2 score), with their
+    /// EG2 scores at the selection prices.
+    fn candidates(&self, splits: &mut Splits<'_>, c: u32) -> Vec<(Stat, f64)> {
+        let path = std::mem::take(&mut splits.cell_mut(c).path);
+        let scored = splits
+            .stats(c)
+            .iter()
+            .filter(|s| s.gain > 1e-9)
+            .map(|s| {
+                let price = match self.selection {
+                    SelectionPrices::Path => price_after(self.prices, s.feature, &path),
+                    SelectionPrices::Listed => self.prices.test(s.feature).full,
+                };
+                (*s, self.scorer.score(s, price))
+            })
+            .filter(|(_, score)| *score > 0.0)
+            .collect();
+        splits.cell_mut(c).path = path;
+        scored
+    }
+
+    /// The test ACT splits cell `c` on: the candidate whose price plus cheapest sampled
+    /// subtree per branch is least, if that is below the leaf's cost.
+    fn choose(
+        &self,
+        splits: &mut Splits<'_>,
+        c: u32,
+        rng: &mut Xoshiro256PlusPlus,
+    ) -> Option<Stat> {
+        let leaf = self.leaf(splits, c);
+        let mut best: Option<(Stat, f64)> = None;
+        for (stat, _) in self.candidates(splits, c) {
+            let mut cost = self.test_price(splits, c, &stat);
+            let branches = splits.children(c, &stat).cells.clone();
+            for child in branches.into_iter().flatten() {
+                cost += if self.samples == 0 {
+                    self.leaf(splits, child)
+                } else {
+                    (0..self.samples)
+                        .map(|_| self.sample(splits, child, rng))
+                        .fold(f64::INFINITY, f64::min)
+                };
+            }
+            if best.is_none_or(|(_, b)| cost < b) {
+                best = Some((stat, cost));
+            }
+        }
+        best.filter(|(_, cost)| *cost < leaf).map(|(stat, _)| stat)
+    }
+
+    /// What `stat`'s test costs every object of cell `c`, priced after the cell's path.
+    fn test_price(&self, splits: &Splits<'_>, c: u32, stat: &Stat) -> f64 {
+        price_after(self.prices, stat.feature, &splits.cell(c).path) * splits.total(c)
+    }
+
+    /// The expected total cost of a tree grown from cell `c` by stochastic EG2, cut back
+    /// wherever a leaf is cheaper.
+    fn sample(&self, splits: &mut Splits<'_>, c: u32, rng: &mut Xoshiro256PlusPlus) -> f64 {
+        let leaf = self.leaf(splits, c);
+        let cell = splits.cell(c);
+        if is_pure(&cell.class_weights) || cell.path.len() >= self.max_depth {
+            return leaf;
+        }
+        let candidates = self.candidates(splits, c);
+        let sum: f64 = candidates.iter().map(|(_, score)| score).sum();
+        if candidates.is_empty() || !(sum > 0.0 && sum.is_finite()) {
+            return leaf;
+        }
+        let mut draw = rng.random_range(0.0..sum);
+        let drawn = candidates
+            .iter()
+            .position(|(_, score)| {
+                draw -= score;
+                draw < 0.0
+            })
+            .unwrap_or(candidates.len() - 1);
+        let stat = candidates[drawn].0;
+        let mut cost = self.test_price(splits, c, &stat);
+        let branches = splits.children(c, &stat).cells.clone();
+        for child in branches.into_iter().flatten() {
+            if cost >= leaf {
+                // The subtree is already dearer than the leaf it would be cut back to.
+                return leaf;
+            }
+            cost += self.sample(splits, child, rng);
+        }
+        cost.min(leaf)
+    }
+}
