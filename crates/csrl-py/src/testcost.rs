@@ -10,8 +10,8 @@
 //! plain Python values (`__reduce__`).
 
 use cslearn::testcost::{
-    Column, CostTree, FamilyParams, Frame, IcetGenome, IcetParams, MISSING, Method, MisclassCosts,
-    Split, TestPrice, TestPrices,
+    ActParams, Column, CostTree, FamilyParams, Frame, IcetGenome, IcetParams, MISSING, Method,
+    MisclassCosts, Split, TestPrice, TestPrices,
 };
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyType};
@@ -196,13 +196,14 @@ fn check_unit(value: f64, what: &str, low_open: bool, high_open: bool) -> PyResu
 #[pymethods]
 impl TestCostTree {
     /// Grow a tree with `learner` ("id3-batch", "c45", "idx", "cs-id3-batch", "eg2", "dtmc",
-    /// "icet") on every object. `prices` is `(full, discount, group)` per feature (group
+    /// "icet", "act") on every object. `prices` is `(full, discount, group)` per feature (group
     /// an index into `group_names`, or `None`); `misclassification[actual][predicted]`
     /// the cost of each answer; `confidence` C4.5's pruning confidence, `w` EG2's weight
-    /// of the price; `seed`, `population` and `generations` ICET's search. The GIL is
-    /// released while it grows.
+    /// of the price; `seed`, `population` and `generations` ICET's search (`seed` also
+    /// ACT's samples); `samples` ACT's trees sampled per branch. The GIL is released
+    /// while it grows.
     #[staticmethod]
-    #[pyo3(signature = (learner, names, columns, classes, class_names, prices, group_names, misclassification, confidence=0.25, w=1.0, seed=0, population=50, generations=20))]
+    #[pyo3(signature = (learner, names, columns, classes, class_names, prices, group_names, misclassification, confidence=0.25, w=1.0, seed=0, population=50, generations=20, samples=5))]
     #[allow(
         clippy::too_many_arguments,
         reason = "one argument per setting, all keywords from Python"
@@ -222,6 +223,7 @@ impl TestCostTree {
         seed: u64,
         population: usize,
         generations: usize,
+        samples: usize,
     ) -> PyResult<TestCostTree> {
         let method = Method::parse(learner).map_err(|e| data_error(&e))?;
         if prices.len() != names.len() {
@@ -236,6 +238,12 @@ impl TestCostTree {
         if population < 2 || generations < 1 {
             return Err(DataError::new_err(format!(
                 "ICET needs a population of at least 2 and at least 1 generation, found {population} and {generations}"
+            )));
+        }
+        if samples > ActParams::MAX_SAMPLES {
+            return Err(DataError::new_err(format!(
+                "ACT samples at most {} trees per branch, found {samples}",
+                ActParams::MAX_SAMPLES
             )));
         }
         let prices = TestPrices::new(
@@ -267,6 +275,10 @@ impl TestCostTree {
                 population,
                 generations,
                 ..IcetParams::default()
+            },
+            act: ActParams {
+                samples,
+                ..ActParams::default()
             },
             ..FamilyParams::default()
         };

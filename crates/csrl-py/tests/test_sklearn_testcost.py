@@ -25,6 +25,7 @@ NAMED = {
     "eg2": cs.Eg2Classifier,
     "dtmc": cs.DtmcClassifier,
     "icet": cs.IcetClassifier,
+    "act": cs.ActClassifier,
 }
 ESTIMATORS = [cs.TestCostTreeClassifier(), *(cls() for cls in NAMED.values())]
 
@@ -294,6 +295,26 @@ def test_icet_is_reproducible_from_its_seed():
     assert set(a.icet_genome_) == {"prices", "w", "confidence", "fitness"}
     assert len(a.icet_genome_["prices"]) == 4 and 0 < a.icet_genome_["confidence"] < 1
     assert not hasattr(cs.Eg2Classifier().fit(X, y), "icet_genome_")
+
+
+def test_act_is_reproducible_from_its_seed_and_samples_cost_time_not_correctness():
+    X, y = load_iris(return_X_y=True)
+    params = dict(feature_costs=[1.0, 5.0, 20.0, 40.0], misclassification_cost=200.0)
+    a = cs.ActClassifier(seed=7, **params).fit(X, y)
+    b = cs.ActClassifier(seed=7, **params).fit(X, y)
+    assert a._model.nodes() == b._model.nodes()
+    assert a.score(X, y) >= 0.9
+    # One sample per branch, or none (each branch valued as a leaf): still a tree that
+    # pays for its tests.
+    for samples in (0, 1):
+        clf = cs.ActClassifier(seed=7, act_samples=samples, **params).fit(X, y)
+        assert clf.score(X, y) >= 0.9
+    general = cs.TestCostTreeClassifier(learner="act", seed=7, **params).fit(X, y)
+    assert general._model.nodes() == a._model.nodes()
+    with pytest.raises(ValueError, match="act_samples must be at most 1000"):
+        cs.ActClassifier(act_samples=1001).fit(X, y)
+    with pytest.raises(ValueError, match="act_samples must be an integer"):
+        cs.ActClassifier(act_samples=-1).fit(X, y)
 
 
 @pytest.mark.parametrize("estimator", ESTIMATORS, ids=lambda e: type(e).__name__)

@@ -155,6 +155,7 @@ class TestCostTree:
         seed: int = 0,
         population: int = 50,
         generations: int = 20,
+        samples: int = 5,
     ) -> TestCostTree: ...
     def classify(self, columns: list[_Column]) -> tuple[list[int], list[float], list[list[int]]]: ...
     def nodes(

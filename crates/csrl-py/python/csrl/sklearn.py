@@ -28,7 +28,8 @@ needs measured:
   tree grown on all the training objects, by ID3 (:class:`Id3Classifier`), C4.5
   (:class:`C45Classifier`), IDX (:class:`IdxClassifier`), batch CS-ID3
   (:class:`CsId3BatchClassifier`), EG2 (:class:`Eg2Classifier`), DTMC
-  (:class:`DtmcClassifier`) or ICET (:class:`IcetClassifier`); or by any of them named
+  (:class:`DtmcClassifier`), ICET (:class:`IcetClassifier`) or ACT
+  (:class:`ActClassifier`); or by any of them named
   by :class:`TestCostTreeClassifier`'s ``learner``. Numeric columns are split at
   thresholds as they are (no binning); columns holding strings (or named in
   ``nominal_features``, or of pandas' ``category`` dtype) are nominal, one branch per
@@ -78,6 +79,7 @@ __all__ = [
     "DtmcClassifier",
     "Eg2Classifier",
     "IcetClassifier",
+    "ActClassifier",
     "Id3Classifier",
     "IdxClassifier",
     "TestCostTreeClassifier",
@@ -290,7 +292,7 @@ def _fmt(v: Any) -> str:
 
 # --- The test-cost tree family -------------------------------------------------------
 
-_LEARNERS = ("id3-batch", "c45", "idx", "cs-id3-batch", "eg2", "dtmc", "icet")
+_LEARNERS = ("id3-batch", "c45", "idx", "cs-id3-batch", "eg2", "dtmc", "icet", "act")
 
 
 def _is_missing(v: Any) -> bool:
@@ -347,6 +349,10 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
       found by a genetic search (``population``, ``generations``, ``seed``) whose
       fitness is the mean total cost on half the training objects of the tree grown on
       the other half.
+    * ``"act"`` (Esmeir and Markovitch 2008): at each node, the test whose price plus
+      the cheapest of ``act_samples`` trees sampled under each of its branches (by a
+      stochastic EG2, from ``seed``) costs least, tests plus pessimistic errors; a leaf
+      where answering costs less; pruned by total cost.
 
     The price a learner sees at a node is the test's price on that node's path: nothing
     for a test already done, the discount after another test of its group. Every node
@@ -375,8 +381,11 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         confidence: C4.5's pruning confidence, in (0, 1), for the pruned learners (not
             ``id3`` or ``dtmc``; ICET searches its own).
         w: EG2's weight of the price, in [0, 1] (0: cost-blind).
-        seed: ICET's seed (its halves and its search); the same seed, the same tree.
+        seed: ICET's seed (its halves and its search) and ACT's (its samples); the same
+            seed, the same tree.
         population, generations: the size of ICET's search (Turney's 50 and 20).
+        act_samples: ACT's trees sampled under each branch of each candidate test (its
+            ``r``, 5; 0 values each branch as a leaf), at most 1000.
 
     Attributes:
         classes_, n_features_in_, feature_names_in_: as scikit-learn's.
@@ -410,6 +419,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         seed: int = 0,
         population: int = 50,
         generations: int = 20,
+        act_samples: int = 5,
     ) -> None:
         self.learner = learner
         self.feature_costs = feature_costs
@@ -422,6 +432,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         self.seed = seed
         self.population = population
         self.generations = generations
+        self.act_samples = act_samples
 
     # -- parameters -------------------------------------------------------------------
 
@@ -681,6 +692,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         seed = getattr(self, "seed", 0)
         population = getattr(self, "population", 50)
         generations = getattr(self, "generations", 20)
+        act_samples = getattr(self, "act_samples", 5)
         if not (isinstance(confidence, numbers.Real) and 0 < confidence < 1):
             raise ValueError(f"confidence must be a number in (0, 1), found {confidence!r}")
         if not (isinstance(w, numbers.Real) and 0 <= w <= 1):
@@ -689,10 +701,13 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
             ("seed", seed, 0),
             ("population", population, 2),
             ("generations", generations, 1),
+            ("act_samples", act_samples, 0),
         ):
             integer = isinstance(v, (numbers.Integral, np.integer)) and not isinstance(v, bool)
             if not integer or not least <= v < 2**64:
                 raise ValueError(f"{what} must be an integer at least {least}, found {v!r}")
+        if act_samples > 1000:
+            raise ValueError(f"act_samples must be at most 1000, found {act_samples!r}")
         model = _csrl.TestCostTree.fit(
             learner,
             self._names(n),
@@ -707,6 +722,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
             seed=int(seed),
             population=int(population),
             generations=int(generations),
+            samples=int(act_samples),
         )
         self.classes_ = classes
         self.nominal_features_ = nominal
@@ -957,3 +973,34 @@ class IcetClassifier(TestCostTreeClassifier):
         self.seed = seed
         self.population = population
         self.generations = generations
+
+
+class ActClassifier(TestCostTreeClassifier):
+    """ACT (Esmeir and Markovitch 2008): at each node, the test whose price plus the
+    cheapest of ``act_samples`` trees sampled under each of its branches (by a
+    stochastic EG2 of weight ``w``, drawn from ``seed``) costs least in tests and
+    pessimistic errors, or a leaf where answering costs less; pruned by total cost. Its
+    tree depends on ``misclassification_cost`` (:class:`TestCostTreeClassifier` with
+    ``learner="act"``). More samples, better estimates, more time."""
+
+    _learner = "act"
+
+    def __init__(
+        self,
+        feature_costs: Optional[Any] = None,
+        feature_groups: Optional[Any] = None,
+        feature_discounts: Optional[Any] = None,
+        misclassification_cost: Any = 100.0,
+        nominal_features: Optional[Any] = None,
+        w: float = 1.0,
+        seed: int = 0,
+        act_samples: int = 5,
+    ) -> None:
+        self.feature_costs = feature_costs
+        self.feature_groups = feature_groups
+        self.feature_discounts = feature_discounts
+        self.misclassification_cost = misclassification_cost
+        self.nominal_features = nominal_features
+        self.w = w
+        self.seed = seed
+        self.act_samples = act_samples
