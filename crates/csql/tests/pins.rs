@@ -2,9 +2,17 @@
 //! seeds, and the layouts of random maps, hashed. A dependency upgrade or a refactor that changes any
 //! number of these (a move, a charge, a float's last digit) fails here loudly.
 //!
+//! Each pinned output is kept beside this file, in `tests/pins/` (a test holds each to its
+//! hash), so that a pin that fails says what changed: the first differences by JSON path
+//! (`trials: 27 -> 31`, `states[4].value: 0.9 -> 0.81`), or by line for a map; the new
+//! output is written under the target folder to look at whole.
+//!
 //! When a change of results is intended, print the new hashes with
-//! `cargo test -p csql --test pins -- --nocapture`, explain the change in the commit, and
-//! update the table below.
+//! `cargo test -p csql --test pins -- --nocapture`, explain the change in the commit,
+//! update the table below, and write the new outputs with
+//! `CSQL_PINS_WRITE=1 cargo test -p csql --test pins`.
+
+use std::path::{Path, PathBuf};
 
 use csql::{RunSettings, StrategyKind};
 
@@ -15,7 +23,8 @@ fn fnv1a(bytes: &[u8]) -> u64 {
     })
 }
 
-fn run_hash(map: &str, strategy: StrategyKind, seed: u64) -> (u64, usize) {
+/// The pinned JSON of a run of the paper's settings, and its (hash, length).
+fn run_json(map: &str, strategy: StrategyKind, seed: u64) -> (String, (u64, usize)) {
     let report = csql::run(&RunSettings::tan1991(map, strategy, seed)).unwrap();
     // A converged run of the paper's world has found an optimal policy: exactly what its
     // final policy quality must say.
@@ -27,7 +36,8 @@ fn run_hash(map: &str, strategy: StrategyKind, seed: u64) -> (u64, usize) {
         );
     }
     let json = pinned_json(&report);
-    (fnv1a(json.as_bytes()), json.len())
+    let got = (fnv1a(json.as_bytes()), json.len());
+    (json, got)
 }
 
 /// The report's JSON as it was pinned: everything but the measures added to every report
@@ -250,16 +260,17 @@ const RUNS: &[(&str, StrategyKind, u64, u64, usize)] = &[
 fn runs_are_pinned() {
     let mut wrong = Vec::new();
     for &(map, strategy, seed, hash, len) in RUNS {
-        let got = run_hash(map, strategy, seed);
+        let (json, got) = run_json(map, strategy, seed);
         println!(
             "    (\"{map}\", StrategyKind::{strategy:?}, {seed}, {:#018x}, {}),",
             got.0, got.1
         );
-        if got != (hash, len) {
-            wrong.push(format!("{map} {strategy:?} seed {seed}"));
+        let name = format!("runs/{map}-{strategy:?}-{seed}");
+        if let Some(change) = check(&name, &json, (hash, len)) {
+            wrong.push(change);
         }
     }
-    assert!(wrong.is_empty(), "results changed: {wrong:?}");
+    assert!(wrong.is_empty(), "results changed:\n{}", wrong.join("\n"));
 }
 
 #[test]
@@ -279,24 +290,30 @@ fn the_pin_sees_a_one_setting_change() {
     assert_ne!(fnv1a(a.as_bytes()), fnv1a(b.as_bytes()));
 }
 
+/// (spec, hash of the map's TOML): the layouts of random maps.
+const MAPS: &[(&str, u64)] = &[
+    ("random:8x8:0.2:7", 0x656454d75d5b062f),
+    ("random:16x16:0.2:1", 0xdfdff6a8a3d9afc9),
+    ("random:32x24:0.35:42", 0xace29ce547160b07),
+    ("random:5x3:0.9:0", 0x639c1a0f7ee2ff98),
+];
+
 #[test]
 fn random_maps_are_pinned() {
-    let pinned: [(&str, u64); 4] = [
-        ("random:8x8:0.2:7", 0x656454d75d5b062f),
-        ("random:16x16:0.2:1", 0xdfdff6a8a3d9afc9),
-        ("random:32x24:0.35:42", 0xace29ce547160b07),
-        ("random:5x3:0.9:0", 0x639c1a0f7ee2ff98),
-    ];
     let mut wrong = Vec::new();
-    for (spec, hash) in pinned {
-        let map = mdp::resolve(spec).unwrap();
-        let got = fnv1a(map.to_toml().as_bytes());
+    for &(spec, hash) in MAPS {
+        let toml = mdp::resolve(spec).unwrap().to_toml();
+        let got = fnv1a(toml.as_bytes());
         println!("(\"{spec}\", {got:#018x}),");
-        if got != hash {
-            wrong.push(spec);
+        if let Some(change) = check(&format!("maps/{spec}"), &toml, (hash, toml.len())) {
+            wrong.push(change);
         }
     }
-    assert!(wrong.is_empty(), "random maps changed: {wrong:?}");
+    assert!(
+        wrong.is_empty(),
+        "random maps changed:\n{}",
+        wrong.join("\n")
+    );
 }
 
 /// Runs beyond the paper, pinned the same way: (map, strategy, seed, TOML settings, hash
@@ -375,9 +392,297 @@ fn runs_beyond_the_paper_are_pinned() {
         let json = pinned_json(&report);
         let got = (fnv1a(json.as_bytes()), json.len());
         println!("    {map} {strategy:?} {seed}: {:#018x}, {}", got.0, got.1);
-        if got != (hash, len) {
-            wrong.push(format!("{map} {strategy:?} seed {seed} {toml:?}"));
+        let name = format!("beyond/{map}-{strategy:?}-{seed}");
+        if let Some(change) = check(&name, &json, (hash, len)) {
+            wrong.push(change);
         }
     }
-    assert!(wrong.is_empty(), "results changed: {wrong:?}");
+    assert!(wrong.is_empty(), "results changed:\n{}", wrong.join("\n"));
+}
+
+/// Where the pinned output named `name` (`runs/...`, `beyond/...`, `maps/...`) is kept,
+/// under `folder`: a file name of letters, digits, `.`, `-` and `_`.
+fn pin_file(folder: &Path, name: &str) -> PathBuf {
+    let (kind, rest) = name.split_once('/').expect("a pin's name has its kind");
+    let slug: String = rest
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '.' || c == '-' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    let ext = if kind == "maps" { "toml" } else { "json" };
+    folder.join(kind).join(format!("{slug}.{ext}"))
+}
+
+/// The folder of the pinned outputs, beside this file.
+fn pinned_folder() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/pins")
+}
+
+/// `None` if `got` is the pinned output (its hash and length); else what changed: the
+/// differences from the pinned output kept in `tests/pins` (the new output is written under
+/// the target folder, to look at). With `CSQL_PINS_WRITE` set, `got` replaces the kept
+/// output (the table's hash must then be updated too, or the pin fails).
+fn check(name: &str, got: &str, pinned: (u64, usize)) -> Option<String> {
+    let kept = pin_file(&pinned_folder(), name);
+    if std::env::var_os("CSQL_PINS_WRITE").is_some() {
+        std::fs::create_dir_all(kept.parent().unwrap()).unwrap();
+        std::fs::write(&kept, got).unwrap();
+    }
+    let now = (fnv1a(got.as_bytes()), got.len());
+    if now == pinned {
+        return None;
+    }
+    let new = pin_file(&Path::new(env!("CARGO_TARGET_TMPDIR")).join("pins"), name);
+    std::fs::create_dir_all(new.parent().unwrap()).unwrap();
+    std::fs::write(&new, got).unwrap();
+    let hashes = format!(
+        "hash {:#018x} ({} bytes), pinned {:#018x} ({} bytes); the new output is {}",
+        now.0,
+        now.1,
+        pinned.0,
+        pinned.1,
+        new.display()
+    );
+    Some(match std::fs::read_to_string(&kept) {
+        Ok(old) if (fnv1a(old.as_bytes()), old.len()) == pinned => {
+            format!("{}\n  {hashes}", describe_change(name, &old, got))
+        }
+        Ok(_) => format!(
+            "{name}: changed, and {} is not the pinned output either: {hashes}",
+            kept.display()
+        ),
+        Err(e) => format!(
+            "{name}: changed; cannot read {}: {e}; {hashes}",
+            kept.display()
+        ),
+    })
+}
+
+/// How many differences a failure lists.
+const SHOWN: usize = 12;
+
+/// What changed from `old` to `new`, the pinned and the new output of the pin `name`: the
+/// first differences by JSON path (`trials[3].moves: 12 -> 13`) where both are JSON, else by
+/// line; where none is found (the same values in another order or spelling), the first
+/// byte that differs, in context.
+fn describe_change(name: &str, old: &str, new: &str) -> String {
+    let mut found = Vec::new();
+    let mut count = 0;
+    match (
+        serde_json::from_str::<serde_json::Value>(old),
+        serde_json::from_str::<serde_json::Value>(new),
+    ) {
+        (Ok(a), Ok(b)) => json_diff("", &a, &b, &mut found, &mut count),
+        _ => {
+            let (a, b): (Vec<_>, Vec<_>) = (old.lines().collect(), new.lines().collect());
+            for i in 0..a.len().max(b.len()) {
+                let (x, y) = (a.get(i), b.get(i));
+                if x != y {
+                    note_change(&mut found, &mut count, || {
+                        let show = |l: Option<&&str>| l.map_or("(none)".into(), |l| short(l));
+                        format!("line {}: {} -> {}", i + 1, show(x), show(y))
+                    });
+                }
+            }
+        }
+    }
+    if count == 0 {
+        let at = old
+            .bytes()
+            .zip(new.bytes())
+            .position(|(a, b)| a != b)
+            .unwrap_or(old.len().min(new.len()));
+        let around = |s: &str| {
+            let mut from = at.saturating_sub(40);
+            let mut to = (at + 40).min(s.len());
+            while !s.is_char_boundary(from) {
+                from -= 1;
+            }
+            while !s.is_char_boundary(to) {
+                to += 1;
+            }
+            format!("{:?}", &s[from..to])
+        };
+        return format!(
+            "{name}: {} -> {} bytes, the same values; the first difference at byte {at}: {} -> {}",
+            old.len(),
+            new.len(),
+            around(old),
+            around(new)
+        );
+    }
+    let more = if count > found.len() {
+        format!(", the first {}", found.len())
+    } else {
+        String::new()
+    };
+    format!(
+        "{name}: {} -> {} bytes, {count} difference{}{more}:\n    {}",
+        old.len(),
+        new.len(),
+        if count == 1 { "" } else { "s" },
+        found.join("\n    ")
+    )
+}
+
+fn note_change(found: &mut Vec<String>, count: &mut usize, line: impl FnOnce() -> String) {
+    *count += 1;
+    if found.len() < SHOWN {
+        found.push(line());
+    }
+}
+
+/// The differences between two JSON values under `path`, each a leaf or a member that one
+/// side lacks; arrays of another length are said so, then compared as far as both go.
+fn json_diff(
+    path: &str,
+    old: &serde_json::Value,
+    new: &serde_json::Value,
+    found: &mut Vec<String>,
+    count: &mut usize,
+) {
+    use serde_json::Value;
+    let at = |p: &str| if p.is_empty() { "(the whole)" } else { p }.to_string();
+    match (old, new) {
+        (Value::Object(a), Value::Object(b)) => {
+            // The plain members first (a report's totals), then the nested ones.
+            let nested = |k: &String| {
+                [a.get(k), b.get(k)]
+                    .into_iter()
+                    .flatten()
+                    .any(|v| v.is_object() || v.is_array())
+            };
+            let mut keys: Vec<_> = a.keys().chain(b.keys()).collect();
+            keys.sort_by_key(|k| (nested(k), *k));
+            keys.dedup();
+            for key in keys {
+                let sub = if path.is_empty() {
+                    key.clone()
+                } else {
+                    format!("{path}.{key}")
+                };
+                match (a.get(key), b.get(key)) {
+                    (Some(x), Some(y)) => json_diff(&sub, x, y, found, count),
+                    (x, y) => note_change(found, count, || {
+                        let show = |v: Option<&Value>| v.map_or("(absent)".into(), value);
+                        format!("{sub}: {} -> {}", show(x), show(y))
+                    }),
+                }
+            }
+        }
+        (Value::Array(a), Value::Array(b)) => {
+            if a.len() != b.len() {
+                note_change(found, count, || {
+                    format!("{}: {} items -> {}", at(path), a.len(), b.len())
+                });
+            }
+            for (i, (x, y)) in a.iter().zip(b).enumerate() {
+                json_diff(&format!("{path}[{i}]"), x, y, found, count);
+            }
+        }
+        (x, y) if x != y => note_change(found, count, || {
+            format!("{}: {} -> {}", at(path), value(x), value(y))
+        }),
+        _ => {}
+    }
+}
+
+fn value(v: &serde_json::Value) -> String {
+    short(&v.to_string())
+}
+
+/// `s`, cut to 100 characters.
+fn short(s: &str) -> String {
+    match s.char_indices().nth(100) {
+        Some((at, _)) => format!("{}...", &s[..at]),
+        None => s.to_string(),
+    }
+}
+
+#[test]
+fn a_changed_pin_shows_the_changed_values_and_only_those() {
+    let old = r#"{"map":"tan3x3","trials":[{"moves":37,"cost":1.5},{"moves":12,"cost":0.25}],"converged":true,"q":[1.0,2.0]}"#;
+    let new = r#"{"map":"tan3x3","trials":[{"moves":37,"cost":1.5},{"moves":13,"cost":0.25}],"converged":false,"q":[1.0,2.0,3.0],"extra":{"a":1}}"#;
+    let told = describe_change("runs/tan3x3-Lazy-2", old, new);
+    for shown in [
+        "runs/tan3x3-Lazy-2: 107 -> 128 bytes, 4 differences:",
+        "trials[1].moves: 12 -> 13",
+        "converged: true -> false",
+        "q: 2 items -> 3",
+        "extra: (absent) -> {\"a\":1}",
+    ] {
+        assert!(told.contains(shown), "{shown:?} not in {told}");
+    }
+    // A plain member (a report's total) before the nested ones.
+    assert!(told.contains("differences:\n    converged:"), "{told}");
+    assert!(
+        !told.contains("trials[0]") && !told.contains("cost"),
+        "{told}"
+    );
+
+    // Many differences: the first few, and how many there are.
+    let many = |k: u32| serde_json::to_string(&(0..40).map(|i| i * k).collect::<Vec<_>>());
+    let told = describe_change("p", &many(1).unwrap(), &many(2).unwrap());
+    assert!(told.contains("39 differences, the first 12:"), "{told}");
+    assert!(
+        told.contains("[1]: 1 -> 2") && !told.contains("[13]"),
+        "{told}"
+    );
+}
+
+#[test]
+fn a_changed_map_shows_its_changed_lines() {
+    let old = "[map]\nrows = 3\nlayout = \"\"\"\n.#.\n...\n\"\"\"\n";
+    let new = "[map]\nrows = 3\nlayout = \"\"\"\n..#\n...\n\"\"\"\n";
+    let told = describe_change("maps/random:3x2:0.2:1", old, new);
+    assert!(
+        told.contains("maps/random:3x2:0.2:1") && told.contains("line 4: .#. -> ..#"),
+        "{told}"
+    );
+    assert!(!told.contains("line 5"), "{told}");
+}
+
+#[test]
+fn a_pin_changed_only_in_order_shows_where() {
+    let told = describe_change("p", r#"{"a":1,"b":2}"#, r#"{"b":2,"a":1}"#);
+    assert!(
+        told.contains("the same values; the first difference at byte 2"),
+        "{told}"
+    );
+}
+
+#[test]
+fn the_kept_outputs_are_the_pinned_ones() {
+    // What a failing pin is compared with must itself be what the table pins: a kept
+    // output that drifted from its hash would show a wrong difference.
+    let mut names: Vec<(String, u64, usize)> = RUNS
+        .iter()
+        .map(|&(map, strategy, seed, hash, len)| {
+            (format!("runs/{map}-{strategy:?}-{seed}"), hash, len)
+        })
+        .collect();
+    names.extend(BEYOND.iter().map(|&(map, strategy, seed, _, hash, len)| {
+        (format!("beyond/{map}-{strategy:?}-{seed}"), hash, len)
+    }));
+    names.extend(MAPS.iter().map(|&(spec, hash)| {
+        let len = std::fs::metadata(pin_file(&pinned_folder(), &format!("maps/{spec}")))
+            .map_or(0, |m| m.len() as usize);
+        (format!("maps/{spec}"), hash, len)
+    }));
+    for (name, hash, len) in names {
+        let file = pin_file(&pinned_folder(), &name);
+        let text = std::fs::read_to_string(&file)
+            .unwrap_or_else(|e| panic!("{name}: cannot read {}: {e}", file.display()));
+        assert_eq!(
+            (fnv1a(text.as_bytes()), text.len()),
+            (hash, len),
+            "{name}: {} is not its pinned output",
+            file.display()
+        );
+    }
 }
