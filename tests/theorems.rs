@@ -88,7 +88,10 @@ fn case(max_states: usize, rewards: &'static [f64]) -> impl Strategy<Value = Cas
 }
 
 /// A world file's contents from the drawn numbers, built into a world.
-#[allow(clippy::too_many_arguments)]
+#[expect(
+    clippy::too_many_arguments,
+    reason = "one argument per drawn number of the world"
+)]
 fn world(
     n: usize,
     a: usize,

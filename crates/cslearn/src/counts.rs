@@ -70,7 +70,10 @@ impl Hasher for Fx {
 /// (no random state), and nothing here depends on it anyway (the exact fallback sorts,
 /// the majority breaks ties by id), which is why the workspace's ban on `HashMap` (for
 /// its random iteration order) does not apply.
-#[allow(clippy::disallowed_types)]
+#[expect(
+    clippy::disallowed_types,
+    reason = "a hash map with a fixed hasher: its iteration order never reaches a result (see above)"
+)]
 type FxMap<K, V> = std::collections::HashMap<K, V, BuildHasherDefault<Fx>>;
 
 /// 2^52: every `x log2 x` term is a multiple of 2^-52 (0 for x <= 1; at least 2, hence a

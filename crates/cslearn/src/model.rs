@@ -592,7 +592,10 @@ impl Model {
 
     /// A learner of the model's kind holding its library, as a function from a row to its
     /// classification and the features measured.
-    #[allow(clippy::type_complexity)]
+    #[expect(
+        clippy::type_complexity,
+        reason = "a boxed classifier closure: its type is its signature"
+    )]
     fn classifier(&self) -> Box<dyn FnMut(&[Option<Value>]) -> (Classified, Vec<FeatureId>) + '_> {
         let costs = self.costs.clone();
         let library = self.library.clone();

@@ -144,20 +144,29 @@
 #![deny(missing_docs)]
 #![cfg_attr(not(test), warn(clippy::unwrap_used, clippy::expect_used))]
 
-#[allow(
-    clippy::expect_used,
-    reason = "constants: the published parameters and a learning rate of 1 are valid by their types' checks (the defaults' doc test builds them); a world has an action"
+#[cfg_attr(
+    not(test),
+    expect(
+        clippy::expect_used,
+        reason = "constants: the published parameters and a learning rate of 1 are valid by their types' checks (the defaults' doc test builds them); a world has an action"
+    )
 )]
 mod amrl;
 mod audit;
-#[allow(
-    clippy::expect_used,
-    reason = "internal invariants: a node is of the plan just built"
+#[cfg_attr(
+    not(test),
+    expect(
+        clippy::expect_used,
+        reason = "internal invariants: a node is of the plan just built"
+    )
 )]
 mod belief;
-#[allow(
-    clippy::expect_used,
-    reason = "internal invariants: feature spaces hold valid costs; a node with counts has a candidate feature"
+#[cfg_attr(
+    not(test),
+    expect(
+        clippy::expect_used,
+        reason = "internal invariants: feature spaces hold valid costs; a node with counts has a candidate feature"
+    )
 )]
 mod classify;
 mod costly;
@@ -167,47 +176,61 @@ mod error;
 mod extensions;
 mod figure;
 mod grid;
-#[allow(
-    clippy::expect_used,
-    reason = "internal invariants: every state of a sufficient representation has a row"
+#[cfg_attr(
+    not(test),
+    expect(
+        clippy::expect_used,
+        reason = "internal invariants: every state of a sufficient representation has a row"
+    )
 )]
 mod judge;
 mod learn;
 mod learner;
 mod main_loop;
-#[allow(
-    clippy::expect_used,
-    reason = "grid worlds have four actions, which a table accepts"
-)]
 mod memory;
 mod navigate;
 mod observe;
-#[allow(
-    clippy::expect_used,
-    reason = "internal invariant: every state but the goal has a view"
+#[cfg_attr(
+    not(test),
+    expect(
+        clippy::expect_used,
+        reason = "internal invariant: every state but the goal has a view"
+    )
 )]
 mod perception;
 mod predict;
 mod quality;
-#[allow(
-    clippy::expect_used,
-    reason = "grid worlds have four actions, which a table accepts"
+#[cfg_attr(
+    not(test),
+    expect(
+        clippy::expect_used,
+        reason = "grid worlds have four actions, which a table accepts"
+    )
 )]
 mod reference;
-#[allow(
-    clippy::expect_used,
-    reason = "internal invariants: grid worlds have four actions, a converged run matches every state"
+#[cfg_attr(
+    not(test),
+    expect(
+        clippy::expect_used,
+        reason = "internal invariants: grid worlds have four actions, a converged run matches every state"
+    )
 )]
 mod report;
-#[allow(
-    clippy::expect_used,
-    reason = "internal invariants: descriptions hold cell codes and ids index the representation"
+#[cfg_attr(
+    not(test),
+    expect(
+        clippy::expect_used,
+        reason = "internal invariants: descriptions hold cell codes and ids index the representation"
+    )
 )]
 mod representation;
 mod resolve;
-#[allow(
-    clippy::expect_used,
-    reason = "internal invariants: grid worlds have four actions"
+#[cfg_attr(
+    not(test),
+    expect(
+        clippy::expect_used,
+        reason = "internal invariants: grid worlds have four actions"
+    )
 )]
 mod run;
 mod sensor;
@@ -216,9 +239,12 @@ mod setup;
 mod stepper;
 mod strategy;
 mod tree;
-#[allow(
-    clippy::expect_used,
-    reason = "internal invariant: a walk given a table always ends at a row"
+#[cfg_attr(
+    not(test),
+    expect(
+        clippy::expect_used,
+        reason = "internal invariant: a walk given a table always ends at a row"
+    )
 )]
 mod utree;
 mod view;

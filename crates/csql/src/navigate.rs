@@ -87,7 +87,10 @@ impl Navigation {
 /// // One unit per classification: localising, then each state reached but the goal.
 /// assert!(n.cost_per_move() > 1.0 && n.cost <= (n.trials + n.moves) as f64);
 /// ```
-#[allow(clippy::too_many_arguments)]
+#[expect(
+    clippy::too_many_arguments,
+    reason = "one argument per part of a navigation: the world, its oracle, the perception, the policy and its settings"
+)]
 pub fn navigate<W: World + ?Sized, P: Perception, R: Rng + ?Sized>(
     world: &W,
     oracle: &Oracle,

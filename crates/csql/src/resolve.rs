@@ -27,7 +27,7 @@ use crate::setup::Setup;
 /// assert!(matches!(csql::Resolved::new(&grid).unwrap(), csql::Resolved::Grid(_)));
 /// ```
 #[derive(Clone, Debug)]
-#[allow(clippy::large_enum_variant, reason = "built once per run")]
+#[expect(clippy::large_enum_variant, reason = "built once per run")]
 pub enum Resolved {
     /// A grid map with the paper's local sensing.
     Grid(Setup),

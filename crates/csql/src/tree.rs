@@ -96,9 +96,12 @@ impl StateTree {
     /// assert_eq!(csql::StateTree::build(&rep, space.costs()).tree().depth(), 1);
     /// ```
     pub fn build(rep: &Representation, prices: &[f64]) -> StateTree {
-        #[allow(
-            clippy::expect_used,
-            reason = "a world's prices are finite and at least 0, the rule of Cost::new"
+        #[cfg_attr(
+            not(test),
+            expect(
+                clippy::expect_used,
+                reason = "a world's prices are finite and at least 0, the rule of Cost::new"
+            )
         )]
         let costs: Vec<Cost> = prices
             .iter()

@@ -148,7 +148,7 @@ impl PyAgent {
     /// `initial_value`.
     #[new]
     #[pyo3(signature = (feature_costs, feature_values, num_actions, strategy=None, seed=None, settings=None, refine_from="left", initial_value=0.0))]
-    #[allow(
+    #[expect(
         clippy::too_many_arguments,
         reason = "keywords in Python, one per choice of the agent"
     )]

@@ -142,7 +142,7 @@ impl csql::Observer for Signals {
 /// of the same names.
 #[pyfunction]
 #[pyo3(signature = (world=None, strategy=None, seed=None, learner=None, settings=None, max_trials=None, predict_sensing=None, trace=false))]
-#[allow(
+#[expect(
     clippy::too_many_arguments,
     reason = "one argument per flag of `csrl run`, all keywords in Python"
 )]

@@ -204,7 +204,7 @@ impl TestCostTree {
     /// while it grows.
     #[staticmethod]
     #[pyo3(signature = (learner, names, columns, classes, class_names, prices, group_names, misclassification, confidence=0.25, w=1.0, seed=0, population=50, generations=20, samples=5))]
-    #[allow(
+    #[expect(
         clippy::too_many_arguments,
         reason = "one argument per setting, all keywords from Python"
     )]
@@ -299,7 +299,7 @@ impl TestCostTree {
     /// Classify the objects (columns as in `fit`; a nominal column's values must be
     /// those of `fit`): the class code of each, the price of the tests it paid for, and
     /// those tests (feature indices, in the order done).
-    #[allow(
+    #[expect(
         clippy::type_complexity,
         reason = "the tuple Python receives: classes, costs, tests"
     )]
@@ -348,7 +348,7 @@ impl TestCostTree {
     /// the training weight of each class there, and `None` at a leaf or
     /// `(feature, threshold, children)` (threshold `None` for a nominal feature, whose
     /// children follow its values).
-    #[allow(
+    #[expect(
         clippy::type_complexity,
         reason = "the tuples Python receives, one per node"
     )]

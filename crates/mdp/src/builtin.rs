@@ -28,9 +28,12 @@ pub fn builtin_names() -> Vec<&'static str> {
 /// assert_eq!((map.width(), map.height(), map.states().len()), (8, 8, 50));
 /// assert!(mdp::builtin("nope").is_none());
 /// ```
-#[allow(
-    clippy::expect_used,
-    reason = "the built-in maps are checked by a test; a broken one is a bug of the crate, not of input"
+#[cfg_attr(
+    not(test),
+    expect(
+        clippy::expect_used,
+        reason = "the built-in maps are checked by a test; a broken one is a bug of the crate, not of input"
+    )
 )]
 pub fn builtin(name: &str) -> Option<Map> {
     BUILTINS.iter().find(|(n, _)| *n == name).map(|(n, text)| {

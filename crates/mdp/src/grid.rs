@@ -182,9 +182,12 @@ impl GridWorld {
     /// let w = mdp::GridWorld::new(&mdp::builtin("tan8x8").unwrap());
     /// assert_eq!(mdp::Mdp::num_states(&w), 51);
     /// ```
-    #[allow(
-        clippy::expect_used,
-        reason = "the default options have non-negative, finite rewards, the only thing with_options refuses"
+    #[cfg_attr(
+        not(test),
+        expect(
+            clippy::expect_used,
+            reason = "the default options have non-negative, finite rewards, the only thing with_options refuses"
+        )
     )]
     pub fn new(map: &Map) -> GridWorld {
         GridWorld::with_options(map, GridOptions::default())
@@ -211,9 +214,12 @@ impl GridWorld {
                 positions.push(p);
             }
         }
-        #[allow(
-            clippy::expect_used,
-            reason = "a valid map's goal is a free cell, and every free cell got a state above"
+        #[cfg_attr(
+            not(test),
+            expect(
+                clippy::expect_used,
+                reason = "a valid map's goal is a free cell, and every free cell got a state above"
+            )
         )]
         let goal = state_of[map.goal().row * map.width() + map.goal().col].expect("goal is free");
         let n = positions.len();
@@ -229,9 +235,12 @@ impl GridWorld {
                     },
                     _ => Pos::new(r as usize, c as usize),
                 };
-                #[allow(
-                    clippy::expect_used,
-                    reason = "a move lands on a free cell: the target if free, else the robot's own cell"
+                #[cfg_attr(
+                    not(test),
+                    expect(
+                        clippy::expect_used,
+                        reason = "a move lands on a free cell: the target if free, else the robot's own cell"
+                    )
                 )]
                 let t = state_of[target.row * map.width() + target.col].expect("free");
                 next.push(t.0);

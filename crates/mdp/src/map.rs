@@ -326,9 +326,12 @@ impl Map {
             .map(|r| r.iter().map(|c| c.to_char()).collect::<String>())
             .collect::<Vec<_>>()
             .join("\n");
-        #[allow(
-            clippy::expect_used,
-            reason = "callers (the random generator, goal moves) build valid cells; a failure is a bug of the crate"
+        #[cfg_attr(
+            not(test),
+            expect(
+                clippy::expect_used,
+                reason = "callers (the random generator, goal moves) build valid cells; a failure is a bug of the crate"
+            )
         )]
         let mut map = Map::from_layout(&name, &layout).expect("generator produced an invalid map");
         map.description = description;

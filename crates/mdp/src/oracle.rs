@@ -319,9 +319,12 @@ fn grid_distances(world: &GridWorld) -> Vec<Option<u32>> {
     distance[world.goal().index()] = Some(0);
     let mut queue = VecDeque::from([NodeIndex::new(world.goal().index())]);
     while let Some(u) = queue.pop_front() {
-        #[allow(
-            clippy::expect_used,
-            reason = "a node is queued only after its distance is set"
+        #[cfg_attr(
+            not(test),
+            expect(
+                clippy::expect_used,
+                reason = "a node is queued only after its distance is set"
+            )
         )]
         let d = distance[u.index()].expect("queued nodes have a distance");
         for v in graph.neighbors(u) {

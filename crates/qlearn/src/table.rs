@@ -221,9 +221,12 @@ impl QTable {
     /// assert_eq!(t.q_row(qlearn::RowId(1)), &[0.0, 0.0, 0.0]);
     /// ```
     pub fn add_row(&mut self) -> RowId {
-        #[allow(
-            clippy::expect_used,
-            reason = "2^32 rows of Q-values would need far more memory than any machine has"
+        #[cfg_attr(
+            not(test),
+            expect(
+                clippy::expect_used,
+                reason = "2^32 rows of Q-values would need far more memory than any machine has"
+            )
         )]
         let id = RowId(u32::try_from(self.v.len()).expect("at most 2^32 rows"));
         self.q

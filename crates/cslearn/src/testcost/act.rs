@@ -33,8 +33,8 @@ use super::tree::{
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ActParams {
-    /// Trees sampled under each branch of each candidate test (`r`). 5 by default, the
-    /// sample size of the published comparison; 0 values each branch as a leaf (a
+    /// Trees sampled under each branch of each candidate test (`r`), 5 by default; more
+    /// give a better estimate for more time, and 0 values each branch as a leaf (a
     /// one-step lookahead).
     pub samples: usize,
     /// The confidence of the pessimistic error estimate (C4.5's 0.25).

@@ -2,7 +2,10 @@
 //! wrote, and the lake sensed by row and column that the costed runs play.
 
 // Each test file is a crate of its own and uses some of these only.
-#![allow(dead_code)]
+#![allow(
+    dead_code,
+    reason = "shared by several test programs, each of which uses only some of it (an expectation would fail in those that use all)"
+)]
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

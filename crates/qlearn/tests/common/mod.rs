@@ -1,6 +1,9 @@
 //! Helpers shared by the integration tests: random small MDPs and value iteration.
 
-#![allow(dead_code)]
+#![allow(
+    dead_code,
+    reason = "shared by several test programs, each of which uses only some of it (an expectation would fail in those that use all)"
+)]
 
 use mdp::{ActionId, Mdp, NegativeRewards, StateId, TabularMdp};
 use proptest::prelude::*;
