@@ -6,9 +6,12 @@
 //!    `crates/csrl-py/requirements-test.txt`;
 //! 3. the Python package built and installed into it by its documented command,
 //!    `pip install ./crates/csrl-py` (without build isolation: maturin is already there);
-//! 4. the release build of the `csrl` program, which the Python tests compare with;
-//! 5. pytest, warnings as errors: `crates/csrl-py/tests` and the examples of the
-//!    package's docstrings.
+//! 4. the type check of the package's public API and its stubs: mypy, configured in
+//!    `crates/csrl-py/pyproject.toml`;
+//! 5. the release build of the `csrl` program, which the Python tests compare with;
+//! 6. pytest, warnings as errors, strict (`xfail_strict`, `--strict-markers`,
+//!    `--strict-config`): `crates/csrl-py/tests` and the examples of the package's
+//!    docstrings.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -125,6 +128,12 @@ pub fn test(args: &TestArgs) -> Result<()> {
         "./crates/csrl-py",
     ]))?;
 
+    // The type check, its cache kept under the target folder.
+    run(in_venv(&python)
+        .args(["-m", "mypy", "--cache-dir"])
+        .arg(target.join("mypy-cache"))
+        .current_dir(root.join("crates/csrl-py")))?;
+
     run(Command::new(&cargo)
         .args(["build", "--release", "-p", "csrl"])
         .current_dir(&root))?;
@@ -135,7 +144,8 @@ pub fn test(args: &TestArgs) -> Result<()> {
         .args(&args.pytest)
         .env("CSRL_CLI", &cli)
         .current_dir(root.join("crates/csrl-py")))?;
-    // The docstrings' examples, from the installed package.
+    // The docstrings' examples, from the installed package (run from outside the
+    // package's folder, so its pytest settings are given here: the same strictness).
     run(in_venv(&python)
         .args([
             "-m",
@@ -143,6 +153,10 @@ pub fn test(args: &TestArgs) -> Result<()> {
             "-W",
             "error",
             "-q",
+            "-o",
+            "xfail_strict=true",
+            "--strict-markers",
+            "--strict-config",
             "--doctest-modules",
             "-p",
             "no:cacheprovider",

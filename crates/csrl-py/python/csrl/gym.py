@@ -86,6 +86,8 @@ class SensingEnv(gymnasium.Env):
         render_mode: ``None``, ``"ansi"`` or ``"rgb_array"``.
     """
 
+    action_space: spaces.Discrete
+
     metadata = {"render_modes": ["ansi", "rgb_array"], "render_fps": 4}
 
     def __init__(

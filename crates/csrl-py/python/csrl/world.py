@@ -343,7 +343,7 @@ class World:
             raise WorldError(
                 f"initial_state_distrib has {len(start_dist)} entries, but there are {n} states"
             )
-        start = [
+        start: list[list[Any]] = [
             [p, s]
             for s, p in enumerate(
                 _probability(p, f"initial_state_distrib[{s}]") for s, p in enumerate(start_dist)
@@ -382,19 +382,19 @@ class World:
                         )
                     out.append([p, t, r, terminal[t]])
                 transitions.append([s, a, out])
-        readings = []
+        readings: list[list[int]] = []
         for s in range(n):
-            row = [
+            sensed = [
                 _integer(v, f"features({s})[{f}]", "reading", _csrl.MAX_READING + 1)
                 for f, v in enumerate(_tolist(features(s)))
             ]
             if not readings:
-                _at_most(len(row), _csrl.MAX_FEATURES, "features")
-            if readings and len(row) != len(readings[0]):
+                _at_most(len(sensed), _csrl.MAX_FEATURES, "features")
+            if readings and len(sensed) != len(readings[0]):
                 raise WorldError(
-                    f"features({s}) gave {len(row)} readings, features(0) gave {len(readings[0])}"
+                    f"features({s}) gave {len(sensed)} readings, features(0) gave {len(readings[0])}"
                 )
-            readings.append(row)
+            readings.append(sensed)
         costs = [_real(c, f"feature_costs[{f}]", "price") for f, c in enumerate(_tolist(feature_costs))]
         nf = len(readings[0]) if readings else 0
         if len(costs) != nf:
