@@ -146,6 +146,9 @@ impl Sampler<'_> {
         for (stat, _) in self.candidates(splits, c) {
             let mut cost = self.test_price(splits, c, &stat);
             let branches = splits.children(c, &stat).cells.clone();
+            // The sampled trees are thrown away once valued: the trie keeps only the
+            // candidates' children, so its memory follows the tree grown, not the samples.
+            let mark = splits.mark();
             for child in branches.into_iter().flatten() {
                 cost += if self.samples == 0 {
                     self.leaf(splits, child)
@@ -155,6 +158,7 @@ impl Sampler<'_> {
                         .fold(f64::INFINITY, f64::min)
                 };
             }
+            splits.forget_since(mark);
             if best.is_none_or(|(_, b)| cost < b) {
                 best = Some((stat, cost));
             }

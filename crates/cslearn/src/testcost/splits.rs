@@ -75,6 +75,16 @@ pub(crate) struct Splits<'a> {
     threshold_penalty: bool,
     cells: Vec<Cell>,
     scratch: Scratch,
+    /// The cell of every children list made, in order, so that [`Splits::forget_since`]
+    /// can drop the ones made after a [`Mark`].
+    made: Vec<u32>,
+}
+
+/// A point in a trie's growth ([`Splits::mark`]) to forget what grew after it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Mark {
+    cells: usize,
+    made: usize,
 }
 
 /// C4.5's least branch size for a split of `known` weight among `classes` classes.
@@ -184,6 +194,7 @@ impl<'a> Splits<'a> {
             cost_based: matches!(criterion, Criterion::Dtmc),
             threshold_penalty: matches!(criterion, Criterion::C45),
             cells: Vec::new(),
+            made: Vec::new(),
             scratch: Scratch {
                 branch: Vec::new(),
                 sorted: Vec::new(),
@@ -216,6 +227,27 @@ impl<'a> Splits<'a> {
         root.held_rows = rows;
         root.held_weights = weights;
         root.held_classes = classes;
+    }
+
+    /// Where the trie's growth stands now.
+    pub fn mark(&self) -> Mark {
+        Mark {
+            cells: self.cells.len(),
+            made: self.made.len(),
+        }
+    }
+
+    /// Forget the cells and children lists made since `mark` (the statistics computed
+    /// since for older cells stay): the trie is as it was then, as far as any walk can
+    /// tell, and takes the memory it took then plus those statistics. Everything a walk
+    /// reads is a function of the objects reaching a cell, so making a cell again gives
+    /// it again.
+    pub fn forget_since(&mut self, mark: Mark) {
+        for &c in self.made[mark.made..].iter().rev() {
+            self.cells[c as usize].children.pop();
+        }
+        self.made.truncate(mark.made);
+        self.cells.truncate(mark.cells);
     }
 
     /// Whether the statistics are DTMC's.
@@ -449,6 +481,7 @@ impl<'a> Splits<'a> {
             None => {
                 let made = self.split(c, stat);
                 self.cells[c as usize].children.push(made);
+                self.made.push(c);
                 self.cells[c as usize].children.len() - 1
             }
         }
