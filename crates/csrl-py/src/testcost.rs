@@ -11,7 +11,7 @@
 
 use cslearn::testcost::{
     ActParams, Column, CostTree, FamilyParams, Frame, IcetGenome, IcetParams, MISSING, Method,
-    MisclassCosts, Split, TestPrice, TestPrices,
+    MisclassCosts, Pruning, SelectionPrices, Split, TestPrice, TestPrices,
 };
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyType};
@@ -200,10 +200,12 @@ impl TestCostTree {
     /// an index into `group_names`, or `None`); `misclassification[actual][predicted]`
     /// the cost of each answer; `confidence` C4.5's pruning confidence, `w` EG2's weight
     /// of the price; `seed`, `population` and `generations` ICET's search (`seed` also
-    /// ACT's samples); `samples` ACT's trees sampled per branch. The GIL is released
-    /// while it grows.
+    /// ACT's samples); `samples` ACT's trees sampled per branch; `selection_prices` the
+    /// price selection functions see ("path" or "listed"); `icet_pruning` how ICET
+    /// prunes ("errors" or "costs") and `search_objects` the most objects its search
+    /// uses. The GIL is released while it grows.
     #[staticmethod]
-    #[pyo3(signature = (learner, names, columns, classes, class_names, prices, group_names, misclassification, confidence=0.25, w=1.0, seed=0, population=50, generations=20, samples=5))]
+    #[pyo3(signature = (learner, names, columns, classes, class_names, prices, group_names, misclassification, confidence=0.25, w=1.0, seed=0, population=50, generations=20, samples=5, selection_prices="path", icet_pruning="errors", search_objects=400))]
     #[expect(
         clippy::too_many_arguments,
         reason = "one argument per setting, all keywords from Python"
@@ -224,6 +226,9 @@ impl TestCostTree {
         population: usize,
         generations: usize,
         samples: usize,
+        selection_prices: &str,
+        icet_pruning: &str,
+        search_objects: usize,
     ) -> PyResult<TestCostTree> {
         let method = Method::parse(learner).map_err(|e| data_error(&e))?;
         if prices.len() != names.len() {
@@ -238,6 +243,15 @@ impl TestCostTree {
         if population < 2 || generations < 1 {
             return Err(DataError::new_err(format!(
                 "ICET needs a population of at least 2 and at least 1 generation, found {population} and {generations}"
+            )));
+        }
+        let selection_prices = SelectionPrices::parse(selection_prices)
+            .map_err(|e| DataError::new_err(format!("selection_prices: {}", message(&e))))?;
+        let icet_pruning = Pruning::parse(icet_pruning)
+            .map_err(|e| DataError::new_err(format!("icet_pruning: {}", message(&e))))?;
+        if search_objects < 2 {
+            return Err(DataError::new_err(format!(
+                "ICET's search needs at least 2 objects (one per half), found {search_objects}"
             )));
         }
         if samples > ActParams::MAX_SAMPLES {
@@ -274,13 +288,15 @@ impl TestCostTree {
             icet: IcetParams {
                 population,
                 generations,
+                pruning: icet_pruning,
+                search_objects,
                 ..IcetParams::default()
             },
+            selection_prices,
             act: ActParams {
                 samples,
                 ..ActParams::default()
             },
-            ..FamilyParams::default()
         };
         let rows: Vec<usize> = (0..frame.len()).collect();
         let fitted = py

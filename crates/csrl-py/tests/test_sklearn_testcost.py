@@ -282,6 +282,34 @@ def test_bad_parameters_are_refused_with_a_clear_value_error(params, message):
         cs.TestCostTreeClassifier(**params).fit(X, [0, 1] * 4)
 
 
+def test_the_published_benchmarks_settings_are_estimator_parameters():
+    # Listed prices: a numeric test bought once costs its price again further down, so
+    # IDX no longer splits on x0 alone (see the blobs test above).
+    X, y = make_blobs(n_samples=300, random_state=0)
+    X = StandardScaler().fit_transform(X)
+    path = cs.TestCostTreeClassifier(learner="idx").fit(X, y)
+    listed = cs.TestCostTreeClassifier(learner="idx", selection_prices="listed").fit(X, y)
+    assert all(t == [0] for t in path.predict_tests(X))
+    assert any(1 in t for t in listed.predict_tests(X))
+    assert listed.score(X, y) > path.score(X, y)
+    # ICET pruned by costs at a low misclassification cost keeps only tests that pay.
+    X, y = load_iris(return_X_y=True)
+    params = dict(feature_costs=[10.0, 20.0, 30.0, 40.0], misclassification_cost=20.0, population=10, generations=3, seed=1)
+    errors = cs.IcetClassifier(**params).fit(X, y)
+    costs = cs.IcetClassifier(icet_pruning="costs", **params).fit(X, y)
+    assert costs.predict_cost(X).mean() <= errors.predict_cost(X).mean()
+    general = cs.TestCostTreeClassifier(learner="icet", icet_pruning="costs", icet_search_objects=60, **params).fit(X, y)
+    named = cs.IcetClassifier(icet_pruning="costs", icet_search_objects=60, **params).fit(X, y)
+    assert general._model.nodes() == named._model.nodes()
+    for bad, message in (
+        (dict(selection_prices="free"), "selection_prices must be 'path' or 'listed'"),
+        (dict(icet_pruning="leaves"), "icet_pruning must be 'errors' or 'costs'"),
+        (dict(icet_search_objects=1), "icet_search_objects must be an integer at least 2"),
+    ):
+        with pytest.raises(ValueError, match=message):
+            cs.TestCostTreeClassifier(learner="icet", **bad).fit(X, y)
+
+
 def test_icet_is_reproducible_from_its_seed():
     X, y = load_iris(return_X_y=True)
     params = dict(feature_costs=[1.0, 5.0, 20.0, 40.0], misclassification_cost=50.0, population=20, generations=5)

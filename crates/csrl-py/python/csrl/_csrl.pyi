@@ -156,6 +156,9 @@ class TestCostTree:
         population: int = 50,
         generations: int = 20,
         samples: int = 5,
+        selection_prices: str = "path",
+        icet_pruning: str = "errors",
+        search_objects: int = 400,
     ) -> TestCostTree: ...
     def classify(self, columns: list[_Column]) -> tuple[list[int], list[float], list[list[int]]]: ...
     def nodes(

@@ -386,6 +386,14 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         population, generations: the size of ICET's search (Turney's 50 and 20).
         act_samples: ACT's trees sampled under each branch of each candidate test (its
             ``r``, 5; 0 values each branch as a leaf), at most 1000.
+        selection_prices: the price a selection function sees for a test: ``"path"``
+            (after the node's path: a test done once is free further down; the default)
+            or ``"listed"`` (its listed price whatever the path, as the published
+            implementations score tests). An object pays after its path either way.
+        icet_pruning: how ICET prunes its trees: ``"errors"`` (C4.5's, Turney's; the
+            default) or ``"costs"`` (a test must pay for itself at the real prices).
+        icet_search_objects: the most training objects ICET's search uses, half to grow
+            and half to score (400; at least 2); the final tree grows on all of them.
 
     Attributes:
         classes_, n_features_in_, feature_names_in_: as scikit-learn's.
@@ -420,6 +428,9 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         population: int = 50,
         generations: int = 20,
         act_samples: int = 5,
+        selection_prices: str = "path",
+        icet_pruning: str = "errors",
+        icet_search_objects: int = 400,
     ) -> None:
         self.learner = learner
         self.feature_costs = feature_costs
@@ -433,6 +444,9 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         self.population = population
         self.generations = generations
         self.act_samples = act_samples
+        self.selection_prices = selection_prices
+        self.icet_pruning = icet_pruning
+        self.icet_search_objects = icet_search_objects
 
     # -- parameters -------------------------------------------------------------------
 
@@ -693,6 +707,13 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         population = getattr(self, "population", 50)
         generations = getattr(self, "generations", 20)
         act_samples = getattr(self, "act_samples", 5)
+        selection_prices = getattr(self, "selection_prices", "path")
+        icet_pruning = getattr(self, "icet_pruning", "errors")
+        icet_search_objects = getattr(self, "icet_search_objects", 400)
+        if selection_prices not in ("path", "listed"):
+            raise ValueError(f"selection_prices must be 'path' or 'listed', found {selection_prices!r}")
+        if icet_pruning not in ("errors", "costs"):
+            raise ValueError(f"icet_pruning must be 'errors' or 'costs', found {icet_pruning!r}")
         if not (isinstance(confidence, numbers.Real) and 0 < confidence < 1):
             raise ValueError(f"confidence must be a number in (0, 1), found {confidence!r}")
         if not (isinstance(w, numbers.Real) and 0 <= w <= 1):
@@ -702,6 +723,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
             ("population", population, 2),
             ("generations", generations, 1),
             ("act_samples", act_samples, 0),
+            ("icet_search_objects", icet_search_objects, 2),
         ):
             integer = isinstance(v, (numbers.Integral, np.integer)) and not isinstance(v, bool)
             if not integer or not least <= v < 2**64:
@@ -723,6 +745,9 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
             population=int(population),
             generations=int(generations),
             samples=int(act_samples),
+            selection_prices=str(selection_prices),
+            icet_pruning=str(icet_pruning),
+            search_objects=int(icet_search_objects),
         )
         self.classes_ = classes
         self.nominal_features_ = nominal
@@ -912,7 +937,8 @@ class CsId3BatchClassifier(_Pruned):
 
 class Eg2Classifier(TestCostTreeClassifier):
     """EG2 (Núñez 1991): the test of largest (2^gain − 1) / (price + 1)^w; pruned as
-    C4.5 (:class:`TestCostTreeClassifier` with ``learner="eg2"``)."""
+    C4.5 (:class:`TestCostTreeClassifier` with ``learner="eg2"``, whose documentation
+    the parameters follow, ``selection_prices`` included)."""
 
     _learner = "eg2"
 
@@ -925,6 +951,7 @@ class Eg2Classifier(TestCostTreeClassifier):
         nominal_features: Optional[Any] = None,
         confidence: float = 0.25,
         w: float = 1.0,
+        selection_prices: str = "path",
     ) -> None:
         self.feature_costs = feature_costs
         self.feature_groups = feature_groups
@@ -933,6 +960,7 @@ class Eg2Classifier(TestCostTreeClassifier):
         self.nominal_features = nominal_features
         self.confidence = confidence
         self.w = w
+        self.selection_prices = selection_prices
 
 
 class DtmcClassifier(_Unpruned):
@@ -950,7 +978,10 @@ class IcetClassifier(TestCostTreeClassifier):
     whose fitness is the mean total cost, on one half of the training objects, of the
     tree grown on the other; ``seed`` fixes the halves and the search. Its tree depends
     on ``misclassification_cost`` (:class:`TestCostTreeClassifier` with
-    ``learner="icet"``). ``icet_genome_`` is the individual the tree was grown from."""
+    ``learner="icet"``, whose documentation the parameters follow: ``icet_pruning``,
+    ``icet_search_objects`` and ``selection_prices`` reproduce the published
+    benchmark's ICET with ``"costs"``, 1000 and ``"listed"``). ``icet_genome_`` is the
+    individual the tree was grown from."""
 
     _learner = "icet"
 
@@ -964,6 +995,9 @@ class IcetClassifier(TestCostTreeClassifier):
         seed: int = 0,
         population: int = 50,
         generations: int = 20,
+        selection_prices: str = "path",
+        icet_pruning: str = "errors",
+        icet_search_objects: int = 400,
     ) -> None:
         self.feature_costs = feature_costs
         self.feature_groups = feature_groups
@@ -973,6 +1007,9 @@ class IcetClassifier(TestCostTreeClassifier):
         self.seed = seed
         self.population = population
         self.generations = generations
+        self.selection_prices = selection_prices
+        self.icet_pruning = icet_pruning
+        self.icet_search_objects = icet_search_objects
 
 
 class ActClassifier(TestCostTreeClassifier):
@@ -995,6 +1032,7 @@ class ActClassifier(TestCostTreeClassifier):
         w: float = 1.0,
         seed: int = 0,
         act_samples: int = 5,
+        selection_prices: str = "path",
     ) -> None:
         self.feature_costs = feature_costs
         self.feature_groups = feature_groups
@@ -1004,3 +1042,4 @@ class ActClassifier(TestCostTreeClassifier):
         self.w = w
         self.seed = seed
         self.act_samples = act_samples
+        self.selection_prices = selection_prices
