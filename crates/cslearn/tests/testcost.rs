@@ -269,47 +269,36 @@ fn act_splits_where_the_sampled_subtrees_cost_least() {
     assert_eq!(root(Method::Act, 5.0), None);
 }
 
+/// Heart with Turney's prices, mc 500, and every second object to learn from.
+fn heart_at_mc_500() -> (Frame, TestPrices, MisclassCosts, Vec<usize>) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/uci");
+    let catalogue = Catalogue::read(&root.join("datasets.toml")).unwrap();
+    let heart = catalogue.load("heart").unwrap();
+    let rows: Vec<usize> = (0..heart.frame.len()).step_by(2).collect();
+    let mc = MisclassCosts::uniform(2, 500.0).unwrap();
+    (heart.frame, heart.turney.unwrap(), mc, rows)
+}
+
 /// ACT's samples flow from its seed: the same seed grows the same tree, and on a data
 /// set with many candidate tests another seed grows another.
 #[test]
 fn act_is_reproducible_from_its_seed() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/uci");
-    let catalogue = Catalogue::read(&root.join("datasets.toml")).unwrap();
-    let heart = catalogue.load("heart").unwrap();
-    let prices = heart.turney.unwrap();
-    let mc = MisclassCosts::uniform(2, 500.0).unwrap();
-    let rows: Vec<usize> = (0..heart.frame.len()).step_by(2).collect();
+    let (frame, prices, mc, rows) = heart_at_mc_500();
     let params = FamilyParams::default();
-    let grown = |seed| {
-        fit(
-            Method::Act,
-            &heart.frame,
-            &rows,
-            &prices,
-            &mc,
-            &params,
-            seed,
-        )
-        .tree
-    };
+    let grown = |seed| fit(Method::Act, &frame, &rows, &prices, &mc, &params, seed).tree;
     assert_eq!(grown(7), grown(7));
     assert!((1..6).any(|seed| grown(seed) != grown(7)));
 }
 
 #[test]
 fn icet_is_reproducible_from_its_seed() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/uci");
-    let catalogue = Catalogue::read(&root.join("datasets.toml")).unwrap();
-    let heart = catalogue.load("heart").unwrap();
-    let prices = heart.turney.unwrap();
-    let mc = MisclassCosts::uniform(2, 500.0).unwrap();
-    let rows: Vec<usize> = (0..heart.frame.len()).step_by(2).collect();
+    let (frame, prices, mc, rows) = heart_at_mc_500();
     let mut params = FamilyParams::default();
     params.icet.generations = 4;
     params.icet.population = 12;
-    let one = fit(Method::Icet, &heart.frame, &rows, &prices, &mc, &params, 7);
-    let again = fit(Method::Icet, &heart.frame, &rows, &prices, &mc, &params, 7);
-    let other = fit(Method::Icet, &heart.frame, &rows, &prices, &mc, &params, 8);
+    let one = fit(Method::Icet, &frame, &rows, &prices, &mc, &params, 7);
+    let again = fit(Method::Icet, &frame, &rows, &prices, &mc, &params, 7);
+    let other = fit(Method::Icet, &frame, &rows, &prices, &mc, &params, 8);
     assert_eq!(one.tree, again.tree);
     assert_eq!(one.genome, again.genome);
     assert_ne!(one.genome, other.genome);
