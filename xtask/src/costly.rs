@@ -410,6 +410,7 @@ pub fn costly(args: &CostlyArgs) -> Result<()> {
             def.clone(),
             total(&def)?,
             args.threads,
+            |_| 1.0,
             |id| run_job(&def, &lakes, id),
         )?;
         if crate::shard::parse_shard(&args.shard)?.1 > 1 {

@@ -341,6 +341,7 @@ pub fn robustness(args: &RobustnessArgs) -> Result<()> {
             def.clone(),
             total,
             args.threads,
+            |_| 1.0,
             |id| {
                 let (m, condition, learner, run) = list.get(id);
                 let s = settings(&def, &args.maps[m], condition, learner, run)?;

@@ -12,15 +12,20 @@
 //!
 //! A shard's jobs are computed from their numbers (`K - 1`, `K - 1 + N`, ...), never by
 //! listing the whole job list: a shard costs memory in proportion to its own jobs.
+//!
+//! The worker threads take the jobs one at a time from one queue, heaviest first by the
+//! caller's estimate of each job's work (longest processing time first), so that the run
+//! does not end with one thread on a long tail while the others idle. A job's result
+//! depends on its number only, never on the order it ran in or the thread that ran it.
 
 use std::collections::BTreeMap;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use anyhow::{Context, Result, bail};
 use indicatif::ProgressBar;
-use rayon::prelude::*;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
@@ -224,17 +229,19 @@ pub fn set_aside_bad_lines<T>(path: &Path, read: &ReadResults<T>) -> Result<()> 
 /// Run shard `K/N` of a job list of `total` jobs under `out`: check (or write) its
 /// manifest, set bad lines aside, and run every job it does not have yet with `run`,
 /// in parallel on `threads` threads, appending each result as it ends.
-pub fn run_shard<D, T, F>(
+pub fn run_shard<D, T, W, F>(
     out: &Path,
     shard: &str,
     definition: D,
     total: u64,
     threads: Option<usize>,
+    weight: W,
     run: F,
 ) -> Result<()>
 where
     D: Serialize + DeserializeOwned + PartialEq,
     T: JobLine,
+    W: Fn(u64) -> f64,
     F: Fn(u64) -> Result<T> + Sync,
 {
     let (k, n) = parse_shard(shard)?;
@@ -289,25 +296,67 @@ where
     let file = crate::files::open_append(&results_path)?;
     let file = Mutex::new(file);
     let bar = ProgressBar::new(todo.len() as u64);
-    crate::files::pool(threads)?.install(|| {
-        todo.par_iter().try_for_each(|&id| -> Result<()> {
-            let result = run(id)?;
-            let line = serde_json::to_string(&result)? + "\n";
-            let mut f = file
-                .lock()
-                .map_err(|_| anyhow::anyhow!("a writer of {} failed", results_path.display()))?;
-            f.write_all(line.as_bytes())?;
-            f.flush()?;
-            bar.inc(1);
-            Ok(())
-        })
-    })?;
+    let queue = heaviest_first(todo, weight);
+    let write = |id: u64| -> Result<()> {
+        let result = run(id)?;
+        let line = serde_json::to_string(&result)? + "\n";
+        let mut f = file
+            .lock()
+            .map_err(|_| anyhow::anyhow!("a writer of {} failed", results_path.display()))?;
+        f.write_all(line.as_bytes())?;
+        f.flush()?;
+        bar.inc(1);
+        Ok(())
+    };
+    run_queue(&queue, threads, write)?;
     bar.finish_and_clear();
     crate::note(&format!(
         "shard {k}/{n} complete: {}",
         results_path.display()
     ));
     Ok(())
+}
+
+/// The jobs in the order they are handed out: by decreasing weight, ties (and weights
+/// that are not numbers) in the order given.
+fn heaviest_first(mut jobs: Vec<u64>, weight: impl Fn(u64) -> f64) -> Vec<u64> {
+    let key = |id: u64| {
+        let w = weight(id);
+        if w.is_nan() { f64::NEG_INFINITY } else { w }
+    };
+    jobs.sort_by(|a, b| key(*b).total_cmp(&key(*a)));
+    jobs
+}
+
+/// Run every job of `queue` on `threads` worker threads, each taking the next job from
+/// the front of the queue when it is free. The first error stops the handing out of jobs
+/// and is returned once the running jobs end.
+fn run_queue(
+    queue: &[u64],
+    threads: Option<usize>,
+    run: impl Fn(u64) -> Result<()> + Sync,
+) -> Result<()> {
+    let next = AtomicUsize::new(0);
+    let failed: Mutex<Option<anyhow::Error>> = Mutex::new(None);
+    let stop = AtomicBool::new(false);
+    crate::files::pool(threads)?.broadcast(|_| {
+        while !stop.load(Ordering::Relaxed) {
+            let Some(&id) = queue.get(next.fetch_add(1, Ordering::Relaxed)) else {
+                break;
+            };
+            if let Err(e) = run(id) {
+                stop.store(true, Ordering::Relaxed);
+                if let Ok(mut first) = failed.lock() {
+                    first.get_or_insert(e);
+                }
+            }
+        }
+    });
+    match failed.into_inner() {
+        Ok(None) => Ok(()),
+        Ok(Some(e)) => Err(e),
+        Err(_) => bail!("a worker thread failed"),
+    }
 }
 
 /// Every `shard-*` folder in or at the given paths.
@@ -429,6 +478,50 @@ mod tests {
     }
 
     #[test]
+    fn jobs_are_handed_out_heaviest_first_ties_in_job_order() {
+        let weights = [1.0, 5.0, f64::NAN, 5.0, 2.0];
+        let order = heaviest_first((0..5).collect(), |id| weights[id as usize]);
+        assert_eq!(order, vec![1, 3, 4, 0, 2]);
+    }
+
+    #[test]
+    fn the_queue_runs_every_job_once_on_every_thread_count() {
+        for threads in [1, 2, 3] {
+            let seen = Mutex::new(Vec::new());
+            let queue: Vec<u64> = (0..50).rev().collect();
+            run_queue(&queue, Some(threads), |id| {
+                seen.lock().unwrap().push(id);
+                Ok(())
+            })
+            .unwrap();
+            let mut seen = seen.into_inner().unwrap();
+            seen.sort_unstable();
+            assert_eq!(seen, (0..50).collect::<Vec<_>>(), "{threads} threads");
+        }
+    }
+
+    #[test]
+    fn the_first_failure_stops_the_queue_and_is_returned() {
+        let ran = AtomicUsize::new(0);
+        let queue: Vec<u64> = (0..100).collect();
+        let err = run_queue(&queue, Some(1), |id| {
+            ran.fetch_add(1, Ordering::Relaxed);
+            if id == 3 {
+                bail!("job {id} failed")
+            } else {
+                Ok(())
+            }
+        })
+        .unwrap_err();
+        assert_eq!(err.to_string(), "job 3 failed");
+        assert_eq!(
+            ran.load(Ordering::Relaxed),
+            4,
+            "no job is handed out after a failure"
+        );
+    }
+
+    #[test]
     fn shards_parse_and_cover_the_jobs_once() {
         assert_eq!(parse_shard("2/8").unwrap(), (2, 8));
         for bad in ["0/3", "4/3", "x/3", "3", "1/0"] {
@@ -499,7 +592,16 @@ mod tests {
             result(0)
         );
         std::fs::write(&results, &text).unwrap();
-        run_shard(dir.path(), "1/2", "def".to_string(), 4, Some(1), job).unwrap();
+        run_shard(
+            dir.path(),
+            "1/2",
+            "def".to_string(),
+            4,
+            Some(1),
+            |_| 1.0,
+            job,
+        )
+        .unwrap();
         // Only job 2 ran: job 0 was done; 1, 7 and the repeat of 0 are set aside.
         assert_eq!(runs.load(std::sync::atomic::Ordering::Relaxed), 1);
         let kept = std::fs::read_to_string(&results).unwrap();
@@ -524,8 +626,26 @@ mod tests {
                 value: id as f64,
             })
         };
-        run_shard(dir.path(), "1/2", "def".to_string(), 4, Some(1), job).unwrap();
-        run_shard(dir.path(), "2/2", "def".to_string(), 4, Some(1), job).unwrap();
+        run_shard(
+            dir.path(),
+            "1/2",
+            "def".to_string(),
+            4,
+            Some(1),
+            |_| 1.0,
+            job,
+        )
+        .unwrap();
+        run_shard(
+            dir.path(),
+            "2/2",
+            "def".to_string(),
+            4,
+            Some(1),
+            |_| 1.0,
+            job,
+        )
+        .unwrap();
         assert_eq!(
             collect::<String, Line>(&[dir.path().to_path_buf()])
                 .unwrap()
@@ -607,11 +727,40 @@ mod tests {
                 value: id as f64,
             })
         };
-        run_shard(dir.path(), "1/1", "def".to_string(), 3, Some(1), job).unwrap();
-        run_shard(dir.path(), "1/1", "def".to_string(), 3, Some(1), job).unwrap();
+        run_shard(
+            dir.path(),
+            "1/1",
+            "def".to_string(),
+            3,
+            Some(1),
+            |_| 1.0,
+            job,
+        )
+        .unwrap();
+        run_shard(
+            dir.path(),
+            "1/1",
+            "def".to_string(),
+            3,
+            Some(1),
+            |_| 1.0,
+            job,
+        )
+        .unwrap();
         assert_eq!(runs.load(std::sync::atomic::Ordering::Relaxed), 3);
         // Another definition in the same folder is refused.
-        assert!(run_shard(dir.path(), "1/1", "other".to_string(), 3, Some(1), job).is_err());
+        assert!(
+            run_shard(
+                dir.path(),
+                "1/1",
+                "other".to_string(),
+                3,
+                Some(1),
+                |_| 1.0,
+                job
+            )
+            .is_err()
+        );
         let (def, by_id) = collect::<String, Line>(&[dir.path().to_path_buf()]).unwrap();
         assert_eq!((def.as_str(), by_id.len()), ("def", 3));
         let results = dir.path().join("shard-1-of-1/results.jsonl");

@@ -175,6 +175,7 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
         definition,
         total,
         args.threads,
+        |_| 1.0,
         |id| {
             let (m, strategy, run) = job(id);
             let mut settings = RunSettings::tan1991(&args.maps[m], strategy, args.seed + run);
