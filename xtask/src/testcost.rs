@@ -14,8 +14,8 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use cslearn::testcost::{
-    Catalogue, CostTree, FamilyParams, Frame, IcetParams, Method, MisclassCosts, Pruning,
-    SelectionPrices, TestPrices, fit, folds, gain_prices, random_prices, standard_cost,
+    Catalogue, CostTree, CvtParams, FamilyParams, Frame, IcetParams, Method, MisclassCosts,
+    Pruning, SelectionPrices, TestPrices, fit, folds, gain_prices, random_prices, standard_cost,
 };
 use serde::{Deserialize, Serialize};
 
@@ -66,6 +66,9 @@ pub struct TestcostArgs {
     /// the final one has, which reproduces the published ICET at mc 1000.
     #[arg(long, default_value_t = 1000)]
     icet_search_objects: usize,
+    /// The folds of CVT's cross-validation on each training part (the library's 5).
+    #[arg(long, default_value_t = 5)]
+    cvt_folds: usize,
     /// The range random prices are drawn from: `LOW,HIGH`.
     #[arg(long, value_delimiter = ',', default_value = "1,100")]
     price_range: Vec<f64>,
@@ -118,6 +121,9 @@ pub(crate) struct Definition {
     /// Results written before this setting existed searched on at most 400 objects.
     #[serde(default = "library_search_objects")]
     pub icet_search_objects: usize,
+    /// Results written before this setting existed used the library's 5.
+    #[serde(default = "library_cvt_folds")]
+    pub cvt_folds: usize,
     pub runs: u64,
     pub folds: usize,
     pub seed: u64,
@@ -126,6 +132,11 @@ pub(crate) struct Definition {
 /// ICET's search size in the library's defaults.
 fn library_search_objects() -> usize {
     IcetParams::default().search_objects
+}
+
+/// CVT's folds in the library's defaults.
+fn library_cvt_folds() -> usize {
+    CvtParams::default().folds
 }
 
 /// How random prices are drawn.
@@ -303,6 +314,9 @@ fn run_job(
             search_objects: def.icet_search_objects,
             ..IcetParams::default()
         },
+        cvt: CvtParams {
+            folds: def.cvt_folds,
+        },
         ..FamilyParams::default()
     };
     let k = frame.class_count();
@@ -433,6 +447,9 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
         .map_err(|e| anyhow::anyhow!("--selection-prices: {e}"))?;
     let icet_pruning =
         Pruning::parse(&args.icet_pruning).map_err(|e| anyhow::anyhow!("--icet-pruning: {e}"))?;
+    if args.cvt_folds < 2 {
+        bail!("--cvt-folds: CVT's cross-validation needs at least 2 folds");
+    }
     if args.icet_search_objects < 2 {
         bail!("--icet-search-objects: ICET's search needs at least 2 objects (one per half)");
     }
@@ -450,6 +467,7 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
         selection_prices,
         icet_pruning,
         icet_search_objects: args.icet_search_objects,
+        cvt_folds: args.cvt_folds,
         runs: args.runs,
         folds: args.folds,
         seed: args.seed,
@@ -540,11 +558,12 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
 
 /// A rough estimate of a job's work, to hand out the heaviest jobs first: objects times
 /// tests, times a factor for the learners that grow many trees per tree kept (ICET's
-/// search, ACT's sampling). It orders jobs only; it changes no result.
+/// search, ACT's sampling, CVT's cross-validation). It orders jobs only; it changes no result.
 fn work(method: Method, objects: usize, tests: usize) -> f64 {
     let trees_per_tree = match method {
         Method::Icet => 300.0,
         Method::Act => 1000.0,
+        Method::Cvt => 40.0,
         _ => 1.0,
     };
     trees_per_tree * objects as f64 * tests as f64
@@ -577,6 +596,9 @@ fn args_line(args: &TestcostArgs) -> String {
     }
     if args.icet_search_objects != 1000 {
         let _ = write!(line, " --icet-search-objects {}", args.icet_search_objects);
+    }
+    if args.cvt_folds != 5 {
+        let _ = write!(line, " --cvt-folds {}", args.cvt_folds);
     }
     if args.price_range != [1.0, 100.0] {
         let _ = write!(
@@ -615,6 +637,7 @@ mod tests {
             selection_prices: "listed".into(),
             icet_pruning: "costs".into(),
             icet_search_objects: 400,
+            cvt_folds: 5,
             price_range: vec![1.0, 100.0],
             runs: 1,
             folds: 3,

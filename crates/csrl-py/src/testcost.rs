@@ -10,8 +10,8 @@
 //! plain Python values (`__reduce__`).
 
 use cslearn::testcost::{
-    ActParams, Column, CostTree, FamilyParams, Frame, IcetGenome, IcetParams, MISSING, Method,
-    MisclassCosts, Pruning, SelectionPrices, Split, TestPrice, TestPrices,
+    ActParams, Column, CostTree, CvtChoice, CvtParams, FamilyParams, Frame, IcetGenome, IcetParams,
+    MISSING, Method, MisclassCosts, Pruning, SelectionPrices, Split, TestPrice, TestPrices,
 };
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyType};
@@ -126,6 +126,7 @@ pub struct TestCostTree {
     prices: TestPrices,
     tree: CostTree,
     genome: Option<IcetGenome>,
+    cvt: Option<CvtChoice>,
 }
 
 impl TestCostTree {
@@ -147,6 +148,7 @@ impl TestCostTree {
             "prices": serde_json::to_value(&self.prices).map_err(ser)?,
             "tree": serde_json::to_value(&self.tree).map_err(ser)?,
             "genome": serde_json::to_value(&self.genome).map_err(ser)?,
+            "cvt": serde_json::to_value(self.cvt).map_err(ser)?,
         }))
     }
 
@@ -169,6 +171,11 @@ impl TestCostTree {
             prices: serde_json::from_value(field("prices")?).map_err(|e| e.to_string())?,
             tree: serde_json::from_value(field("tree")?).map_err(|e| e.to_string())?,
             genome: serde_json::from_value(field("genome")?).map_err(|e| e.to_string())?,
+            // A tree saved before CVT existed has no choice to report.
+            cvt: match v.get("cvt") {
+                Some(c) => serde_json::from_value(c.clone()).map_err(|e| e.to_string())?,
+                None => None,
+            },
         };
         if tree.kinds.len() != tree.names.len() || tree.prices.len() != tree.names.len() {
             return Err("the features, their kinds and their prices differ in number".into());
@@ -196,16 +203,17 @@ fn check_unit(value: f64, what: &str, low_open: bool, high_open: bool) -> PyResu
 #[pymethods]
 impl TestCostTree {
     /// Grow a tree with `learner` ("id3-batch", "c45", "idx", "cs-id3-batch", "eg2", "dtmc",
-    /// "icet", "act") on every object. `prices` is `(full, discount, group)` per feature (group
+    /// "icet", "act", "cvt") on every object. `prices` is `(full, discount, group)` per feature (group
     /// an index into `group_names`, or `None`); `misclassification[actual][predicted]`
     /// the cost of each answer; `confidence` C4.5's pruning confidence, `w` EG2's weight
     /// of the price; `seed`, `population` and `generations` ICET's search (`seed` also
     /// ACT's samples); `samples` ACT's trees sampled per branch; `selection_prices` the
     /// price selection functions see ("path" or "listed"); `icet_pruning` how ICET
     /// prunes ("errors" or "costs") and `search_objects` the most objects its search
-    /// uses. The GIL is released while it grows.
+    /// uses; `folds` CVT's cross-validation (`seed` also its folds). The GIL is released
+    /// while it grows.
     #[staticmethod]
-    #[pyo3(signature = (learner, names, columns, classes, class_names, prices, group_names, misclassification, confidence=0.25, w=1.0, seed=0, population=50, generations=20, samples=5, selection_prices="path", icet_pruning="errors", search_objects=400))]
+    #[pyo3(signature = (learner, names, columns, classes, class_names, prices, group_names, misclassification, confidence=0.25, w=1.0, seed=0, population=50, generations=20, samples=5, selection_prices="path", icet_pruning="errors", search_objects=400, folds=5))]
     #[expect(
         clippy::too_many_arguments,
         reason = "one argument per setting, all keywords from Python"
@@ -229,6 +237,7 @@ impl TestCostTree {
         selection_prices: &str,
         icet_pruning: &str,
         search_objects: usize,
+        folds: usize,
     ) -> PyResult<TestCostTree> {
         let method = Method::parse(learner).map_err(|e| data_error(&e))?;
         if prices.len() != names.len() {
@@ -258,6 +267,11 @@ impl TestCostTree {
             return Err(DataError::new_err(format!(
                 "ACT samples at most {} trees per branch, found {samples}",
                 ActParams::MAX_SAMPLES
+            )));
+        }
+        if folds < 2 {
+            return Err(DataError::new_err(format!(
+                "CVT's cross-validation needs at least 2 folds, found {folds}"
             )));
         }
         let prices = TestPrices::new(
@@ -297,6 +311,7 @@ impl TestCostTree {
                 samples,
                 ..ActParams::default()
             },
+            cvt: CvtParams { folds },
         };
         let rows: Vec<usize> = (0..frame.len()).collect();
         let fitted = py
@@ -309,6 +324,7 @@ impl TestCostTree {
             prices,
             tree: fitted.tree,
             genome: fitted.genome,
+            cvt: fitted.cvt,
         })
     }
 
@@ -402,6 +418,15 @@ impl TestCostTree {
         self.genome
             .as_ref()
             .map(|g| (g.prices.clone(), g.w, g.confidence, g.fitness))
+    }
+
+    /// For CVT, what its cross-validation chose: the grower (as `csrl classify`'s report
+    /// names it), the price per leaf the tree was cut back at, and the mean total cost
+    /// per held-out object; `None` for the other learners.
+    #[getter]
+    fn cvt_choice(&self) -> Option<(String, f64, f64)> {
+        self.cvt
+            .map(|c| (c.grower_name().to_string(), c.alpha, c.held_out_cost))
     }
 
     /// The tree, its prices and its columns as plain Python values (dicts, lists,

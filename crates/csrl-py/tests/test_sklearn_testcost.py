@@ -26,6 +26,7 @@ NAMED = {
     "dtmc": cs.DtmcClassifier,
     "icet": cs.IcetClassifier,
     "act": cs.ActClassifier,
+    "cvt": cs.CvtClassifier,
 }
 ESTIMATORS = [cs.TestCostTreeClassifier(), *(cls() for cls in NAMED.values())]
 
@@ -343,6 +344,25 @@ def test_act_is_reproducible_from_its_seed_and_samples_cost_time_not_correctness
         cs.ActClassifier(act_samples=1001).fit(X, y)
     with pytest.raises(ValueError, match="act_samples must be an integer"):
         cs.ActClassifier(act_samples=-1).fit(X, y)
+
+
+def test_cvt_is_reproducible_from_its_seed_and_says_what_it_chose():
+    X, y = load_iris(return_X_y=True)
+    params = dict(feature_costs=[1.0, 5.0, 20.0, 40.0], misclassification_cost=200.0)
+    a = cs.CvtClassifier(seed=7, **params).fit(X, y)
+    b = cs.CvtClassifier(seed=7, **params).fit(X, y)
+    assert a._model.nodes() == b._model.nodes()
+    assert a.cvt_choice_ == b.cvt_choice_
+    assert a.cvt_choice_["grower"] in ("eg2-w0", "eg2-w0.5", "eg2-w1", "eg2-w2", "c45", "dtmc")
+    assert a.cvt_choice_["alpha"] >= 0 and a.cvt_choice_["held_out_cost"] > 0
+    assert a.score(X, y) >= 0.9
+    # Other folds measure other held-out costs.
+    assert any(cs.CvtClassifier(seed=s, **params).fit(X, y).cvt_choice_ != a.cvt_choice_ for s in range(1, 6))
+    general = cs.TestCostTreeClassifier(learner="cvt", seed=7, **params).fit(X, y)
+    assert general._model.nodes() == a._model.nodes()
+    assert not hasattr(cs.Eg2Classifier().fit(X, y), "cvt_choice_")
+    with pytest.raises(ValueError, match="cvt_folds must be an integer at least 2"):
+        cs.CvtClassifier(cvt_folds=1).fit(X, y)
 
 
 @pytest.mark.parametrize("estimator", ESTIMATORS, ids=lambda e: type(e).__name__)

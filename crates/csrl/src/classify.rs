@@ -244,6 +244,7 @@ fn check_flags(args: &ClassifyArgs) -> Result<()> {
             ("--selection-prices", args.selection_prices.is_some()),
             ("--icet-pruning", args.icet_pruning.is_some()),
             ("--act-samples", args.act_samples.is_some()),
+            ("--cvt-folds", args.cvt_folds.is_some()),
         ];
         let family = cslearn::testcost::Method::ALL.map(cslearn::testcost::Method::name);
         let family = family.join(", ");

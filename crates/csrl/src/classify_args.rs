@@ -39,6 +39,9 @@ pub(crate) enum Learner {
     /// Batch tree: ACT (each split by the cost of stochastic EG2 trees sampled under it).
     #[value(name = "act")]
     Act,
+    /// Batch tree: CVT (grower and stopping point chosen by cross-validated total cost).
+    #[value(name = "cvt")]
+    Cvt,
 }
 
 impl Learner {
@@ -55,6 +58,7 @@ impl Learner {
             Learner::Dtmc => Some(Method::Dtmc),
             Learner::Icet => Some(Method::Icet),
             Learner::Act => Some(Method::Act),
+            Learner::Cvt => Some(Method::Cvt),
         }
     }
 
@@ -74,7 +78,7 @@ impl Learner {
 #[command(
     after_help = "The incremental learners (cs-id3, cs-ibl, id3) stream the objects \
 (prequential accuracy, and --holdout or --folds beside it). The batch trees of the test-cost \
-family (id3-batch, c45, idx, cs-id3-batch, eg2, dtmc, icet, act) are grown on training parts and judged on \
+family (id3-batch, c45, idx, cs-id3-batch, eg2, dtmc, icet, act, cvt) are grown on training parts and judged on \
 the held-out objects by the total cost of their tests and errors (10-fold unless --holdout or \
 --folds); they read numeric columns as numbers, --costs also in Turney's format \
 (FILE.expense or FILE.cost) with --groups, and --mc, --mc-matrix and --cost-name. A flag \
@@ -166,4 +170,8 @@ pub struct ClassifyArgs {
     /// default 5). More samples, better estimates, more time.
     #[arg(long, value_name = "R")]
     pub(crate) act_samples: Option<usize>,
+    /// CVT only: the folds of the cross-validation on the training objects that chooses
+    /// its grower and where its tree stops (default 5; at least 2).
+    #[arg(long, value_name = "K")]
+    pub(crate) cvt_folds: Option<usize>,
 }

@@ -45,6 +45,7 @@ struct Part {
     mc_cost: f64,
     tree_nodes: usize,
     genome: Option<IcetGenome>,
+    cvt: Option<cslearn::testcost::CvtChoice>,
 }
 
 /// The feature names the price files use: the data's, renamed by `--cost-name`.
@@ -257,6 +258,26 @@ fn genome_json(genome: &IcetGenome, names: &[String]) -> serde_json::Value {
     })
 }
 
+/// CVT's choice as JSON: the grower, the price per leaf it was cut back at and the mean
+/// total cost per held-out object of its cross-validation.
+fn cvt_json(choice: &cslearn::testcost::CvtChoice) -> serde_json::Value {
+    serde_json::json!({
+        "grower": choice.grower_name(),
+        "alpha": choice.alpha,
+        "held_out_cost": choice.held_out_cost,
+    })
+}
+
+/// CVT's choice as one line of text.
+fn cvt_text(choice: &cslearn::testcost::CvtChoice) -> String {
+    format!(
+        "grown by {}, cut back at {:.4} per leaf, {:.2} per object on held-out objects",
+        choice.grower_name(),
+        choice.alpha,
+        choice.held_out_cost
+    )
+}
+
 /// The genome as one line of text.
 fn genome_text(genome: &IcetGenome, names: &[String]) -> String {
     let prices: Vec<String> = names
@@ -325,8 +346,20 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
         },
         None => cslearn::testcost::ActParams::default(),
     };
+    let cvt = match args.cvt_folds {
+        Some(_) if method != cslearn::testcost::Method::Cvt => anyhow::bail!(
+            "--cvt-folds is read by --learner cvt only, not by --learner {}",
+            method.name()
+        ),
+        Some(folds) if folds < 2 => {
+            anyhow::bail!("--cvt-folds {folds}: a cross-validation needs at least 2 folds")
+        }
+        Some(folds) => cslearn::testcost::CvtParams { folds },
+        None => cslearn::testcost::CvtParams::default(),
+    };
     let params = cslearn::testcost::FamilyParams {
         selection_prices,
+        cvt,
         icet: cslearn::testcost::IcetParams {
             pruning,
             ..cslearn::testcost::IcetParams::default()
@@ -350,6 +383,7 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
             test_objects: test.len(),
             tree_nodes: fitted.tree.len(),
             genome: fitted.genome.clone(),
+            cvt: fitted.cvt,
             ..Part::default()
         };
         for &r in test {
@@ -419,6 +453,7 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
             "selection_prices": params.selection_prices.name(),
             "icet_pruning": (method == cslearn::testcost::Method::Icet).then(|| params.icet.pruning.name()),
             "act_samples": (method == cslearn::testcost::Method::Act).then_some(params.act.samples),
+            "cvt_folds": (method == cslearn::testcost::Method::Cvt).then_some(params.cvt.folds),
             "all_tests_cost": prices.total(),
             "test_cost_per_object": test_cost,
             "errors": errors,
@@ -440,6 +475,9 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
                 if let Some(g) = &p.genome {
                     v["genome"] = genome_json(g, names);
                 }
+                if let Some(c) = &p.cvt {
+                    v["cvt"] = cvt_json(c);
+                }
                 v
             }).collect::<Vec<_>>(),
         });
@@ -450,6 +488,9 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
             });
             if let Some(g) = &fitted.genome {
                 v["genome"] = genome_json(g, names);
+            }
+            if let Some(c) = &fitted.cvt {
+                v["cvt"] = cvt_json(c);
             }
             json["saved"] = v;
         }
@@ -509,17 +550,23 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
         if results.len() == 1 { "" } else { "s" }
     )?;
     for (j, p) in results.iter().enumerate() {
+        let at = if results.len() == 1 {
+            "held out".to_string()
+        } else {
+            format!("fold {}", j + 1)
+        };
         if let Some(g) = &p.genome {
-            let at = if results.len() == 1 {
-                "held out".to_string()
-            } else {
-                format!("fold {}", j + 1)
-            };
             writeln!(out, "genome      {at}: {}", genome_text(g, names))?;
+        }
+        if let Some(c) = &p.cvt {
+            writeln!(out, "cvt         {at}: {}", cvt_text(c))?;
         }
     }
     if let Some(g) = saved.as_ref().and_then(|f| f.genome.as_ref()) {
         writeln!(out, "genome      saved tree: {}", genome_text(g, names))?;
+    }
+    if let Some(c) = saved.as_ref().and_then(|f| f.cvt.as_ref()) {
+        writeln!(out, "cvt         saved tree: {}", cvt_text(c))?;
     }
     Ok(())
 }

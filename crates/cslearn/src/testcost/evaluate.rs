@@ -23,10 +23,16 @@ use super::tree::GrowParams;
 /// assert!(f.iter().all(|fold| fold.len() == 2));
 /// ```
 pub fn folds(frame: &Frame, k: usize, seed: u64) -> Vec<Vec<usize>> {
+    let all: Vec<usize> = (0..frame.len()).collect();
+    folds_of(frame, &all, k, seed)
+}
+
+/// [`folds`] of the objects `rows` only.
+pub(super) fn folds_of(frame: &Frame, rows: &[usize], k: usize, seed: u64) -> Vec<Vec<usize>> {
     let k = k.max(1);
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
     let mut by_class: Vec<Vec<usize>> = vec![Vec::new(); frame.class_count()];
-    for r in 0..frame.len() {
+    for &r in rows {
         by_class[frame.class(r) as usize].push(r);
     }
     let mut out = vec![Vec::new(); k];

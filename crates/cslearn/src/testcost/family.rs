@@ -5,6 +5,7 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 
 use super::act::{ActParams, act_tree};
 use super::criterion::Criterion;
+use super::cvt::{CvtChoice, CvtParams, cvt_tree};
 use super::data::Frame;
 use super::prices::{MisclassCosts, TestPrices};
 use super::splits::Splits;
@@ -39,11 +40,14 @@ pub enum Method {
     Icet,
     /// ACT: each split chosen by the cost of stochastic EG2 trees sampled under it.
     Act,
+    /// CVT, the cost-validated tree: the grower and the point where growth stops chosen
+    /// by cross-validated total cost.
+    Cvt,
 }
 
 impl Method {
     /// Every learner, in the order of the benchmark's tables.
-    pub const ALL: [Method; 8] = [
+    pub const ALL: [Method; 9] = [
         Method::C45,
         Method::Id3,
         Method::Idx,
@@ -52,6 +56,7 @@ impl Method {
         Method::Dtmc,
         Method::Icet,
         Method::Act,
+        Method::Cvt,
     ];
 
     /// The learner's name, as `csrl classify --learner` and `cargo xtask testcost` spell it.
@@ -69,6 +74,7 @@ impl Method {
             Method::Dtmc => "dtmc",
             Method::Icet => "icet",
             Method::Act => "act",
+            Method::Cvt => "cvt",
         }
     }
 
@@ -90,7 +96,8 @@ impl Method {
             })
     }
 
-    /// Whether the tree's shape depends on the misclassification costs (DTMC, ICET, ACT);
+    /// Whether the tree's shape depends on the misclassification costs (DTMC, ICET, ACT,
+    /// CVT);
     /// the others grow the same tree whatever they are and only label it by them.
     ///
     /// ```
@@ -98,11 +105,14 @@ impl Method {
     /// assert!(!cslearn::testcost::Method::Eg2.depends_on_mc());
     /// ```
     pub fn depends_on_mc(self) -> bool {
-        matches!(self, Method::Dtmc | Method::Icet | Method::Act)
+        matches!(
+            self,
+            Method::Dtmc | Method::Icet | Method::Act | Method::Cvt
+        )
     }
 
     /// How the learner grows its tree (ICET: the start of its search; ACT: the EG2 it
-    /// samples with, and its pruning).
+    /// samples with, and its pruning; CVT: the first of its growers, unpruned).
     ///
     /// ```
     /// use cslearn::testcost::{FamilyParams, Method};
@@ -120,6 +130,7 @@ impl Method {
             Method::Act => GrowParams::new(Criterion::Eg2 { w: params.eg2_w })
                 .pruned(params.act.confidence)
                 .pruning_by(Pruning::Costs),
+            Method::Cvt => GrowParams::new(super::cvt::GROWERS[0].1),
         };
         grow.selecting_at(params.selection_prices)
     }
@@ -142,6 +153,9 @@ pub struct FamilyParams {
     /// ACT's sampling.
     #[serde(default)]
     pub act: ActParams,
+    /// CVT's cross-validation.
+    #[serde(default)]
+    pub cvt: CvtParams,
     /// The price every learner's selection function sees for a test: after the node's
     /// path (the default) or as listed.
     #[serde(default)]
@@ -155,6 +169,7 @@ impl Default for FamilyParams {
             eg2_w: 1.0,
             icet: IcetParams::default(),
             act: ActParams::default(),
+            cvt: CvtParams::default(),
             selection_prices: SelectionPrices::Path,
         }
     }
@@ -221,17 +236,19 @@ pub struct IcetGenome {
     pub fitness: f64,
 }
 
-/// A learned tree, and for ICET the individual it was grown from.
+/// A learned tree, and for ICET the individual it was grown from, for CVT its choice.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Fitted {
     /// The tree.
     pub tree: CostTree,
     /// ICET's best individual (`None` for the other learners).
     pub genome: Option<IcetGenome>,
+    /// CVT's grower and stopping point (`None` for the other learners).
+    pub cvt: Option<CvtChoice>,
 }
 
 /// Learns a tree with `method` on the objects `rows` of `frame`. `seed` matters only to
-/// ICET (its halves and its search) and ACT (its samples).
+/// ICET (its halves and its search), ACT (its samples) and CVT (its folds).
 ///
 /// ```
 /// use cslearn::testcost::{fit, Column, FamilyParams, Frame, Method, MisclassCosts, TestPrices};
@@ -259,6 +276,23 @@ pub fn fit(
         return Fitted {
             tree: act_tree(frame, rows, prices, mc, &params.act, sampling, seed),
             genome: None,
+            cvt: None,
+        };
+    }
+    if method == Method::Cvt {
+        let (tree, choice) = cvt_tree(
+            frame,
+            rows,
+            prices,
+            mc,
+            &params.cvt,
+            params.selection_prices,
+            seed,
+        );
+        return Fitted {
+            tree,
+            genome: None,
+            cvt: Some(choice),
         };
     }
     if method == Method::Icet {
@@ -273,11 +307,13 @@ pub fn fit(
         return Fitted {
             tree: icet_tree(frame, rows, &biased, prices, mc, &grow),
             genome: Some(genome),
+            cvt: None,
         };
     }
     Fitted {
         tree: CostTree::grow(frame, rows, prices, mc, &method.grow_params(params)),
         genome: None,
+        cvt: None,
     }
 }
 

@@ -249,7 +249,7 @@ impl Split {
         }
     }
 
-    fn children(&self) -> &[NodeIndex] {
+    pub(super) fn children(&self) -> &[NodeIndex] {
         match self {
             Split::Nominal { children, .. } => children,
             Split::Threshold { children, .. } => children,
@@ -490,24 +490,7 @@ impl CostTree {
     pub fn prune_by_cost(&mut self, confidence: f64, prices: &TestPrices) {
         let coeff = deviation(confidence).powi(2);
         let n = self.nodes.len();
-        // The price of each inner node's test after its path (parents come first).
-        let mut price_here = vec![0.0; n];
-        let mut paths: Vec<Vec<usize>> = vec![Vec::new(); n];
-        for i in 0..n {
-            let Some(split) = &self.nodes[i].split else {
-                continue;
-            };
-            let feature = split.feature();
-            let path = std::mem::take(&mut paths[i]);
-            price_here[i] = price_after(prices, feature, &path);
-            let mut below = path;
-            if !below.contains(&feature) {
-                below.push(feature);
-            }
-            for &c in split.children() {
-                paths[c as usize].clone_from(&below);
-            }
-        }
+        let price_here = self.test_prices(prices);
         let mut estimate = vec![0.0; n];
         for i in (0..n).rev() {
             let node = &self.nodes[i];
@@ -534,6 +517,77 @@ impl CostTree {
             }
         }
         self.compact();
+    }
+
+    /// The price of each node's test at `prices` after the node's path (0 at a leaf).
+    pub(super) fn test_prices(&self, prices: &TestPrices) -> Vec<f64> {
+        let n = self.nodes.len();
+        let mut price_here = vec![0.0; n];
+        let mut paths: Vec<Vec<usize>> = vec![Vec::new(); n];
+        // Parents come before children.
+        for i in 0..n {
+            let Some(split) = &self.nodes[i].split else {
+                continue;
+            };
+            let feature = split.feature();
+            let path = std::mem::take(&mut paths[i]);
+            price_here[i] = price_after(prices, feature, &path);
+            let mut below = path;
+            if !below.contains(&feature) {
+                below.push(feature);
+            }
+            for &c in split.children() {
+                paths[c as usize].clone_from(&below);
+            }
+        }
+        price_here
+    }
+
+    /// The misclassification costs the tree's labels were chosen by.
+    pub(super) fn misclass_costs(&self) -> &MisclassCosts {
+        &self.mc
+    }
+
+    /// Makes a leaf of every node marked in `cut` (one mark per node) and drops the
+    /// nodes cut off.
+    pub(super) fn cut(&mut self, cut: &[bool]) {
+        for (node, &c) in self.nodes.iter_mut().zip(cut) {
+            if c {
+                node.split = None;
+            }
+        }
+        self.compact();
+    }
+
+    /// The weight of the objects `rows` of `frame` that reaches each node, per class: an
+    /// object whose value is missing at a split goes down every branch with its weight
+    /// split as the training objects' known values split.
+    pub(super) fn reach(&self, frame: &Frame, rows: &[usize]) -> Vec<Vec<f64>> {
+        let classes = self.nodes[0].weights.len();
+        let mut reached = vec![vec![0.0; classes]; self.nodes.len()];
+        let mut stack = Vec::new();
+        for &row in rows {
+            let class = frame.class(row) as usize;
+            stack.push((0usize, 1.0));
+            while let Some((i, weight)) = stack.pop() {
+                if let Some(w) = reached[i].get_mut(class) {
+                    *w += weight;
+                }
+                let Some(split) = &self.nodes[i].split else {
+                    continue;
+                };
+                if frame.column(split.feature()).is_missing(row) {
+                    for (&c, &s) in split.children().iter().zip(split.shares()) {
+                        if s > 0.0 {
+                            stack.push((c as usize, weight * s));
+                        }
+                    }
+                } else {
+                    stack.push((self.child(split, frame, row) as usize, weight));
+                }
+            }
+        }
+        reached
     }
 
     /// [`prune`](CostTree::prune) without dropping the nodes cut off.

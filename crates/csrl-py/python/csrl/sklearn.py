@@ -28,8 +28,8 @@ needs measured:
   tree grown on all the training objects, by ID3 (:class:`Id3Classifier`), C4.5
   (:class:`C45Classifier`), IDX (:class:`IdxClassifier`), batch CS-ID3
   (:class:`CsId3BatchClassifier`), EG2 (:class:`Eg2Classifier`), DTMC
-  (:class:`DtmcClassifier`), ICET (:class:`IcetClassifier`) or ACT
-  (:class:`ActClassifier`); or by any of them named
+  (:class:`DtmcClassifier`), ICET (:class:`IcetClassifier`), ACT
+  (:class:`ActClassifier`) or CVT (:class:`CvtClassifier`); or by any of them named
   by :class:`TestCostTreeClassifier`'s ``learner``. Numeric columns are split at
   thresholds as they are (no binning); columns holding strings (or named in
   ``nominal_features``, or of pandas' ``category`` dtype) are nominal, one branch per
@@ -80,6 +80,7 @@ __all__ = [
     "Eg2Classifier",
     "IcetClassifier",
     "ActClassifier",
+    "CvtClassifier",
     "Id3Classifier",
     "IdxClassifier",
     "TestCostTreeClassifier",
@@ -292,7 +293,7 @@ def _fmt(v: Any) -> str:
 
 # --- The test-cost tree family -------------------------------------------------------
 
-_LEARNERS = ("id3-batch", "c45", "idx", "cs-id3-batch", "eg2", "dtmc", "icet", "act")
+_LEARNERS = ("id3-batch", "c45", "idx", "cs-id3-batch", "eg2", "dtmc", "icet", "act", "cvt")
 
 
 def _is_missing(v: Any) -> bool:
@@ -353,6 +354,11 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
       the cheapest of ``act_samples`` trees sampled under each of its branches (by a
       stochastic EG2, from ``seed``) costs least, tests plus pessimistic errors; a leaf
       where answering costs less; pruned by total cost.
+    * ``"cvt"``, the cost-validated tree: unpruned trees grown by six selection
+      functions (EG2 at w = 0, 0.5, 1 and 2, C4.5's gain ratio, DTMC), each cut back
+      along its cost-complexity path; the grower and the cut of least total cost on
+      held-out objects (``cvt_folds``-fold cross-validation on the training objects,
+      folds drawn from ``seed``) give the tree.
 
     The price a learner sees at a node is the test's price on that node's path: nothing
     for a test already done, the discount after another test of its group. Every node
@@ -381,8 +387,8 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         confidence: C4.5's pruning confidence, in (0, 1), for the pruned learners (not
             ``id3`` or ``dtmc``; ICET searches its own).
         w: EG2's weight of the price, in [0, 1] (0: cost-blind).
-        seed: ICET's seed (its halves and its search) and ACT's (its samples); the same
-            seed, the same tree.
+        seed: ICET's seed (its halves and its search), ACT's (its samples) and CVT's (its
+            folds); the same seed, the same tree.
         population, generations: the size of ICET's search (Turney's 50 and 20).
         act_samples: ACT's trees sampled under each branch of each candidate test (its
             ``r``, 5; 0 values each branch as a leaf), at most 1000.
@@ -394,6 +400,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
             default) or ``"costs"`` (a test must pay for itself at the real prices).
         icet_search_objects: the most training objects ICET's search uses, half to grow
             and half to score (400; at least 2); the final tree grows on all of them.
+        cvt_folds: the folds of CVT's cross-validation (5; at least 2).
 
     Attributes:
         classes_, n_features_in_, feature_names_in_: as scikit-learn's.
@@ -404,6 +411,10 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         icet_genome_: for ICET, the best individual of its search: a dict of the biased
             ``prices``, ``w``, ``confidence`` and its ``fitness`` (mean total cost on
             the held-out half of the training objects).
+        cvt_choice_: for CVT, what its cross-validation chose: a dict of the ``grower``
+            (``"eg2-w0"``, ``"eg2-w0.5"``, ``"eg2-w1"``, ``"eg2-w2"``, ``"c45"`` or
+            ``"dtmc"``), the ``alpha`` (price per leaf) its tree was cut back at and the
+            ``held_out_cost`` (mean total cost per held-out object).
 
     There is no ``predict_proba``: a node answers the class of least expected cost,
     which is not always the most probable one.
@@ -431,6 +442,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         selection_prices: str = "path",
         icet_pruning: str = "errors",
         icet_search_objects: int = 400,
+        cvt_folds: int = 5,
     ) -> None:
         self.learner = learner
         self.feature_costs = feature_costs
@@ -447,6 +459,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         self.selection_prices = selection_prices
         self.icet_pruning = icet_pruning
         self.icet_search_objects = icet_search_objects
+        self.cvt_folds = cvt_folds
 
     # -- parameters -------------------------------------------------------------------
 
@@ -692,7 +705,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
 
     def fit(self, X: Any, y: Any) -> "TestCostTreeClassifier":
         """Grow the tree on ``X`` (objects x features) and ``y`` (their classes)."""
-        for fitted in ("classes_", "_model", "icet_genome_"):  # unfitted if this fit fails
+        for fitted in ("classes_", "_model", "icet_genome_", "cvt_choice_"):  # unfitted if this fit fails
             self.__dict__.pop(fitted, None)
         learner = self._learner_name()
         X, y, nominal, categories = self._read(X, y, fitting=True)
@@ -710,6 +723,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         selection_prices = getattr(self, "selection_prices", "path")
         icet_pruning = getattr(self, "icet_pruning", "errors")
         icet_search_objects = getattr(self, "icet_search_objects", 400)
+        cvt_folds = getattr(self, "cvt_folds", 5)
         if selection_prices not in ("path", "listed"):
             raise ValueError(f"selection_prices must be 'path' or 'listed', found {selection_prices!r}")
         if icet_pruning not in ("errors", "costs"):
@@ -724,6 +738,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
             ("generations", generations, 1),
             ("act_samples", act_samples, 0),
             ("icet_search_objects", icet_search_objects, 2),
+            ("cvt_folds", cvt_folds, 2),
         ):
             integer = isinstance(v, (numbers.Integral, np.integer)) and not isinstance(v, bool)
             if not integer or not least <= v < 2**64:
@@ -748,6 +763,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
             selection_prices=str(selection_prices),
             icet_pruning=str(icet_pruning),
             search_objects=int(icet_search_objects),
+            folds=int(cvt_folds),
         )
         self.classes_ = classes
         self.nominal_features_ = nominal
@@ -764,6 +780,10 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
                 "confidence": confidence_,
                 "fitness": fitness,
             }
+        choice = model.cvt_choice
+        if choice is not None:
+            grower, alpha, held_out_cost = choice
+            self.cvt_choice_ = {"grower": grower, "alpha": alpha, "held_out_cost": held_out_cost}
         return self
 
     def _classify(self, X: Any):
@@ -1042,4 +1062,49 @@ class ActClassifier(TestCostTreeClassifier):
         self.w = w
         self.seed = seed
         self.act_samples = act_samples
+        self.selection_prices = selection_prices
+
+
+class CvtClassifier(TestCostTreeClassifier):
+    """CVT, the cost-validated tree: unpruned trees grown by six selection functions
+    (EG2 at w = 0, 0.5, 1 and 2, C4.5's gain ratio and DTMC), each cut back along its
+    cost-complexity path (a price per leaf, tests inside the cost); the grower and the
+    cut of least total cost on held-out objects, by ``cvt_folds``-fold cross-validation
+    on the training objects with folds drawn from ``seed``, give the tree, grown on all
+    of them. Its tree depends on ``misclassification_cost``
+    (:class:`TestCostTreeClassifier` with ``learner="cvt"``). ``cvt_choice_`` says what
+    it chose.
+
+    >>> import numpy as np
+    >>> from csrl.sklearn import CvtClassifier
+    >>> x = np.arange(60.0)
+    >>> X = np.column_stack([x % 2, x])  # the first column tells the class
+    >>> y = (x % 2).astype(int)
+    >>> cvt = CvtClassifier(feature_costs=[2.0, 1.0], misclassification_cost=10.0).fit(X, y)
+    >>> cvt.predict_cost(X[:2]).tolist(), cvt.score(X, y)
+    ([2.0, 2.0], 1.0)
+    >>> round(cvt.cvt_choice_["held_out_cost"], 6)
+    2.0
+    """
+
+    _learner = "cvt"
+
+    def __init__(
+        self,
+        feature_costs: Optional[Any] = None,
+        feature_groups: Optional[Any] = None,
+        feature_discounts: Optional[Any] = None,
+        misclassification_cost: Any = 100.0,
+        nominal_features: Optional[Any] = None,
+        seed: int = 0,
+        cvt_folds: int = 5,
+        selection_prices: str = "path",
+    ) -> None:
+        self.feature_costs = feature_costs
+        self.feature_groups = feature_groups
+        self.feature_discounts = feature_discounts
+        self.misclassification_cost = misclassification_cost
+        self.nominal_features = nominal_features
+        self.seed = seed
+        self.cvt_folds = cvt_folds
         self.selection_prices = selection_prices
