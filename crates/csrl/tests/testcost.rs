@@ -245,17 +245,32 @@ fn cvt_reports_what_its_cross_validation_chose_and_its_folds_are_a_cvt_setting()
     assert_eq!(v["cvt_folds"], 5);
     let choice = &v["splits"][0]["cvt"];
     let growers = ["eg2-w0", "eg2-w0.5", "eg2-w1", "eg2-w2", "c45", "dtmc"];
-    assert!(growers.contains(&choice["grower"].as_str().unwrap_or("")), "{choice}");
-    assert!(choice["alpha"].as_f64().is_some_and(|a| a >= 0.0), "{choice}");
-    assert!(choice["held_out_cost"].as_f64().is_some_and(|c| c > 0.0), "{choice}");
+    assert!(
+        growers.contains(&choice["grower"].as_str().unwrap_or("")),
+        "{choice}"
+    );
+    assert!(
+        choice["alpha"].as_f64().is_some_and(|a| a >= 0.0),
+        "{choice}"
+    );
+    assert!(
+        choice["held_out_cost"].as_f64().is_some_and(|c| c > 0.0),
+        "{choice}"
+    );
     let c45 = heart_json("c45", &["--holdout", "0.3", "--mc", "500"]);
     assert!(c45["cvt_folds"].is_null() && c45["splits"][0]["cvt"].is_null());
     // Turney's heart prices: CVT buys a few cheap tests where C4.5 buys most of them.
-    let (a, c) = (f(&v, "test_cost_per_object"), f(&c45, "test_cost_per_object"));
+    let (a, c) = (
+        f(&v, "test_cost_per_object"),
+        f(&c45, "test_cost_per_object"),
+    );
     assert!(a < c / 4.0, "CVT pays {a} for tests, C4.5 {c}");
     let text = String::from_utf8(on_heart("cvt", &["--holdout", "0.3"]).stdout).unwrap();
     assert!(text.contains("cvt         held out: grown by "), "{text}");
-    assert_eq!(heart_json("cvt", &["--holdout", "0.3", "--cvt-folds", "3"])["cvt_folds"], 3);
+    assert_eq!(
+        heart_json("cvt", &["--holdout", "0.3", "--cvt-folds", "3"])["cvt_folds"],
+        3
+    );
     refused(
         &on_heart("eg2", &["--cvt-folds", "3"]),
         &["--cvt-folds", "--learner cvt only"],
