@@ -6,7 +6,6 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 
 use super::criterion::Criterion;
 use super::data::Frame;
-use super::family::shuffle;
 use super::prices::{MisclassCosts, TestPrices};
 use super::splits::Splits;
 use super::tree::GrowParams;
@@ -153,4 +152,13 @@ pub fn gain_prices(frame: &Frame, low: f64, high: f64, seed: u64) -> TestPrices 
         })
         .collect();
     TestPrices::flat_checked_by_caller(&prices)
+}
+
+/// Fisher-Yates with the crate's generator, so results do not depend on rand's own
+/// shuffle changing between versions.
+pub(crate) fn shuffle<T, R: rand::Rng>(items: &mut [T], rng: &mut R) {
+    for i in (1..items.len()).rev() {
+        let j = rng.random_range(0..=i);
+        items.swap(i, j);
+    }
 }

@@ -7,6 +7,7 @@ use super::act::{ActParams, act_tree};
 use super::criterion::Criterion;
 use super::cvt::{CvtChoice, CvtParams, cvt_tree};
 use super::data::Frame;
+use super::evaluate::shuffle;
 use super::prices::{MisclassCosts, TestPrices};
 use super::splits::Splits;
 use super::tree::{CostTree, GrowParams, Pruning, SelectionPrices};
@@ -510,15 +511,6 @@ fn icet_search(
         w,
         confidence,
         fitness,
-    }
-}
-
-/// Fisher-Yates with the crate's generator, so results do not depend on rand's own
-/// shuffle changing between versions.
-pub(crate) fn shuffle<T, R: rand::Rng>(items: &mut [T], rng: &mut R) {
-    for i in (1..items.len()).rev() {
-        let j = rng.random_range(0..=i);
-        items.swap(i, j);
     }
 }
 
