@@ -157,12 +157,13 @@ pub(crate) fn write(
     rows: &[Row],
     results: &[JobResult],
     published_names: &BTreeMap<String, String>,
+    objects: &BTreeMap<String, usize>,
     dir: &Path,
     command: &str,
 ) -> Result<()> {
     crate::files::create_dir(dir)?;
     crate::files::write_atomic(&dir.join("testcost.csv"), csv(def, rows))?;
-    crate::files::write_atomic(&dir.join("timing.csv"), timing_csv(def, results))?;
+    crate::files::write_atomic(&dir.join("timing.csv"), timing_csv(def, results, objects))?;
     figure(&dir.join("testcost.svg"), def, rows)?;
     crate::files::write_atomic(
         &dir.join("testcost.md"),
@@ -176,8 +177,13 @@ pub(crate) fn write(
 }
 
 /// Learning and classification time per data set and learner (measurements: they vary
-/// from run to run, unlike every other output).
-fn timing_csv(def: &Definition, results: &[JobResult]) -> String {
+/// from run to run, unlike every other output). A job classifies each of the data set's
+/// `objects` once per mc (each object is held out once in a run).
+fn timing_csv(
+    def: &Definition,
+    results: &[JobResult],
+    objects: &BTreeMap<String, usize>,
+) -> String {
     let mut cells: BTreeMap<(String, Method), (f64, f64, f64, usize)> = BTreeMap::new();
     for r in results {
         let e = cells.entry((r.dataset.clone(), r.learner)).or_default();
@@ -191,11 +197,13 @@ fn timing_csv(def: &Definition, results: &[JobResult]) -> String {
         e.2 += r.nodes;
         e.3 += 1;
     }
-    let mut out =
-        String::from("dataset,learner,ms_per_tree,nodes_per_tree,learn_seconds_per_job\n");
+    let mut out = String::from(
+        "dataset,learner,ms_per_tree,nodes_per_tree,learn_seconds_per_job,us_per_classification\n",
+    );
     for d in &def.datasets {
         for &m in &def.learners {
-            if let Some(&(per_tree, _, nodes, n)) = cells.get(&(d.clone(), m)) {
+            if let Some(&(per_tree, classify, nodes, n)) = cells.get(&(d.clone(), m)) {
+                let classified = objects.get(d).copied().unwrap_or(0) * def.mc.len() * n;
                 let jobs: f64 = results
                     .iter()
                     .filter(|r| &r.dataset == d && r.learner == m)
@@ -204,11 +212,12 @@ fn timing_csv(def: &Definition, results: &[JobResult]) -> String {
                     / n as f64;
                 let _ = writeln!(
                     out,
-                    "{d},{},{:.4},{:.1},{:.3}",
+                    "{d},{},{:.4},{:.1},{:.3},{:.3}",
                     m.name(),
                     1e3 * per_tree / n as f64,
                     nodes / n as f64,
-                    jobs
+                    jobs,
+                    1e6 * classify / classified.max(1) as f64
                 );
             }
         }
