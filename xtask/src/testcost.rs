@@ -447,9 +447,8 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
         .map_err(|e| anyhow::anyhow!("--selection-prices: {e}"))?;
     let icet_pruning =
         Pruning::parse(&args.icet_pruning).map_err(|e| anyhow::anyhow!("--icet-pruning: {e}"))?;
-    if args.cvt_folds < 2 {
-        bail!("--cvt-folds: CVT's cross-validation needs at least 2 folds");
-    }
+    let cvt =
+        CvtParams::with_folds(args.cvt_folds).map_err(|e| anyhow::anyhow!("--cvt-folds: {e}"))?;
     if args.icet_search_objects < 2 {
         bail!("--icet-search-objects: ICET's search needs at least 2 objects (one per half)");
     }
@@ -467,7 +466,7 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
         selection_prices,
         icet_pruning,
         icet_search_objects: args.icet_search_objects,
-        cvt_folds: args.cvt_folds,
+        cvt_folds: cvt.folds,
         runs: args.runs,
         folds: args.folds,
         seed: args.seed,

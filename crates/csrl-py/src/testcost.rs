@@ -263,17 +263,8 @@ impl TestCostTree {
                 "ICET's search needs at least 2 objects (one per half), found {search_objects}"
             )));
         }
-        if samples > ActParams::MAX_SAMPLES {
-            return Err(DataError::new_err(format!(
-                "ACT samples at most {} trees per branch, found {samples}",
-                ActParams::MAX_SAMPLES
-            )));
-        }
-        if folds < 2 {
-            return Err(DataError::new_err(format!(
-                "CVT's cross-validation needs at least 2 folds, found {folds}"
-            )));
-        }
+        let act = ActParams::with_samples(samples).map_err(|e| data_error(&e))?;
+        let cvt = CvtParams::with_folds(folds).map_err(|e| data_error(&e))?;
         let prices = TestPrices::new(
             prices
                 .into_iter()
@@ -307,11 +298,8 @@ impl TestCostTree {
                 ..IcetParams::default()
             },
             selection_prices,
-            act: ActParams {
-                samples,
-                ..ActParams::default()
-            },
-            cvt: CvtParams { folds },
+            act,
+            cvt,
         };
         let rows: Vec<usize> = (0..frame.len()).collect();
         let fitted = py

@@ -336,14 +336,8 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
             "--act-samples is read by --learner act only, not by --learner {}",
             method.name()
         ),
-        Some(samples) if samples > cslearn::testcost::ActParams::MAX_SAMPLES => anyhow::bail!(
-            "--act-samples {samples}: at most {} trees per branch (each one is grown at every candidate test of every node)",
-            cslearn::testcost::ActParams::MAX_SAMPLES
-        ),
-        Some(samples) => cslearn::testcost::ActParams {
-            samples,
-            ..cslearn::testcost::ActParams::default()
-        },
+        Some(samples) => cslearn::testcost::ActParams::with_samples(samples)
+            .map_err(|e| anyhow::anyhow!("--act-samples: {e}"))?,
         None => cslearn::testcost::ActParams::default(),
     };
     let cvt = match args.cvt_folds {
@@ -351,10 +345,8 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
             "--cvt-folds is read by --learner cvt only, not by --learner {}",
             method.name()
         ),
-        Some(folds) if folds < 2 => {
-            anyhow::bail!("--cvt-folds {folds}: a cross-validation needs at least 2 folds")
-        }
-        Some(folds) => cslearn::testcost::CvtParams { folds },
+        Some(folds) => cslearn::testcost::CvtParams::with_folds(folds)
+            .map_err(|e| anyhow::anyhow!("--cvt-folds: {e}"))?,
         None => cslearn::testcost::CvtParams::default(),
     };
     let params = cslearn::testcost::FamilyParams {

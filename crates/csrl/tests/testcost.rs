@@ -235,7 +235,7 @@ fn act_samples_are_an_act_setting_reported_with_the_results() {
     );
     refused(
         &on_heart("act", &["--act-samples", "1001"]),
-        &["--act-samples 1001", "at most 1000"],
+        &["--act-samples", "1001 ACT samples", "at most 1000"],
     );
 }
 
@@ -277,7 +277,7 @@ fn cvt_reports_what_its_cross_validation_chose_and_its_folds_are_a_cvt_setting()
     );
     refused(
         &on_heart("cvt", &["--cvt-folds", "1"]),
-        &["--cvt-folds 1", "at least 2 folds"],
+        &["--cvt-folds", "1 folds for CVT", "at least 2 folds"],
     );
 }
 

@@ -24,6 +24,7 @@ use super::tree::{
     CostTree, GrowParams, Scorer, SelectionPrices, deviation, estimated_cost, grow_nodes_by,
     is_pure, price_after,
 };
+use crate::Error;
 
 /// ACT's settings.
 ///
@@ -45,6 +46,31 @@ impl ActParams {
     /// The most samples the front ends accept: each is a tree grown at every candidate
     /// test of every node.
     pub const MAX_SAMPLES: usize = 1000;
+
+    /// ACT's defaults with `samples` trees per branch, refused above
+    /// [`MAX_SAMPLES`](ActParams::MAX_SAMPLES).
+    ///
+    /// ```
+    /// use cslearn::testcost::ActParams;
+    /// assert_eq!(ActParams::with_samples(2).unwrap().samples, 2);
+    /// let e = ActParams::with_samples(1001).unwrap_err().to_string();
+    /// assert!(e.contains("1001") && e.contains("at most 1000"), "{e}");
+    /// ```
+    pub fn with_samples(samples: usize) -> Result<ActParams, Error> {
+        if samples > ActParams::MAX_SAMPLES {
+            return Err(Error::Invalid {
+                what: format!("{samples} ACT samples"),
+                reason: format!(
+                    "at most {} trees per branch (each one is grown at every candidate test of every node)",
+                    ActParams::MAX_SAMPLES
+                ),
+            });
+        }
+        Ok(ActParams {
+            samples,
+            ..ActParams::default()
+        })
+    }
 }
 
 impl Default for ActParams {

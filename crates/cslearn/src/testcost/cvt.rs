@@ -24,6 +24,7 @@ use super::data::Frame;
 use super::evaluate::folds_of;
 use super::prices::{MisclassCosts, TestPrices};
 use super::tree::{CostTree, GrowParams, SelectionPrices};
+use crate::Error;
 
 /// CVT's settings.
 ///
@@ -35,6 +36,26 @@ pub struct CvtParams {
     /// The folds of the cross-validation that chooses the grower and where to stop (5 by
     /// default; the front ends refuse fewer than 2, and the library takes fewer as 2).
     pub folds: usize,
+}
+
+impl CvtParams {
+    /// CVT's defaults with `folds` folds, refused below 2.
+    ///
+    /// ```
+    /// use cslearn::testcost::CvtParams;
+    /// assert_eq!(CvtParams::with_folds(10).unwrap().folds, 10);
+    /// let e = CvtParams::with_folds(1).unwrap_err().to_string();
+    /// assert!(e.contains("1 folds") && e.contains("at least 2"), "{e}");
+    /// ```
+    pub fn with_folds(folds: usize) -> Result<CvtParams, Error> {
+        if folds < 2 {
+            return Err(Error::Invalid {
+                what: format!("{folds} folds for CVT"),
+                reason: "a cross-validation needs at least 2 folds".into(),
+            });
+        }
+        Ok(CvtParams { folds })
+    }
 }
 
 impl Default for CvtParams {
