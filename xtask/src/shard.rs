@@ -461,6 +461,17 @@ where
 mod tests {
     use super::*;
 
+    /// A shard of definition `def` run on one thread, every job of equal weight.
+    fn one_thread<T: JobLine>(
+        out: &Path,
+        shard: &str,
+        def: &str,
+        total: u64,
+        job: impl Fn(u64) -> Result<T> + Sync,
+    ) -> Result<()> {
+        run_shard(out, shard, def.to_string(), total, Some(1), |_| 1.0, job)
+    }
+
     #[derive(Debug, Serialize, Deserialize)]
     struct Line {
         id: u64,
@@ -592,16 +603,7 @@ mod tests {
             result(0)
         );
         std::fs::write(&results, &text).unwrap();
-        run_shard(
-            dir.path(),
-            "1/2",
-            "def".to_string(),
-            4,
-            Some(1),
-            |_| 1.0,
-            job,
-        )
-        .unwrap();
+        one_thread(dir.path(), "1/2", "def", 4, job).unwrap();
         // Only job 2 ran: job 0 was done; 1, 7 and the repeat of 0 are set aside.
         assert_eq!(runs.load(std::sync::atomic::Ordering::Relaxed), 1);
         let kept = std::fs::read_to_string(&results).unwrap();
@@ -626,26 +628,8 @@ mod tests {
                 value: id as f64,
             })
         };
-        run_shard(
-            dir.path(),
-            "1/2",
-            "def".to_string(),
-            4,
-            Some(1),
-            |_| 1.0,
-            job,
-        )
-        .unwrap();
-        run_shard(
-            dir.path(),
-            "2/2",
-            "def".to_string(),
-            4,
-            Some(1),
-            |_| 1.0,
-            job,
-        )
-        .unwrap();
+        one_thread(dir.path(), "1/2", "def", 4, job).unwrap();
+        one_thread(dir.path(), "2/2", "def", 4, job).unwrap();
         assert_eq!(
             collect::<String, Line>(&[dir.path().to_path_buf()])
                 .unwrap()
@@ -727,40 +711,11 @@ mod tests {
                 value: id as f64,
             })
         };
-        run_shard(
-            dir.path(),
-            "1/1",
-            "def".to_string(),
-            3,
-            Some(1),
-            |_| 1.0,
-            job,
-        )
-        .unwrap();
-        run_shard(
-            dir.path(),
-            "1/1",
-            "def".to_string(),
-            3,
-            Some(1),
-            |_| 1.0,
-            job,
-        )
-        .unwrap();
+        one_thread(dir.path(), "1/1", "def", 3, job).unwrap();
+        one_thread(dir.path(), "1/1", "def", 3, job).unwrap();
         assert_eq!(runs.load(std::sync::atomic::Ordering::Relaxed), 3);
         // Another definition in the same folder is refused.
-        assert!(
-            run_shard(
-                dir.path(),
-                "1/1",
-                "other".to_string(),
-                3,
-                Some(1),
-                |_| 1.0,
-                job
-            )
-            .is_err()
-        );
+        assert!(one_thread(dir.path(), "1/1", "other", 3, job).is_err());
         let (def, by_id) = collect::<String, Line>(&[dir.path().to_path_buf()]).unwrap();
         assert_eq!((def.as_str(), by_id.len()), ("def", 3));
         let results = dir.path().join("shard-1-of-1/results.jsonl");
