@@ -2,6 +2,8 @@
 //! scikit-learn estimators of `csrl.sklearn` (which code the values and the classes).
 
 use cslearn::{ClassId, DecisionTree, FeatureCosts, FeatureId, Labels, TreeOptions, Value};
+use std::time::{Duration, Instant};
+
 use pyo3::prelude::*;
 
 use crate::DataError;
@@ -24,6 +26,34 @@ pub struct Classifier {
 }
 
 type Rows = Vec<Vec<Option<u32>>>;
+
+/// How long the objects are worked through without the GIL before Python's signal
+/// handlers get a turn.
+const SLICE: Duration = Duration::from_millis(50);
+
+/// Runs `step` on `0..n` in order with the GIL released, in slices of about [`SLICE`];
+/// between slices it takes the GIL back and lets Python's signal handlers run, so Ctrl-C
+/// stops a long `fit` or `predict` within a slice. The slicing changes when signals are
+/// seen, never what `step` computes.
+fn interruptible(py: Python<'_>, n: usize, mut step: impl FnMut(usize) + Send) -> PyResult<()> {
+    let mut at = 0;
+    while at < n {
+        at = py.detach(|| {
+            let start = Instant::now();
+            let mut i = at;
+            while i < n {
+                step(i);
+                i += 1;
+                if start.elapsed() >= SLICE {
+                    break;
+                }
+            }
+            i
+        });
+        py.check_signals()?;
+    }
+    Ok(())
+}
 
 impl Classifier {
     fn check(&self, rows: &Rows) -> PyResult<Vec<Vec<Option<Value>>>> {
@@ -115,6 +145,8 @@ impl Classifier {
     /// Learn the objects in order, each predicted and then learned (the paper's cycle),
     /// and return the wrong predictions and what was charged. Refused when the summed
     /// prices times every object learned so far would pass [`cslearn::MAX_TOTAL_COST`].
+    /// Ctrl-C stops it with `KeyboardInterrupt` (the objects learned by then stay
+    /// learned).
     fn learn(&mut self, py: Python<'_>, rows: Rows, classes: Vec<u32>) -> PyResult<(usize, f64)> {
         if rows.len() != classes.len() {
             return Err(DataError::new_err(format!(
@@ -136,37 +168,35 @@ impl Classifier {
         let rows = self.check(&rows)?;
         self.most_charged = most;
         let inner = &mut self.inner;
-        Ok(py.detach(|| {
-            let mut errors = 0;
-            let mut cost = 0.0;
-            for (row, &class) in rows.iter().zip(&classes) {
-                let outcome = match inner {
-                    Inner::Id3(l) => l.learn(&row[..], ClassId(class)),
-                    Inner::Ibl(l) => l.learn(&row[..], ClassId(class)),
-                };
-                errors += usize::from(!outcome.correct());
-                cost += outcome.cost.get();
-            }
-            (errors, cost)
-        }))
+        let (mut errors, mut cost) = (0, 0.0);
+        interruptible(py, rows.len(), |i| {
+            let outcome = match inner {
+                Inner::Id3(l) => l.learn(&rows[i][..], ClassId(classes[i])),
+                Inner::Ibl(l) => l.learn(&rows[i][..], ClassId(classes[i])),
+            };
+            errors += usize::from(!outcome.correct());
+            cost += outcome.cost.get();
+        })?;
+        Ok((errors, cost))
     }
 
     /// Classify the objects without learning: the class of each (`None` where nothing
-    /// can be predicted) and what classifying it cost.
+    /// can be predicted) and what classifying it cost. Ctrl-C stops it with
+    /// `KeyboardInterrupt`.
     fn classify(&mut self, py: Python<'_>, rows: Rows) -> PyResult<(Vec<Option<u32>>, Vec<f64>)> {
         let rows = self.check(&rows)?;
         let inner = &mut self.inner;
-        Ok(py.detach(|| {
-            rows.iter()
-                .map(|row| {
-                    let c = match inner {
-                        Inner::Id3(l) => l.classify(&row[..]),
-                        Inner::Ibl(l) => l.classify(&row[..]),
-                    };
-                    (c.class.map(|c| c.0), c.cost.get())
-                })
-                .unzip()
-        }))
+        let (mut classes, mut costs) = (Vec::with_capacity(rows.len()), Vec::new());
+        costs.reserve(rows.len());
+        interruptible(py, rows.len(), |i| {
+            let c = match inner {
+                Inner::Id3(l) => l.classify(&rows[i][..]),
+                Inner::Ibl(l) => l.classify(&rows[i][..]),
+            };
+            classes.push(c.class.map(|c| c.0));
+            costs.push(c.cost.get());
+        })?;
+        Ok((classes, costs))
     }
 
     /// The number of examples in the learner's library.

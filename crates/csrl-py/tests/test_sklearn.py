@@ -1,6 +1,8 @@
 """csrl.sklearn: scikit-learn's estimator checks, costs, DOT and the heart data."""
 
 import pickle
+import subprocess
+import sys
 import warnings
 
 import numpy as np
@@ -132,3 +134,41 @@ def test_heart_data_in_a_pipeline(repo):
     pipe.fit(X, y)
     per_patient = pipe[-1].predict_cost(pipe[0].transform(X)).mean()
     assert per_patient < sum(costs.values()) / 10, per_patient  # far less than every test
+
+
+# A fit that would run for an hour (CS-IBL on 300,000 objects of as many classes: each is
+# compared with every one stored before it), and a
+# helper thread that sends SIGINT once the main thread is inside the compiled learner
+# (its innermost Python frame is `fit`, at the line that calls `model.learn`).
+FIT_INTERRUPTED = """
+import inspect, os, signal, sys, threading
+import numpy as np
+from csrl.sklearn import CsIblClassifier
+source, first = inspect.getsourcelines(CsIblClassifier.fit)
+line = first + next(i for i, text in enumerate(source) if "model.learn(" in text)
+main = threading.main_thread().ident
+def learning():
+    frame = sys._current_frames().get(main)
+    return frame is not None and frame.f_code.co_name == "fit" and frame.f_lineno == line
+def helper():
+    while not learning():
+        os.sched_yield()
+    print("learning", flush=True)
+    os.kill(os.getpid(), signal.SIGINT)
+threading.Thread(target=helper, daemon=True).start()
+n = 300_000
+X = np.arange(3 * n).reshape(n, 3) % 1000
+CsIblClassifier(passes=1).fit(X, np.arange(n))
+print("finished", flush=True)
+"""
+
+
+def test_ctrl_c_stops_a_long_fit_inside_the_compiled_learner():
+    # The timeout guards against a hang only: a fit deaf to Ctrl-C runs past it and fails.
+    proc = subprocess.run(
+        [sys.executable, "-c", FIT_INTERRUPTED], capture_output=True, text=True, timeout=300
+    )
+    assert "learning" in proc.stdout, (proc.stdout, proc.stderr)
+    assert "KeyboardInterrupt" in proc.stderr, proc.stderr
+    assert "finished" not in proc.stdout
+    assert proc.returncode != 0
