@@ -18,6 +18,11 @@
 //! output (a file, a folder, a lock) that cannot be written, a missing folder's parent and
 //! a read-only folder alike.
 
+/// mimalloc: the benchmarks' trees and split tries allocate and free many small vectors,
+/// and the system allocator spent much of their time there. It changes no result.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 mod bench;
 mod costly;
 mod figures;
