@@ -186,8 +186,8 @@ impl Classifier {
     fn classify(&mut self, py: Python<'_>, rows: Rows) -> PyResult<(Vec<Option<u32>>, Vec<f64>)> {
         let rows = self.check(&rows)?;
         let inner = &mut self.inner;
-        let (mut classes, mut costs) = (Vec::with_capacity(rows.len()), Vec::new());
-        costs.reserve(rows.len());
+        let mut classes = Vec::with_capacity(rows.len());
+        let mut costs = Vec::with_capacity(rows.len());
         interruptible(py, rows.len(), |i| {
             let c = match inner {
                 Inner::Id3(l) => l.classify(&rows[i][..]),

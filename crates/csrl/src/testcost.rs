@@ -15,7 +15,8 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 use cslearn::testcost::{
-    Frame, FrameSpec, IcetGenome, Method, MisclassCosts, TestPrices, TreeModel,
+    ActParams, CvtParams, Frame, FrameSpec, IcetGenome, Method, MisclassCosts, Pruning, TestPrices,
+    TreeModel,
 };
 
 use crate::classify_args::ClassifyArgs;
@@ -258,6 +259,26 @@ fn genome_json(genome: &IcetGenome, names: &[String]) -> serde_json::Value {
     })
 }
 
+/// A flag that only the learner `owner` reads: refused for any other `method`, read by
+/// `read` when given (its refusal named by the flag), the learner's default when not.
+fn learner_flag<V, T: Default>(
+    value: Option<V>,
+    flag: &str,
+    owner: Method,
+    method: Method,
+    read: impl FnOnce(V) -> Result<T, cslearn::Error>,
+) -> Result<T> {
+    match value {
+        Some(_) if method != owner => anyhow::bail!(
+            "{flag} is read by --learner {} only, not by --learner {}",
+            owner.name(),
+            method.name()
+        ),
+        Some(v) => read(v).map_err(|e| anyhow::anyhow!("{flag}: {e}")),
+        None => Ok(T::default()),
+    }
+}
+
 /// CVT's choice as JSON: the grower, the price per leaf it was cut back at and the mean
 /// total cost per held-out object of its cross-validation.
 fn cvt_json(choice: &cslearn::testcost::CvtChoice) -> serde_json::Value {
@@ -322,33 +343,27 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
             .map_err(|e| anyhow::anyhow!("--selection-prices: {e}"))?,
         None => cslearn::testcost::SelectionPrices::default(),
     };
-    let pruning = match &args.icet_pruning {
-        Some(_) if method != cslearn::testcost::Method::Icet => anyhow::bail!(
-            "--icet-pruning is read by --learner icet only, not by --learner {}",
-            method.name()
-        ),
-        Some(name) => cslearn::testcost::Pruning::parse(name)
-            .map_err(|e| anyhow::anyhow!("--icet-pruning: {e}"))?,
-        None => cslearn::testcost::Pruning::default(),
-    };
-    let act = match args.act_samples {
-        Some(_) if method != cslearn::testcost::Method::Act => anyhow::bail!(
-            "--act-samples is read by --learner act only, not by --learner {}",
-            method.name()
-        ),
-        Some(samples) => cslearn::testcost::ActParams::with_samples(samples)
-            .map_err(|e| anyhow::anyhow!("--act-samples: {e}"))?,
-        None => cslearn::testcost::ActParams::default(),
-    };
-    let cvt = match args.cvt_folds {
-        Some(_) if method != cslearn::testcost::Method::Cvt => anyhow::bail!(
-            "--cvt-folds is read by --learner cvt only, not by --learner {}",
-            method.name()
-        ),
-        Some(folds) => cslearn::testcost::CvtParams::with_folds(folds)
-            .map_err(|e| anyhow::anyhow!("--cvt-folds: {e}"))?,
-        None => cslearn::testcost::CvtParams::default(),
-    };
+    let pruning = learner_flag(
+        args.icet_pruning.as_deref(),
+        "--icet-pruning",
+        Method::Icet,
+        method,
+        Pruning::parse,
+    )?;
+    let act = learner_flag(
+        args.act_samples,
+        "--act-samples",
+        Method::Act,
+        method,
+        ActParams::with_samples,
+    )?;
+    let cvt = learner_flag(
+        args.cvt_folds,
+        "--cvt-folds",
+        Method::Cvt,
+        method,
+        CvtParams::with_folds,
+    )?;
     let params = cslearn::testcost::FamilyParams {
         selection_prices,
         cvt,

@@ -112,7 +112,18 @@ pub(super) fn cvt_tree(
     selection: SelectionPrices,
     seed: u64,
 ) -> (CostTree, CvtChoice) {
-    let folds = folds_of(frame, rows, params.folds.max(2), seed);
+    // Each fold's training objects and held-out objects, the same for every grower.
+    let parts: Vec<(Vec<usize>, Vec<usize>)> = folds_of(frame, rows, params.folds.max(2), seed)
+        .into_iter()
+        .filter_map(|out| {
+            let mut held_out = vec![false; frame.len()];
+            for &r in &out {
+                held_out[r] = true;
+            }
+            let train: Vec<usize> = rows.iter().copied().filter(|&r| !held_out[r]).collect();
+            (!train.is_empty() && !out.is_empty()).then_some((train, out))
+        })
+        .collect();
     // The first grower's first point until a cheaper one is measured.
     let mut choice = CvtChoice {
         grower: 0,
@@ -125,16 +136,8 @@ pub(super) fn cvt_tree(
         let tree = CostTree::grow(frame, rows, prices, mc, &grow);
         let alphas = Costs::of(&tree, prices).path_points(&tree);
         let mut held = vec![0.0; alphas.len()];
-        for out in &folds {
-            let mut held_out = vec![false; frame.len()];
-            for &r in out {
-                held_out[r] = true;
-            }
-            let train: Vec<usize> = rows.iter().copied().filter(|&r| !held_out[r]).collect();
-            if train.is_empty() || out.is_empty() {
-                continue;
-            }
-            let fold_tree = CostTree::grow(frame, &train, prices, mc, &grow);
+        for (train, out) in &parts {
+            let fold_tree = CostTree::grow(frame, train, prices, mc, &grow);
             let fold_costs = Costs::of(&fold_tree, prices);
             let reached = fold_tree.reach(frame, out);
             for (h, &alpha) in held.iter_mut().zip(&alphas) {
