@@ -494,7 +494,7 @@ fn evaluate(l: &Layout, strategy: StrategyKind, seed: u64, max_trials: u32) -> R
     let mut settings = RunSettings::tan1991(l.map("fit")?, strategy, seed);
     settings.max_trials = csql::TrialCap::new(max_trials)?;
     let setup = Setup::new(&settings)?;
-    let t = csql::run_on(&setup, &settings).table1;
+    let t = csql::run_on(&setup, &settings)?.table1;
     Ok(Evaluation {
         layout: l.key(),
         strategy,

@@ -74,13 +74,13 @@ pub fn compute(args: &ReproduceArgs) -> Result<Results> {
     let bar = progress(jobs.len() as u64, &format!("CS-QL on {}", setup.map.name()));
     let outcomes: Vec<Outcome> = pool(args.threads)?.install(|| {
         jobs.par_iter()
-            .map(|&job| {
+            .map(|&job| -> Result<Outcome> {
                 let out = match job {
                     Job::Csql { strategy, run } => {
                         let mut settings = base.clone();
                         settings.learner = csql::Learner::cs_ql(strategy);
                         settings.seed = args.seed + run;
-                        let (report, rep) = csql::run_with_representation(&setup, &settings);
+                        let (report, rep) = csql::run_with_representation(&setup, &settings)?;
                         let fixed = csql::fixed_representation_reference(&setup, &settings, rep);
                         Outcome::Csql {
                             report: Box::new(report),
@@ -94,10 +94,10 @@ pub fn compute(args: &ReproduceArgs) -> Result<Results> {
                     }
                 };
                 bar.inc(1);
-                out
+                Ok(out)
             })
-            .collect()
-    });
+            .collect::<Result<Vec<_>>>()
+    })?;
     bar.finish_and_clear();
     let mut runs: Vec<(StrategyKind, Vec<RunReport>, Vec<Reference>)> = args
         .strategies
@@ -646,7 +646,7 @@ fn write_figures(res: &Results, out: &Path) -> Result<Vec<PathBuf>> {
     // Figure 5d: the tree over the final descriptions of the first run of the first strategy.
     let (k, runs, _) = &res.runs[0];
     let settings = runs[0].settings.clone();
-    let (_, rep) = csql::run_with_representation(&res.setup, &settings);
+    let (_, rep) = csql::run_with_representation(&res.setup, &settings)?;
     let tree = StateTree::build(&rep, res.setup.space.costs());
     let path = out.join(format!("tree_{name}_{k}.svg"));
     crate::files::write_atomic(
@@ -674,7 +674,7 @@ fn write_figures(res: &Results, out: &Path) -> Result<Vec<PathBuf>> {
     let mut small = RunSettings::tan1991("tan3x3", res.runs[0].0, res.args.seed);
     small.max_trials = settings.max_trials;
     let setup3 = Setup::new(&small)?;
-    let (report3, rep3) = csql::run_with_representation(&setup3, &small);
+    let (report3, rep3) = csql::run_with_representation(&setup3, &small)?;
     let tree3 = StateTree::build(&rep3, setup3.space.costs());
     let figure5 = figures::side_by_side(
         &format!(

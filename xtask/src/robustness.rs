@@ -346,7 +346,7 @@ pub fn robustness(args: &RobustnessArgs) -> Result<()> {
                 let (m, condition, learner, run) = list.get(id);
                 let s = settings(&def, &args.maps[m], condition, learner, run)?;
                 let setup = Setup::for_map(maps[m].clone(), &s)?;
-                let report = csql::run_on(&setup, &s);
+                let report = csql::run_on(&setup, &s)?;
                 let q = &report.quality;
                 Ok(JobResult {
                     id,

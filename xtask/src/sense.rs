@@ -40,8 +40,8 @@ pub fn write(res: &Results, out: &Path, to_docs: bool) -> Result<Vec<PathBuf>> {
                 }
                 csql::run_on(&res.setup, &s)
             })
-            .collect()
-    });
+            .collect::<Result<Vec<_>, _>>()
+    })?;
     let block = |level: PredictSensing, k: StrategyKind| -> Vec<&RunReport> {
         jobs.iter()
             .zip(&reports)

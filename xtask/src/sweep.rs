@@ -180,7 +180,7 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
             let (m, strategy, run) = job(id);
             let mut settings = RunSettings::tan1991(&args.maps[m], strategy, args.seed + run);
             settings.max_trials = cap;
-            let report = csql::run_on(&setups[m], &settings);
+            let report = csql::run_on(&setups[m], &settings)?;
             Ok(JobResult {
                 id,
                 map: args.maps[m].clone(),

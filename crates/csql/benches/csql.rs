@@ -12,11 +12,11 @@ fn runs(c: &mut Criterion) {
     for k in StrategyKind::ALL {
         let settings = RunSettings::tan1991("tan8x8", k, 1);
         let setup = Setup::new(&settings).unwrap();
-        let moves = csql::run_on(&setup, &settings).moves;
+        let moves = csql::run_on(&setup, &settings).unwrap().moves;
         // Elements are moves: criterion reports moves per second.
         group.throughput(Throughput::Elements(moves));
         group.bench_function(k.name(), |b| {
-            b.iter(|| black_box(csql::run_on(&setup, &settings)))
+            b.iter(|| black_box(csql::run_on(&setup, &settings).unwrap()))
         });
     }
     group.finish();
@@ -25,7 +25,7 @@ fn runs(c: &mut Criterion) {
 fn classify(c: &mut Criterion) {
     let settings = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 1);
     let setup = Setup::new(&settings).unwrap();
-    let (_, rep) = csql::run_with_representation(&setup, &settings);
+    let (_, rep) = csql::run_with_representation(&setup, &settings).unwrap();
     let states = setup.world.states();
     let world = setup.sensed(&settings);
     let mut group = c.benchmark_group("classify_all_50_states");

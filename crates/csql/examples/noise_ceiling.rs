@@ -31,7 +31,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for seed in first..first + seeds {
         let settings = RunSettings::tan1991(map, StrategyKind::Lazy, seed);
         let setup = Setup::new(&settings)?;
-        let (report, rep) = csql::run_with_representation(&setup, &settings);
+        let (report, rep) = csql::run_with_representation(&setup, &settings).unwrap();
         assert!(report.converged, "seed {seed} did not converge");
         reps.push((setup, rep));
     }

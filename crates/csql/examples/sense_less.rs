@@ -70,7 +70,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                             *n - 1
                         };
                         let Some(job) = jobs.get(i) else { return };
-                        let report = csql::run_on(&setup, job);
+                        let report = csql::run_on(&setup, job).unwrap();
                         if let Ok(mut r) = results.lock() {
                             r[i] = Some(report);
                         }

@@ -38,7 +38,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 for seed in 1..=seeds {
                     let settings = RunSettings::tan1991("tan3x3-goal", strategy, seed);
                     let setup = Setup::for_map(map.clone(), &settings)?;
-                    let report = csql::run_on(&setup, &settings);
+                    let report = csql::run_on(&setup, &settings).unwrap();
                     let n = report.table1.descriptions.ok_or("a run did not converge")?;
                     *counts.entry(n).or_default() += 1;
                     *overall.entry(n).or_default() += 1;

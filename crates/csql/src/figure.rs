@@ -15,7 +15,7 @@ use crate::run::Setup;
 /// use csql::{RunSettings, Setup, StrategyKind};
 /// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
 /// let setup = Setup::new(&settings).unwrap();
-/// let report = csql::run_on(&setup, &settings);
+/// let report = csql::run_on(&setup, &settings).unwrap();
 /// let svg = csql::policy_svg(&setup, &report);
 /// assert_eq!(svg.matches("class=\"arrow\"").count(), 8); // one arrow per state
 /// ```

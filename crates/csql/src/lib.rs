@@ -35,7 +35,8 @@
 //! | [`Perception`], [`Identified`] | how states become Q rows, with a free view for the oracle |
 //! | [`Agent`], [`Agent::run_trial`] | the main loop of Figure 3 over a perception, a strategy and a Q table |
 //! | [`Verdict`], [`Judge`] | the oracle's end-of-trial checks: consistent, sufficient, converged |
-//! | [`run`], [`RunReport`], [`Table1`] | a whole run and the eight measures of Table 1 |
+//! | [`run_resolved`], [`Resolved`], [`Report`] | the one entry point: any learner, in any world (a grid map, a built-in world, a world file, a world built in code), from one settings value; its report is a run judged by trials or episodes of the costed return |
+//! | [`run`], [`RunReport`], [`Table1`] | a whole run judged by trials (a form of [`run_resolved`]) and the eight measures of Table 1 |
 //! | [`StateTree`] | the cost-sensitive decision tree over the final descriptions (row 8) |
 //! | [`full_sensing_reference`], [`fixed_representation_reference`] | the paper's two points of comparison |
 //! | [`policy_svg`], [`descriptions_svg`], [`descriptions_table`] | the map with the learned policy, and the descriptions as pictures (Figure 4b) |
@@ -290,7 +291,7 @@ pub use report::{
 pub use representation::{Description, DescriptionId, Representation};
 pub use resolve::{Resolved, is_world_name};
 pub use run::{
-    run, run_in, run_observed, run_on, run_on_with, run_settings, run_with_representation,
+    Report, run, run_in, run_observed, run_on, run_on_with, run_resolved, run_with_representation,
 };
 pub use sensor::Sensor;
 pub use settings::{

@@ -79,7 +79,7 @@ pub(crate) fn told_to_stop(observer: &mut dyn Observer, moves: u32) -> bool {
 /// }
 /// let settings = RunSettings::tan1991("tan8x8", StrategyKind::Resetting, 1);
 /// let setup = Setup::new(&settings).unwrap();
-/// let report = csql::run_observed(&setup, &settings, &mut Three(0));
+/// let report = csql::run_observed(&setup, &settings, &mut Three(0)).unwrap();
 /// assert_eq!((report.trials, report.converged, report.trace.len()), (3, false, 0));
 /// ```
 pub trait Observer {
@@ -122,7 +122,10 @@ pub trait Observer {
 /// use csql::{KeepTrace, RunSettings, Setup, StrategyKind};
 /// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
 /// let setup = Setup::new(&settings).unwrap();
-/// assert_eq!(csql::run_observed(&setup, &settings, &mut KeepTrace), csql::run_on(&setup, &settings));
+/// assert_eq!(
+///     csql::run_observed(&setup, &settings, &mut KeepTrace).unwrap(),
+///     csql::run_on(&setup, &settings).unwrap()
+/// );
 /// ```
 #[derive(Clone, Copy, Debug, Default)]
 pub struct KeepTrace;

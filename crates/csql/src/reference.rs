@@ -131,7 +131,7 @@ pub fn full_sensing_reference(setup: &Setup, settings: &RunSettings) -> Referenc
 /// use csql::{RunSettings, Setup, StrategyKind};
 /// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Resetting, 1);
 /// let setup = Setup::new(&settings).unwrap();
-/// let (report, rep) = csql::run_with_representation(&setup, &settings);
+/// let (report, rep) = csql::run_with_representation(&setup, &settings).unwrap();
 /// let r = csql::fixed_representation_reference(&setup, &settings, rep);
 /// assert!(report.converged && r.converged);
 /// ```

@@ -57,17 +57,7 @@ impl Resolved {
             let world = if mdp::builtin_world_names().contains(&name) {
                 mdp::builtin_world(name, &world.world_options())?
             } else {
-                if !world.slip.is_zero()
-                    || !world.slide.is_zero()
-                    || world.sensing.is_some()
-                    || world.factor_costs.is_some()
-                {
-                    return Err(Error::Conflict {
-                        first: "a world file".to_string(),
-                        second: "[world] slip, slide, sensing or factor_costs".to_string(),
-                        why: "a world file carries its own dynamics, features and prices",
-                    });
-                }
+                carries_its_own(settings, "a world file")?;
                 FiniteWorld::read(Path::new(name))?
             };
             if settings.world.sensing_radius.is_some() {
@@ -99,6 +89,56 @@ impl Resolved {
         check_size(settings, &setup.sensed(settings))?;
         Ok(Resolved::Grid(setup))
     }
+}
+
+impl Resolved {
+    /// A world built in code (a [`FiniteWorld`] from arrays, or read and changed), with
+    /// the settings checked against it and its oracle solved at the run's discount. The
+    /// world carries its own dynamics, features and prices, so the `[world]` settings
+    /// that would change them are refused, as they are for a world file; the settings'
+    /// `map` is not read (the report names the world).
+    ///
+    /// ```
+    /// let lake = mdp::builtin_world("frozenlake4x4", &Default::default()).unwrap();
+    /// let s = csql::RunSettings::tan1991("tan8x8", csql::StrategyKind::Lazy, 1);
+    /// let resolved = csql::Resolved::given(lake.clone(), &s).unwrap();
+    /// let report = csql::run_resolved(&resolved, &s, &mut csql::KeepTrace).unwrap();
+    /// assert_eq!(report.trials().unwrap().map, "frozenlake4x4");
+    /// let mut slipping = s.clone();
+    /// slipping.world.slip = mdp::Slip::new(0.1).unwrap();
+    /// let err = csql::Resolved::given(lake, &slipping).unwrap_err().to_string();
+    /// assert!(err.contains("slip"), "{err}");
+    /// ```
+    pub fn given(world: FiniteWorld, settings: &RunSettings) -> Result<Resolved, Error> {
+        settings.validate()?;
+        carries_its_own(
+            settings,
+            &format!("the world {} given to the run", world.name()),
+        )?;
+        if settings.world.sensing_radius.is_some() {
+            return Err(Error::GridOnly {
+                what: "[world] sensing_radius (offsets around a robot on a grid)",
+            });
+        }
+        check_with_world(settings, crate::quality::is_deterministic(&world), false)?;
+        check_size(settings, &world)?;
+        let oracle = Oracle::solve_stochastic(&world, settings.gamma.get())?;
+        Ok(Resolved::Finite { world, oracle })
+    }
+}
+
+/// Refuses the `[world]` settings that would change a world's dynamics, features or
+/// prices, for a world that carries its own (`what`: a world file, or one given).
+fn carries_its_own(settings: &RunSettings, what: &str) -> Result<(), Error> {
+    let w = &settings.world;
+    if !w.slip.is_zero() || !w.slide.is_zero() || w.sensing.is_some() || w.factor_costs.is_some() {
+        return Err(Error::Conflict {
+            first: what.to_string(),
+            second: "[world] slip, slide, sensing or factor_costs".to_string(),
+            why: "it carries its own dynamics, features and prices (give them when building it)",
+        });
+    }
+    Ok(())
 }
 
 /// Settings that mean nothing in the world they are run in, refused once the world is

@@ -7,6 +7,7 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 
 use crate::audit::Audited;
 use crate::classify::Classify;
+use crate::costly::CostedReport;
 use crate::error::Error;
 use crate::learn::{Scene, learn};
 use crate::learner::Learner;
@@ -29,7 +30,107 @@ use crate::view::{Describes, Sees};
 /// Kept at this path for `figure.rs`.
 pub(crate) use crate::setup::Setup;
 
-/// Run CS-QL with the given settings: load the map, learn, measure.
+/// What a run reports: trials judged against the oracle (CS-QL, U-Tree, full sensing),
+/// or episodes scored by the costed return (AMRL-Q, sensing by belief). It is written as
+/// the one report it holds (`csrl run --json` prints it).
+///
+/// ```
+/// let s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
+/// let report = csql::run_resolved(&csql::Resolved::new(&s).unwrap(), &s, &mut csql::KeepTrace).unwrap();
+/// let json = serde_json::to_value(&report).unwrap();
+/// assert_eq!(json["converged"], true); // the trials' report itself, not wrapped
+/// assert!(report.trials().is_some() && report.episodes().is_none());
+/// ```
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[serde(untagged)]
+pub enum Report {
+    /// A run judged by trials.
+    Trials(Box<RunReport>),
+    /// A run played on episodes of the costed return.
+    Episodes(Box<CostedReport>),
+}
+
+impl Report {
+    /// The report of a run judged by trials, if this is one.
+    ///
+    /// ```
+    /// let s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Eager, 2);
+    /// let report = csql::run_resolved(&csql::Resolved::new(&s).unwrap(), &s, &mut csql::KeepTrace).unwrap();
+    /// assert_eq!(report.trials().unwrap().seed, 2);
+    /// ```
+    pub fn trials(&self) -> Option<&RunReport> {
+        match self {
+            Report::Trials(r) => Some(r),
+            Report::Episodes(_) => None,
+        }
+    }
+
+    /// The report of a run played on costed episodes, if this is one.
+    ///
+    /// ```
+    /// let s = csql::SettingsDraft::from_toml("map = \"frozenlake4x4\"\nlearner = \"amrl-q\"\nmax_trials = 20\n[world]\nsensing = \"factors\"\n[costly]\nprice = 0.025", "f")
+    ///     .unwrap()
+    ///     .build()
+    ///     .unwrap();
+    /// let report = csql::run_resolved(&csql::Resolved::new(&s).unwrap(), &s, &mut csql::KeepTrace).unwrap();
+    /// assert_eq!(report.episodes().unwrap().costly.returns.len(), 20);
+    /// ```
+    pub fn episodes(&self) -> Option<&CostedReport> {
+        match self {
+            Report::Episodes(r) => Some(r),
+            Report::Trials(_) => None,
+        }
+    }
+}
+
+/// Run the learner of `settings` in a resolved world: the one entry point for every
+/// learner and every world. [`Resolved::new`] resolves the world the settings name (a
+/// grid map, a built-in world, a world file) and [`Resolved::given`] a world built in
+/// code; both check the settings against it. The learners judged by trials (CS-QL,
+/// U-Tree, full sensing) learn and are measured against the world's oracle, with
+/// `observer` called after every trial; the learners played on episodes (AMRL-Q and
+/// sensing by belief) play `max_trials` episodes scored by the costed return, `observer`
+/// asked before every episode whether to go on.
+///
+/// The other `run_*` functions are forms of this one for CS-QL's own uses (a prepared
+/// grid, a given CLASSIFY, the final representation); each refuses the learners played
+/// on episodes rather than running another learner in their place.
+///
+/// # Errors
+/// Settings refused by [`RunSettings::validate`] or by the world ([`Resolved::new`]
+/// checks them when it resolves; they are checked again here), or a world sensing by
+/// belief cannot plan in ([`Error::Plan`]).
+///
+/// ```
+/// let s = csql::RunSettings::tan1991("frozenlake4x4", csql::StrategyKind::Lazy, 1);
+/// let report = csql::run_resolved(&csql::Resolved::new(&s).unwrap(), &s, &mut csql::KeepTrace).unwrap();
+/// assert_eq!(report.trials().unwrap().map, "frozenlake4x4");
+/// ```
+pub fn run_resolved(
+    resolved: &Resolved,
+    settings: &RunSettings,
+    observer: &mut dyn Observer,
+) -> Result<Report, Error> {
+    if settings.learner.kind().on_episodes() {
+        let report = crate::costly::costed_report_in(resolved, settings, observer)?;
+        return Ok(Report::Episodes(Box::new(report)));
+    }
+    let report = match resolved {
+        Resolved::Grid(setup) => {
+            settings.validate()?;
+            run_observed(setup, settings, observer)?
+        }
+        Resolved::Finite { world, oracle } => {
+            let scene = Scene::new(world, oracle, oracle, world.name());
+            run_in(&scene, settings, observer)?
+        }
+    };
+    Ok(Report::Trials(Box::new(report)))
+}
+
+/// Run a learner judged by trials with the given settings, in the world they name: load
+/// it, learn, measure. A thin form of [`run_resolved`]; the learners played on episodes
+/// (AMRL-Q, sensing by belief) are refused: their report is a [`CostedReport`].
 ///
 /// ```
 /// use csql::{RunSettings, StrategyKind};
@@ -38,63 +139,45 @@ pub(crate) use crate::setup::Setup;
 /// assert_eq!(report.states.len(), 8);
 /// ```
 pub fn run(settings: &RunSettings) -> Result<RunReport, Error> {
-    run_settings(settings, &mut KeepTrace)
-}
-
-/// Run the learner of `settings` in the world its `map` setting names (a grid map, a
-/// built-in world or a world file), with an observer.
-///
-/// ```
-/// let settings = csql::RunSettings::tan1991("frozenlake4x4", csql::StrategyKind::Lazy, 1);
-/// let report = csql::run_settings(&settings, &mut csql::KeepTrace).unwrap();
-/// assert!(report.converged);
-/// assert_eq!(report.map, "frozenlake4x4");
-/// ```
-pub fn run_settings(
-    settings: &RunSettings,
-    observer: &mut dyn Observer,
-) -> Result<RunReport, Error> {
     not_on_episodes(settings)?;
-    match Resolved::new(settings)? {
-        Resolved::Grid(setup) => Ok(run_observed(&setup, settings, observer)),
-        Resolved::Finite { world, oracle } => {
-            let scene = Scene::new(&world, &oracle, &oracle, world.name());
-            run_in(&scene, settings, observer)
-        }
+    match run_resolved(&Resolved::new(settings)?, settings, &mut KeepTrace)? {
+        Report::Trials(report) => Ok(*report),
+        Report::Episodes(_) => unreachable!("refused above"),
     }
 }
 
 /// AMRL-Q and sensing by belief are played on episodes of the costed return
-/// ([`crate::costed_report`]), not in a run.
+/// ([`run_resolved`]), not in a run judged by trials.
 fn not_on_episodes(settings: &RunSettings) -> Result<(), Error> {
     let kind = settings.learner.kind();
     if kind.on_episodes() {
         return Err(Error::Conflict {
             first: format!("learner = {kind}"),
-            second: "a run judged by trials (csql::run)".to_string(),
-            why: "the learner is played for a fixed number of episodes on the costed return (csql::costed_report, or csrl run)",
+            second: "a run judged by trials".to_string(),
+            why: "the learner is played for a fixed number of episodes on the costed return (csql::run_resolved, or csrl run)",
         });
     }
     Ok(())
 }
 
-/// Run CS-QL on a prepared world (the settings' map name is only reported).
+/// Run CS-QL on a prepared grid (the settings' map name is only reported). A form of
+/// [`run_resolved`] that refuses the learners played on episodes.
 ///
 /// ```
 /// use csql::{RunSettings, Setup, StrategyKind};
 /// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Eager, 3);
 /// let setup = Setup::new(&settings).unwrap();
-/// let a = csql::run_on(&setup, &settings);
-/// let b = csql::run_on(&setup, &settings);
+/// let a = csql::run_on(&setup, &settings).unwrap();
+/// let b = csql::run_on(&setup, &settings).unwrap();
 /// assert_eq!(a, b); // a pure function of the settings
 /// ```
-pub fn run_on(setup: &Setup, settings: &RunSettings) -> RunReport {
-    run_with_representation(setup, settings).0
+pub fn run_on(setup: &Setup, settings: &RunSettings) -> Result<RunReport, Error> {
+    Ok(run_with_representation(setup, settings)?.0)
 }
 
 /// Run the learner of `settings` in any world: learn, measure against the scene's
 /// oracles, report. Grid-only settings (the motion prior, sensor noise) are refused on a
-/// world that is not a grid.
+/// world that is not a grid, and so are the learners played on episodes.
 ///
 /// ```
 /// let settings = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Random, 2);
@@ -102,7 +185,7 @@ pub fn run_on(setup: &Setup, settings: &RunSettings) -> RunReport {
 /// let sensed = setup.sensed(&settings);
 /// let scene = csql::Scene::new(&sensed, &setup.oracle, setup.truth(), setup.map.name());
 /// let report = csql::run_in(&scene, &settings, &mut csql::KeepTrace).unwrap();
-/// assert_eq!(report, csql::run_on(&setup, &settings));
+/// assert_eq!(report, csql::run_on(&setup, &settings).unwrap());
 /// ```
 pub fn run_in<W: World + ?Sized>(
     scene: &Scene<'_, W>,
@@ -130,30 +213,32 @@ pub fn run_in<W: World + ?Sized>(
     )?;
     crate::resolve::check_size(settings, scene.world)?;
     let classify = Classify::new(scene.world);
-    Ok(run_classify(scene, settings, classify, observer).0)
+    Ok(run_classify(scene, settings, classify, observer)?.0)
 }
 
-/// Run CS-QL on a prepared world and also return the final representation.
+/// Run CS-QL on a prepared grid and also return the final representation. A form of
+/// [`run_resolved`] that refuses the learners played on episodes.
 ///
 /// ```
 /// use csql::{RunSettings, Setup, StrategyKind};
 /// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Random, 4);
 /// let setup = Setup::new(&settings).unwrap();
-/// let (report, rep) = csql::run_with_representation(&setup, &settings);
+/// let (report, rep) = csql::run_with_representation(&setup, &settings).unwrap();
 /// assert_eq!(report.descriptions.len(), rep.len());
 /// ```
 pub fn run_with_representation(
     setup: &Setup,
     settings: &RunSettings,
-) -> (RunReport, Representation) {
+) -> Result<(RunReport, Representation), Error> {
     let sensed = setup.sensed(settings);
     let scene = Scene::new(&sensed, &setup.oracle, setup.truth(), setup.map.name());
     run_classify(&scene, settings, Classify::new(&sensed), &mut KeepTrace)
 }
 
-/// Run CS-QL on a prepared world with an [`Observer`] called after every trial: for
+/// Run CS-QL on a prepared grid with an [`Observer`] called after every trial: for
 /// progress, for streaming the trace instead of keeping it, or for stopping early (the
-/// report then says what the run reached when it stopped, as at a trial cap).
+/// report then says what the run reached when it stopped, as at a trial cap). A form of
+/// [`run_resolved`] that refuses the learners played on episodes.
 ///
 /// ```
 /// use csql::{Flow, Observer, RunSettings, Setup, StrategyKind, TracePoint};
@@ -165,7 +250,7 @@ pub fn run_with_representation(
 /// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Eager, 1);
 /// let setup = Setup::new(&settings).unwrap();
 /// let mut count = Count(0);
-/// let report = csql::run_observed(&setup, &settings, &mut count);
+/// let report = csql::run_observed(&setup, &settings, &mut count).unwrap();
 /// assert!(report.trace.is_empty() && report.converged);
 /// assert_eq!(count.0, report.trials);
 /// ```
@@ -173,26 +258,34 @@ pub fn run_observed(
     setup: &Setup,
     settings: &RunSettings,
     observer: &mut dyn Observer,
-) -> RunReport {
+) -> Result<RunReport, Error> {
     let sensed = setup.sensed(settings);
     let scene = Scene::new(&sensed, &setup.oracle, setup.truth(), setup.map.name());
-    run_classify(&scene, settings, Classify::new(&sensed), observer).0
+    Ok(run_classify(&scene, settings, Classify::new(&sensed), observer)?.0)
 }
 
-/// Run CS-QL with a given CLASSIFY (for example with its cache off, or starting from a
-/// representation).
+/// Run CS-QL on a prepared grid with a given CLASSIFY (for example with its cache off,
+/// or starting from a representation). A form of [`run_resolved`] that refuses the
+/// learners played on episodes.
 ///
 /// ```
 /// use csql::{Classify, RunSettings, Setup, StrategyKind};
 /// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
 /// let setup = Setup::new(&settings).unwrap();
 /// let plain = Classify::new(&setup.sensed(&settings)).with_cache(false);
-/// assert_eq!(csql::run_on_with(&setup, &settings, plain), csql::run_on(&setup, &settings));
+/// assert_eq!(
+///     csql::run_on_with(&setup, &settings, plain).unwrap(),
+///     csql::run_on(&setup, &settings).unwrap()
+/// );
 /// ```
-pub fn run_on_with(setup: &Setup, settings: &RunSettings, classify: Classify) -> RunReport {
+pub fn run_on_with(
+    setup: &Setup,
+    settings: &RunSettings,
+    classify: Classify,
+) -> Result<RunReport, Error> {
     let sensed = setup.sensed(settings);
     let scene = Scene::new(&sensed, &setup.oracle, setup.truth(), setup.map.name());
-    run_classify(&scene, settings, classify, &mut KeepTrace).0
+    Ok(run_classify(&scene, settings, classify, &mut KeepTrace)?.0)
 }
 
 fn run_classify<W: World + ?Sized>(
@@ -200,7 +293,8 @@ fn run_classify<W: World + ?Sized>(
     settings: &RunSettings,
     classify: Classify,
     observer: &mut dyn Observer,
-) -> (RunReport, Representation) {
+) -> Result<(RunReport, Representation), Error> {
+    not_on_episodes(settings)?;
     let (mut report, rep) = learn_classify(scene, settings, classify, observer);
     // With sensing priced (`[costly]`), the run's trials again, each scored by its
     // costed return: the same trials, as `costed_episodes` plays them from the same
@@ -229,7 +323,7 @@ fn run_classify<W: World + ?Sized>(
             ));
         }
     }
-    (report, rep)
+    Ok((report, rep))
 }
 
 fn learn_classify<W: World + ?Sized>(
@@ -247,9 +341,7 @@ fn learn_classify<W: World + ?Sized>(
         .with_noise(settings.world.sensor_noise, sensor_rng)
         .with_extensions(&extensions);
     let (q, predicting) = match &settings.learner {
-        // AMRL-Q and sensing by belief are refused before a run of `csql::run` starts
-        // (`not_on_episodes`); a setup prepared for one learns as full sensing, the
-        // nearest learner here.
+        // AMRL-Q and sensing by belief never come here: `run_classify` refuses them.
         Learner::FullSensing | Learner::AmrlQ(_) | Learner::Belief(_) => {
             let perception = FullView::new(scene.world);
             let (report, _) = learn_and_report(scene, settings, perception, Never, observer);

@@ -70,7 +70,7 @@ impl<W: World + ?Sized> Labels for WorldLabels<'_, W> {
 /// use csql::{RunSettings, Setup, StateTree, StrategyKind};
 /// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 2);
 /// let setup = Setup::new(&settings).unwrap();
-/// let (report, rep) = csql::run_with_representation(&setup, &settings);
+/// let (report, rep) = csql::run_with_representation(&setup, &settings).unwrap();
 /// let world = setup.sensed(&settings);
 /// let tree = StateTree::build(&rep, setup.space.costs());
 /// for s in setup.world.states() {

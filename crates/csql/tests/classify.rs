@@ -58,12 +58,13 @@ fn cached_and_plain_runs_are_identical_on_tan8x8() {
     // A whole run with each: same trace, same costs, same representation.
     let settings = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 11);
     let setup = Setup::new(&settings).unwrap();
-    let fast = csql::run_on(&setup, &settings);
+    let fast = csql::run_on(&setup, &settings).unwrap();
     let slow = csql::run_on_with(
         &setup,
         &settings,
         Classify::new(&setup.sensed(&settings)).with_cache(false),
-    );
+    )
+    .unwrap();
     assert_eq!(fast, slow);
 }
 

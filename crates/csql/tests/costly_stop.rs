@@ -39,7 +39,8 @@ fn priced() -> RunSettings {
 fn a_priced_run_stopped_from_outside_says_its_costed_returns_are_missing() {
     let settings = priced();
     let setup = Setup::new(&settings).unwrap();
-    let report = csql::run_observed(&setup, &settings, &mut StopAfter { after: 3, seen: 0 });
+    let report =
+        csql::run_observed(&setup, &settings, &mut StopAfter { after: 3, seen: 0 }).unwrap();
     assert_eq!(report.trials, 3);
     assert!(report.costly.is_none());
     let why = report.costly_missing.as_deref().expect("a reason");
@@ -62,7 +63,8 @@ fn a_priced_run_not_stopped_has_its_costed_returns_and_no_note() {
             after: u32::MAX,
             seen: 0,
         },
-    );
+    )
+    .unwrap();
     let costly = report.costly.as_ref().expect("costed returns");
     assert_eq!(costly.returns.len(), report.trials as usize);
     assert!(report.costly_missing.is_none());

@@ -19,7 +19,7 @@ fn run(
     q.predict_sensing = level;
     q.prediction = p;
     let setup = Setup::new(&s).unwrap();
-    csql::run_on(&setup, &s)
+    csql::run_on(&setup, &s).unwrap()
 }
 
 #[test]
@@ -185,7 +185,7 @@ fn motion_charges_less_for_the_same_run() {
 fn classify_among_finds_the_true_description_among_candidates() {
     let settings = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 1);
     let setup = Setup::new(&settings).unwrap();
-    let (report, rep) = csql::run_with_representation(&setup, &settings);
+    let (report, rep) = csql::run_with_representation(&setup, &settings).unwrap();
     assert!(report.converged);
     let world = setup.sensed(&settings);
     let mut c = csql::Classify::with_representation(&world, rep.clone());
@@ -275,7 +275,7 @@ fn a_long_trial_of_learning_stops_when_its_observer_says_so() {
     s.max_trials = csql::TrialCap::new(1).unwrap();
     s.max_moves = qlearn::MoveCap::new(1_000_000).unwrap();
     let setup = Setup::new(&s).unwrap();
-    let whole = csql::run_on(&setup, &s);
+    let whole = csql::run_on(&setup, &s).unwrap();
     let check = u64::from(csql::STOP_CHECK_MOVES);
     assert!(
         whole.moves > check,
@@ -283,6 +283,6 @@ fn a_long_trial_of_learning_stops_when_its_observer_says_so() {
         whole.moves
     );
     // One trial at most: the no cuts it, and the run ends with it.
-    let stopped = csql::run_observed(&setup, &s, &mut StopAfter { left: 0 });
+    let stopped = csql::run_observed(&setup, &s, &mut StopAfter { left: 0 }).unwrap();
     assert_eq!((stopped.trials, stopped.moves), (1, check));
 }

@@ -7,7 +7,7 @@ use mdp::{ActionId, Oracle, Pos, StochasticMdp, World};
 fn run(map: &str, strategy: StrategyKind, seed: u64) -> (Setup, RunReport) {
     let settings = RunSettings::tan1991(map, strategy, seed);
     let setup = Setup::new(&settings).unwrap();
-    let report = csql::run_on(&setup, &settings);
+    let report = csql::run_on(&setup, &settings).unwrap();
     (setup, report)
 }
 
@@ -39,7 +39,7 @@ fn assert_optimal(setup: &Setup, r: &RunReport) {
     assert_eq!(t.trials_to_converge, Some(r.trials));
     assert_eq!(t.descriptions, Some(r.descriptions.len()));
     // The tree classifies every state to its own description.
-    let (_, rep) = csql::run_with_representation(setup, &r.settings);
+    let (_, rep) = csql::run_with_representation(setup, &r.settings).unwrap();
     let tree = csql::StateTree::build(&rep, setup.space.costs());
     let mut total = 0.0;
     for s in setup.world.states() {
@@ -128,7 +128,7 @@ fn every_strategy_converges_on_random_maps() {
         for k in StrategyKind::ALL {
             let settings = RunSettings::tan1991("random", k, seed);
             let setup = Setup::for_map(map.clone(), &settings).unwrap();
-            let r = csql::run_on(&setup, &settings);
+            let r = csql::run_on(&setup, &settings).unwrap();
             assert_optimal(&setup, &r);
         }
     }
@@ -182,7 +182,7 @@ fn runs_are_pure_functions_of_their_settings() {
 fn the_reference_points_cost_what_they_should() {
     let settings = RunSettings::tan1991("tan8x8", StrategyKind::Resetting, 1);
     let setup = Setup::new(&settings).unwrap();
-    let (report, rep) = csql::run_with_representation(&setup, &settings);
+    let (report, rep) = csql::run_with_representation(&setup, &settings).unwrap();
     let full = csql::full_sensing_reference(&setup, &settings);
     assert!(full.converged);
     // Every classification of the plain learner senses the whole world: far dearer than

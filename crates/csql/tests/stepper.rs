@@ -108,7 +108,7 @@ fn a_grid_map_learns_as_run_does() {
     ] {
         let settings = RunSettings::tan1991(map, strategy, seed);
         let setup = csql::Setup::new(&settings).unwrap();
-        let (report, rep) = csql::run_with_representation(&setup, &settings);
+        let (report, rep) = csql::run_with_representation(&setup, &settings).unwrap();
         let world = setup.sensed(&settings);
         let mut stepper = stepper_for(&world, &settings);
         drive(
@@ -153,7 +153,7 @@ fn slippery_moves_drawn_from_the_same_generator_learn_as_run_does() {
     let mut settings = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 3);
     settings.world.slip = mdp::Slip::new(0.1).unwrap();
     let setup = csql::Setup::new(&settings).unwrap();
-    let report = csql::run_on(&setup, &settings);
+    let report = csql::run_on(&setup, &settings).unwrap();
     let world = setup.sensed(&settings);
     // The stepper refuses [world] settings: it is given the world's features alone.
     let mut plain = settings.clone();

@@ -3,9 +3,10 @@
 //! The Python modules beside it (`crates/csrl-py/python/csrl`) give the public names; this
 //! module holds what has to run in Rust:
 //!
-//! * `run_json`: one run, the same path from arguments to JSON as `csrl run --json`
-//!   (settings from the paper's preset, then a TOML settings table, then the arguments),
-//!   so the text is the same byte for byte. The GIL is released while it runs, and the
+//! * `run`: one run, by the path `csrl run` takes (settings from the paper's preset,
+//!   then a TOML settings table, then the arguments, then `csql::run_resolved`), its
+//!   report given to Python as Python objects (pythonize); `dumps` writes it as the text
+//!   `csrl run --json` prints, byte for byte. The GIL is released while it runs, and the
 //!   run checks for Ctrl-C after every trial.
 //! * [`PyWorld`]: a finite world with priced features (`mdp::FiniteWorld`), built from a
 //!   name (the same resolution as `csrl run --world`) or from a world file's JSON.
@@ -135,7 +136,8 @@ impl csql::Observer for Signals {
     }
 }
 
-/// One run, as `csrl run --json` prints it (without the final newline).
+/// One run, its report as Python objects: the dict of the JSON object `csrl run --json`
+/// prints (converted by pythonize, key for key in the report's order).
 ///
 /// `world` is a name or path as `--world` takes it, or a `World`; `settings` is the text
 /// of a TOML settings file (as `--config` reads it); the other arguments are the flags
@@ -146,9 +148,9 @@ impl csql::Observer for Signals {
     clippy::too_many_arguments,
     reason = "one argument per flag of `csrl run`, all keywords in Python"
 )]
-fn run_json(
-    py: Python<'_>,
-    world: Option<&Bound<'_, PyAny>>,
+fn run<'py>(
+    py: Python<'py>,
+    world: Option<&Bound<'py, PyAny>>,
     strategy: Option<&str>,
     seed: Option<u64>,
     learner: Option<&str>,
@@ -156,7 +158,7 @@ fn run_json(
     max_trials: Option<u32>,
     predict_sensing: Option<&str>,
     trace: bool,
-) -> PyResult<String> {
+) -> PyResult<Bound<'py, PyAny>> {
     let object: Option<PyRef<'_, PyWorld>> = match world {
         Some(w) if w.is_instance_of::<PyWorld>() => Some(w.extract()?),
         _ => None,
@@ -179,69 +181,49 @@ fn run_json(
         predict_sensing,
     };
     let mut settings = args.settings()?;
+    if let Some(w) = &object {
+        // The report names the world given.
+        settings.map = w.world.name().into();
+    }
+    if trace && settings.learner.kind().on_episodes() {
+        return Err(run_error(&csql::Error::Conflict {
+            first: "trace".to_string(),
+            second: format!("learner = {}", settings.learner.kind()),
+            why: "the learner plays a fixed number of episodes, scored by the costed return: its every episode is already in the report",
+        }));
+    }
     let mut signals = Signals {
         keep_trace: trace,
         raised: None,
     };
-    if let Some(w) = &object {
-        settings::check_world_object(&mut settings, &w.world)?;
-    }
-    let world = object.as_ref().map(|w| &w.world);
-    if settings.learner.kind().on_episodes() {
-        // AMRL-Q and sensing by belief: their episodes, scored, as `csrl run` plays them.
-        if trace {
-            return Err(run_error(&csql::Error::Conflict {
-                first: "trace".to_string(),
-                second: format!("learner = {}", settings.learner.kind()),
-                why: "the learner plays a fixed number of episodes, scored by the costed return: its every episode is already in the report",
-            }));
-        }
-        let report = py
-            .detach(|| match world {
-                None => csql::costed_report_in(
-                    &csql::Resolved::new(&settings)?,
-                    &settings,
-                    &mut signals,
-                ),
-                Some(world) => csql::costed_report(world, world.name(), &settings, &mut signals),
-            })
-            .map_err(|e| run_error(&e))?;
-        if let Some(e) = signals.raised {
-            return Err(e);
-        }
-        return serde_json::to_string(&report).map_err(|e| SettingsError::new_err(e.to_string()));
-    }
     // Resolving a world solves its true model (value iteration), which takes time on
     // large worlds: everything from here runs without the GIL.
+    let world = object.as_ref().map(|w| &w.world);
     let report = py
-        .detach(|| match world {
-            None => match csql::Resolved::new(&settings)? {
-                csql::Resolved::Grid(setup) => {
-                    Ok(csql::run_observed(&setup, &settings, &mut signals))
-                }
-                csql::Resolved::Finite { world, oracle } => {
-                    let scene = csql::Scene::new(&world, &oracle, &oracle, world.name());
-                    csql::run_in(&scene, &settings, &mut signals)
-                }
-            },
-            Some(world) => {
-                let oracle = mdp::Oracle::solve_stochastic(world, settings.gamma.get())?;
-                let scene = csql::Scene::new(world, &oracle, &oracle, world.name());
-                csql::run_in(&scene, &settings, &mut signals)
-            }
+        .detach(|| {
+            let resolved = match world {
+                None => csql::Resolved::new(&settings)?,
+                Some(world) => csql::Resolved::given(world.clone(), &settings)?,
+            };
+            csql::run_resolved(&resolved, &settings, &mut signals)
         })
         .map_err(|e| run_error(&e))?;
     if let Some(e) = signals.raised {
         return Err(e);
     }
-    serde_json::to_string(&report).map_err(|e| SettingsError::new_err(e.to_string()))
+    Ok(pythonize::pythonize(py, &report)?)
 }
 
-/// The settings of a run as `csrl run` would resolve them, as JSON (the report's
-/// `settings` object), without running: to check settings before a long run.
+/// The settings of a run as `csrl run` would resolve them, as Python objects (the
+/// report's `settings` dict), without running: to check settings before a long run.
 #[pyfunction]
 #[pyo3(signature = (world=None, strategy=None, seed=None, learner=None, settings=None, max_trials=None, predict_sensing=None))]
-fn resolve_settings(
+#[expect(
+    clippy::too_many_arguments,
+    reason = "one argument per flag of `csrl run`, all keywords in Python"
+)]
+fn resolve_settings<'py>(
+    py: Python<'py>,
     world: Option<&str>,
     strategy: Option<&str>,
     seed: Option<u64>,
@@ -249,7 +231,7 @@ fn resolve_settings(
     settings: Option<&str>,
     max_trials: Option<u32>,
     predict_sensing: Option<&str>,
-) -> PyResult<String> {
+) -> PyResult<Bound<'py, PyAny>> {
     let args = settings::RunArgs {
         world: world.map(str::to_string),
         strategy,
@@ -260,7 +242,7 @@ fn resolve_settings(
         predict_sensing,
     };
     let s = args.settings()?;
-    serde_json::to_string(&s).map_err(|e| SettingsError::new_err(e.to_string()))
+    Ok(pythonize::pythonize(py, &s)?)
 }
 
 /// A Python settings mapping as the text of a TOML settings file.
@@ -270,7 +252,8 @@ fn settings_toml(settings: &Bound<'_, PyAny>) -> PyResult<String> {
 }
 
 /// A report (any JSON value as Python holds it) as serde_json writes it, keys in the
-/// mapping's order: `dumps(json.loads(text)) == text` for every text `run_json` returns.
+/// mapping's order: `dumps(run(...))` is the text `csrl run --json` prints for the same
+/// arguments (without its final newline).
 #[pyfunction]
 fn dumps(obj: &Bound<'_, PyAny>) -> PyResult<String> {
     let mut out = String::new();
@@ -312,7 +295,7 @@ fn _csrl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("DataError", py.get_type::<DataError>())?;
     m.add("AgentError", py.get_type::<AgentError>())?;
     m.add("SensorError", py.get_type::<SensorError>())?;
-    m.add_function(wrap_pyfunction!(run_json, m)?)?;
+    m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(resolve_settings, m)?)?;
     m.add_function(wrap_pyfunction!(settings_toml, m)?)?;
     m.add_function(wrap_pyfunction!(dumps, m)?)?;

@@ -70,27 +70,6 @@ impl RunArgs<'_> {
     }
 }
 
-/// Settings run on a `csrl.World` object: the world carries its own dynamics, features
-/// and prices, so the `[world]` settings that would change them are refused as they are
-/// for a world file (`csql::Resolved::new`), and the report names the world.
-pub(crate) fn check_world_object(s: &mut RunSettings, world: &mdp::FiniteWorld) -> PyResult<()> {
-    let w = &s.world;
-    if !w.slip.is_zero() || !w.slide.is_zero() || w.sensing.is_some() || w.factor_costs.is_some() {
-        return Err(run_error(&csql::Error::Conflict {
-            first: "a csrl.World".to_string(),
-            second: "[world] slip, slide, sensing or factor_costs".to_string(),
-            why: "a world object carries its own dynamics, features and prices (give them when building it)",
-        }));
-    }
-    if w.sensing_radius.is_some() {
-        return Err(run_error(&csql::Error::GridOnly {
-            what: "[world] sensing_radius (offsets around a robot on a grid)",
-        }));
-    }
-    s.map = world.name().into();
-    Ok(())
-}
-
 /// How deep a settings mapping may nest (a table in a table, a list in a list): a
 /// settings file has tables of values and no more, so this is far beyond any real one,
 /// and low enough that walking it cannot exhaust the stack.

@@ -153,7 +153,7 @@ INTERRUPTER = (
     "def inside_the_run():\n"
     "    f = sys._current_frames().get(main)\n"
     "    while f is not None:\n"
-    "        if f.f_code.co_name == 'run_json' and f.f_code.co_filename.endswith('__init__.py'):\n"
+    "        if f.f_code.co_name == 'run' and f.f_code.co_filename.endswith('__init__.py'):\n"
     "            return True\n"
     "        f = f.f_back\n"
     "    return False\n"

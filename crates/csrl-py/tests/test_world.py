@@ -155,7 +155,7 @@ def test_from_gymnasium_refuses_a_world_without_a_model():
 
 def test_a_world_object_refuses_world_settings():
     w = csrl.World("frozenlake4x4")
-    with pytest.raises(csrl.SettingsError, match="csrl.World"):
+    with pytest.raises(csrl.SettingsError, match=r"the world frozenlake4x4 given to the run and \[world\] slip"):
         csrl.run(world=w, settings={"world": {"slip": 0.1}})
 
 

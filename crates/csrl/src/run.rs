@@ -232,121 +232,122 @@ fn progress_bar(len: u32) -> indicatif::ProgressBar {
 pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     let settings = args.settings()?;
     let resolved = csql::Resolved::new(&settings)?;
-    if settings.learner.kind().on_episodes() {
-        return run_on_episodes(args, &settings, &resolved, out);
-    }
-    if args.svg.is_some() && !matches!(resolved, csql::Resolved::Grid(_)) {
+    let on_episodes = settings.learner.kind().on_episodes();
+    if on_episodes {
+        for (given, flag) in [
+            (args.svg.is_some(), "--svg"),
+            (args.require_convergence, "--require-convergence"),
+            (args.trace, "--trace"),
+        ] {
+            if given {
+                return Err(csql::Error::Conflict {
+                    first: flag.to_string(),
+                    second: format!("learner = {}", settings.learner.kind()),
+                    why: "the learner plays a fixed number of episodes, scored by the costed return: no policy to draw, nothing to converge, its every episode already in the report",
+                }
+                .into());
+            }
+        }
+    } else if args.svg.is_some() && !matches!(resolved, csql::Resolved::Grid(_)) {
         return Err(csql::Error::GridOnly {
             what: "--svg (the policy drawn on a grid map)",
         }
         .into());
     }
-    let mut watch = Watch::new(progress_bar(settings.max_trials.get()), args.trace, false);
-    let report = match &resolved {
-        csql::Resolved::Grid(setup) => csql::run_observed(setup, &settings, &mut watch),
-        csql::Resolved::Finite { world, oracle } => {
-            let scene = csql::Scene::new(world, oracle, oracle, world.name());
-            csql::run_in(&scene, &settings, &mut watch)?
-        }
-    };
-    watch.bar.finish_and_clear();
-    if let (Some(path), csql::Resolved::Grid(setup)) = (&args.svg, &resolved) {
-        crate::write_file(path, csql::policy_svg(setup, &report))?;
-        crate::note(format_args!(
-            "wrote the policy picture to {}",
-            path.display()
-        ));
-        // The picture's legend points to "the table beside this figure".
-        let table = path.with_extension("md");
-        crate::write_file(&table, csql::descriptions_table(&report))?;
-        crate::note(format_args!(
-            "wrote the descriptions table beside it to {}",
-            table.display()
-        ));
-    }
-    if args.json {
-        writeln!(out, "{}", serde_json::to_string(&report)?)?;
+    let mut watch = if on_episodes {
+        Watch::new(indicatif::ProgressBar::hidden(), false, true)
     } else {
-        print_report(&report, out)?;
-        let map = match &resolved {
-            csql::Resolved::Grid(setup) => Some(&setup.map),
-            csql::Resolved::Finite { .. } => None,
-        };
-        writeln!(out)?;
-        print_policy(&report, map, out)?;
-        writeln!(out)?;
-        write!(out, "{}", shown_lines(&csql::descriptions_table(&report)))?;
-    }
-    if watch.stopped {
-        return Err(Status::interrupted(u64::from(report.trials)).into());
-    }
-    // Beyond the paper, "converged" is the policy quality reached and kept
-    // (specification §6.3).
-    let settled = match report.judged_by {
-        csql::Judging::Quality => report.quality.trials_to_quality.is_some(),
-        csql::Judging::Oracle => report.converged,
+        Watch::new(progress_bar(settings.max_trials.get()), args.trace, false)
     };
-    if args.require_convergence && !settled {
-        return Err(Status::not_converged(report.trials).into());
+    let report = csql::run_resolved(&resolved, &settings, &mut watch)?;
+    watch.bar.finish_and_clear();
+    // The JSON is the one report the run made, whichever its kind.
+    let json = |out: &mut dyn Write| -> Result<()> {
+        Ok(writeln!(out, "{}", serde_json::to_string(&report)?)?)
+    };
+    match &report {
+        csql::Report::Episodes(report) => {
+            if args.json {
+                json(out)?;
+            } else {
+                print_episodes(report, out)?;
+            }
+            if watch.stopped {
+                return Err(Status::interrupted(report.costly.summary.episodes as u64).into());
+            }
+            Ok(())
+        }
+        csql::Report::Trials(report) => {
+            let map = match &resolved {
+                csql::Resolved::Grid(setup) => Some(setup),
+                csql::Resolved::Finite { .. } => None,
+            };
+            if let (Some(path), Some(setup)) = (&args.svg, map) {
+                crate::write_file(path, csql::policy_svg(setup, report))?;
+                crate::note(format_args!(
+                    "wrote the policy picture to {}",
+                    path.display()
+                ));
+                // The picture's legend points to "the table beside this figure".
+                let table = path.with_extension("md");
+                crate::write_file(&table, csql::descriptions_table(report))?;
+                crate::note(format_args!(
+                    "wrote the descriptions table beside it to {}",
+                    table.display()
+                ));
+            }
+            if args.json {
+                json(out)?;
+            } else {
+                print_report(report, out)?;
+                writeln!(out)?;
+                print_policy(report, map.map(|s| &s.map), out)?;
+                writeln!(out)?;
+                write!(out, "{}", shown_lines(&csql::descriptions_table(report)))?;
+            }
+            if watch.stopped {
+                return Err(Status::interrupted(u64::from(report.trials)).into());
+            }
+            // Beyond the paper, "converged" is the policy quality reached and kept
+            // (specification §6.3).
+            let settled = match report.judged_by {
+                csql::Judging::Quality => report.quality.trials_to_quality.is_some(),
+                csql::Judging::Oracle => report.converged,
+            };
+            if args.require_convergence && !settled {
+                return Err(Status::not_converged(report.trials).into());
+            }
+            Ok(())
+        }
     }
-    Ok(())
 }
 
-/// `csrl run --learner amrl-q` or `--learner belief`: the learner's episodes, scored.
-fn run_on_episodes(
-    args: &RunArgs,
-    settings: &RunSettings,
-    resolved: &csql::Resolved,
-    out: &mut dyn Write,
-) -> Result<()> {
-    for (given, flag) in [
-        (args.svg.is_some(), "--svg"),
-        (args.require_convergence, "--require-convergence"),
-        (args.trace, "--trace"),
-    ] {
-        if given {
-            return Err(csql::Error::Conflict {
-                first: flag.to_string(),
-                second: format!("learner = {}", settings.learner.kind()),
-                why: "the learner plays a fixed number of episodes, scored by the costed return: no policy to draw, nothing to converge, its every episode already in the report",
+/// The report of AMRL-Q or sensing by belief: what was played, and the costed return.
+fn print_episodes(report: &csql::CostedReport, out: &mut dyn Write) -> std::io::Result<()> {
+    let (map, seed, n) = (
+        shown(&report.map),
+        report.seed,
+        report.costly.summary.episodes,
+    );
+    match &report.settings.learner {
+        csql::Learner::Belief(p) => writeln!(
+            out,
+            "Sensing by belief on {map}, seed {seed}: {n} episodes, each feature measured at its cost times {} reward units (the whole state at {}{})",
+            report.costly.price,
+            report.whole_state_price,
+            if p.whole_state {
+                ", measured whole"
+            } else {
+                ""
             }
-            .into());
-        }
+        )?,
+        _ => writeln!(
+            out,
+            "AMRL-Q on {map}, seed {seed}: {n} episodes, the whole state measured at {} reward units",
+            report.whole_state_price
+        )?,
     }
-    let mut watch = Watch::new(indicatif::ProgressBar::hidden(), false, true);
-    let report = csql::costed_report_in(resolved, settings, &mut watch)?;
-    if args.json {
-        writeln!(out, "{}", serde_json::to_string(&report)?)?;
-    } else {
-        let (map, seed, n) = (
-            shown(&report.map),
-            report.seed,
-            report.costly.summary.episodes,
-        );
-        match &report.settings.learner {
-            csql::Learner::Belief(p) => writeln!(
-                out,
-                "Sensing by belief on {map}, seed {seed}: {n} episodes, each feature measured at its cost times {} reward units (the whole state at {}{})",
-                report.costly.price,
-                report.whole_state_price,
-                if p.whole_state {
-                    ", measured whole"
-                } else {
-                    ""
-                }
-            )?,
-            _ => writeln!(
-                out,
-                "AMRL-Q on {map}, seed {seed}: {n} episodes, the whole state measured at {} reward units",
-                report.whole_state_price
-            )?,
-        }
-        print_costly(&report.costly, out)?;
-    }
-    if watch.stopped {
-        return Err(Status::interrupted(report.costly.summary.episodes as u64).into());
-    }
-    Ok(())
+    print_costly(&report.costly, out)
 }
 
 /// The costed return's summary, in two lines.

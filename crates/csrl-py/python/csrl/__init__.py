@@ -31,7 +31,6 @@ ValueError
 
 from __future__ import annotations
 
-import json
 import os
 from typing import Any, Mapping, Optional, Union
 
@@ -103,35 +102,25 @@ def run_json(
     predict_sensing: Optional[str] = None,
     trace: bool = False,
 ) -> str:
-    """One run, as the text ``csrl run --json`` prints (without its final newline).
-
-    The arguments are the flags of ``csrl run``: ``world`` (``--world``: a built-in
-    world or map, a map or world file, ``random:WxH:DENSITY:SEED``, or a :class:`World`),
-    ``strategy``, ``seed``, ``learner``, ``max_trials``, ``predict_sensing`` and ``trace``;
-    ``settings`` is what ``--config`` reads: the path of a TOML settings file, or the same
-    tables as a dict (``{"temperature": 0.2, "world": {"slip": 0.1}}``). Arguments left
-    at ``None`` take the settings' value, else the paper's. The learners played on
-    episodes of the costed return, ``learner="amrl-q"`` and ``learner="belief"`` (tuned
-    by the settings' ``amrl_q`` and ``belief`` tables), need ``{"costly": {"price": ...}}``
-    and give their report: the costed return of every episode and their summary.
-
-    The GIL is released while the run goes on, and Ctrl-C stops it
-    (``KeyboardInterrupt``).
+    """One run, as the text ``csrl run --json`` prints (without its final newline):
+    :func:`dumps` of :func:`run`'s report (see :func:`run` for the arguments).
 
     >>> import csrl, json
     >>> text = csrl.run_json(world="tan3x3", strategy="eager", seed=2)
     >>> json.loads(text)["seed"]
     2
     """
-    return _csrl.run_json(
-        world=_world_arg(world),
-        strategy=strategy,
-        seed=seed,
-        learner=learner,
-        settings=_settings_text(settings),
-        max_trials=max_trials,
-        predict_sensing=predict_sensing,
-        trace=trace,
+    return dumps(
+        run(
+            world,
+            strategy,
+            seed,
+            learner,
+            settings,
+            max_trials=max_trials,
+            predict_sensing=predict_sensing,
+            trace=trace,
+        )
     )
 
 
@@ -146,28 +135,39 @@ def run(
     predict_sensing: Optional[str] = None,
     trace: bool = False,
 ) -> dict:
-    """One run of CS-QL (or a baseline), as a dict: the JSON object ``csrl run --json``
-    prints for the same arguments (see :func:`run_json` for them).
+    """One run of CS-QL (or a baseline), its report as a dict: the JSON object
+    ``csrl run --json`` prints for the same arguments, as Python objects (:func:`dumps`
+    writes it back as the command's text, byte for byte).
 
-    :func:`dumps` writes it back as the command's text, byte for byte.
+    The arguments are the flags of ``csrl run``: ``world`` (``--world``: a built-in
+    world or map, a map or world file, ``random:WxH:DENSITY:SEED``, or a :class:`World`),
+    ``strategy``, ``seed``, ``learner``, ``max_trials``, ``predict_sensing`` and ``trace``;
+    ``settings`` is what ``--config`` reads: the path of a TOML settings file, or the same
+    tables as a dict (``{"temperature": 0.2, "world": {"slip": 0.1}}``). Arguments left
+    at ``None`` take the settings' value, else the paper's. The learners played on
+    episodes of the costed return, ``learner="amrl-q"`` and ``learner="belief"`` (tuned
+    by the settings' ``amrl_q`` and ``belief`` tables), need ``{"costly": {"price": ...}}``
+    and give their report: the costed return of every episode and their summary.
+
+    The GIL is released while the run goes on, and Ctrl-C stops it
+    (``KeyboardInterrupt``).
 
     >>> import csrl
     >>> r = csrl.run(world="frozenlake4x4", strategy="lazy", seed=1)
     >>> r["converged"], r["map"]
     (True, 'frozenlake4x4')
     """
-    return json.loads(
-        run_json(
-            world,
-            strategy,
-            seed,
-            learner,
-            settings,
-            max_trials=max_trials,
-            predict_sensing=predict_sensing,
-            trace=trace,
-        )
+    report: dict = _csrl.run(
+        world=_world_arg(world),
+        strategy=strategy,
+        seed=seed,
+        learner=learner,
+        settings=_settings_text(settings),
+        max_trials=max_trials,
+        predict_sensing=predict_sensing,
+        trace=trace,
     )
+    return report
 
 
 def resolve_settings(
@@ -187,17 +187,16 @@ def resolve_settings(
     >>> csrl.resolve_settings(world="tan8x8", settings={"temperature": 0.2})["temperature"]
     0.2
     """
-    return json.loads(
-        _csrl.resolve_settings(
-            world=None if world is None else os.fspath(world),
-            strategy=strategy,
-            seed=seed,
-            learner=learner,
-            settings=_settings_text(settings),
-            max_trials=max_trials,
-            predict_sensing=predict_sensing,
-        )
+    resolved: dict = _csrl.resolve_settings(
+        world=None if world is None else os.fspath(world),
+        strategy=strategy,
+        seed=seed,
+        learner=learner,
+        settings=_settings_text(settings),
+        max_trials=max_trials,
+        predict_sensing=predict_sensing,
     )
+    return resolved
 
 
 def value_floor(world: World, gamma: float = 0.9) -> float:

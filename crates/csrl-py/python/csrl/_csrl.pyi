@@ -35,7 +35,7 @@ class AgentError(RuntimeError):
 class SensorError(ValueError):
     """A sensor's reading that is not an int in its feature's range."""
 
-def run_json(
+def run(
     world: Union[str, World, None] = None,
     strategy: Optional[str] = None,
     seed: Optional[int] = None,
@@ -44,7 +44,7 @@ def run_json(
     max_trials: Optional[int] = None,
     predict_sensing: Optional[str] = None,
     trace: bool = False,
-) -> str: ...
+) -> dict[str, Any]: ...
 def resolve_settings(
     world: Optional[str] = None,
     strategy: Optional[str] = None,
@@ -53,7 +53,7 @@ def resolve_settings(
     settings: Optional[str] = None,
     max_trials: Optional[int] = None,
     predict_sensing: Optional[str] = None,
-) -> str: ...
+) -> dict[str, Any]: ...
 def settings_toml(settings: Any) -> str: ...
 def dumps(obj: Any) -> str: ...
 def map_names() -> list[str]: ...
