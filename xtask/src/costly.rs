@@ -174,15 +174,12 @@ impl Learner {
             Learner::FullSensing => cs_ql(play, (LearnerKind::FullSensing, PredictSensing::Off)),
             Learner::CsQlBelief => cs_ql(play, (LearnerKind::CsQl, PredictSensing::Belief)),
             Learner::Belief => {
-                // Each coordinate costs 1: its price in reward units is the scale.
-                let params = csql::BeliefParams {
-                    price_scale: play.price,
-                    ..csql::BeliefParams::default()
-                };
+                // Each coordinate costs 1: its price in reward units is the price.
                 let mut rng = Xoshiro256PlusPlus::seed_from_u64(play.seed);
                 Ok(csql::belief_planning(
                     play.lake,
-                    &params,
+                    &csql::BeliefParams::default(),
+                    play.price,
                     play.rule,
                     play.episodes,
                     play.max_moves,

@@ -53,8 +53,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 let mut sums = [0.0; 5];
                 for seed in 0..runs {
                     let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(seed);
-                    let run =
-                        csql::belief_planning(&lake, &params, rule, episodes, horizon, &mut rng)?;
+                    let run = csql::belief_planning(
+                        &lake, &params, 1.0, rule, episodes, horizon, &mut rng,
+                    )?;
                     let s = csql::CostlySummary::of(&run);
                     for (x, v) in sums.iter_mut().zip([
                         s.mean_all,

@@ -31,7 +31,7 @@
 //! let o = mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), factor_costs: Some(vec![0.025, 0.025]), ..Default::default() };
 //! let lake = mdp::builtin_world("frozenlake4x4", &o).unwrap();
 //! let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
-//! let run = csql::belief_planning(&lake, &csql::BeliefParams::default(), mdp::SensingRule::WithMove, 200, 100, &mut rng).unwrap();
+//! let run = csql::belief_planning(&lake, &csql::BeliefParams::default(), 1.0, mdp::SensingRule::WithMove, 200, 100, &mut rng).unwrap();
 //! let s = csql::CostlySummary::of(&run);
 //! assert_eq!(s.mean_last10, 1.0); // the goal, and nothing measured
 //! ```
@@ -53,7 +53,8 @@ use crate::observe::{KeepTrace, Observer};
 const PLAN_TOLERANCE: f64 = 1e-9;
 
 /// The settings of [`belief_planning`], and of the learner `belief` (the settings file's
-/// table `[belief]`: every field but `price_scale`, which is `[costly] price`).
+/// table `[belief]`). The price of sensing is not one of them: a run's is `[costly]
+/// price`, given to [`belief_planning`] beside these.
 ///
 /// ```
 /// let p = csql::BeliefParams::default();
@@ -72,10 +73,6 @@ pub struct BeliefParams {
     /// The reward of the optimistic outcome, in reward units (1, FrozenLake's goal; at
     /// most [`crate::MAX_BIAS`] in size).
     pub optimism: f64,
-    /// Reward units per unit of a feature's cost (1: the world's costs are prices). Not a
-    /// key of `[belief]`: a run's settings take it from `[costly] price`.
-    #[serde(skip)]
-    pub price_scale: f64,
     /// Measure the whole state at once (the sum of the prices) rather than features apart.
     pub whole_state: bool,
     /// The most beliefs a plan may have; a plan that would have more is built with a
@@ -93,7 +90,6 @@ impl Default for BeliefParams {
             trust: 4,
             prior: 3.0,
             optimism: 1.0,
-            price_scale: 1.0,
             whole_state: false,
             max_beliefs: 5_000,
             move_cost: 1e-6,
@@ -112,19 +108,16 @@ impl Default for BeliefParams {
 pub const MAX_BELIEF_UNCERTAIN: u32 = 64;
 
 impl BeliefParams {
-    /// Whether every setting of `[belief]` is at its default (`price_scale`, which is
-    /// `[costly] price`, aside): for the settings echo, which leaves the table out then.
+    /// Whether every setting of `[belief]` is at its default: for the settings echo,
+    /// which leaves the table out then.
     ///
     /// ```
-    /// let p = csql::BeliefParams { price_scale: 0.025, ..Default::default() };
+    /// let p = csql::BeliefParams::default();
     /// assert!(p.is_default());
     /// assert!(!csql::BeliefParams { trust: 2, ..p }.is_default());
     /// ```
     pub fn is_default(&self) -> bool {
-        BeliefParams {
-            price_scale: BeliefParams::default().price_scale,
-            ..*self
-        } == BeliefParams::default()
+        *self == BeliefParams::default()
     }
 
     /// Check the settings as a run's settings take them, each refused with its key in
@@ -185,13 +178,6 @@ impl BeliefParams {
                 "1 to 1000000 beliefs (mdp::DEFAULT_MAX_BELIEFS)",
             );
         }
-        if !(self.price_scale.is_finite() && self.price_scale >= 0.0) {
-            return bad(
-                "price_scale",
-                self.price_scale.to_string(),
-                "a finite price of at least 0 reward units per unit of cost ([costly] price)",
-            );
-        }
         Ok(())
     }
 }
@@ -243,7 +229,9 @@ struct Learner<'w, W: World + ?Sized> {
 }
 
 /// Run `episodes` episodes of sensing by belief (specification 6.13) and return what
-/// each gave; `max_moves` caps an episode (and is the plan's horizon).
+/// each gave; a feature is priced at its cost times `price` reward units (a run's
+/// `[costly] price`; 1 when the world's costs are its prices), and `max_moves` caps an
+/// episode (and is the plan's horizon).
 ///
 /// # Errors
 /// A world or a setting the plan cannot use ([`ReferenceError`]), such as more than
@@ -255,13 +243,14 @@ struct Learner<'w, W: World + ?Sized> {
 /// let lake = mdp::builtin_world("frozenlake4x4", &o).unwrap();
 /// let run = |seed| {
 ///     let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(seed);
-///     csql::belief_planning(&lake, &Default::default(), mdp::SensingRule::WithMove, 30, 100, &mut rng).unwrap()
+///     csql::belief_planning(&lake, &Default::default(), 1.0, mdp::SensingRule::WithMove, 30, 100, &mut rng).unwrap()
 /// };
 /// assert_eq!(run(3), run(3)); // the seed decides everything
 /// ```
 pub fn belief_planning<W: World + ?Sized, R: Rng + ?Sized>(
     world: &W,
     params: &BeliefParams,
+    price: f64,
     rule: SensingRule,
     episodes: u32,
     max_moves: u32,
@@ -271,7 +260,7 @@ pub fn belief_planning<W: World + ?Sized, R: Rng + ?Sized>(
         episodes,
         max_moves,
     };
-    belief_planning_observed(world, params, rule, play, rng, &mut KeepTrace)
+    belief_planning_observed(world, params, price, rule, play, rng, &mut KeepTrace)
 }
 
 /// [`belief_planning`], asking `observer` before every episode whether to go on
@@ -279,6 +268,7 @@ pub fn belief_planning<W: World + ?Sized, R: Rng + ?Sized>(
 pub(crate) fn belief_planning_observed<W: World + ?Sized, R: Rng + ?Sized>(
     world: &W,
     params: &BeliefParams,
+    price: f64,
     rule: SensingRule,
     Episodes {
         episodes,
@@ -287,11 +277,11 @@ pub(crate) fn belief_planning_observed<W: World + ?Sized, R: Rng + ?Sized>(
     rng: &mut R,
     observer: &mut dyn Observer,
 ) -> Result<Vec<Episode>, ReferenceError> {
-    check(params, max_moves)?;
+    check(params, price, max_moves)?;
     let n = world.num_states();
     let na = world.num_actions();
     let prices: Vec<f64> = (0..world.num_features())
-        .map(|f| world.price(Feature(f as u32)) * params.price_scale)
+        .map(|f| world.price(Feature(f as u32)) * price)
         .collect();
     let nf = world.num_features();
     let mut readings = Vec::with_capacity(n * nf);
@@ -332,7 +322,7 @@ pub(crate) fn belief_planning_observed<W: World + ?Sized, R: Rng + ?Sized>(
     Ok(out)
 }
 
-fn check(p: &BeliefParams, max_moves: u32) -> Result<(), ReferenceError> {
+fn check(p: &BeliefParams, price: f64, max_moves: u32) -> Result<(), ReferenceError> {
     let bad = |what: &'static str, problem: String| ReferenceError::BadSetting { what, problem };
     if max_moves == 0 {
         return Err(bad("max_moves", "0; an episode needs a move".into()));
@@ -345,7 +335,7 @@ fn check(p: &BeliefParams, max_moves: u32) -> Result<(), ReferenceError> {
     }
     for (what, v) in [
         ("prior", p.prior),
-        ("price_scale", p.price_scale),
+        ("price", price),
         ("move_cost", p.move_cost),
     ] {
         if !(v.is_finite() && v >= 0.0) {

@@ -334,7 +334,7 @@ pub struct CostedReport {
 /// let r = csql::costed_report(&lake, "frozenlake4x4", &s, &mut csql::KeepTrace).unwrap();
 /// assert_eq!((r.costly.returns.len(), r.whole_state_price), (300, 0.05));
 /// // Sensing by belief, its features priced at [costly] price.
-/// s.learner = csql::Learner::Belief(csql::BeliefParams { price_scale: 0.025, ..Default::default() });
+/// s.learner = csql::Learner::Belief(csql::BeliefParams::default());
 /// let r = csql::costed_report(&lake, "frozenlake4x4", &s, &mut csql::KeepTrace).unwrap();
 /// assert_eq!((r.learner, r.costly.summary.episodes), (csql::LearnerKind::Belief, 300));
 /// ```
@@ -377,6 +377,7 @@ pub fn costed_report<W: World + ?Sized>(
         Learner::Belief(params) => crate::belief::belief_planning_observed(
             world,
             params,
+            costly.price,
             costly.rule,
             play,
             &mut rng,

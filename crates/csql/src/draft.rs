@@ -840,12 +840,9 @@ impl SettingsDraft {
             LearnerKind::UTree => Learner::UTree(self.u_tree.unwrap_or_default()),
             LearnerKind::FullSensing => Learner::FullSensing,
             LearnerKind::AmrlQ => Learner::AmrlQ(self.amrl_q.unwrap_or_default()),
-            // Features priced at `[costly] price` (which the learner needs: refused
-            // without it by `validate`).
-            LearnerKind::Belief => Learner::Belief(crate::BeliefParams {
-                price_scale: costly.map_or(1.0, |c: CostlySettings| c.price),
-                ..self.belief.unwrap_or_default()
-            }),
+            // Its features are priced at `[costly] price` (which the learner needs:
+            // refused without it by `validate`).
+            LearnerKind::Belief => Learner::Belief(self.belief.unwrap_or_default()),
         };
         let paper = RunSettings::tan1991(DEFAULT_MAP, StrategyKind::Resetting, 1);
         let settings = RunSettings {

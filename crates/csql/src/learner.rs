@@ -49,10 +49,8 @@ pub enum Learner {
     AmrlQ(crate::AmrlParams),
     /// Sensing by belief ([`crate::belief_planning`]): a learned model, a plan over
     /// beliefs, features measured when the plan says so, played for a fixed number of
-    /// episodes on the costed return (specification 6.13). Its `price_scale` is the
-    /// settings' `[costly] price` (a settings file sets it so;
-    /// [`crate::RunSettings::validate`] refuses another). `csrl run` plays it;
-    /// [`crate::run`] refuses it.
+    /// episodes on the costed return (specification 6.13), its features priced at the
+    /// settings' `[costly] price`. `csrl run` plays it; [`crate::run`] refuses it.
     Belief(crate::BeliefParams),
 }
 

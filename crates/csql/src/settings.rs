@@ -582,20 +582,7 @@ impl RunSettings {
             Learner::UTree(p) => p.validate(),
             Learner::FullSensing => Ok(()),
             Learner::AmrlQ(p) => p.validate(),
-            Learner::Belief(p) => self.validate_belief(p),
-        }
-    }
-
-    /// Sensing by belief: its settings, and its price scale, which is `[costly] price`.
-    fn validate_belief(&self, p: &crate::BeliefParams) -> Result<(), Error> {
-        p.validate()?;
-        match self.costly {
-            Some(c) if c.price != p.price_scale => Err(Error::Conflict {
-                first: format!("belief price_scale = {}", p.price_scale),
-                second: format!("[costly] price = {}", c.price),
-                why: "sensing by belief prices a feature at its cost times [costly] price: give its price_scale that value",
-            }),
-            _ => Ok(()),
+            Learner::Belief(p) => p.validate(),
         }
     }
 

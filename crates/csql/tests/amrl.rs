@@ -116,9 +116,6 @@ fn learners_on_episodes_stop_when_their_observer_says_so() {
     for learner in [csql::LearnerKind::AmrlQ, csql::LearnerKind::Belief] {
         let mut s = csql::RunSettings::tan1991("frozenlake4x4", csql::StrategyKind::Lazy, 3)
             .with_learner(learner);
-        if let csql::Learner::Belief(p) = &mut s.learner {
-            p.price_scale = 0.025;
-        }
         s.costly = Some(csql::CostlySettings::new(0.025));
         s.max_trials = csql::TrialCap::new(40).unwrap();
         let whole = csql::costed_report(&world, "lake", &s, &mut csql::KeepTrace).unwrap();

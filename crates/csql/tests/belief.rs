@@ -19,6 +19,7 @@ fn lake(name: &str, slide: f64, price: f64) -> mdp::FiniteWorld {
     .unwrap()
 }
 
+/// A run at the world's own prices.
 fn run(
     w: &mdp::FiniteWorld,
     p: &BeliefParams,
@@ -26,8 +27,20 @@ fn run(
     episodes: u32,
     seed: u64,
 ) -> Vec<csql::Episode> {
+    run_at(w, p, 1.0, rule, episodes, seed)
+}
+
+/// A run with the world's costs priced at `price` reward units each.
+fn run_at(
+    w: &mdp::FiniteWorld,
+    p: &BeliefParams,
+    price: f64,
+    rule: SensingRule,
+    episodes: u32,
+    seed: u64,
+) -> Vec<csql::Episode> {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
-    belief_planning(w, p, rule, episodes, 100, &mut rng).unwrap()
+    belief_planning(w, p, price, rule, episodes, 100, &mut rng).unwrap()
 }
 
 #[test]
@@ -70,13 +83,9 @@ fn a_run_is_its_seed_and_prices_scale() {
     let a = run(&w, &p, SensingRule::WithMove, 60, 7);
     assert_eq!(a, run(&w, &p, SensingRule::WithMove, 60, 7));
     assert_ne!(a, run(&w, &p, SensingRule::WithMove, 60, 8));
-    // Prices given as costs of 1 each, scaled to 0.025 reward units: the same run.
+    // Prices given as costs of 1 each, priced at 0.025 reward units: the same run.
     let unit = lake("frozenlake4x4", 0.5, 1.0);
-    let scaled = BeliefParams {
-        price_scale: 0.025,
-        ..p
-    };
-    assert_eq!(a, run(&unit, &scaled, SensingRule::WithMove, 60, 7));
+    assert_eq!(a, run_at(&unit, &p, 0.025, SensingRule::WithMove, 60, 7));
 }
 
 #[test]
@@ -121,13 +130,6 @@ fn bad_settings_are_refused_naming_them() {
         ),
         (
             BeliefParams {
-                price_scale: -1.0,
-                ..Default::default()
-            },
-            "price_scale",
-        ),
-        (
-            BeliefParams {
                 optimism: f64::INFINITY,
                 ..Default::default()
             },
@@ -143,24 +145,25 @@ fn bad_settings_are_refused_naming_them() {
     ];
     for (p, name) in cases {
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
-        let err = belief_planning(&w, &p, SensingRule::WithMove, 5, 100, &mut rng).unwrap_err();
+        let err =
+            belief_planning(&w, &p, 1.0, SensingRule::WithMove, 5, 100, &mut rng).unwrap_err();
         assert!(err.to_string().contains(name), "{err}");
     }
-    let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
-    let err = belief_planning(
-        &w,
-        &BeliefParams::default(),
-        SensingRule::WithMove,
-        5,
-        0,
-        &mut rng,
-    )
-    .unwrap_err();
-    assert!(err.to_string().contains("max_moves"), "{err}");
+    let p = BeliefParams::default();
+    for (price, max_moves, name) in [
+        (1.0, 0, "max_moves"),
+        (-1.0, 100, "price"),
+        (f64::NAN, 100, "price"),
+    ] {
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
+        let err = belief_planning(&w, &p, price, SensingRule::WithMove, 5, max_moves, &mut rng)
+            .unwrap_err();
+        assert!(err.to_string().contains(name), "{err}");
+    }
 }
 
 /// The learner `belief` of a run's settings: `[belief]` read, echoed and read back, its
-/// price scale `[costly] price`, played by `costed_report` exactly as `belief_planning`
+/// price `[costly] price`, played by `costed_report` exactly as `belief_planning`
 /// plays it, and refused by `csql::run`.
 #[test]
 fn the_learner_belief_of_a_runs_settings() {
@@ -179,7 +182,6 @@ fn the_learner_belief_of_a_runs_settings() {
         BeliefParams {
             trust: 2,
             whole_state: true,
-            price_scale: 0.025,
             ..BeliefParams::default()
         }
     );
@@ -194,8 +196,16 @@ fn the_learner_belief_of_a_runs_settings() {
     let world = lake("frozenlake4x4", 0.0, 1.0);
     let r = csql::costed_report(&world, "frozenlake4x4", &s, &mut csql::KeepTrace).unwrap();
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(8);
-    let episodes =
-        belief_planning(&world, &p, SensingRule::AfterOutcome, 60, 100, &mut rng).unwrap();
+    let episodes = belief_planning(
+        &world,
+        &p,
+        0.025,
+        SensingRule::AfterOutcome,
+        60,
+        100,
+        &mut rng,
+    )
+    .unwrap();
     assert_eq!(r.costly, csql::CostedRun::of(s.costly.unwrap(), &episodes));
     assert_eq!(
         (r.learner, r.whole_state_price),
@@ -204,17 +214,6 @@ fn the_learner_belief_of_a_runs_settings() {
     // Not a learner of csql::run.
     let err = csql::run(&s).unwrap_err().to_string();
     assert!(err.contains("learner = belief"), "{err}");
-    // Another price scale than [costly] price is refused, naming both.
-    let mut other = s.clone();
-    other.learner = csql::Learner::Belief(BeliefParams {
-        price_scale: 1.0,
-        ..p
-    });
-    let err = other.validate().unwrap_err().to_string();
-    assert!(
-        err.contains("price_scale = 1") && err.contains("[costly] price = 0.025"),
-        "{err}"
-    );
     // Without [costly], refused.
     let mut unpriced = s;
     unpriced.costly = None;

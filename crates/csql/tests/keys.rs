@@ -288,9 +288,6 @@ fn settings_of_every_learner_round_trip_and_change_learner() {
         if kind != LearnerKind::UTree {
             s.costly = Some(csql::CostlySettings::new(0.25));
         }
-        if let csql::Learner::Belief(p) = &mut s.learner {
-            p.price_scale = 0.25;
-        }
         let draft = SettingsDraft::from(&s);
         assert_eq!(draft.build().unwrap(), s, "{kind}");
         let text = toml::to_string(&s).unwrap();

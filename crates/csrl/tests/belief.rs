@@ -39,7 +39,6 @@ fn belief_in_csrl_run_is_csql_belief_planning() {
         whole_state: false,
         max_beliefs: 3000,
         move_cost: 1e-5,
-        price_scale: 1.0,
     };
     let tuned_table = "[belief]\nmax_uncertain = 5\ntrust = 3\nprior = 2.0\noptimism = 0.8\nmax_beliefs = 3000\nmove_cost = 1e-5";
     for (name, table, params) in [
@@ -66,12 +65,9 @@ fn belief_in_csrl_run_is_csql_belief_planning() {
                 path.to_str().unwrap(),
                 "--json",
             ]);
-            let params = csql::BeliefParams {
-                price_scale: 0.025,
-                ..params
-            };
             let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(4);
-            let run = csql::belief_planning(&lake(), &params, rule, 150, 100, &mut rng).unwrap();
+            let run =
+                csql::belief_planning(&lake(), &params, 0.025, rule, 150, 100, &mut rng).unwrap();
             let expected: Vec<f64> = run.iter().map(csql::Episode::costed_return).collect();
             let got = returns(&v);
             assert_eq!(got.len(), expected.len(), "{name} {rule:?}");
@@ -102,7 +98,7 @@ fn belief_in_csrl_run_is_csql_belief_planning() {
 
 /// The report's fields: the world, the learner, the seed, the prices, every episode's
 /// costed return with their summary, and the settings echoed (`[belief]` only where it
-/// departs from its defaults, never `price_scale`, which is `[costly] price`).
+/// departs from its defaults; the price is `[costly] price`, not a key of `[belief]`).
 #[test]
 fn the_report_has_the_fields_of_a_run_on_costed_episodes() {
     let dir = tempfile::tempdir().unwrap();
@@ -240,7 +236,6 @@ fn a_settings_file_with_belief_is_read_back() {
     match settings.learner {
         csql::Learner::Belief(p) => {
             assert!(p.whole_state && p.max_uncertain == 4 && p.prior == 1.5);
-            assert_eq!(p.price_scale, 0.025); // [costly] price
         }
         other => panic!("{other:?}"),
     }
