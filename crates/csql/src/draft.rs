@@ -224,6 +224,24 @@ impl ExtensionsTable {
     }
 }
 
+/// The keys a run reads and a step-driven agent ([`crate::Stepper`]) does not, as
+/// `(table, key)` (`"*"`: every key of the table), refused by
+/// [`SettingsDraft::build_for_stepper`]: the map, the trial and move caps, the tolerance
+/// of the oracle's checks, a report's rows, the judging keys and the costed return.
+///
+/// ```
+/// assert!(csql::NOT_READ_BY_A_STEPPER.contains(&(None, "max_trials")));
+/// ```
+pub const NOT_READ_BY_A_STEPPER: [(Option<&str>, &str); 7] = [
+    (None, "map"),
+    (None, "max_trials"),
+    (None, "max_moves"),
+    (None, "tolerance"),
+    (None, "max_rows"),
+    (Some("judge"), "*"),
+    (Some("costly"), "*"),
+];
+
 /// One key of a settings file: where it is written and which learners read it. The
 /// settings' keys are [`SETTING_KEYS`].
 ///
@@ -762,6 +780,36 @@ impl SettingsDraft {
                 _ => {}
             }
         }
+    }
+
+    /// The settings of a step-driven agent ([`crate::Stepper`]): [`SettingsDraft::build`],
+    /// after refusing, by key, what a run reads and a stepper does not
+    /// ([`NOT_READ_BY_A_STEPPER`]): the caller's loop decides the world, the trials, the
+    /// moves and when the agent has learned.
+    ///
+    /// ```
+    /// let d = csql::SettingsDraft::from_toml("temperature = 0.2\nseed = 4", "f").unwrap();
+    /// assert_eq!(d.build_for_stepper().unwrap().seed, 4);
+    /// let d = csql::SettingsDraft::from_toml("max_trials = 50", "f").unwrap();
+    /// let err = d.build_for_stepper().unwrap_err().to_string();
+    /// assert!(err.starts_with("max_trials = 50 and a step-driven agent"), "{err}");
+    /// ```
+    pub fn build_for_stepper(&self) -> Result<RunSettings, Error> {
+        let unread = SETTING_KEYS.iter().filter(|k| {
+            NOT_READ_BY_A_STEPPER
+                .iter()
+                .any(|&(table, name)| k.table == table && (name == "*" || k.name == name))
+        });
+        for k in unread {
+            if let Some(first) = self.given(k, LearnerKind::CsQl) {
+                return Err(Error::Conflict {
+                    first,
+                    second: "a step-driven agent (csql::Stepper, csrl.CsQlAgent)".to_string(),
+                    why: "the agent does not read it: the caller's loop decides the world, the trials and moves, and when the agent has learned",
+                });
+            }
+        }
+        self.build()
     }
 
     /// The run's settings: each learner with only its own keys, everything not given at

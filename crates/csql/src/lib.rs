@@ -258,8 +258,8 @@ pub use detector::{
     ActionDrop, AnyDrop, Detector, DetectorKind, RateParams, RateTest, RunDetector,
 };
 pub use draft::{
-    CostlyTable, DEFAULT_MAP, ExtensionsTable, SETTING_KEYS, SettingKey, SettingsDraft,
-    setting_key, setting_tables, settings_keys_help,
+    CostlyTable, DEFAULT_MAP, ExtensionsTable, NOT_READ_BY_A_STEPPER, SETTING_KEYS, SettingKey,
+    SettingsDraft, setting_key, setting_tables, settings_keys_help,
 };
 pub use error::{Error, SettingsProblem};
 pub use extensions::{Extensions, Matching, WorldExtras};

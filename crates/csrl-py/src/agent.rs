@@ -144,7 +144,8 @@ impl PyAgent {
     /// A CS-QL agent for features of prices `feature_costs`, each reading one of
     /// `0..feature_values[i]`, in an environment of `num_actions` actions. `settings` is
     /// the text of a TOML settings file, read as `csrl run` reads it (then `strategy` and
-    /// `seed` over it); `refine_from` is `"left"` or `"next"`; Q and V start at
+    /// `seed` over it; the keys of a run the agent does not read are refused,
+    /// `csql::NOT_READ_BY_A_STEPPER`); `refine_from` is `"left"` or `"next"`; Q and V start at
     /// `initial_value`.
     #[new]
     #[pyo3(signature = (feature_costs, feature_values, num_actions, strategy=None, seed=None, settings=None, refine_from="left", initial_value=0.0))]
@@ -180,7 +181,10 @@ impl PyAgent {
             max_trials: None,
             predict_sensing: None,
         };
-        let s = args.settings()?;
+        let s = args
+            .draft()?
+            .build_for_stepper()
+            .map_err(|e| run_error(&e))?;
         let stepper = Stepper::new(&feature_costs, &feature_values, num_actions, &s)
             .and_then(|st| st.starting_at(initial_value))
             .map_err(|e| run_error(&e))?

@@ -35,6 +35,11 @@ fn bad(what: &str, value: &str, e: impl std::fmt::Display) -> PyErr {
 impl RunArgs<'_> {
     /// The settings, as `csrl run` builds them from its flags (`crates/csrl/src/run.rs`).
     pub(crate) fn settings(&self) -> PyResult<RunSettings> {
+        self.draft()?.build().map_err(|e| run_error(&e))
+    }
+
+    /// The settings given, then the arguments over them, not yet checked together.
+    pub(crate) fn draft(&self) -> PyResult<SettingsDraft> {
         // The settings, then the arguments over them; everything is checked together
         // once all are in (`learner="u-tree"` gives the settings' `[u_tree]` its meaning).
         let mut draft = match self.settings {
@@ -66,7 +71,7 @@ impl RunArgs<'_> {
                 .transpose()?,
             ..SettingsDraft::default()
         });
-        draft.build().map_err(|e| run_error(&e))
+        Ok(draft)
     }
 }
 

@@ -1,5 +1,7 @@
 """csrl.CsQlAgent: CS-QL stepped from Python learns what csrl.run learns for the same seed."""
 
+import re
+
 import pytest
 
 import csrl
@@ -143,6 +145,26 @@ def test_errors_are_exceptions_with_the_rust_message():
         csrl.CsQlAgent([1.0], [2], 2, settings={"world": {"slip": 0.1}})
     with pytest.raises(csrl.SettingsError, match="one price and one number of readings"):
         csrl.CsQlAgent([1.0], [2, 2], 2)
+
+
+@pytest.mark.parametrize(
+    "settings, named",
+    [
+        ({"max_trials": 50}, "max_trials = 50"),
+        ({"max_moves": 30}, "max_moves = 30"),
+        ({"map": "tan3x3"}, "map = tan3x3"),
+        ({"tolerance": 0.1}, "tolerance = 0.1"),
+        ({"max_rows": 10}, "max_rows = 10"),
+        ({"costly": {"price": 0.5}}, "[costly] price"),
+        ({"judge": {"quality_every": 5}}, "[judge] quality_every"),
+    ],
+)
+def test_the_keys_of_a_run_the_agent_does_not_read_are_refused_by_name(settings, named):
+    # Each of these used to be accepted and ignored: the caller's loop decides them.
+    with pytest.raises(csrl.SettingsError, match=re.escape(named) + " and a step-driven agent"):
+        csrl.CsQlAgent([1.0], [2], 2, settings=settings)
+    # What the agent reads is taken.
+    csrl.CsQlAgent([1.0], [2], 2, settings={"temperature": 0.3, "decrease_threshold": 0.01})
 
 
 def test_sizes_are_checked_before_anything_is_built():

@@ -37,7 +37,9 @@ class CsQlAgent:
       4096 features, as in a world (:data:`csrl._csrl.MAX_ACTIONS`, ``MAX_FEATURES``).
     * ``strategy``, ``seed`` and ``settings`` as :func:`csrl.run` takes them (the paper's
       parameters by default; ``[world]`` settings, ``learner``, ``predict_sensing`` and
-      ``memory`` are refused: the agent senses your environment, with CLASSIFY).
+      ``memory`` are refused: the agent senses your environment, with CLASSIFY; so are
+      the keys of a run your loop decides: ``map``, ``max_trials``, ``max_moves``,
+      ``tolerance``, ``max_rows``, ``judge`` and ``costly``).
     * ``refine_from``: where a refinement reads the feature it adds. ``"left"`` (the
       paper's rule, the default): in the state the refined description was used for,
       which the move has just left; the agent asks again the sensor it was given for
