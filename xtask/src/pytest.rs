@@ -84,7 +84,7 @@ pub fn test(args: &TestArgs) -> Result<()> {
                     .current_dir(&root))
             })
             .context(
-                "cannot make the virtual environment (Python 3.9 or newer with venv or pip is needed)",
+                "cannot make the virtual environment (Python 3.10 or newer with venv or pip is needed)",
             )?;
         }
     }
