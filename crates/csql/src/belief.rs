@@ -317,7 +317,13 @@ pub(crate) fn belief_planning_observed<W: World + ?Sized, R: Rng + ?Sized>(
         if !observer.keep_going() {
             break;
         }
-        out.push(l.episode(rng)?);
+        // A plan being built asks the observer too: a no ends the run there, with the
+        // episodes played before this one.
+        match l.episode(rng, observer) {
+            Ok(e) => out.push(e),
+            Err(ReferenceError::Stopped) => break,
+            Err(e) => return Err(e),
+        }
     }
     Ok(out)
 }
@@ -414,7 +420,7 @@ impl<W: World + ?Sized> Learner<'_, W> {
     }
 
     /// Rebuild the plan from every known state, lowering `K` until it fits the cap.
-    fn replan(&mut self) -> Result<(), ReferenceError> {
+    fn replan(&mut self, observer: &mut dyn Observer) -> Result<(), ReferenceError> {
         let model = self.model()?;
         let roots: Vec<StateId> = (0..self.known.len())
             .filter(|&s| self.known[s])
@@ -441,7 +447,8 @@ impl<W: World + ?Sized> Learner<'_, W> {
                 move_cost: self.params.move_cost,
                 tolerance: PLAN_TOLERANCE,
             };
-            match BeliefPlan::build(&model, &options, &roots) {
+            match BeliefPlan::build_unless(&model, &options, &roots, &mut || !observer.keep_going())
+            {
                 Ok(plan) => {
                     self.plan = Some(plan);
                     self.stale = false;
@@ -586,14 +593,14 @@ impl<W: World + ?Sized> Learner<'_, W> {
     }
 
     /// Where a known state puts the agent (rebuilding the plan if it is stale).
-    fn at(&mut self, s: u32) -> Result<Place, ReferenceError> {
+    fn at(&mut self, s: u32, observer: &mut dyn Observer) -> Result<Place, ReferenceError> {
         let missing = self
             .plan
             .as_ref()
             .is_none_or(|p| p.point(StateId(s)).is_none());
         if missing || self.stale {
             self.known[s as usize] = true;
-            self.replan()?;
+            self.replan(observer)?;
         }
         let plan = self.plan.as_ref().expect("just built");
         Ok(match plan.point(StateId(s)) {
@@ -602,11 +609,15 @@ impl<W: World + ?Sized> Learner<'_, W> {
         })
     }
 
-    fn episode<R: Rng + ?Sized>(&mut self, rng: &mut R) -> Result<Episode, ReferenceError> {
+    fn episode<R: Rng + ?Sized>(
+        &mut self,
+        rng: &mut R,
+        observer: &mut dyn Observer,
+    ) -> Result<Episode, ReferenceError> {
         let w = self.world;
         let mut e = Episode::default();
         let mut truth = w.sample_start(rng);
-        let mut place = self.at(truth.0)?;
+        let mut place = self.at(truth.0, observer)?;
         // The moves since the agent last knew its state, from that state.
         let mut path: Vec<(Vec<u32>, ActionId)> = Vec::new();
         let mut from: Option<u32> = Some(truth.0);
@@ -710,7 +721,7 @@ impl<W: World + ?Sized> Learner<'_, W> {
                     }
                     from = Some(t);
                     path.clear();
-                    place = self.at(t)?;
+                    place = self.at(t, observer)?;
                 }
                 None => {
                     from = None;

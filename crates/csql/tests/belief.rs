@@ -223,3 +223,46 @@ fn the_learner_belief_of_a_runs_settings() {
         "{err}"
     );
 }
+
+/// Says no the `at`-th time it is asked whether to go on.
+struct SayNoAt {
+    asked: u32,
+    at: u32,
+}
+
+impl csql::Observer for SayNoAt {
+    fn keep_trace(&self) -> bool {
+        false
+    }
+
+    fn trial(&mut self, _: &csql::TracePoint) -> csql::Flow {
+        csql::Flow::Continue
+    }
+
+    fn keep_going(&mut self) -> bool {
+        self.asked += 1;
+        self.asked < self.at
+    }
+}
+
+/// The largest plan the settings allow, on the slippery lake, takes minutes to build: the
+/// plan being built asks the observer too, so a no ends the run within the plan, before
+/// its first episode, rather than after it (which would end with an episode played).
+#[test]
+fn a_plan_being_built_stops_when_the_observer_says_so() {
+    let text = "map = \"frozenlake4x4\"\nlearner = \"belief\"\nmax_trials = 20\n\
+                [world]\nslip = 0.6666666666666666\nsensing = \"factors\"\n\
+                [costly]\nprice = 0.025\n\
+                [belief]\nmax_beliefs = 1000000\nmax_uncertain = 64";
+    let s = csql::SettingsDraft::from_toml(text, "f")
+        .unwrap()
+        .build()
+        .unwrap();
+    let resolved = csql::Resolved::new(&s).unwrap();
+    // Asked once before the first episode, then while the plan is built.
+    let mut no = SayNoAt { asked: 0, at: 3 };
+    let report = csql::run_resolved(&resolved, &s, &mut no).unwrap();
+    let played = report.episodes().unwrap();
+    assert_eq!(played.costly.summary.episodes, 0);
+    assert_eq!(no.asked, 3);
+}

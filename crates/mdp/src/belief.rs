@@ -489,16 +489,26 @@ pub(crate) struct Solved {
     pub(crate) converged_at: u32,
 }
 
+/// How many beliefs [`BeliefPlan::build_unless`] expands between two questions to its
+/// `stop`: a few milliseconds of work on the largest plans.
+///
+/// ```
+/// assert_eq!(mdp::STOP_CHECK_BELIEFS, 1024);
+/// ```
+pub const STOP_CHECK_BELIEFS: usize = 1024;
+
 /// Build the graph of beliefs from `roots` and solve it (see
 /// [`best_sensing`](crate::best_sensing)); with `reveal`, the relaxation of
 /// [`sensing_ceiling`](crate::sensing_ceiling). With `keep`, every belief stays in the
-/// graph (for a [`BeliefPlan`]).
+/// graph (for a [`BeliefPlan`]). `stop` is asked every [`STOP_CHECK_BELIEFS`] beliefs
+/// expanded and every step of value iteration; a yes ends the work with
+/// [`ReferenceError::Stopped`].
 pub(crate) fn solve(
     m: &CostlyModel,
     plan: &PlanOptions,
     roots: &[u32],
-    reveal: bool,
-    keep: bool,
+    (reveal, keep): (bool, bool),
+    stop: &mut dyn FnMut() -> bool,
 ) -> Result<Solved, ReferenceError> {
     let PlanOptions {
         menu,
@@ -569,6 +579,9 @@ pub(crate) fn solve(
     }
     let mut i = 0;
     while i < g.beliefs.len() {
+        if i % STOP_CHECK_BELIEFS == 0 && stop() {
+            return Err(ReferenceError::Stopped);
+        }
         let b = std::mem::take(&mut g.beliefs[i]);
         let count = g.counts[i];
         let next_count = count.saturating_add(1);
@@ -718,6 +731,9 @@ pub(crate) fn solve(
     let mut cur = vec![0.0; n];
     let mut converged_at = options.horizon;
     for h in 1..=options.horizon {
+        if stop() {
+            return Err(ReferenceError::Stopped);
+        }
         for &i in &act_nodes {
             cur[i] = best_of(&g.choices[i], &prev);
         }
@@ -851,8 +867,33 @@ impl BeliefPlan {
         options: &PlanOptions,
         roots: &[StateId],
     ) -> Result<BeliefPlan, ReferenceError> {
+        BeliefPlan::build_unless(model, options, roots, &mut || false)
+    }
+
+    /// [`BeliefPlan::build`], asking `stop` every [`STOP_CHECK_BELIEFS`] beliefs expanded
+    /// and every step of value iteration whether to give up (a large plan takes minutes):
+    /// a yes ends the work with [`ReferenceError::Stopped`].
+    ///
+    /// ```
+    /// use mdp::{BeliefPlan, CostlyModel, ReferenceError, StateId};
+    /// # let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() }).unwrap();
+    /// let model = CostlyModel::of(&lake).unwrap();
+    /// let mut asked = 0;
+    /// let err = BeliefPlan::build_unless(&model, &Default::default(), &[StateId(0)], &mut || {
+    ///     asked += 1;
+    ///     true
+    /// })
+    /// .unwrap_err();
+    /// assert!(matches!(err, ReferenceError::Stopped) && asked == 1);
+    /// ```
+    pub fn build_unless(
+        model: &CostlyModel,
+        options: &PlanOptions,
+        roots: &[StateId],
+        stop: &mut dyn FnMut() -> bool,
+    ) -> Result<BeliefPlan, ReferenceError> {
         let roots: Vec<u32> = roots.iter().map(|s| s.0).collect();
-        let solved = solve(model, options, &roots, false, true)?;
+        let solved = solve(model, options, &roots, (false, true), stop)?;
         let menu = options.menu;
         let mut states = Vec::new();
         let mut offsets = Vec::with_capacity(solved.graph.beliefs.len() + 1);

@@ -177,6 +177,9 @@ pub enum ReferenceError {
         /// The bound.
         k: u32,
     },
+    /// The caller asked to stop ([`BeliefPlan::build_unless`](crate::BeliefPlan::build_unless)).
+    #[error("stopped from outside while the plan was built")]
+    Stopped,
 }
 
 /// A setting that cannot be used, and why.

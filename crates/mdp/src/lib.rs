@@ -111,7 +111,10 @@ mod tabular;
 mod world;
 mod worlds;
 
-pub use belief::{BeliefPlan, CostlyModel, Decision, EVERY_PROBE, ModelParts, NodeId, PlanOptions};
+pub use belief::{
+    BeliefPlan, CostlyModel, Decision, EVERY_PROBE, ModelParts, NodeId, PlanOptions,
+    STOP_CHECK_BELIEFS,
+};
 pub use builtin::{builtin, builtin_names};
 pub use costly::{
     BELIEF_QUANTUM, DEFAULT_MAX_BELIEFS, DEFAULT_MAX_PLANS, MAX_MENU_FEATURES, ReferenceError,

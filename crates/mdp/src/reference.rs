@@ -516,7 +516,7 @@ fn search<W: World>(
         move_cost: 0.0,
         tolerance: 0.0,
     };
-    let solved = solve(&m, &plan, &roots, reveal, false)?;
+    let solved = solve(&m, &plan, &roots, (reveal, false), &mut || false)?;
     let value: f64 = m
         .start
         .iter()
