@@ -879,12 +879,11 @@ impl BeliefPlan {
     /// # let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() }).unwrap();
     /// let model = CostlyModel::of(&lake).unwrap();
     /// let mut asked = 0;
-    /// let err = BeliefPlan::build_unless(&model, &Default::default(), &[StateId(0)], &mut || {
+    /// let built = BeliefPlan::build_unless(&model, &Default::default(), &[StateId(0)], &mut || {
     ///     asked += 1;
     ///     true
-    /// })
-    /// .unwrap_err();
-    /// assert!(matches!(err, ReferenceError::Stopped) && asked == 1);
+    /// });
+    /// assert!(matches!(built, Err(ReferenceError::Stopped)) && asked == 1);
     /// ```
     pub fn build_unless(
         model: &CostlyModel,
