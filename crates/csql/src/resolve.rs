@@ -60,15 +60,7 @@ impl Resolved {
                 carries_its_own(settings, "a world file")?;
                 FiniteWorld::read(Path::new(name))?
             };
-            if settings.world.sensing_radius.is_some() {
-                return Err(Error::GridOnly {
-                    what: "[world] sensing_radius (offsets around a robot on a grid)",
-                });
-            }
-            check_with_world(settings, crate::quality::is_deterministic(&world), false)?;
-            check_size(settings, &world)?;
-            let oracle = Oracle::solve_stochastic(&world, settings.gamma.get())?;
-            return Ok(Resolved::Finite { world, oracle });
+            return Resolved::finite(world, settings);
         }
         let grid_only = |setting: &str| Error::Conflict {
             first: format!("the grid map {name}"),
@@ -115,6 +107,11 @@ impl Resolved {
             settings,
             &format!("the world {} given to the run", world.name()),
         )?;
+        Resolved::finite(world, settings)
+    }
+
+    /// A world beyond grids with the settings checked against it, and its oracle.
+    fn finite(world: FiniteWorld, settings: &RunSettings) -> Result<Resolved, Error> {
         if settings.world.sensing_radius.is_some() {
             return Err(Error::GridOnly {
                 what: "[world] sensing_radius (offsets around a robot on a grid)",
