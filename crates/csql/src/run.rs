@@ -118,6 +118,8 @@ pub fn run_resolved(
     let report = match resolved {
         Resolved::Grid(setup) => {
             settings.validate()?;
+            crate::resolve::check_with_world(settings, true, true)?;
+            crate::resolve::check_size(settings, &setup.sensed(settings))?;
             run_observed(setup, settings, observer)?
         }
         Resolved::Finite { world, oracle } => {

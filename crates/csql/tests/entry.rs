@@ -77,3 +77,16 @@ fn a_world_given_in_code_runs_as_the_same_world_named() {
         "{err}"
     );
 }
+
+#[test]
+fn the_entry_point_checks_the_settings_it_is_given_against_the_world() {
+    // Settings changed after the world was resolved are checked again, on a grid too.
+    let s = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
+    let resolved = Resolved::new(&s).unwrap();
+    let mut judged = s.clone();
+    judged.judge.quality_patience = 3;
+    let err = csql::run_resolved(&resolved, &judged, &mut KeepTrace)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("quality_patience"), "{err}");
+}
