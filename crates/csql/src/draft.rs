@@ -6,8 +6,8 @@
 //! table, [`SETTING_KEYS`]. A [`SettingsDraft`] holds what was given, from a file and from
 //! flags over it; [`SettingsDraft::build`] refuses every key given that the learner chosen
 //! does not read, naming the key and the learner, gives each learner only its own
-//! settings, fills what was not given with the paper's values, and checks everything
-//! once.
+//! settings, fills what was not given with the world's defaults (the paper's values, or
+//! a built-in world's own: [`crate::WorldDefaults`]), and checks everything once.
 
 use std::io::Read;
 use std::path::Path;
@@ -15,6 +15,7 @@ use std::path::Path;
 use qlearn::{Discount, LearningRate, MoveCap, Temperature};
 use serde::{Deserialize, Serialize};
 
+use crate::defaults::WorldDefaults;
 use crate::detector::{DetectorKind, RateParams};
 use crate::error::{Error, SettingsProblem};
 use crate::extensions::{Extensions, Matching, WorldExtras};
@@ -33,9 +34,10 @@ pub const DEFAULT_MAP: &str = "tan8x8";
 ///
 /// Gather a file and flags over it ([`SettingsDraft::from_file`],
 /// [`SettingsDraft::overlay`]), then [`SettingsDraft::build`] the run's settings. What
-/// was not given takes the paper's value ([`RunSettings::tan1991`]); the map
-/// [`DEFAULT_MAP`], CS-QL with the resetting strategy and seed 1 when those are not given
-/// either, as `csrl run` has them.
+/// was not given takes the paper's value ([`RunSettings::tan1991`]), or where the map
+/// names a built-in world that asks for its own temperature, detector or trial cap, the
+/// world's ([`crate::WorldDefaults`]); the map [`DEFAULT_MAP`], CS-QL with the resetting
+/// strategy and seed 1 when those are not given either, as `csrl run` has them.
 ///
 /// ```
 /// use csql::{LearnerKind, SettingsDraft, StrategyKind};
@@ -154,9 +156,11 @@ pub struct CostlyTable {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct ExtensionsTable {
-    /// `detector` ([`Extensions::detector`]).
-    #[serde(skip_serializing_if = "is_default")]
-    pub detector: DetectorKind,
+    /// `detector` ([`Extensions::detector`]); when absent, the world's default
+    /// ([`crate::WorldDefaults::detector_for`]: the paper's `decrease`, or a built-in
+    /// world's own).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub detector: Option<DetectorKind>,
     /// `rate` ([`Extensions::rate`]).
     #[serde(skip_serializing_if = "is_default")]
     pub rate: RateParams,
@@ -196,7 +200,7 @@ impl Default for ExtensionsTable {
 impl From<Extensions> for ExtensionsTable {
     fn from(e: Extensions) -> ExtensionsTable {
         ExtensionsTable {
-            detector: e.detector,
+            detector: (e.detector != DetectorKind::default()).then_some(e.detector),
             rate: e.rate,
             matching: e.matching,
             confirm_new: e.confirm_new,
@@ -207,14 +211,27 @@ impl From<Extensions> for ExtensionsTable {
 }
 
 impl ExtensionsTable {
-    /// CS-QL's extensions of the table.
+    /// CS-QL's extensions of the table, the paper's detector where none is given.
     ///
     /// ```
     /// assert_eq!(csql::ExtensionsTable::default().extensions(), csql::Extensions::default());
     /// ```
     pub fn extensions(&self) -> Extensions {
+        self.extensions_with(DetectorKind::default())
+    }
+
+    /// CS-QL's extensions of the table, `detector` where the table gives none.
+    ///
+    /// ```
+    /// use csql::{DetectorKind, ExtensionsTable};
+    /// let none = ExtensionsTable::default();
+    /// assert_eq!(none.extensions_with(DetectorKind::Action).detector, DetectorKind::Action);
+    /// let given = ExtensionsTable { detector: Some(DetectorKind::Decrease), ..none };
+    /// assert_eq!(given.extensions_with(DetectorKind::Action).detector, DetectorKind::Decrease);
+    /// ```
+    pub fn extensions_with(&self, detector: DetectorKind) -> Extensions {
         Extensions {
-            detector: self.detector,
+            detector: self.detector.unwrap_or(detector),
             rate: self.rate,
             matching: self.matching,
             confirm_new: self.confirm_new,
@@ -813,12 +830,20 @@ impl SettingsDraft {
     }
 
     /// The run's settings: each learner with only its own keys, everything not given at
-    /// the paper's value, and every combination checked once
+    /// the world's default (the paper's value, or a built-in world's own temperature,
+    /// detector and trial cap for the learners judged over trials:
+    /// [`crate::WorldDefaults`]), and every combination checked once
     /// ([`RunSettings::validate`]). A key that the learner chosen does not read
     /// ([`SETTING_KEYS`]) is refused, naming the key and the learner; so is a table of
     /// another learner given at all, even empty or at its defaults.
     ///
     /// ```
+    /// // Taxi's rewards run from -10 to 20: the world's temperature, detector and trial
+    /// // cap where none is given; a key given always wins.
+    /// let d = csql::SettingsDraft::from_toml("map = \"taxi\"\ntemperature = 5", "f").unwrap();
+    /// let s = d.build().unwrap();
+    /// assert_eq!((s.temperature.get(), s.max_trials.get()), (5.0, 200_000));
+    /// assert_eq!(s.extensions().detector, csql::DetectorKind::Action);
     /// let d = csql::SettingsDraft::from_toml("learner = \"u-tree\"\n[u_tree]\nfringe = 3", "f").unwrap();
     /// let s = d.build().unwrap();
     /// assert!(matches!(s.learner, csql::Learner::UTree(p) if p.fringe == 3));
@@ -837,7 +862,19 @@ impl SettingsDraft {
                 why: "the learner does not read it (csrl run --help lists the keys each learner reads)",
             });
         }
-        let extensions = self.extensions.unwrap_or_default().extensions();
+        // What the world defaults to where a key is not given: the paper's values, or a
+        // built-in world's own (`WorldDefaults`), for the learners judged over trials.
+        let paper = RunSettings::tan1991(DEFAULT_MAP, StrategyKind::Resetting, 1);
+        let defaults = match &self.map {
+            Some(map) if !kind.on_episodes() => WorldDefaults::of_source(map),
+            _ => WorldDefaults::paper(),
+        };
+        let beta = self.beta.unwrap_or(paper.beta);
+        let world = self.world.clone().unwrap_or_default();
+        let extensions = self
+            .extensions
+            .unwrap_or_default()
+            .extensions_with(defaults.detector_for(beta.get(), &world));
         let judge = self.judge.unwrap_or_default();
         let costly = match self.costly {
             None => None,
@@ -892,19 +929,18 @@ impl SettingsDraft {
             // refused without it by `validate`).
             LearnerKind::Belief => Learner::Belief(self.belief.unwrap_or_default()),
         };
-        let paper = RunSettings::tan1991(DEFAULT_MAP, StrategyKind::Resetting, 1);
         let settings = RunSettings {
             map: self.map.clone().unwrap_or(paper.map),
             learner,
-            beta: self.beta.unwrap_or(paper.beta),
+            beta,
             gamma: self.gamma.unwrap_or(paper.gamma),
-            temperature: self.temperature.unwrap_or(paper.temperature),
+            temperature: self.temperature.unwrap_or(defaults.temperature),
             max_moves: self.max_moves.unwrap_or(paper.max_moves),
             tolerance: self.tolerance.unwrap_or(paper.tolerance),
             decrease_threshold: self.decrease_threshold.unwrap_or(paper.decrease_threshold),
-            max_trials: self.max_trials.unwrap_or(paper.max_trials),
+            max_trials: self.max_trials.unwrap_or(defaults.max_trials),
             seed: self.seed.unwrap_or(paper.seed),
-            world: self.world.clone().unwrap_or_default(),
+            world,
             judge,
             max_rows: self.max_rows.unwrap_or(MAX_ROWS),
             costly,
@@ -935,6 +971,7 @@ impl From<&RunSettings> for SettingsDraft {
     fn from(s: &RunSettings) -> SettingsDraft {
         let q = s.cs_ql();
         let kind = s.learner.kind();
+        let world_detector = WorldDefaults::of_source(&s.map).detector_for(s.beta.get(), &s.world);
         let mut draft = SettingsDraft {
             map: Some(s.map.clone()),
             strategy: q.map(|q| q.strategy),
@@ -953,7 +990,15 @@ impl From<&RunSettings> for SettingsDraft {
             prediction: q.map(|q| q.prediction).filter(|p| !p.is_default()),
             world: Some(s.world.clone()).filter(|w| !w.is_default()),
             extensions: q
-                .map(|q| ExtensionsTable::from(q.extensions))
+                .map(|q| {
+                    let mut table = ExtensionsTable::from(q.extensions);
+                    // The paper's detector is written out where the world would default
+                    // to another, so that the settings build again to the same.
+                    if q.extensions.detector != world_detector {
+                        table.detector = Some(q.extensions.detector);
+                    }
+                    table
+                })
                 .filter(|t| *t != ExtensionsTable::default()),
             judge: Some(s.judge).filter(|j| *j != JudgeSettings::default()),
             learner: Some(kind).filter(|k| !k.is_cs_ql()),

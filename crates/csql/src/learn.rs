@@ -143,6 +143,10 @@ pub(crate) struct Learned {
     pub quality: QualityTrack,
     /// Whether the run ended because its representation passed `max_rows` rows.
     pub capped: bool,
+    /// Whether its observer stopped it (Ctrl-C, SIGTERM, an observer's no).
+    pub stopped: bool,
+    /// Decreases detected over the whole run.
+    pub decreases: u64,
 }
 
 /// The policy quality over a run (specification §6).
@@ -209,6 +213,8 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
             at: 0,
         },
         capped: false,
+        stopped: false,
+        decreases: 0,
     };
     // The evaluation's own generator: the run's, 2^192 draws ahead.
     let mut eval_rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
@@ -233,6 +239,7 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
         let rec = agent.run_trial_observed(world, start, trial, &mut rng, observer);
         out.moves += rec.moves as u64;
         out.cost += rec.cost;
+        out.decreases += u64::from(rec.decreases);
         let verdict = match judging {
             // The paper's verdicts assume a deterministic, fully sensable world.
             Judging::Quality => {
@@ -284,7 +291,8 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
         let settled =
             judging == Judging::Quality && out.quality.streak >= settings.judge.quality_patience;
         out.capped = agent.perception.rows() > settings.max_rows;
-        if verdict.converged || settled || flow == Flow::Stop || out.capped {
+        out.stopped = flow == Flow::Stop;
+        if verdict.converged || settled || out.stopped || out.capped {
             break;
         }
     }

@@ -171,7 +171,9 @@ mod belief;
 )]
 mod classify;
 mod costly;
+mod defaults;
 mod detector;
+mod diagnosis;
 mod draft;
 mod error;
 mod extensions;
@@ -254,9 +256,11 @@ pub use amrl::{AmrlParams, CostlySummary, Episode, MAX_BIAS, MAX_EPISODES, Measu
 pub use belief::{BeliefParams, MAX_BELIEF_UNCERTAIN, belief_planning};
 pub use classify::{CACHE_MAX_READINGS, Classification, Classify};
 pub use costly::{CostedReport, CostedRun, costed_episodes, costed_report, costed_report_in};
+pub use defaults::WorldDefaults;
 pub use detector::{
     ActionDrop, AnyDrop, Detector, DetectorKind, RateParams, RateTest, RunDetector,
 };
+pub use diagnosis::NotLearned;
 pub use draft::{
     CostlyTable, DEFAULT_MAP, ExtensionsTable, NOT_READ_BY_A_STEPPER, SETTING_KEYS, SettingKey,
     SettingsDraft, setting_key, setting_tables, settings_keys_help,

@@ -180,6 +180,10 @@ pub struct RunReport {
     /// passed the setting `max_rows` (at most [`crate::MAX_ROWS`]). Absent otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stopped: Option<String>,
+    /// Why the run ended without learning (neither converged nor at policy quality 0.95
+    /// kept to its end), and the settings to try. Absent in a run that learned.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub not_learned: Option<crate::NotLearned>,
     /// Every trial scored by its costed return, when the settings price sensing
     /// (`[costly]`; specification 6.12). Absent otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -540,6 +544,18 @@ pub(crate) fn report<W: World + ?Sized, P: Perception + Describes + crate::view:
         descriptions: described.len(),
         mean_features,
     };
+    let ending = crate::diagnosis::Ending {
+        judging: learned.judging,
+        converged,
+        kept_quality: reached.is_some(),
+        quality: quality.policy_quality,
+        trials: learned.trials,
+        capped: learned.capped,
+        stopped: learned.stopped,
+        decreases: learned.decreases,
+        descriptions: described.len(),
+    };
+    let not_learned = crate::diagnosis::diagnose(world, settings, &ending);
     let last = learned.last;
     let sufficient_now = last.is_some_and(|t| t.sufficient);
     let consistent_literal = sufficient_now.then(|| {
@@ -605,6 +621,7 @@ pub(crate) fn report<W: World + ?Sized, P: Perception + Describes + crate::view:
                 settings.max_rows, learned.trials
             )
         }),
+        not_learned,
         costly: None,
         costly_missing: None,
     }

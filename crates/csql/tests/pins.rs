@@ -42,8 +42,9 @@ fn run_json(map: &str, strategy: StrategyKind, seed: u64) -> (String, (u64, usiz
 
 /// The report's JSON as it was pinned: everything but the measures added to every report
 /// after the pins were taken (they measure the learned policy, they do not change it):
-/// the final `policy_quality` (checked on its own where it is known), `judged_by`, and,
-/// in a run the oracle judges, the `quality` block; in a run judged by the quality, that
+/// the final `policy_quality` (checked on its own where it is known), `judged_by`,
+/// `not_learned` (why a run did not learn, where it did not), and, in a run the oracle
+/// judges, the `quality` block; in a run judged by the quality, that
 /// block's cost per state kept its old name, `sensing_cost_per_state`. The judging keys,
 /// echoed in the settings' table `[judge]` since they left `[extensions]`, are put back
 /// at the end of `[extensions]`, where they were pinned (every pinned run that has them
@@ -62,6 +63,11 @@ fn pinned_json(report: &csql::RunReport) -> String {
     };
     let json = cut(&json, ",\"policy_quality\":");
     let json = cut(&json, ",\"judged_by\":");
+    let json = if report.not_learned.is_some() {
+        cut(&json, ",\"not_learned\":")
+    } else {
+        json
+    };
     match report.judged_by {
         csql::Judging::Oracle => cut(&json, ",\"quality\":"),
         csql::Judging::Quality => json.replacen(

@@ -216,6 +216,25 @@ def test_resolve_settings_checks_without_running():
         csrl.resolve_settings(world="tan8x8", settings={"beta": -1.0})
 
 
+def test_a_built_in_world_named_runs_from_its_own_defaults():
+    # Taxi's rewards run from -10 to 20: its temperature, detector and trial cap.
+    s = csrl.resolve_settings(world="taxi", strategy="lazy")
+    assert (s["temperature"], s["max_trials"], s["extensions"]["detector"]) == (8.0, 200000, "action")
+    # A setting given wins, and is echoed.
+    s = csrl.resolve_settings(world="taxi", settings={"temperature": 0.4, "extensions": {"detector": "decrease"}})
+    assert (s["temperature"], s["extensions"]["detector"]) == (0.4, "decrease")
+    report = csrl.run(world="cliffwalking", strategy="eager", seed=1)
+    assert report["converged"] and report["policy_quality"] == 1.0
+    assert "not_learned" not in report
+
+
+def test_a_run_that_does_not_learn_says_why():
+    report = csrl.run(world="taxi", strategy="lazy", seed=1, max_trials=20, settings={"temperature": 0.4})
+    assert not report["converged"]
+    assert "No utility ever decreased" in report["not_learned"]["why"]
+    assert report["not_learned"]["try"][0] == "temperature = 8"
+
+
 COSTED = [
     ("belief", {"world": {"sensing": "factors"}, "costly": {"price": 0.025}, "belief": {"trust": 2}}),
     ("belief", {"world": {"sensing": "factors"}, "costly": {"price": 0.025, "rule": "after-outcome"}}),

@@ -61,7 +61,8 @@ pub struct RunArgs {
     #[arg(long, value_parser = parse_rule)]
     sensing_rule: Option<mdp::SensingRule>,
     /// Stop an unconverged run after this many trials (amrl-q, belief: the number of
-    /// episodes played).
+    /// episodes played; default: the config's, else 20000, or a built-in world's own:
+    /// `csrl world show NAME`).
     #[arg(long)]
     max_trials: Option<csql::TrialCap>,
     /// Exit with code 3 if the run does not converge, or, for a run judged by the policy
@@ -449,6 +450,16 @@ fn print_report(r: &RunReport, out: &mut dyn Write) -> std::io::Result<()> {
     )?;
     if let Some(why) = &r.stopped {
         writeln!(out, "Stopped early: {why}")?;
+    }
+    if let Some(not) = &r.not_learned {
+        writeln!(out, "Not learned: {}", shown(&not.why))?;
+        if !not.to_try.is_empty() {
+            writeln!(
+                out,
+                "Try (in a --config file): {}",
+                shown(&not.to_try.join("; "))
+            )?;
+        }
     }
     if let Some(c) = &r.costly {
         print_costly(c, out)?;

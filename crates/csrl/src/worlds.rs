@@ -61,15 +61,21 @@ pub enum WorldCommand {
 /// The world a name, a file or a map spec names, with the `[world]` settings of
 /// `config`, as a [`FiniteWorld`] (maps are exported with their local sensing).
 pub(crate) fn resolve(name: &str, config: Option<&PathBuf>) -> Result<FiniteWorld> {
+    Ok(resolve_with(name, config)?.0)
+}
+
+/// [`resolve`], with the `[world]` settings it was resolved with.
+fn resolve_with(name: &str, config: Option<&PathBuf>) -> Result<(FiniteWorld, csql::WorldExtras)> {
     let mut settings = csql::RunSettings::tan1991(name, csql::StrategyKind::Lazy, 1);
     if let Some(path) = config {
         settings.apply_file(path)?;
         settings.map = name.into();
     }
-    Ok(match csql::Resolved::new(&settings)? {
+    let world = match csql::Resolved::new(&settings)? {
         csql::Resolved::Grid(setup) => FiniteWorld::from_grid(&setup.sensed(&settings)),
         csql::Resolved::Finite { world, .. } => world,
-    })
+    };
+    Ok((world, settings.world))
 }
 
 pub fn run(cmd: &WorldCommand, out: &mut dyn Write) -> Result<()> {
@@ -80,8 +86,8 @@ pub fn run(cmd: &WorldCommand, out: &mut dyn Write) -> Result<()> {
             config,
             json,
         } => {
-            let w = resolve(world, config.as_ref())?;
-            let summary = Summary::new(&w)?;
+            let (w, extras) = resolve_with(world, config.as_ref())?;
+            let summary = Summary::new(&w, RunDefaults::of(world, &extras))?;
             if *json {
                 writeln!(out, "{}", serde_json::to_string_pretty(&summary)?)?;
             } else {
@@ -149,7 +155,10 @@ fn list(json: bool, out: &mut dyn Write) -> Result<()> {
     let mut rows = Vec::new();
     for &name in mdp::builtin_world_names() {
         let w = mdp::builtin_world(name, &mdp::WorldOptions::default())?;
-        rows.push(Summary::new(&w)?);
+        rows.push(Summary::new(
+            &w,
+            RunDefaults::of(name, &csql::WorldExtras::default()),
+        )?);
     }
     if json {
         writeln!(out, "{}", serde_json::to_string_pretty(&rows)?)?;
@@ -158,18 +167,21 @@ fn list(json: bool, out: &mut dyn Write) -> Result<()> {
     for r in &rows {
         writeln!(
             out,
-            "{:<14} {:>4} states {:>2} actions {:>3} features  rewards {} to {}",
+            "{:<14} {:>4} states {:>2} actions {:>3} features  rewards {} to {}  (runs at temperature {}, detector {}, max_trials {})",
             r.name,
             r.visited_states,
             r.actions.len(),
             r.features.len(),
             r.min_reward,
-            r.max_reward
+            r.max_reward,
+            r.run_defaults.temperature,
+            r.run_defaults.detector,
+            r.run_defaults.max_trials
         )?;
     }
     writeln!(
         out,
-        "\nEvery grid map (`csrl maps`) is a world too; `[world] sensing = \"factors\"` and `slip`/`slide` change a built-in world (`csrl world show NAME --config FILE`)."
+        "\nEvery grid map (`csrl maps`) is a world too; `[world] sensing = \"factors\"` and `slip`/`slide` change a built-in world (`csrl world show NAME --config FILE`). A run takes the temperature, detector and trial cap above where its settings give none (`csrl world show NAME` says why)."
     )?;
     Ok(())
 }
@@ -189,6 +201,38 @@ struct Summary {
     features: Vec<FeatureSummary>,
     /// The optimal value of the start distribution at the paper's discount.
     start_value: f64,
+    /// What a run in the world defaults to where its settings do not say.
+    run_defaults: RunDefaults,
+}
+
+/// What a run of a learner judged over trials defaults to in a world
+/// ([`csql::WorldDefaults`]): the paper's values, or a built-in world's own.
+#[derive(Serialize)]
+struct RunDefaults {
+    temperature: f64,
+    /// CS-QL's `[extensions] detector` (with beta 1; the paper's with another beta).
+    detector: &'static str,
+    max_trials: u32,
+    /// `world` (the built-in world's own) or `paper`.
+    from: &'static str,
+    /// Why the world asks for them (absent for the paper's).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    why: Option<&'static str>,
+}
+
+impl RunDefaults {
+    /// The defaults of the world `name` names, with the `[world]` settings `extras`.
+    fn of(name: &str, extras: &csql::WorldExtras) -> RunDefaults {
+        let d = csql::WorldDefaults::of(name);
+        let own = d.world.filter(|w| !w.is_paper());
+        RunDefaults {
+            temperature: d.temperature.get(),
+            detector: d.detector_for(1.0, extras).name(),
+            max_trials: d.max_trials.get(),
+            from: if own.is_some() { "world" } else { "paper" },
+            why: own.map(|w| w.why),
+        }
+    }
 }
 
 #[derive(Serialize)]
@@ -199,7 +243,7 @@ struct FeatureSummary {
 }
 
 impl Summary {
-    fn new(w: &FiniteWorld) -> Result<Summary> {
+    fn new(w: &FiniteWorld, run_defaults: RunDefaults) -> Result<Summary> {
         let oracle = Oracle::solve_stochastic(w, GAMMA)?;
         let mut out = Vec::new();
         let (mut lo, mut hi, mut deterministic) = (f64::INFINITY, f64::NEG_INFINITY, true);
@@ -237,6 +281,7 @@ impl Summary {
                 })
                 .collect(),
             start_value: start.iter().map(|&(p, s)| p * oracle.v_star(s)).sum(),
+            run_defaults,
         })
     }
 
@@ -290,6 +335,22 @@ impl Summary {
                 "  ... and {} more (--json lists them all)",
                 self.features.len() - SHOWN
             )?;
+        }
+        let d = &self.run_defaults;
+        writeln!(
+            out,
+            "defaults    temperature = {}, [extensions] detector = \"{}\", max_trials = {} ({}; \
+             a setting given in a file, by a flag or from Python wins)",
+            d.temperature,
+            d.detector,
+            d.max_trials,
+            match d.from {
+                "world" => "the world's own defaults",
+                _ => "the paper's defaults",
+            }
+        )?;
+        if let Some(why) = d.why {
+            writeln!(out, "            because {why}")?;
         }
         Ok(())
     }

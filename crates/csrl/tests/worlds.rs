@@ -373,3 +373,99 @@ fn control_characters_in_names_are_escaped_for_the_terminal() {
     );
     clean(&err);
 }
+
+#[test]
+fn world_show_prints_the_settings_a_run_takes_from_the_world() {
+    let text = ok(&["world", "show", "taxi"]);
+    for part in [
+        "temperature = 8",
+        "[extensions] detector = \"action\"",
+        "max_trials = 200000",
+        "the world's own defaults",
+        "rewards from -10 to 20",
+    ] {
+        assert!(text.contains(part), "{text:?} lacks {part:?}");
+    }
+    let taxi = json(&["world", "show", "taxi", "--json"]);
+    let d = &taxi["run_defaults"];
+    assert_eq!(
+        (
+            &d["temperature"],
+            &d["detector"],
+            &d["max_trials"],
+            &d["from"]
+        ),
+        (
+            &8.0.into(),
+            &"action".into(),
+            &200_000.into(),
+            &"world".into()
+        )
+    );
+    // A grid map runs at the paper's values.
+    let map = json(&["world", "show", "tan3x3", "--json"]);
+    assert_eq!(map["run_defaults"]["temperature"], 0.4);
+    assert_eq!(map["run_defaults"]["from"], "paper");
+    assert!(map["run_defaults"].get("why").is_none());
+    // The list names them too.
+    let list = ok(&["world", "list"]);
+    assert!(
+        list.contains("temperature 40, detector action, max_trials 20000"),
+        "{list}"
+    );
+}
+
+#[test]
+fn a_run_from_a_world_s_defaults_learns_and_echoes_them() {
+    let v = json(&[
+        "run",
+        "--world",
+        "cliffwalking",
+        "--strategy",
+        "eager",
+        "--json",
+    ]);
+    assert_eq!(v["converged"], true);
+    assert_eq!(v["quality"]["policy_quality"], 1.0);
+    assert_eq!(v["settings"]["temperature"], 40.0);
+    assert_eq!(v["settings"]["extensions"]["detector"], "action");
+    assert!(v.get("not_learned").is_none(), "{v}");
+}
+
+#[test]
+fn a_run_that_ends_without_learning_says_why_and_what_to_try() {
+    let cold = temp("cold.toml");
+    std::fs::write(&cold, "temperature = 0.4\n").unwrap();
+    let args = [
+        "run",
+        "--world",
+        "taxi",
+        "--strategy",
+        "lazy",
+        "--max-trials",
+        "30",
+        "--config",
+        cold.to_str().unwrap(),
+    ];
+    let text = ok(&args);
+    assert!(
+        text.contains("Not learned: It reached its trial cap"),
+        "{text}"
+    );
+    assert!(text.contains("No utility ever decreased"), "{text}");
+    assert!(
+        text.contains("Try (in a --config file): temperature = 8; max_trials = 200000"),
+        "{text}"
+    );
+    let mut with_json = args.to_vec();
+    with_json.push("--json");
+    let v = json(&with_json);
+    assert_eq!(v["not_learned"]["try"][0], "temperature = 8");
+    assert!(
+        v["not_learned"]["why"]
+            .as_str()
+            .unwrap()
+            .contains("csrl world show taxi"),
+        "{v}"
+    );
+}

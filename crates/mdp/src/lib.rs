@@ -146,4 +146,7 @@ pub use stochastic::{
 };
 pub use tabular::{NegativeRewards, TabularMdp};
 pub use world::{SensedGrid, Sensors, World};
-pub use worlds::{SensingModel, WorldOptions, builtin_world, builtin_world_names};
+pub use worlds::{
+    SensingModel, WorldOptions, WorldSettings, builtin_world, builtin_world_names,
+    builtin_world_settings,
+};

@@ -49,6 +49,102 @@ pub struct WorldOptions {
 
 const NAMES: &[&str] = &["frozenlake4x4", "frozenlake8x8", "taxi", "cliffwalking"];
 
+/// What a built-in world asks of a run's settings to be learned from its defaults, as
+/// plain data (each `None`: the paper's value). A learner's crate applies it where the
+/// settings do not give the key (`csql` does, for `csrl run --world NAME`, the settings
+/// file's `map` and Python's `csrl.run`), and `csrl world show NAME` prints it.
+///
+/// The rule behind the values: Boltzmann's temperature is 0.4 times the world's largest
+/// reward in size (the paper's 0.4 is for rewards of size 1); where one state of a
+/// description pays a penalty for an action that the others do not, the penalty lowers
+/// that action's Q, not V, so the detector is `action` (a fall of a tried action's Q,
+/// specification 1.11); and the trial cap is at least twice the most trials any CS-QL
+/// strategy needed in the deterministic world on seeds 1 to 5 (`docs/worlds.md`).
+///
+/// ```
+/// let taxi = mdp::builtin_world_settings("taxi").unwrap();
+/// assert_eq!((taxi.temperature, taxi.detector, taxi.max_trials), (Some(8.0), Some("action"), Some(200_000)));
+/// assert!(mdp::builtin_world_settings("frozenlake4x4").unwrap().is_paper());
+/// assert!(mdp::builtin_world_settings("tan8x8").is_none()); // a map, not a built-in world
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct WorldSettings {
+    /// Boltzmann's temperature on the world's reward scale (`temperature`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub temperature: Option<f64>,
+    /// The detector of inconsistent descriptions, by its setting's value (`[extensions]
+    /// detector`: `decrease`, `statistical` or `action`), for CS-QL in the deterministic
+    /// world with beta 1.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub detector: Option<&'static str>,
+    /// The trial cap (`max_trials`) of the learners judged over trials.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_trials: Option<u32>,
+    /// Why, in a sentence or two.
+    pub why: &'static str,
+}
+
+impl WorldSettings {
+    /// Whether the world asks for nothing beyond the paper's settings.
+    ///
+    /// ```
+    /// assert!(!mdp::builtin_world_settings("cliffwalking").unwrap().is_paper());
+    /// ```
+    pub fn is_paper(&self) -> bool {
+        self.temperature.is_none() && self.detector.is_none() && self.max_trials.is_none()
+    }
+}
+
+/// The settings built-in world `name` asks of a run ([`WorldSettings`]), or `None` if
+/// `name` is not a built-in world.
+///
+/// ```
+/// let cliff = mdp::builtin_world_settings("cliffwalking").unwrap();
+/// assert_eq!((cliff.temperature, cliff.detector, cliff.max_trials), (Some(40.0), Some("action"), None));
+/// assert_eq!(mdp::builtin_world_settings("frozenlake8x8").unwrap().max_trials, Some(200_000));
+/// ```
+pub fn builtin_world_settings(name: &str) -> Option<WorldSettings> {
+    let paper = WorldSettings {
+        temperature: None,
+        detector: None,
+        max_trials: None,
+        why: "",
+    };
+    Some(match name {
+        "frozenlake4x4" => WorldSettings {
+            why: "rewards of 0 and 1, the paper's scale: its settings learn the lake with every strategy",
+            ..paper
+        },
+        "frozenlake8x8" => WorldSettings {
+            max_trials: Some(200_000),
+            why: "rewards of 0 and 1, the paper's scale; the resetting strategy starts every Q again \
+                  at each refinement and needs 70000 to 80000 trials on this lake, past the \
+                  paper's cap of 20000",
+            ..paper
+        },
+        "taxi" => WorldSettings {
+            temperature: Some(8.0),
+            detector: Some("action"),
+            max_trials: Some(200_000),
+            why: "rewards from -10 to 20: at the paper's temperature (0.4, for rewards of size 1) \
+                  Boltzmann selection never tries an action again once it paid -10, and an \
+                  illegal pick-up or drop-off lowers that action's Q while V, the maximum, \
+                  stays, so the paper's detector never fires; the resetting strategy needs \
+                  61000 to 66000 trials",
+        },
+        "cliffwalking" => WorldSettings {
+            temperature: Some(40.0),
+            detector: Some("action"),
+            why: "rewards from -100 to -1: at the paper's temperature (0.4, for rewards of size \
+                  1) Boltzmann selection never tries a move again once it fell off the cliff, \
+                  and the fall lowers that move's Q while V, the maximum, stays, so the \
+                  paper's detector never fires",
+            ..paper
+        },
+        _ => return None,
+    })
+}
+
 /// The names of the built-in worlds, in a fixed order.
 ///
 /// ```

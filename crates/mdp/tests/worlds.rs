@@ -940,3 +940,31 @@ fn aliasing_is_found_where_features_cannot_tell_states_apart() {
     let cols = FiniteWorld::new(spec).unwrap();
     assert!(cols.aliased(0.9).unwrap().count > 0);
 }
+
+/// The settings a built-in world asks of a run follow the rule its docs state: a
+/// temperature of 0.4 times the largest reward in size where that is not 1 (the paper's
+/// scale), and a detector only where the world penalises.
+#[test]
+fn every_builtin_world_states_its_settings_on_its_reward_scale() {
+    for &name in builtin_world_names() {
+        let w = world(name);
+        let asked = mdp::builtin_world_settings(name).unwrap();
+        let mut largest = 0.0f64;
+        let mut penalty = false;
+        let mut out = Vec::new();
+        for s in w.states() {
+            for a in 0..w.num_actions() as u32 {
+                w.outcomes(s, ActionId(a), &mut out);
+                for (_, step) in &out {
+                    largest = largest.max(step.reward.abs());
+                    penalty |= step.reward < 0.0;
+                }
+            }
+        }
+        let scaled = (largest != 1.0).then_some(0.4 * largest);
+        assert_eq!(asked.temperature, scaled, "{name}");
+        assert_eq!(asked.detector.is_some(), penalty, "{name}");
+        assert!(!asked.why.is_empty(), "{name}");
+    }
+    assert!(mdp::builtin_world_settings("tan8x8").is_none());
+}

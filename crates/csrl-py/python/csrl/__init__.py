@@ -144,7 +144,9 @@ def run(
     ``strategy``, ``seed``, ``learner``, ``max_trials``, ``predict_sensing`` and ``trace``;
     ``settings`` is what ``--config`` reads: the path of a TOML settings file, or the same
     tables as a dict (``{"temperature": 0.2, "world": {"slip": 0.1}}``). Arguments left
-    at ``None`` take the settings' value, else the paper's. The learners played on
+    at ``None`` take the settings' value, else the paper's, or where ``world`` names a
+    built-in world that asks for its own temperature, detector or trial cap (``taxi``,
+    ``cliffwalking``, ``frozenlake8x8``), the world's. The learners played on
     episodes of the costed return, ``learner="amrl-q"`` and ``learner="belief"`` (tuned
     by the settings' ``amrl_q`` and ``belief`` tables), need ``{"costly": {"price": ...}}``
     and give their report: the costed return of every episode and their summary.
