@@ -409,10 +409,11 @@ impl TestCostTree {
     }
 
     /// For CVT, what its cross-validation chose: the grower (as `csrl classify`'s report
-    /// names it), the price per leaf the tree was cut back at, and the mean total cost
-    /// per held-out object; `None` for the other learners.
+    /// names it), the price per leaf the tree was cut back at (`None` where it was pruned
+    /// by its pessimistic cost instead), and the mean total cost per held-out object;
+    /// `None` for the other learners.
     #[getter]
-    fn cvt_choice(&self) -> Option<(String, f64, f64)> {
+    fn cvt_choice(&self) -> Option<(String, Option<f64>, f64)> {
         self.cvt
             .map(|c| (c.grower_name().to_string(), c.alpha, c.held_out_cost))
     }

@@ -279,8 +279,9 @@ fn learner_flag<V, T: Default>(
     }
 }
 
-/// CVT's choice as JSON: the grower, the price per leaf it was cut back at and the mean
-/// total cost per held-out object of its cross-validation.
+/// CVT's choice as JSON: the grower, the price per leaf it was cut back at (`null` where
+/// it was pruned by its pessimistic cost instead) and the mean total cost per held-out
+/// object of its cross-validation.
 fn cvt_json(choice: &cslearn::testcost::CvtChoice) -> serde_json::Value {
     serde_json::json!({
         "grower": choice.grower_name(),
@@ -292,9 +293,9 @@ fn cvt_json(choice: &cslearn::testcost::CvtChoice) -> serde_json::Value {
 /// CVT's choice as one line of text.
 fn cvt_text(choice: &cslearn::testcost::CvtChoice) -> String {
     format!(
-        "grown by {}, cut back at {:.4} per leaf, {:.2} per object on held-out objects",
+        "grown by {}, {}, {:.2} per object on held-out objects",
         choice.grower_name(),
-        choice.alpha,
+        choice.cut_text(),
         choice.held_out_cost
     )
 }

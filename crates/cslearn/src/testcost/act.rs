@@ -93,9 +93,39 @@ pub(super) fn act_tree(
     (w, selection): (f64, SelectionPrices),
     seed: u64,
 ) -> CostTree {
-    let grow = GrowParams::new(Criterion::Eg2 { w }).selecting_at(selection);
+    let mut tree = act_grown(frame, rows, prices, mc, params, (w, selection), seed);
+    tree.prune_by_cost(params.confidence, prices);
+    tree
+}
+
+/// ACT's tree before its pruning: each split chosen by the sampled lookahead, a leaf
+/// where answering costs less than every candidate's price plus sampled subtrees.
+pub(super) fn act_grown(
+    frame: &Frame,
+    rows: &[usize],
+    prices: &TestPrices,
+    mc: &MisclassCosts,
+    params: &ActParams,
+    (w, selection): (f64, SelectionPrices),
+    seed: u64,
+) -> CostTree {
+    let grow = GrowParams::new(Criterion::Eg2 { w });
     let ones = vec![1.0; rows.len()];
     let mut splits = Splits::new(frame, rows, &ones, mc, grow.criterion, grow.min_objects);
+    act_grown_in(&mut splits, prices, mc, params, (w, selection), seed)
+}
+
+/// [`act_grown`] through the split trie `splits` (made with EG2's kind of statistics and
+/// C4.5's least branch size), which other EG2 trees on the same objects may share.
+pub(super) fn act_grown_in(
+    splits: &mut Splits<'_>,
+    prices: &TestPrices,
+    mc: &MisclassCosts,
+    params: &ActParams,
+    (w, selection): (f64, SelectionPrices),
+    seed: u64,
+) -> CostTree {
+    let grow = GrowParams::new(Criterion::Eg2 { w }).selecting_at(selection);
     let sampler = Sampler {
         scorer: Scorer::new(prices, grow.criterion),
         prices,
@@ -107,12 +137,10 @@ pub(super) fn act_tree(
         samples: params.samples,
     };
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
-    let nodes = grow_nodes_by(&mut splits, mc, grow.max_depth, |splits, c| {
+    let nodes = grow_nodes_by(splits, mc, grow.max_depth, |splits, c| {
         sampler.choose(splits, c, &mut rng)
     });
-    let mut tree = CostTree::from_nodes(nodes, mc);
-    tree.prune_by_cost(params.confidence, prices);
-    tree
+    CostTree::from_nodes(nodes, mc)
 }
 
 /// What ACT values trees with.

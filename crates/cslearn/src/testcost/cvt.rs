@@ -2,27 +2,34 @@
 //! cost measured on objects the tree did not learn from.
 //!
 //! Classifying an object is a sequence of decisions: pay for one more test, or stop and
-//! answer. A tree makes them; what makes it cheap is where it stops. CVT grows several
-//! unpruned trees, one per selection function of a small set ([`GROWERS`]: EG2 at four
-//! weights of the price, from none to a double one, C4.5's gain ratio and DTMC's cost
-//! reduction), and follows each along its cost-complexity path (Breiman et al. 1984,
-//! here with the tests' prices inside the cost): at a price `alpha` per leaf, each
-//! subtree stays only where it lowers the training objects' tests plus misclassification
-//! plus `alpha` per leaf; raising `alpha` cuts the tree back leaf by leaf to its root.
-//! Stratified `k`-fold cross-validation on the training objects measures each grower's
-//! tree at each point of its path by what really matters, the total cost of classifying
-//! the held-out objects (their tests at the real prices, after their path, plus the
-//! misclassification of the answers). The grower and `alpha` of least held-out cost give
-//! the final tree, grown on every training object and cut back at that `alpha`.
+//! answer. A tree makes them; what makes it cheap is which tests it asks for and where it
+//! stops. CVT grows several unpruned trees, one per grower of a small set ([`GROWERS`]:
+//! EG2 at four weights of the price, from none to a double one, C4.5's gain ratio, DTMC's
+//! cost reduction, and ACT's sampled lookahead, which finds tests that are useless alone
+//! but tell the class together), and considers for each the cuts along its
+//! cost-complexity path (Breiman et al. 1984, here with the tests' prices inside the
+//! cost): at a price `alpha` per leaf, each subtree stays only where it lowers the
+//! training objects' tests plus misclassification plus `alpha` per leaf; raising `alpha`
+//! cuts the tree back leaf by leaf to its root. One more cut per grower is ACT's: the
+//! pessimistic pruning by cost ([`Pruning::Costs`](super::Pruning)), which cuts small
+//! leaves harder than large ones where one `alpha` cuts them alike. Stratified `k`-fold
+//! cross-validation on the training objects measures each grower's tree at each cut by
+//! what really matters, the total cost of classifying the held-out objects (their tests
+//! at the real prices, after their path, plus the misclassification of the answers). The
+//! grower and cut of least held-out cost give the final tree, grown on every training
+//! object and cut the same way.
 //!
 //! Where the pessimistic estimates of C4.5, ACT and ICET guess how a subtree will do on
-//! new objects, CVT measures it; where ICET scores each of its trees on one half of the
-//! objects, CVT scores on every object once.
+//! new objects, CVT measures it, and keeps the estimate only where the measurement says
+//! it guesses well; where ICET scores each of its trees on one half of the objects, CVT
+//! scores on every object once.
 
+use super::act::{ActParams, act_grown_in};
 use super::criterion::Criterion;
 use super::data::Frame;
 use super::evaluate::folds_of;
 use super::prices::{MisclassCosts, TestPrices};
+use super::splits::Splits;
 use super::tree::{CostTree, GrowParams, SelectionPrices};
 use crate::Error;
 
@@ -64,15 +71,114 @@ impl Default for CvtParams {
     }
 }
 
-/// The selection functions CVT grows its candidate trees with, by name.
-pub const GROWERS: [(&str, Criterion); 6] = [
-    ("eg2-w0", Criterion::Eg2 { w: 0.0 }),
-    ("eg2-w0.5", Criterion::Eg2 { w: 0.5 }),
-    ("eg2-w1", Criterion::Eg2 { w: 1.0 }),
-    ("eg2-w2", Criterion::Eg2 { w: 2.0 }),
-    ("c45", Criterion::C45),
-    ("dtmc", Criterion::Dtmc),
+/// How CVT grows one of its candidate trees.
+///
+/// ```
+/// use cslearn::testcost::{Grower, GROWERS};
+/// assert_eq!(GROWERS[6], ("act", Grower::Lookahead { samples: 5 }));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub enum Grower {
+    /// A greedy grower with this selection function, unpruned.
+    Greedy(Criterion),
+    /// ACT's sampled lookahead (stochastic EG2 at `w` = 1, this many trees sampled under
+    /// each branch of each candidate test, a leaf where answering costs less), before
+    /// ACT's pruning.
+    Lookahead {
+        /// Trees sampled under each branch.
+        samples: usize,
+    },
+}
+
+/// The growers CVT grows its candidate trees with, by name; the lookahead samples as many
+/// trees as ACT does (with 2, on krk at mc 1000 and one price draw, CVT cost 2% more
+/// for about half the time).
+pub const GROWERS: [(&str, Grower); 7] = [
+    ("eg2-w0", Grower::Greedy(Criterion::Eg2 { w: 0.0 })),
+    ("eg2-w0.5", Grower::Greedy(Criterion::Eg2 { w: 0.5 })),
+    ("eg2-w1", Grower::Greedy(Criterion::Eg2 { w: 1.0 })),
+    ("eg2-w2", Grower::Greedy(Criterion::Eg2 { w: 2.0 })),
+    ("c45", Grower::Greedy(Criterion::C45)),
+    ("dtmc", Grower::Greedy(Criterion::Dtmc)),
+    ("act", Grower::Lookahead { samples: 5 }),
 ];
+
+impl Grower {
+    /// The kind of split statistics the grower reads: growers of one kind on the same
+    /// objects share one split trie (each cell's statistics computed once).
+    fn kind(self) -> Criterion {
+        match self {
+            Grower::Greedy(Criterion::Eg2 { .. }) | Grower::Lookahead { .. } => {
+                Criterion::Eg2 { w: 1.0 }
+            }
+            Grower::Greedy(criterion) => criterion,
+        }
+    }
+
+    /// The unpruned tree this grower grows through `splits` (of its [`kind`](Grower::kind)),
+    /// its samples drawn from `seed`.
+    fn grow_in(
+        self,
+        splits: &mut Splits<'_>,
+        prices: &TestPrices,
+        mc: &MisclassCosts,
+        selection: SelectionPrices,
+        seed: u64,
+    ) -> CostTree {
+        match self {
+            Grower::Greedy(criterion) => {
+                let grow = GrowParams::new(criterion).selecting_at(selection);
+                CostTree::grow_in(splits, prices, mc, &grow)
+            }
+            Grower::Lookahead { samples } => {
+                let params = ActParams {
+                    samples,
+                    ..ActParams::default()
+                };
+                act_grown_in(splits, prices, mc, &params, (1.0, selection), seed)
+            }
+        }
+    }
+}
+
+/// Every grower's tree on `rows`, in the order of [`GROWERS`], growers of one kind
+/// sharing a split trie; the lookahead's samples are drawn from `seed`.
+fn grow_all(
+    frame: &Frame,
+    rows: &[usize],
+    prices: &TestPrices,
+    mc: &MisclassCosts,
+    selection: SelectionPrices,
+    seed: u64,
+) -> Vec<CostTree> {
+    let ones = vec![1.0; rows.len()];
+    let min_objects = GrowParams::new(Criterion::C45).min_objects;
+    let mut tries: Vec<(Criterion, Splits<'_>)> = Vec::new();
+    GROWERS
+        .iter()
+        .map(|&(_, grower)| {
+            let kind = grower.kind();
+            let t = match tries.iter().position(|(k, _)| *k == kind) {
+                Some(t) => t,
+                None => {
+                    tries.push((kind, Splits::new(frame, rows, &ones, mc, kind, min_objects)));
+                    tries.len() - 1
+                }
+            };
+            grower.grow_in(&mut tries[t].1, prices, mc, selection, seed)
+        })
+        .collect()
+}
+
+/// A seed of its own for the `k`-th tree a grower grows (SplitMix64's mix of the two).
+fn sub_seed(seed: u64, k: u64) -> u64 {
+    let mut z = seed
+        ^ k.wrapping_mul(0x9E37_79B9_7F4A_7C15)
+            .wrapping_add(0x6A09_E667_F3BC_C909);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
 
 /// The most points of a cost-complexity path measured (evenly spaced along it when the
 /// path is longer).
@@ -81,15 +187,17 @@ const MAX_POINTS: usize = 48;
 /// What CVT chose.
 ///
 /// ```
-/// let c = cslearn::testcost::CvtChoice { grower: 2, alpha: 12.5, held_out_cost: 30.0 };
+/// let c = cslearn::testcost::CvtChoice { grower: 2, alpha: Some(12.5), held_out_cost: 30.0 };
 /// assert_eq!(c.grower_name(), "eg2-w1");
+/// assert_eq!(c.cut_text(), "cut back at 12.5000 per leaf");
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct CvtChoice {
     /// The index of the grower in [`GROWERS`].
     pub grower: usize,
-    /// The price per leaf the tree was cut back at.
-    pub alpha: f64,
+    /// The price per leaf the tree was cut back at, or `None` where it was pruned by ACT's
+    /// pessimistic estimate of its cost instead.
+    pub alpha: Option<f64>,
     /// The mean total cost per object measured on the held-out folds.
     pub held_out_cost: f64,
 }
@@ -99,7 +207,24 @@ impl CvtChoice {
     pub fn grower_name(&self) -> &'static str {
         GROWERS.get(self.grower).map_or("?", |g| g.0)
     }
+
+    /// How the tree was cut, in words.
+    ///
+    /// ```
+    /// let c = cslearn::testcost::CvtChoice { grower: 6, alpha: None, held_out_cost: 30.0 };
+    /// assert_eq!(c.cut_text(), "pruned by its pessimistic cost");
+    /// ```
+    pub fn cut_text(&self) -> String {
+        match self.alpha {
+            Some(alpha) => format!("cut back at {alpha:.4} per leaf"),
+            None => "pruned by its pessimistic cost".into(),
+        }
+    }
 }
+
+/// The confidence of the pessimistic pruning CVT measures beside the cost-complexity
+/// path (ACT's and C4.5's 0.25).
+const CONFIDENCE: f64 = 0.25;
 
 /// CVT's tree on the objects `rows` of `frame`, with its choice; the folds are drawn from
 /// `seed`.
@@ -124,42 +249,67 @@ pub(super) fn cvt_tree(
             (!train.is_empty() && !out.is_empty()).then_some((train, out))
         })
         .collect();
-    // The first grower's first point until a cheaper one is measured.
-    let mut choice = CvtChoice {
-        grower: 0,
-        alpha: 0.0,
-        held_out_cost: f64::INFINITY,
-    };
-    let mut trees = Vec::with_capacity(GROWERS.len());
-    for (g, &(_, criterion)) in GROWERS.iter().enumerate() {
-        let grow = GrowParams::new(criterion).selecting_at(selection);
-        let tree = CostTree::grow(frame, rows, prices, mc, &grow);
-        let alphas = Costs::of(&tree, prices).path_points(&tree);
-        let mut held = vec![0.0; alphas.len()];
-        for (train, out) in &parts {
-            let fold_tree = CostTree::grow(frame, train, prices, mc, &grow);
-            let fold_costs = Costs::of(&fold_tree, prices);
+    // Per grower: its tree on every object, its path's points, and the held-out total
+    // cost at each point and then (last) under the pessimistic pruning.
+    let mut measured: Vec<(CostTree, Vec<f64>, Vec<f64>)> =
+        grow_all(frame, rows, prices, mc, selection, sub_seed(seed, 0))
+            .into_iter()
+            .map(|tree| {
+                let alphas = Costs::of(&tree, prices).path_points(&tree);
+                let held = vec![0.0; alphas.len() + 1];
+                (tree, alphas, held)
+            })
+            .collect();
+    for (k, (train, out)) in parts.iter().enumerate() {
+        let fold_trees = grow_all(
+            frame,
+            train,
+            prices,
+            mc,
+            selection,
+            sub_seed(seed, k as u64 + 1),
+        );
+        for ((_, alphas, held), fold_tree) in measured.iter_mut().zip(&fold_trees) {
+            let costs = Costs::of(fold_tree, prices);
             let reached = fold_tree.reach(frame, out);
-            for (h, &alpha) in held.iter_mut().zip(&alphas) {
-                *h += fold_costs.held_out(&fold_tree, &reached, alpha, mc);
+            let on_path = costs.cut_points(fold_tree, alphas);
+            let pruned: Vec<usize> = fold_tree
+                .cost_pruning_cut(CONFIDENCE, prices)
+                .into_iter()
+                .map(|cut| usize::from(!cut))
+                .collect();
+            let path_costs = costs.held_out(fold_tree, &reached, &on_path, alphas.len(), mc);
+            let pruned_cost = costs.held_out(fold_tree, &reached, &pruned, 1, mc)[0];
+            for (h, c) in held.iter_mut().zip(path_costs.iter().chain([&pruned_cost])) {
+                *h += c;
             }
         }
-        for (&alpha, &h) in alphas.iter().zip(&held) {
-            let mean = h / rows.len().max(1) as f64;
-            if mean < choice.held_out_cost {
-                choice = CvtChoice {
-                    grower: g,
-                    alpha,
-                    held_out_cost: mean,
-                };
-            }
-        }
-        trees.push(tree);
     }
-    let mut tree = trees.swap_remove(choice.grower);
-    let costs = Costs::of(&tree, prices);
-    let cut = costs.cut_at(&tree, choice.alpha).1;
+    // The cheapest grower and cut; equal costs (up to rounding) go to the earlier grower
+    // and the smaller alpha.
+    let n = rows.len().max(1) as f64;
+    let mut best = (0, 0, f64::INFINITY);
+    for (g, (_, _, held)) in measured.iter().enumerate() {
+        for (p, &total) in held.iter().enumerate() {
+            let mean = total / n;
+            if mean < best.2 - 1e-9 * best.2.min(1e12) {
+                best = (g, p, mean);
+            }
+        }
+    }
+    let (g, p, held_out_cost) = best;
+    let (mut tree, alphas, _) = measured.swap_remove(g);
+    let alpha = alphas.get(p).copied();
+    let cut = match alpha {
+        Some(alpha) => Costs::of(&tree, prices).cut_at(&tree, alpha).1,
+        None => tree.cost_pruning_cut(CONFIDENCE, prices),
+    };
     tree.cut(&cut);
+    let choice = CvtChoice {
+        grower: g,
+        alpha,
+        held_out_cost,
+    };
     (tree, choice)
 }
 
@@ -313,34 +463,212 @@ impl Costs {
         breaks
     }
 
+    /// For each node, the first of the increasing `alphas` at whose best cut it is a
+    /// leaf (`alphas.len()` if at none): one bottom-up pass for every point at once, the
+    /// same sums as [`cut_at`](Costs::cut_at) at each. The cut is monotone: a node cut at
+    /// one `alpha` is cut at every larger one, since its subtree's cost grows at least as
+    /// fast with `alpha` as its leaf's.
+    fn cut_points(&self, tree: &CostTree, alphas: &[f64]) -> Vec<usize> {
+        let (n, points) = (tree.len(), alphas.len());
+        let mut best = vec![0.0; n * points];
+        let mut first = vec![points; n];
+        let mut below = vec![0.0; points];
+        for i in (0..n).rev() {
+            let node = tree.node(i);
+            let counted = node.weights.iter().sum::<f64>() > 0.0;
+            let leaf = |alpha: f64| {
+                if counted {
+                    self.as_leaf[i] + alpha
+                } else {
+                    0.0
+                }
+            };
+            match &node.split {
+                None => {
+                    for (b, &alpha) in best[i * points..(i + 1) * points].iter_mut().zip(alphas) {
+                        *b = leaf(alpha);
+                    }
+                    first[i] = 0;
+                }
+                Some(split) => {
+                    below.iter_mut().for_each(|b| *b = 0.0);
+                    for &c in split.children() {
+                        let c = c as usize;
+                        for (b, x) in below.iter_mut().zip(&best[c * points..(c + 1) * points]) {
+                            *b += x;
+                        }
+                    }
+                    let row = &mut best[i * points..(i + 1) * points];
+                    for (p, (&alpha, b)) in alphas.iter().zip(&below).enumerate() {
+                        let (leaf, below) = (leaf(alpha), self.test[i] + b);
+                        if leaf <= below {
+                            row[p] = leaf;
+                            first[i] = first[i].min(p);
+                        } else {
+                            row[p] = below;
+                        }
+                    }
+                }
+            }
+        }
+        first
+    }
+
     /// The total cost of the held-out objects that `reached` each node of the tree (one
-    /// weight per class per node) when the tree is cut at `alpha` by its training costs.
+    /// weight per class per node) when the tree is cut at each of `points` cuts, a node
+    /// being a leaf from cut `cut_from[node]` on ([`cut_points`](Costs::cut_points)).
+    /// One walk for every cut: a node is in the tree up to the first cut where an
+    /// ancestor is a leaf.
     fn held_out(
         &self,
         tree: &CostTree,
         reached: &[Vec<f64>],
-        alpha: f64,
+        cut_from: &[usize],
+        points: usize,
+        mc: &MisclassCosts,
+    ) -> Vec<f64> {
+        // The change of the total at each cut, summed up at the end.
+        let mut change = vec![0.0; points + 1];
+        // (node, the tests paid on its path, the cut from which it is cut off)
+        let mut stack = vec![(0usize, 0.0, points)];
+        while let Some((i, paid, until)) = stack.pop() {
+            let node = tree.node(i);
+            let from = match &node.split {
+                Some(split) => {
+                    let from = cut_from[i].min(until);
+                    if from > 0 {
+                        let paid = paid + self.price[i];
+                        stack.extend(split.children().iter().map(|&c| (c as usize, paid, from)));
+                    }
+                    from
+                }
+                None => 0,
+            };
+            if from < until {
+                let total: f64 = reached[i]
+                    .iter()
+                    .enumerate()
+                    .map(|(c, w)| w * (paid + mc.cost(node.label as usize, c)))
+                    .sum();
+                change[from] += total;
+                change[until] -= total;
+            }
+        }
+        let mut sum = 0.0;
+        change[..points]
+            .iter()
+            .map(|d| {
+                sum += d;
+                sum
+            })
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testcost::Catalogue;
+    use crate::testcost::act::act_grown;
+
+    /// Heart with Turney's prices (it has missing values), every other object.
+    fn heart() -> (Frame, TestPrices, MisclassCosts, Vec<usize>, Vec<usize>) {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/uci");
+        let heart = Catalogue::read(&root.join("datasets.toml"))
+            .unwrap()
+            .load("heart")
+            .unwrap();
+        let (train, out): (Vec<usize>, Vec<usize>) =
+            (0..heart.frame.len()).partition(|r| r % 3 != 0);
+        let mc = MisclassCosts::uniform(2, 500.0).unwrap();
+        (heart.frame, heart.turney.unwrap(), mc, train, out)
+    }
+
+    /// The held-out objects' total cost with the tree cut at `alpha`, walked node by
+    /// node: each inner node's price for the weight reaching it, each leaf's errors.
+    fn walked(
+        costs: &Costs,
+        tree: &CostTree,
+        reached: &[Vec<f64>],
+        cut: &[bool],
         mc: &MisclassCosts,
     ) -> f64 {
-        let (_, cut) = self.cut_at(tree, alpha);
         let mut total = 0.0;
         let mut stack = vec![0usize];
         while let Some(i) = stack.pop() {
             let node = tree.node(i);
             match &node.split {
                 Some(split) if !cut[i] => {
-                    total += self.price[i] * reached[i].iter().sum::<f64>();
+                    total += costs.price[i] * reached[i].iter().sum::<f64>();
                     stack.extend(split.children().iter().map(|&c| c as usize));
                 }
                 _ => {
-                    total += reached[i]
-                        .iter()
-                        .enumerate()
-                        .map(|(c, w)| w * mc.cost(node.label as usize, c))
-                        .sum::<f64>();
+                    for (c, w) in reached[i].iter().enumerate() {
+                        total += w * mc.cost(node.label as usize, c);
+                    }
                 }
             }
         }
         total
+    }
+
+    /// One bottom-up pass and one walk measure every point of the path as cutting the
+    /// tree at each point and walking it does, and the cuts are nested.
+    #[test]
+    fn one_walk_measures_every_point_as_a_cut_and_a_walk_at_each() {
+        let (frame, prices, mc, train, out) = heart();
+        for criterion in [Criterion::Eg2 { w: 0.0 }, Criterion::Dtmc] {
+            let tree = CostTree::grow(&frame, &train, &prices, &mc, &GrowParams::new(criterion));
+            let costs = Costs::of(&tree, &prices);
+            let alphas = costs.path_points(&tree);
+            assert!(alphas.len() > 3, "{alphas:?}");
+            let reached = tree.reach(&frame, &out);
+            let from = costs.cut_points(&tree, &alphas);
+            let measured = costs.held_out(&tree, &reached, &from, alphas.len(), &mc);
+            for (p, &alpha) in alphas.iter().enumerate() {
+                let cut = costs.cut_at(&tree, alpha).1;
+                let inner = |i: usize| tree.node(i).split.is_some();
+                for i in (0..tree.len()).filter(|&i| inner(i)) {
+                    assert_eq!(cut[i], from[i] <= p, "node {i} at alpha {alpha}");
+                }
+                let expected = walked(&costs, &tree, &reached, &cut, &mc);
+                assert!(
+                    (measured[p] - expected).abs() <= 1e-9 * expected.max(1.0),
+                    "alpha {alpha}: {} against {expected}",
+                    measured[p]
+                );
+            }
+            // The pessimistic pruning, measured as one cut.
+            let pruned = tree.cost_pruning_cut(CONFIDENCE, &prices);
+            let from: Vec<usize> = pruned.iter().map(|&c| usize::from(!c)).collect();
+            let once = costs.held_out(&tree, &reached, &from, 1, &mc)[0];
+            let expected = walked(&costs, &tree, &reached, &pruned, &mc);
+            assert!((once - expected).abs() <= 1e-9 * expected.max(1.0));
+        }
+    }
+
+    /// Growers sharing a split trie grow the trees each grows alone, the lookahead
+    /// included.
+    #[test]
+    fn growers_sharing_a_trie_grow_what_each_grows_alone() {
+        let (frame, prices, mc, train, _) = heart();
+        let selection = SelectionPrices::Listed;
+        let trees = grow_all(&frame, &train, &prices, &mc, selection, 7);
+        for (tree, &(name, grower)) in trees.iter().zip(&GROWERS) {
+            let alone = match grower {
+                Grower::Greedy(criterion) => {
+                    let grow = GrowParams::new(criterion).selecting_at(selection);
+                    CostTree::grow(&frame, &train, &prices, &mc, &grow)
+                }
+                Grower::Lookahead { samples } => {
+                    let params = ActParams {
+                        samples,
+                        ..ActParams::default()
+                    };
+                    act_grown(&frame, &train, &prices, &mc, &params, (1.0, selection), 7)
+                }
+            };
+            assert_eq!(*tree, alone, "{name}");
+        }
     }
 }

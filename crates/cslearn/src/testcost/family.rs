@@ -131,7 +131,7 @@ impl Method {
             Method::Act => GrowParams::new(Criterion::Eg2 { w: params.eg2_w })
                 .pruned(params.act.confidence)
                 .pruning_by(Pruning::Costs),
-            Method::Cvt => GrowParams::new(super::cvt::GROWERS[0].1),
+            Method::Cvt => GrowParams::new(Criterion::Eg2 { w: 0.0 }),
         };
         grow.selecting_at(params.selection_prices)
     }

@@ -33,7 +33,7 @@
 //! | `dtmc` (Ling et al. 2004) | same | **reduction of expected total cost** | same | **stop when no test reduces it**, no pruning | one pass |
 //! | `icet` (Turney 1995) | same | EG2 over **biased prices** | same | pruning at a **searched confidence** | **genetic search** of prices, w and confidence |
 //! | `act` (Esmeir and Markovitch 2008) | same | **least cost of stochastic EG2 trees sampled** under each test | same | **stop when a leaf costs less**, pruning by cost | one pass |
-//! | `cvt` (ours: the cost-validated tree) | same | **six growers** (EG2 at four `w`, gain ratio, DTMC) | same | **cut at a price per leaf**, measured on held-out objects | **cross-validation** of grower and cut |
+//! | `cvt` (ours: the cost-validated tree) | same | **seven growers** (EG2 at four `w`, gain ratio, DTMC, ACT's lookahead) | same | **cut at a price per leaf or by pessimistic cost**, measured on held-out objects | **cross-validation** of grower and cut |
 //!
 //! The price a learner sees at a node is the test's price on that node's path: 0 for a
 //! test already done (a numeric feature split again), the discount after another test of
@@ -79,7 +79,7 @@ mod tree;
 pub use act::ActParams;
 pub use catalogue::{Catalogue, Loaded, Source};
 pub use criterion::Criterion;
-pub use cvt::{CvtChoice, CvtParams, GROWERS};
+pub use cvt::{CvtChoice, CvtParams, GROWERS, Grower};
 pub use data::{Column, Frame, FrameSpec, MISSING, read_rows};
 pub use evaluate::{feature_gains, folds, gain_prices, random_prices, standard_cost};
 pub use family::{FamilyParams, Fitted, IcetGenome, IcetParams, Method, fit, mean_total_cost};

@@ -488,10 +488,18 @@ impl CostTree {
     /// assert_eq!(grown(10.0), 1);
     /// ```
     pub fn prune_by_cost(&mut self, confidence: f64, prices: &TestPrices) {
+        let cut = self.cost_pruning_cut(confidence, prices);
+        self.cut(&cut);
+    }
+
+    /// The nodes [`prune_by_cost`](CostTree::prune_by_cost) makes leaves (nodes below
+    /// one of them may be marked too).
+    pub(super) fn cost_pruning_cut(&self, confidence: f64, prices: &TestPrices) -> Vec<bool> {
         let coeff = deviation(confidence).powi(2);
         let n = self.nodes.len();
         let price_here = self.test_prices(prices);
         let mut estimate = vec![0.0; n];
+        let mut cut = vec![false; n];
         for i in (0..n).rev() {
             let node = &self.nodes[i];
             let as_leaf = estimated_cost(&self.mc, &node.weights, confidence, coeff);
@@ -508,7 +516,7 @@ impl CostTree {
                         .sum::<f64>()
                         + price_here[i] * total;
                     if as_leaf <= subtree {
-                        self.nodes[i].split = None;
+                        cut[i] = true;
                         estimate[i] = as_leaf;
                     } else {
                         estimate[i] = subtree;
@@ -516,7 +524,7 @@ impl CostTree {
                 }
             }
         }
-        self.compact();
+        cut
     }
 
     /// The price of each node's test at `prices` after the node's path (0 at a leaf).

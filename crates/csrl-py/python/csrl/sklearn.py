@@ -354,11 +354,12 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
       the cheapest of ``act_samples`` trees sampled under each of its branches (by a
       stochastic EG2, from ``seed``) costs least, tests plus pessimistic errors; a leaf
       where answering costs less; pruned by total cost.
-    * ``"cvt"``, the cost-validated tree: unpruned trees grown by six selection
-      functions (EG2 at w = 0, 0.5, 1 and 2, C4.5's gain ratio, DTMC), each cut back
-      along its cost-complexity path; the grower and the cut of least total cost on
-      held-out objects (``cvt_folds``-fold cross-validation on the training objects,
-      folds drawn from ``seed``) give the tree.
+    * ``"cvt"``, the cost-validated tree: unpruned trees grown by seven growers (EG2 at
+      w = 0, 0.5, 1 and 2, C4.5's gain ratio, DTMC and ACT's sampled lookahead), each
+      cut back along its cost-complexity path or by ACT's pessimistic pruning by cost;
+      the grower and the cut of least total cost on held-out objects
+      (``cvt_folds``-fold cross-validation on the training objects, folds and samples
+      drawn from ``seed``) give the tree.
 
     The price a learner sees at a node is the test's price on that node's path: nothing
     for a test already done, the discount after another test of its group. Every node
@@ -412,9 +413,10 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
             ``prices``, ``w``, ``confidence`` and its ``fitness`` (mean total cost on
             the held-out half of the training objects).
         cvt_choice_: for CVT, what its cross-validation chose: a dict of the ``grower``
-            (``"eg2-w0"``, ``"eg2-w0.5"``, ``"eg2-w1"``, ``"eg2-w2"``, ``"c45"`` or
-            ``"dtmc"``), the ``alpha`` (price per leaf) its tree was cut back at and the
-            ``held_out_cost`` (mean total cost per held-out object).
+            (``"eg2-w0"``, ``"eg2-w0.5"``, ``"eg2-w1"``, ``"eg2-w2"``, ``"c45"``,
+            ``"dtmc"`` or ``"act"``), the ``alpha`` (price per leaf) its tree was cut
+            back at (``None`` where it was pruned by its pessimistic cost instead) and
+            the ``held_out_cost`` (mean total cost per held-out object).
 
     There is no ``predict_proba``: a node answers the class of least expected cost,
     which is not always the most probable one.
@@ -1066,12 +1068,12 @@ class ActClassifier(TestCostTreeClassifier):
 
 
 class CvtClassifier(TestCostTreeClassifier):
-    """CVT, the cost-validated tree: unpruned trees grown by six selection functions
-    (EG2 at w = 0, 0.5, 1 and 2, C4.5's gain ratio and DTMC), each cut back along its
-    cost-complexity path (a price per leaf, tests inside the cost); the grower and the
-    cut of least total cost on held-out objects, by ``cvt_folds``-fold cross-validation
-    on the training objects with folds drawn from ``seed``, give the tree, grown on all
-    of them. Its tree depends on ``misclassification_cost``
+    """CVT, the cost-validated tree: unpruned trees grown by seven growers (EG2 at w = 0,
+    0.5, 1 and 2, C4.5's gain ratio, DTMC and ACT's sampled lookahead), each cut back
+    along its cost-complexity path (a price per leaf, tests inside the cost) or by ACT's
+    pessimistic pruning by cost; the grower and the cut of least total cost on held-out
+    objects, by ``cvt_folds``-fold cross-validation on the training objects with folds
+    and samples drawn from ``seed``, give the tree, grown on all of them. Its tree depends on ``misclassification_cost``
     (:class:`TestCostTreeClassifier` with ``learner="cvt"``). ``cvt_choice_`` says what
     it chose.
 
