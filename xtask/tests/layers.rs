@@ -342,3 +342,85 @@ fn the_checker_finds_uses_and_cycles() {
     g.get_mut("c").unwrap().remove("a");
     assert_eq!(cycle(&g), None);
 }
+
+/// The rows of the markdown table that follows `heading` in `doc`: each row's first
+/// column's module (its first backticked name) and the backticked names of its last
+/// column ("nothing" for none).
+fn layer_table(doc: &str, heading: &str) -> Vec<(String, BTreeSet<String>)> {
+    let start = doc
+        .find(heading)
+        .unwrap_or_else(|| panic!("no heading {heading:?} in the architecture"));
+    let ticked = |cell: &str| -> Vec<String> {
+        cell.split('`')
+            .skip(1)
+            .step_by(2)
+            .map(String::from)
+            .collect()
+    };
+    doc[start..]
+        .lines()
+        .skip_while(|l| !l.starts_with('|'))
+        .take_while(|l| l.starts_with('|'))
+        .skip(2)
+        .map(|row| {
+            let cells: Vec<&str> = row.trim_matches('|').split('|').collect();
+            let module = ticked(cells[0])
+                .into_iter()
+                .next()
+                .unwrap_or_else(|| panic!("a row of the layer table names no module: {row}"));
+            let uses = ticked(cells[cells.len() - 1]).into_iter().collect();
+            (module, uses)
+        })
+        .collect()
+}
+
+/// The layer table of `docs/architecture.md` is the code: one row per module of `csql`,
+/// bottom up, each listing exactly the modules it uses, all of them in rows above it.
+#[test]
+fn the_layer_table_of_csql_is_the_code() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let doc = std::fs::read_to_string(root.join("docs/architecture.md")).expect("the doc");
+    let table = layer_table(&doc, "#### Layers of `csql`");
+    let g = graph(&root.join("crates/csql/src"), "lib");
+    let mut problems = Vec::new();
+    let mut above = BTreeSet::new();
+    for (module, uses) in &table {
+        match g.get(module) {
+            None => problems.push(format!("`{module}` is in the table, not in the code")),
+            Some(real) if real != uses => problems.push(format!(
+                "`{module}` uses {} (the table says {})",
+                show_set(real),
+                show_set(uses)
+            )),
+            Some(_) => {}
+        }
+        let later: Vec<&String> = uses.iter().filter(|u| !above.contains(*u)).collect();
+        if !later.is_empty() {
+            problems.push(format!("`{module}` uses {later:?}, which are not above it"));
+        }
+        above.insert(module.clone());
+    }
+    for (module, uses) in &g {
+        if !table.iter().any(|(m, _)| m == module) {
+            problems.push(format!(
+                "`{module}` is missing from the table; it uses {}",
+                show_set(uses)
+            ));
+        }
+    }
+    assert!(
+        problems.is_empty(),
+        "docs/architecture.md's layer table of csql differs from the code:\n{}",
+        problems.join("\n")
+    );
+}
+
+fn show_set(s: &BTreeSet<String>) -> String {
+    if s.is_empty() {
+        return "nothing".into();
+    }
+    s.iter()
+        .map(|m| format!("`{m}`"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}

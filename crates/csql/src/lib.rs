@@ -145,89 +145,12 @@
 #![deny(missing_docs)]
 #![cfg_attr(not(test), warn(clippy::unwrap_used, clippy::expect_used))]
 
-#[cfg_attr(
-    not(test),
-    expect(
-        clippy::expect_used,
-        reason = "constants: the published parameters and a learning rate of 1 are valid by their types' checks (the defaults' doc test builds them); a world has an action"
-    )
-)]
-mod amrl;
-mod audit;
-#[cfg_attr(
-    not(test),
-    expect(
-        clippy::expect_used,
-        reason = "internal invariants: a node is of the plan just built"
-    )
-)]
-mod belief;
-#[cfg_attr(
-    not(test),
-    expect(
-        clippy::expect_used,
-        reason = "internal invariants: feature spaces hold valid costs; a node with counts has a candidate feature"
-    )
-)]
-mod classify;
-mod costly;
-mod defaults;
-mod detector;
-mod diagnosis;
-mod draft;
+mod agent;
 mod error;
-mod extensions;
-mod figure;
-mod grid;
-#[cfg_attr(
-    not(test),
-    expect(
-        clippy::expect_used,
-        reason = "internal invariants: every state of a sufficient representation has a row"
-    )
-)]
-mod judge;
-mod learn;
-mod learner;
-mod main_loop;
-mod memory;
-mod navigate;
+mod judging;
+mod learners;
 mod observe;
-#[cfg_attr(
-    not(test),
-    expect(
-        clippy::expect_used,
-        reason = "internal invariant: every state but the goal has a view"
-    )
-)]
 mod perception;
-mod predict;
-mod quality;
-#[cfg_attr(
-    not(test),
-    expect(
-        clippy::expect_used,
-        reason = "grid worlds have four actions, which a table accepts"
-    )
-)]
-mod reference;
-#[cfg_attr(
-    not(test),
-    expect(
-        clippy::expect_used,
-        reason = "internal invariants: grid worlds have four actions, a converged run matches every state"
-    )
-)]
-mod report;
-#[cfg_attr(
-    not(test),
-    expect(
-        clippy::expect_used,
-        reason = "internal invariants: descriptions hold cell codes and ids index the representation"
-    )
-)]
-mod representation;
-mod resolve;
 #[cfg_attr(
     not(test),
     expect(
@@ -236,77 +159,67 @@ mod resolve;
     )
 )]
 mod run;
-mod sensor;
 mod settings;
-mod setup;
-mod stepper;
-mod strategy;
-mod tree;
-#[cfg_attr(
-    not(test),
-    expect(
-        clippy::expect_used,
-        reason = "internal invariant: a walk given a table always ends at a row"
-    )
-)]
-mod utree;
-mod view;
 
-pub use amrl::{AmrlParams, CostlySummary, Episode, MAX_BIAS, MAX_EPISODES, Measuring, amrl_q};
-pub use belief::{BeliefParams, MAX_BELIEF_UNCERTAIN, belief_planning};
-pub use classify::{CACHE_MAX_READINGS, Classification, Classify};
-pub use costly::{CostedReport, CostedRun, costed_episodes, costed_report, costed_report_in};
-pub use defaults::WorldDefaults;
-pub use detector::{
+pub use agent::detector::{
     ActionDrop, AnyDrop, Detector, DetectorKind, RateParams, RateTest, RunDetector,
 };
-pub use diagnosis::NotLearned;
-pub use draft::{
-    CostlyTable, DEFAULT_MAP, ExtensionsTable, NOT_READ_BY_A_STEPPER, SETTING_KEYS, SettingKey,
-    SettingsDraft, setting_key, setting_tables, settings_keys_help,
+pub use agent::learn::{Judging, Scene};
+pub use agent::main_loop::{Agent, LoopParams, RefineFrom, TrialRecord};
+pub use agent::stepper::{Moment, Sense, StepError, Stepper};
+pub use agent::strategy::{
+    Eager, Lazy, Never, RandomMoves, Reaction, Resetting, Strategy, StrategyKind, UnknownStrategy,
 };
 pub use error::{Error, SettingsProblem};
-pub use extensions::{Extensions, Matching, WorldExtras};
-pub use figure::{descriptions_svg, descriptions_table, policy_svg};
-pub use judge::{Judge, Verdict};
-pub use learn::{Judging, Scene};
-pub use learner::{CsQlSettings, Learner, LearnerKind, UTreeParams};
-pub use main_loop::{Agent, LoopParams, RefineFrom, TrialRecord};
-pub use memory::Remembering;
-pub use navigate::{Navigation, navigate};
-pub use observe::{Flow, KeepTrace, Observer, STOP_CHECK_MOVES, TracePoint};
-pub use perception::{FULL_VIEW_LIMIT, FullView, Identified, Perception};
-pub use predict::level::{MAX_NAVIGATION_TRIALS, PredictSensing, Prediction};
-pub use predict::model::TransitionModel;
-pub use predict::{Predicting, PredictionStats};
-pub use quality::value_floor;
-pub use quality::{
+pub use judging::diagnosis::NotLearned;
+pub use judging::figure::{descriptions_svg, descriptions_table, policy_svg};
+pub use judging::judge::{Judge, Verdict};
+pub use judging::navigate::{Navigation, navigate};
+pub use judging::quality::value_floor;
+pub use judging::quality::{
     MC_MAX_MOVES, MC_MAX_ROUNDS, MC_MIN_ROUNDS, POLICY_BATCHES, POLICY_SAMPLES, QualityEstimate,
     QualityMethod,
 };
-pub use reference::{
+pub use judging::reference::{
     Reference, cheapest_interior_cost, fixed_representation_reference, full_sensing_reference,
     whole_world_cost,
 };
-pub use report::{
+pub use judging::report::{
     DescriptionReport, FeatureReport, PaperValue, QualityReport, RunReport, StateReport, Table1,
     Table1Row,
 };
-pub use representation::{Description, DescriptionId, Representation};
-pub use resolve::{Resolved, is_world_name};
+pub use learners::amrl::{
+    AmrlParams, CostlySummary, Episode, MAX_BIAS, MAX_EPISODES, Measuring, amrl_q,
+};
+pub use learners::belief::{BeliefParams, MAX_BELIEF_UNCERTAIN, belief_planning};
+pub use learners::costly::{
+    CostedReport, CostedRun, costed_episodes, costed_report, costed_report_in,
+};
+pub use learners::utree::{UTree, ks_p_value};
+pub use observe::{Flow, KeepTrace, Observer, STOP_CHECK_MOVES, TracePoint};
+pub use perception::classify::{CACHE_MAX_READINGS, Classification, Classify};
+pub use perception::memory::Remembering;
+pub use perception::predict::level::{MAX_NAVIGATION_TRIALS, PredictSensing, Prediction};
+pub use perception::predict::model::TransitionModel;
+pub use perception::predict::{Predicting, PredictionStats};
+pub use perception::representation::{Description, DescriptionId, Representation};
+pub use perception::rows::{FULL_VIEW_LIMIT, FullView, Identified, Perception};
+pub use perception::sensor::Sensor;
+pub use perception::tree::{StateSensor, StateTree};
+pub use perception::view::{Describes, Sees};
 pub use run::{
     Report, run, run_in, run_observed, run_on, run_on_with, run_resolved, run_with_representation,
 };
-pub use sensor::Sensor;
-pub use settings::{
+pub use settings::defaults::WorldDefaults;
+pub use settings::draft::{
+    CostlyTable, DEFAULT_MAP, ExtensionsTable, NOT_READ_BY_A_STEPPER, SETTING_KEYS, SettingKey,
+    SettingsDraft, setting_key, setting_tables, settings_keys_help,
+};
+pub use settings::extensions::{Extensions, Matching, WorldExtras};
+pub use settings::learner::{CsQlSettings, Learner, LearnerKind, UTreeParams};
+pub use settings::resolve::{Resolved, is_world_name};
+pub use settings::setup::Setup;
+pub use settings::values::{
     CostlySettings, JudgeSettings, MAX_COSTED_TOTAL, MAX_ROWS, MAX_SETTINGS_BYTES, MapSource,
     NonNegative, RunSettings, TrialCap,
 };
-pub use setup::Setup;
-pub use stepper::{Moment, Sense, StepError, Stepper};
-pub use strategy::{
-    Eager, Lazy, Never, RandomMoves, Reaction, Resetting, Strategy, StrategyKind, UnknownStrategy,
-};
-pub use tree::{StateSensor, StateTree};
-pub use utree::{UTree, ks_p_value};
-pub use view::{Describes, Sees};

@@ -5,30 +5,28 @@ use qlearn::QTable;
 use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
-use crate::audit::Audited;
-use crate::classify::Classify;
-use crate::costly::CostedReport;
+use crate::agent::learn::{Scene, learn};
+use crate::agent::main_loop::Agent;
+use crate::agent::strategy::{Never, Strategy};
 use crate::error::Error;
-use crate::learn::{Scene, learn};
-use crate::learner::Learner;
-use crate::main_loop::Agent;
-use crate::memory::Remembering;
-use crate::navigate::navigate;
+use crate::judging::audit::Audited;
+use crate::judging::navigate::navigate;
+use crate::judging::report::{RunReport, report};
+use crate::learners::costly::CostedReport;
+use crate::learners::utree::UTree;
 use crate::observe::{KeepTrace, Observer};
-use crate::perception::FullView;
-use crate::perception::Perception;
-use crate::predict::Predicting;
-use crate::predict::level::PredictSensing;
-use crate::report::{RunReport, report};
-use crate::representation::Representation;
-use crate::resolve::Resolved;
-use crate::settings::RunSettings;
-use crate::strategy::{Never, Strategy};
-use crate::utree::UTree;
-use crate::view::{Describes, Sees};
-
-/// Kept at this path for `figure.rs`.
-pub(crate) use crate::setup::Setup;
+use crate::perception::classify::Classify;
+use crate::perception::memory::Remembering;
+use crate::perception::predict::Predicting;
+use crate::perception::predict::level::PredictSensing;
+use crate::perception::representation::Representation;
+use crate::perception::rows::FullView;
+use crate::perception::rows::Perception;
+use crate::perception::view::{Describes, Sees};
+use crate::settings::learner::Learner;
+use crate::settings::resolve::Resolved;
+use crate::settings::setup::Setup;
+use crate::settings::values::RunSettings;
 
 /// What a run reports: trials judged against the oracle (CS-QL, U-Tree, full sensing),
 /// or episodes scored by the costed return (AMRL-Q, sensing by belief). It is written as
@@ -112,14 +110,14 @@ pub fn run_resolved(
     observer: &mut dyn Observer,
 ) -> Result<Report, Error> {
     if settings.learner.kind().on_episodes() {
-        let report = crate::costly::costed_report_in(resolved, settings, observer)?;
+        let report = crate::learners::costly::costed_report_in(resolved, settings, observer)?;
         return Ok(Report::Episodes(Box::new(report)));
     }
     let report = match resolved {
         Resolved::Grid(setup) => {
             settings.validate()?;
-            crate::resolve::check_with_world(settings, true, true)?;
-            crate::resolve::check_size(settings, &setup.sensed(settings))?;
+            crate::settings::resolve::check_with_world(settings, true, true)?;
+            crate::settings::resolve::check_size(settings, &setup.sensed(settings))?;
             run_observed(setup, settings, observer)?
         }
         Resolved::Finite { world, oracle } => {
@@ -208,12 +206,12 @@ pub fn run_in<W: World + ?Sized>(
             });
         }
     }
-    crate::resolve::check_with_world(
+    crate::settings::resolve::check_with_world(
         settings,
-        crate::quality::is_deterministic(scene.world),
+        crate::judging::quality::is_deterministic(scene.world),
         scene.world.grid().is_some(),
     )?;
-    crate::resolve::check_size(settings, scene.world)?;
+    crate::settings::resolve::check_size(settings, scene.world)?;
     let classify = Classify::new(scene.world);
     Ok(run_classify(scene, settings, classify, observer)?.0)
 }
@@ -307,7 +305,7 @@ fn run_classify<W: World + ?Sized>(
     // a run of more trials than a report lists.
     if settings.costly.is_some() {
         if observer.keep_going() {
-            match crate::costly::costed_run(scene.world, settings, report.trials) {
+            match crate::learners::costly::costed_run(scene.world, settings, report.trials) {
                 Ok(costly) => report.costly = costly,
                 Err(e) => {
                     report.costly_missing = Some(format!(
@@ -464,11 +462,16 @@ fn new_agent<W: World + ?Sized, P, S>(
     perception: P,
     strategy: S,
 ) -> Agent<P, S> {
-    crate::learn::agent_of(
+    crate::agent::learn::agent_of(
         perception,
         strategy,
         QTable::new(world.num_actions())
-            .and_then(|t| t.starting_at(crate::quality::value_floor(world, settings.gamma.get())))
+            .and_then(|t| {
+                t.starting_at(crate::judging::quality::value_floor(
+                    world,
+                    settings.gamma.get(),
+                ))
+            })
             .expect("a world has at least one action, and a finite floor of its returns"),
         settings,
     )

@@ -1,0 +1,40 @@
+//! What measures a run from outside the learner: the oracle's verdicts ([`judge`]), the
+//! policy quality ([`quality`]), navigation after learning ([`navigate`]), the audit of
+//! predictions ([`audit`]), the report and its Table 1 ([`report`]), why a run did not
+//! learn ([`diagnosis`]), the figures ([`figure`]) and the paper's reference points
+//! ([`reference`](self::reference)).
+//!
+//! What these modules may use: the read-only views of a perception (`perception::view`)
+//! and whatever a run has produced; a learner never uses them, so no learner can ask
+//! the oracle. The layer table in `docs/architecture.md` lists each module's uses, and a
+//! test holds it to the code.
+
+pub(crate) mod audit;
+pub(crate) mod diagnosis;
+pub(crate) mod figure;
+#[cfg_attr(
+    not(test),
+    expect(
+        clippy::expect_used,
+        reason = "internal invariants: every state of a sufficient representation has a row"
+    )
+)]
+pub(crate) mod judge;
+pub(crate) mod navigate;
+pub(crate) mod quality;
+#[cfg_attr(
+    not(test),
+    expect(
+        clippy::expect_used,
+        reason = "grid worlds have four actions, which a table accepts"
+    )
+)]
+pub(crate) mod reference;
+#[cfg_attr(
+    not(test),
+    expect(
+        clippy::expect_used,
+        reason = "internal invariants: grid worlds have four actions, a converged run matches every state"
+    )
+)]
+pub(crate) mod report;
