@@ -82,65 +82,65 @@ impl Default for ActParams {
     }
 }
 
-/// ACT's tree on the objects `rows` of `frame`, sampling with EG2's `w` and the
-/// selection prices `selection`, from the seed `seed`.
-pub(super) fn act_tree(
-    frame: &Frame,
-    rows: &[usize],
-    prices: &TestPrices,
-    mc: &MisclassCosts,
-    params: &ActParams,
-    (w, selection): (f64, SelectionPrices),
-    seed: u64,
-) -> CostTree {
-    let mut tree = act_grown(frame, rows, prices, mc, params, (w, selection), seed);
-    tree.prune_by_cost(params.confidence, prices);
-    tree
+/// What ACT grows a tree with, besides the objects: the prices, the misclassification
+/// costs, its settings, EG2's `w` and the prices selection sees for its sampling, and the
+/// seed of its samples.
+#[derive(Clone, Copy)]
+pub(super) struct Act<'a> {
+    pub prices: &'a TestPrices,
+    pub mc: &'a MisclassCosts,
+    pub params: &'a ActParams,
+    pub w: f64,
+    pub selection: SelectionPrices,
+    pub seed: u64,
 }
 
-/// ACT's tree before its pruning: each split chosen by the sampled lookahead, a leaf
-/// where answering costs less than every candidate's price plus sampled subtrees.
-pub(super) fn act_grown(
-    frame: &Frame,
-    rows: &[usize],
-    prices: &TestPrices,
-    mc: &MisclassCosts,
-    params: &ActParams,
-    (w, selection): (f64, SelectionPrices),
-    seed: u64,
-) -> CostTree {
-    let grow = GrowParams::new(Criterion::Eg2 { w });
-    let ones = vec![1.0; rows.len()];
-    let mut splits = Splits::new(frame, rows, &ones, mc, grow.criterion, grow.min_objects);
-    act_grown_in(&mut splits, prices, mc, params, (w, selection), seed)
-}
+impl Act<'_> {
+    /// ACT's tree on the objects `rows` of `frame`: [`grown`](Act::grown), then pruned by
+    /// cost.
+    pub fn tree(&self, frame: &Frame, rows: &[usize]) -> CostTree {
+        let mut tree = self.grown(frame, rows);
+        tree.prune_by_cost(self.params.confidence, self.prices);
+        tree
+    }
 
-/// [`act_grown`] through the split trie `splits` (made with EG2's kind of statistics and
-/// C4.5's least branch size), which other EG2 trees on the same objects may share.
-pub(super) fn act_grown_in(
-    splits: &mut Splits<'_>,
-    prices: &TestPrices,
-    mc: &MisclassCosts,
-    params: &ActParams,
-    (w, selection): (f64, SelectionPrices),
-    seed: u64,
-) -> CostTree {
-    let grow = GrowParams::new(Criterion::Eg2 { w }).selecting_at(selection);
-    let sampler = Sampler {
-        scorer: Scorer::new(prices, grow.criterion),
-        prices,
-        mc,
-        selection,
-        confidence: params.confidence,
-        coeff: deviation(params.confidence).powi(2),
-        max_depth: grow.max_depth,
-        samples: params.samples,
-    };
-    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
-    let nodes = grow_nodes_by(splits, mc, grow.max_depth, |splits, c| {
-        sampler.choose(splits, c, &mut rng)
-    });
-    CostTree::from_nodes(nodes, mc)
+    /// ACT's tree before its pruning: each split chosen by the sampled lookahead, a leaf
+    /// where answering costs less than every candidate's price plus sampled subtrees.
+    pub fn grown(&self, frame: &Frame, rows: &[usize]) -> CostTree {
+        let grow = GrowParams::new(Criterion::Eg2 { w: self.w });
+        let ones = vec![1.0; rows.len()];
+        let mut splits = Splits::new(
+            frame,
+            rows,
+            &ones,
+            self.mc,
+            grow.criterion,
+            grow.min_objects,
+        );
+        self.grown_in(&mut splits)
+    }
+
+    /// [`grown`](Act::grown) through the split trie `splits` (made with EG2's kind of
+    /// statistics and C4.5's least branch size), which other EG2 trees on the same
+    /// objects may share.
+    pub fn grown_in(&self, splits: &mut Splits<'_>) -> CostTree {
+        let grow = GrowParams::new(Criterion::Eg2 { w: self.w }).selecting_at(self.selection);
+        let sampler = Sampler {
+            scorer: Scorer::new(self.prices, grow.criterion),
+            prices: self.prices,
+            mc: self.mc,
+            selection: self.selection,
+            confidence: self.params.confidence,
+            coeff: deviation(self.params.confidence).powi(2),
+            max_depth: grow.max_depth,
+            samples: self.params.samples,
+        };
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(self.seed);
+        let nodes = grow_nodes_by(splits, self.mc, grow.max_depth, |splits, c| {
+            sampler.choose(splits, c, &mut rng)
+        });
+        CostTree::from_nodes(nodes, self.mc)
+    }
 }
 
 /// What ACT values trees with.

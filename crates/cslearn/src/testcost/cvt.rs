@@ -24,7 +24,7 @@
 //! it guesses well; where ICET scores each of its trees on one half of the objects, CVT
 //! scores on every object once.
 
-use super::act::{ActParams, act_grown_in};
+use super::act::{Act, ActParams};
 use super::criterion::Criterion;
 use super::data::Frame;
 use super::evaluate::folds_of;
@@ -135,7 +135,15 @@ impl Grower {
                     samples,
                     ..ActParams::default()
                 };
-                act_grown_in(splits, prices, mc, &params, (1.0, selection), seed)
+                let act = Act {
+                    prices,
+                    mc,
+                    params: &params,
+                    w: 1.0,
+                    selection,
+                    seed,
+                };
+                act.grown_in(splits)
             }
         }
     }
@@ -569,7 +577,7 @@ impl Costs {
 mod tests {
     use super::*;
     use crate::testcost::Catalogue;
-    use crate::testcost::act::act_grown;
+    use crate::testcost::act::Act;
 
     /// Heart with Turney's prices (it has missing values), every other object.
     fn heart() -> (Frame, TestPrices, MisclassCosts, Vec<usize>, Vec<usize>) {
@@ -665,7 +673,15 @@ mod tests {
                         samples,
                         ..ActParams::default()
                     };
-                    act_grown(&frame, &train, &prices, &mc, &params, (1.0, selection), 7)
+                    let act = Act {
+                        prices: &prices,
+                        mc: &mc,
+                        params: &params,
+                        w: 1.0,
+                        selection,
+                        seed: 7,
+                    };
+                    act.grown(&frame, &train)
                 }
             };
             assert_eq!(*tree, alone, "{name}");

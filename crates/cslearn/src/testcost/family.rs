@@ -3,7 +3,7 @@
 use rand::{RngExt, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
-use super::act::{ActParams, act_tree};
+use super::act::{Act, ActParams};
 use super::criterion::Criterion;
 use super::cvt::{CvtChoice, CvtParams, cvt_tree};
 use super::data::Frame;
@@ -273,9 +273,16 @@ pub fn fit(
     seed: u64,
 ) -> Fitted {
     if method == Method::Act {
-        let sampling = (params.eg2_w, params.selection_prices);
+        let act = Act {
+            prices,
+            mc,
+            params: &params.act,
+            w: params.eg2_w,
+            selection: params.selection_prices,
+            seed,
+        };
         return Fitted {
-            tree: act_tree(frame, rows, prices, mc, &params.act, sampling, seed),
+            tree: act.tree(frame, rows),
             genome: None,
             cvt: None,
         };

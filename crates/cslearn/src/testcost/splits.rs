@@ -100,7 +100,8 @@ fn xlog2x(x: f64) -> f64 {
     if x <= 0.0 {
         return 0.0;
     }
-    if x < TABLE as f64 && x == x.trunc() {
+    // `x as usize` truncates (0 < x < TABLE here): a whole number comes back unchanged.
+    if x < TABLE as f64 && (x as usize) as f64 == x {
         let table = VALUES.get_or_init(|| {
             (0..TABLE)
                 .map(|i| {
@@ -117,11 +118,12 @@ fn xlog2x(x: f64) -> f64 {
     x * x.log2()
 }
 
-/// `total * entropy(weights)`, as `total log2 total - sum w log2 w`.
-fn weighted_entropy(weights: &[f64], total: f64) -> f64 {
+/// `total * entropy(weights)`, as `total log2 total - sum w log2 w`, from the terms
+/// `xlog2x(w)` of the weights (kept up to date as a threshold moves).
+fn entropy_of_terms(terms: &[f64], total: f64) -> f64 {
     let mut h = xlog2x(total);
-    for &w in weights {
-        h -= xlog2x(w);
+    for &t in terms {
+        h -= t;
     }
     h.max(0.0)
 }
@@ -390,9 +392,20 @@ impl<'a> Splits<'a> {
                 } else {
                     0.0
                 };
-                let mut left = vec![0.0; k];
-                let mut right = vec![0.0; k];
-                let mut mixed = vec![0.0; k];
+                let mut buffers = vec![0.0; 5 * k];
+                let (left, rest) = buffers.split_at_mut(k);
+                let (right, rest) = rest.split_at_mut(k);
+                let (mixed, rest) = rest.split_at_mut(k);
+                // `xlog2x` of each class's weight on the left and on the right, kept as
+                // objects move left: each side's weighted entropy from the same terms
+                // in the same order, computed once per object instead of once per
+                // threshold.
+                let (left_terms, right_terms) = rest.split_at_mut(k);
+                if !dtmc {
+                    for j in 0..k {
+                        right_terms[j] = xlog2x(known[j]);
+                    }
+                }
                 let mut left_total = 0.0;
                 let mut best: Option<(f64, f64, f64)> = None; // (value, at, left_total)
                 let mut tested = 0usize;
@@ -400,6 +413,11 @@ impl<'a> Splits<'a> {
                     let (value, c, w) = sorted[i];
                     left[c as usize] += w;
                     left_total += w;
+                    if !dtmc {
+                        let c = c as usize;
+                        left_terms[c] = xlog2x(left[c]);
+                        right_terms[c] = xlog2x(known[c] - left[c]);
+                    }
                     let next = sorted[i + 1].0;
                     if next <= value {
                         continue;
@@ -409,22 +427,22 @@ impl<'a> Splits<'a> {
                         continue;
                     }
                     tested += 1;
-                    for j in 0..k {
-                        right[j] = known[j] - left[j];
-                    }
                     let quality = if dtmc {
+                        for j in 0..k {
+                            right[j] = known[j] - left[j];
+                        }
                         let share_left = left_total / known_total;
                         let mut cost = 0.0;
-                        for (side, s) in [(&left, share_left), (&right, 1.0 - share_left)] {
+                        for (side, s) in [(&*left, share_left), (&*right, 1.0 - share_left)] {
                             for j in 0..k {
                                 mixed[j] = side[j] + missing[j] * s;
                             }
-                            cost += self.mc.best(&mixed).1;
+                            cost += self.mc.best(mixed).1;
                         }
                         -cost
                     } else {
-                        -(weighted_entropy(&left, left_total)
-                            + weighted_entropy(&right, right_total))
+                        -(entropy_of_terms(left_terms, left_total)
+                            + entropy_of_terms(right_terms, right_total))
                     };
                     if best.is_none_or(|(q, _, _)| quality > q) {
                         best = Some((quality, (value + next) / 2.0, left_total));
@@ -510,29 +528,52 @@ impl<'a> Splits<'a> {
         };
         let cell = &self.cells[c as usize];
         let n = cell.rows.len();
-        let mut parts: Vec<(Vec<u32>, Vec<f64>)> = vec![(Vec::new(), Vec::new()); branches];
-        // Where each of the cell's objects sits in each child (`position[b * n + p]`),
-        // u32::MAX if absent.
-        let mut position: Vec<u32> = vec![u32::MAX; branches * n];
+        // Each object's branch (`NONE` where its value is missing), counted per branch
+        // first so that every child's vectors are made at their size.
+        const NONE: u32 = u32::MAX;
+        let mut branch_of_p: Vec<u32> = Vec::with_capacity(n);
         let mut known_by_branch = vec![0.0; branches];
+        let mut counts = vec![0usize; branches];
         let mut unknown: Vec<usize> = Vec::new();
         for (p, (&r, &w)) in cell.rows.iter().zip(&cell.weights).enumerate() {
             match branch_of(r) {
                 Some(b) => {
-                    position[b * n + p] = parts[b].0.len() as u32;
-                    parts[b].0.push(r);
-                    parts[b].1.push(w);
+                    branch_of_p.push(b as u32);
                     known_by_branch[b] += w;
+                    counts[b] += 1;
                 }
-                None => unknown.push(p),
+                None => {
+                    branch_of_p.push(NONE);
+                    unknown.push(p);
+                }
             }
         }
         let known_total: f64 = known_by_branch.iter().sum();
         let shares: Vec<f64> = known_by_branch.iter().map(|k| k / known_total).collect();
-        for &p in &unknown {
+        let mut parts: Vec<(Vec<u32>, Vec<f64>)> = (0..branches)
+            .map(|b| {
+                let size = counts[b] + if shares[b] > 0.0 { unknown.len() } else { 0 };
+                (Vec::with_capacity(size), Vec::with_capacity(size))
+            })
+            .collect();
+        // Where each of the cell's objects with a known value sits in its child; the
+        // objects with a missing value follow them in every branch of positive share, in
+        // the order of `unknown`.
+        let mut position: Vec<u32> = vec![NONE; n];
+        for (p, (&r, &w)) in cell.rows.iter().zip(&cell.weights).enumerate() {
+            let b = branch_of_p[p];
+            if b != NONE {
+                let part = &mut parts[b as usize];
+                position[p] = part.0.len() as u32;
+                part.0.push(r);
+                part.1.push(w);
+            }
+        }
+        let mut unknown_rank: Vec<u32> = vec![NONE; if unknown.is_empty() { 0 } else { n }];
+        for (i, &p) in unknown.iter().enumerate() {
+            unknown_rank[p] = i as u32;
             for (b, part) in parts.iter_mut().enumerate() {
                 if shares[b] > 0.0 {
-                    position[b * n + p] = part.0.len() as u32;
                     part.0.push(cell.rows[p]);
                     part.1.push(cell.weights[p] * shares[b]);
                 }
@@ -564,30 +605,53 @@ impl<'a> Splits<'a> {
                 .map(|(rows, weights)| self.class_weights(rows, weights))
                 .collect()
         };
+        // Each child's order of every numeric feature, in one pass over the cell's order
+        // per feature: an object keeps its place among the known values in its branch
+        // (at `position`), and one with a missing value sits after the known ones of
+        // each branch it goes to (the `unknown_rank`-th of them).
+        let mut child_orders: Vec<Vec<Vec<u32>>> = (0..branches)
+            .map(|_| Vec::with_capacity(cell.order.len()))
+            .collect();
+        for sorted in &cell.order {
+            let mut per_branch: Vec<Vec<u32>> = (0..branches)
+                .map(|b| {
+                    if sorted.is_empty() {
+                        Vec::new()
+                    } else {
+                        Vec::with_capacity(parts[b].0.len())
+                    }
+                })
+                .collect();
+            for &p in sorted {
+                let p = p as usize;
+                let b = branch_of_p[p];
+                if b != NONE {
+                    per_branch[b as usize].push(position[p]);
+                } else {
+                    let rank = unknown_rank[p];
+                    for (b, order) in per_branch.iter_mut().enumerate() {
+                        if shares[b] > 0.0 {
+                            order.push(counts[b] as u32 + rank);
+                        }
+                    }
+                }
+            }
+            for (b, order) in per_branch.into_iter().enumerate() {
+                child_orders[b].push(order);
+            }
+        }
+        let mut child_orders = child_orders.into_iter();
         let mut path = cell.path.clone();
         path.push(feature);
         let mut made = Vec::with_capacity(branches);
         for (b, ((rows, weights), (held_rows, held_weights))) in
             parts.into_iter().zip(held).enumerate()
         {
+            let order = child_orders.next().unwrap_or_default();
             if rows.is_empty() {
                 made.push(None);
                 continue;
             }
-            let cell = &self.cells[c as usize];
-            let order = cell
-                .order
-                .iter()
-                .map(|sorted| {
-                    sorted
-                        .iter()
-                        .filter_map(|&p| {
-                            let q = position[b * n + p as usize];
-                            (q != u32::MAX).then_some(q)
-                        })
-                        .collect()
-                })
-                .collect();
             let class_weights = self.class_weights(&rows, &weights);
             self.cells.push(Cell {
                 rows,
