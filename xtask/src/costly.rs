@@ -50,9 +50,75 @@ pub struct CostlyArgs {
     #[arg(long)]
     report: bool,
     /// Also write the tables and figures into `docs/` (`docs/costly_results.md`,
-    /// `docs/figures/costly_*.svg`).
+    /// `docs/figures/costly_*.svg`); only for the whole table.
     #[arg(long)]
     bless: bool,
+    /// Worlds, comma-separated, as `costly.csv` spells them (default: all).
+    #[arg(long, value_delimiter = ',')]
+    worlds: Vec<String>,
+    /// Dynamics, comma-separated, as `costly.csv` spells them (default: all).
+    #[arg(long, value_delimiter = ',')]
+    dynamics: Vec<String>,
+    /// Learners, comma-separated, as `costly.csv` spells them (default: all).
+    #[arg(long, value_delimiter = ',')]
+    learners: Vec<String>,
+    /// Prices per coordinate, comma-separated, as `costly.csv` spells them (default: all).
+    #[arg(long, value_delimiter = ',')]
+    prices: Vec<String>,
+    /// Sensing rules, comma-separated: `with-move` (`costly.csv`) and `after-outcome`
+    /// (`costly_after_outcome.csv`) (default: both).
+    #[arg(long, value_delimiter = ',')]
+    rules: Vec<String>,
+}
+
+/// The part of the table a flag keeps: the entries of `all` (spelled by `name`) that
+/// `given` names, in the table's order; every entry when `given` is empty. An unknown
+/// spelling or an entry named twice is refused, naming the flag and the valid spellings.
+fn select<T: Copy>(
+    flag: &str,
+    given: &[String],
+    all: &[T],
+    name: impl Fn(T) -> String,
+) -> Result<Vec<T>> {
+    if given.is_empty() {
+        return Ok(all.to_vec());
+    }
+    crate::files::distinct(flag, given)?;
+    let names: Vec<String> = all.iter().map(|&t| name(t)).collect();
+    if let Some(bad) = given.iter().find(|g| !names.contains(g)) {
+        bail!(
+            "{flag} names `{bad}`, which the table does not hold; valid: {}",
+            names.join(", ")
+        );
+    }
+    Ok(all
+        .iter()
+        .zip(&names)
+        .filter(|(_, n)| given.contains(n))
+        .map(|(&t, _)| t)
+        .collect())
+}
+
+impl CostlyArgs {
+    /// The part of the table the flags select.
+    fn definition(&self) -> Result<Definition> {
+        let worlds: Vec<usize> = (0..WORLDS.len()).collect();
+        Ok(Definition {
+            runs: self.runs,
+            seed: self.seed,
+            worlds: select("--worlds", &self.worlds, &worlds, |w| {
+                WORLDS[w].0.to_string()
+            })?,
+            dynamics: select("--dynamics", &self.dynamics, &Dynamics::ALL, |d| {
+                d.name().to_string()
+            })?,
+            prices: select("--prices", &self.prices, &PRICES, |p| p.to_string())?,
+            rules: select("--rules", &self.rules, &RULES, |r| r.name().to_string())?,
+            learners: select("--learners", &self.learners, &Learner::ALL, |l| {
+                l.name().to_string()
+            })?,
+        })
+    }
 }
 
 /// The lakes: name, episodes a run, moves an episode (Gymnasium's caps).
@@ -113,8 +179,13 @@ const RULES: [SensingRule; 2] = [SensingRule::WithMove, SensingRule::AfterOutcom
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Learner {
-    /// AMRL-Q with its published parameters (`csql::amrl_q`).
+    /// AMRL-Q with its published parameters (`csql::amrl_q`), exploring in every run
+    /// and greedy in the last 10% of each run's episodes, as the method is described.
     AmrlQ,
+    /// AMRL-Q as the published harness runs it: the first run as [`Learner::AmrlQ`],
+    /// every later one greedy from its first episode (`greedy_share = 1`), since the
+    /// harness reuses one agent object whose greedy switch stays on.
+    AmrlQGreedyAfterFirst,
     /// The same Q-learning measuring the whole state at every step
     /// (`csql::Measuring::Always`).
     AlwaysMeasuring,
@@ -133,8 +204,9 @@ pub enum Learner {
 }
 
 impl Learner {
-    const ALL: [Learner; 6] = [
+    const ALL: [Learner; 7] = [
         Learner::AmrlQ,
+        Learner::AmrlQGreedyAfterFirst,
         Learner::AlwaysMeasuring,
         Learner::CsQl,
         Learner::FullSensing,
@@ -145,6 +217,7 @@ impl Learner {
     fn name(self) -> &'static str {
         match self {
             Learner::AmrlQ => "amrl-q",
+            Learner::AmrlQGreedyAfterFirst => "amrl-q-greedy-after-first",
             Learner::AlwaysMeasuring => "always-measuring",
             Learner::CsQl => "cs-ql",
             Learner::FullSensing => "full-sensing",
@@ -157,6 +230,7 @@ impl Learner {
     fn colour(self) -> RGBColor {
         match self {
             Learner::AmrlQ => RGBColor(0, 0, 0),
+            Learner::AmrlQGreedyAfterFirst => RGBColor(214, 39, 40),
             Learner::AlwaysMeasuring => RGBColor(150, 150, 150),
             Learner::CsQl => RGBColor(31, 119, 180),
             Learner::FullSensing => RGBColor(230, 120, 20),
@@ -168,8 +242,15 @@ impl Learner {
     /// One run of `play`'s episodes by this learner.
     fn play(self, play: &Play<'_>) -> Result<Vec<Episode>> {
         match self {
-            Learner::AmrlQ => Ok(amrl(play, Measuring::Choose)),
-            Learner::AlwaysMeasuring => Ok(amrl(play, Measuring::Always)),
+            Learner::AmrlQ => Ok(amrl(play, Measuring::Choose, AmrlParams::default())),
+            Learner::AmrlQGreedyAfterFirst => {
+                let mut params = AmrlParams::default();
+                if play.run > 0 {
+                    params.greedy_share = 1.0;
+                }
+                Ok(amrl(play, Measuring::Choose, params))
+            }
+            Learner::AlwaysMeasuring => Ok(amrl(play, Measuring::Always, AmrlParams::default())),
             Learner::CsQl => cs_ql(play, (LearnerKind::CsQl, PredictSensing::Off)),
             Learner::FullSensing => cs_ql(play, (LearnerKind::FullSensing, PredictSensing::Off)),
             Learner::CsQlBelief => cs_ql(play, (LearnerKind::CsQl, PredictSensing::Belief)),
@@ -192,8 +273,10 @@ impl Learner {
 
 /// What one run plays, whatever the learner: `episodes` episodes of at most `max_moves`
 /// moves on `lake` (the built-in world `world`), each coordinate at `price` reward units,
-/// sensed under `rule`, seeded with `seed`.
+/// sensed under `rule`, seeded with `seed`; `run` is its number among the runs of its row
+/// (from 0).
 struct Play<'a> {
+    run: u64,
     lake: &'a FiniteWorld,
     world: &'a str,
     price: f64,
@@ -203,12 +286,12 @@ struct Play<'a> {
     seed: u64,
 }
 
-/// AMRL-Q or the always-measuring learner, measuring the whole state: every coordinate
-/// at once.
-fn amrl(play: &Play<'_>, measuring: Measuring) -> Vec<Episode> {
+/// AMRL-Q or the always-measuring learner with `params` otherwise, measuring the whole
+/// state: every coordinate at once.
+fn amrl(play: &Play<'_>, measuring: Measuring, params: AmrlParams) -> Vec<Episode> {
     let params = AmrlParams {
         measuring,
-        ..AmrlParams::default()
+        ..params
     };
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(play.seed);
     csql::amrl_q(
@@ -250,12 +333,29 @@ fn cs_ql(play: &Play<'_>, (kind, level): (LearnerKind, PredictSensing)) -> Resul
     )?)
 }
 
-/// What the job list is: shards of one list agree on it.
+/// What the job list is: shards of one list agree on it. The part of the table it runs:
+/// the worlds (indices into [`WORLDS`]), dynamics, prices, rules and learners, each in
+/// the table's order.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Definition {
     runs: u64,
     seed: u64,
+    worlds: Vec<usize>,
+    dynamics: Vec<Dynamics>,
+    prices: Vec<f64>,
+    rules: Vec<SensingRule>,
     learners: Vec<Learner>,
+}
+
+impl Definition {
+    /// Whether it is the whole table.
+    fn is_whole(&self) -> bool {
+        self.worlds.len() == WORLDS.len()
+            && self.dynamics.len() == Dynamics::ALL.len()
+            && self.prices.len() == PRICES.len()
+            && self.rules.len() == RULES.len()
+            && self.learners.len() == Learner::ALL.len()
+    }
 }
 
 /// One finished run.
@@ -316,9 +416,11 @@ struct Job {
 
 /// The size of the job list.
 fn total(def: &Definition) -> Result<u64> {
-    let per_run =
-        (WORLDS.len() * Dynamics::ALL.len() * PRICES.len() * RULES.len() * def.learners.len())
-            as u64;
+    let per_run = (def.worlds.len()
+        * def.dynamics.len()
+        * def.prices.len()
+        * def.rules.len()
+        * def.learners.len()) as u64;
     per_run
         .checked_mul(def.runs)
         .ok_or_else(|| anyhow!("--runs is more jobs than can be numbered"))
@@ -334,10 +436,10 @@ fn job(def: &Definition, id: u64) -> Job {
         i as usize
     };
     let learner = def.learners[take(def.learners.len())];
-    let rule = RULES[take(RULES.len())];
-    let price = PRICES[take(PRICES.len())];
-    let dynamics = Dynamics::ALL[take(Dynamics::ALL.len())];
-    let world = take(WORLDS.len());
+    let rule = def.rules[take(def.rules.len())];
+    let price = def.prices[take(def.prices.len())];
+    let dynamics = def.dynamics[take(def.dynamics.len())];
+    let world = def.worlds[take(def.worlds.len())];
     Job {
         world,
         dynamics,
@@ -359,6 +461,7 @@ fn run_job(
     let lake = &lakes[&(j.world, j.dynamics)];
     let seed = def.seed + j.run;
     let run = j.learner.play(&Play {
+        run: j.run,
         lake,
         world,
         price: j.price,
@@ -389,16 +492,17 @@ pub fn costly(args: &CostlyArgs) -> Result<()> {
         bail!("costly needs --runs of at least 1");
     }
     crate::files::seeds(args.seed, args.runs)?;
-    let def = Definition {
-        runs: args.runs,
-        seed: args.seed,
-        learners: Learner::ALL.to_vec(),
-    };
+    let def = args.definition()?;
+    if args.bless && !def.is_whole() {
+        bail!(
+            "--bless writes the committed tables: run the whole table (no --worlds, --dynamics, --learners, --prices or --rules)"
+        );
+    }
     if !args.report {
         let mut lakes = BTreeMap::new();
-        for (w, &(name, _, _)) in WORLDS.iter().enumerate() {
-            for d in Dynamics::ALL {
-                lakes.insert((w, d), mdp::builtin_world(name, &d.options())?);
+        for &w in &def.worlds {
+            for &d in &def.dynamics {
+                lakes.insert((w, d), mdp::builtin_world(WORLDS[w].0, &d.options())?);
             }
         }
         crate::shard::run_shard(
@@ -445,6 +549,13 @@ impl Row<'_> {
     /// The mean over runs of a run's figure.
     fn mean(&self, f: impl Fn(&Summary) -> f64) -> f64 {
         self.runs.iter().map(|r| f(&r.summary)).sum::<f64>() / self.runs.len() as f64
+    }
+
+    /// The half-width of the 95% interval of the mean over runs of a run's figure
+    /// ([`crate::stats::ci95`]); `None` for a single run.
+    fn ci95(&self, f: impl Fn(&Summary) -> f64) -> Option<f64> {
+        let values: Vec<f64> = self.runs.iter().map(|r| f(&r.summary)).collect();
+        crate::stats::ci95(&values)
     }
 
     /// The mean learning curve over runs.
@@ -497,23 +608,29 @@ fn rule_name(rule: SensingRule) -> &'static str {
     }
 }
 
-/// `costly.csv`, `costly_after_outcome.csv`, the Markdown tables and the figures into
-/// `dir`.
+/// The CSV files of the two rules.
+const CSV_NAMES: [(SensingRule, &str); 2] = [
+    (SensingRule::WithMove, "costly.csv"),
+    (SensingRule::AfterOutcome, "costly_after_outcome.csv"),
+];
+
+/// `costly.csv` and `costly_after_outcome.csv` (those of the rules run), the Markdown
+/// tables and the figures (of the worlds run) into `dir`.
 fn write_report(results: &[JobResult], dir: &Path, md_name: &str) -> Result<()> {
     let rows = rows(results);
     let mut md = String::from(
-        "# The active-measurement benchmark: measured\n\nWritten by `cargo xtask costly --bless` (specification 6.10 and 6.11): the costed return per episode (reward less the prices of what was sensed, in reward units), mean over runs of each run's mean over all its episodes and over its last 10%.\n",
+        "# The active-measurement benchmark: measured\n\nWritten by `cargo xtask costly --bless` (specification 6.10 and 6.11): the costed return per episode (reward less the prices of what was sensed, in reward units), mean over runs of each run's mean over all its episodes and over its last 10%. Beside each mean, `±` the half-width of its 95% interval over the runs (Student's t with runs - 1 degrees of freedom over the runs' means; the CSV columns `ci95_all` and `ci95_last10`, empty for a single run).\n\nAMRL-Q is played two ways: `amrl-q` explores in every run, greedy in the last 10% of each run's episodes, as the method is described; `amrl-q-greedy-after-first` follows the published harness, which reuses one agent whose greedy switch stays on: its first run as `amrl-q`, every later run greedy from its first episode (`[amrl_q] greedy_share = 1`).\n",
     );
-    for (rule, csv_name) in [
-        (SensingRule::WithMove, "costly.csv"),
-        (SensingRule::AfterOutcome, "costly_after_outcome.csv"),
-    ] {
+    for (rule, csv_name) in CSV_NAMES {
+        if !rows.iter().any(|r| r.rule == rule) {
+            continue;
+        }
         let mut csv = String::from(
-            "world,dynamics,price,learner,runs,episodes,mean_all,mean_last10,sensing_per_episode,steps_per_episode,success\n",
+            "world,dynamics,price,learner,runs,episodes,mean_all,mean_last10,sensing_per_episode,steps_per_episode,success,ci95_all,ci95_last10\n",
         );
         let _ = write!(
             md,
-            "\n## {} (`{csv_name}`)\n\n| world | dynamics | price per coordinate | learner | runs | episodes | mean all | mean last 10% | measurements / episode | moves / episode | success |\n|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|\n",
+            "\n## {} (`{csv_name}`)\n\n| world | dynamics | price per coordinate | learner | runs | episodes | mean all | ± | mean last 10% | ± | measurements / episode | moves / episode | success |\n|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
             rule_name(rule)
         );
         for r in rows.iter().filter(|r| r.rule == rule) {
@@ -525,6 +642,7 @@ fn write_report(results: &[JobResult], dir: &Path, md_name: &str) -> Result<()> 
                 r.mean(|s| s.steps_per_episode),
                 r.mean(|s| s.success),
             ];
+            let ci = [r.ci95(|s| s.mean_all), r.ci95(|s| s.mean_last10)];
             let key = [
                 r.world.to_string(),
                 r.dynamics.name().to_string(),
@@ -535,19 +653,30 @@ fn write_report(results: &[JobResult], dir: &Path, md_name: &str) -> Result<()> 
             ];
             // The CSV at full precision; the table rounded as each column reads best.
             let exact = means.iter().map(f64::to_string);
+            let exact_ci = ci
+                .iter()
+                .map(|c| c.map_or(String::new(), |c| c.to_string()));
             let _ = writeln!(
                 csv,
                 "{}",
                 key.iter()
                     .cloned()
                     .chain(exact)
+                    .chain(exact_ci)
                     .collect::<Vec<_>>()
                     .join(",")
             );
-            let shown = means
-                .iter()
-                .zip([3, 3, 2, 2, 3])
-                .map(|(m, digits)| format!("{m:.digits$}"));
+            let shown_ci = ci.map(|c| c.map_or("–".to_string(), |c| format!("{c:.3}")));
+            let [all, last, sensing, moves, success] = means;
+            let shown = [
+                format!("{all:.3}"),
+                shown_ci[0].clone(),
+                format!("{last:.3}"),
+                shown_ci[1].clone(),
+                format!("{sensing:.2}"),
+                format!("{moves:.2}"),
+                format!("{success:.3}"),
+            ];
             let _ = writeln!(
                 md,
                 "| {} |",
@@ -560,11 +689,21 @@ fn write_report(results: &[JobResult], dir: &Path, md_name: &str) -> Result<()> 
     crate::files::create_dir(&figures)?;
     md.push_str("\n## Learning curves\n\n");
     for &(world, _, _) in &WORLDS {
+        if !rows.iter().any(|r| r.world == world) {
+            continue;
+        }
         let name = format!("costly_{world}.svg");
         draw(&figures.join(&name), world, &rows)?;
         let _ = writeln!(md, "![the costed return on {world}](figures/{name})\n");
     }
     crate::files::write_atomic(&dir.join(md_name), md)
+}
+
+/// Whether a learner has a line in the figures: every one but AMRL-Q under the published
+/// harness's protocol, whose later runs are greedy from their first episode (its figures
+/// are in the tables).
+fn drawn(learner: Learner) -> bool {
+    learner != Learner::AmrlQGreedyAfterFirst
 }
 
 /// One figure: a panel per dynamics, the costed return (mean over runs of each block of
@@ -577,7 +716,7 @@ fn draw(path: &Path, world: &str, rows: &[Row<'_>]) -> Result<()> {
     // The legend below the panels: a column per learner, a row per price.
     let learners: Vec<Learner> = Learner::ALL
         .into_iter()
-        .filter(|l| rows.iter().any(|r| r.world == world && r.learner == *l))
+        .filter(|&l| drawn(l) && rows.iter().any(|r| r.world == world && r.learner == l))
         .collect();
     let legend_h = 30 + 22 * PRICES.len() as u32;
     let base = SVGBackend::with_string(&mut svg, (pw * 3, ph + 50 + legend_h)).into_drawing_area();
@@ -596,7 +735,10 @@ fn draw(path: &Path, world: &str, rows: &[Row<'_>]) -> Result<()> {
         let lines: Vec<&Row<'_>> = rows
             .iter()
             .filter(|r| {
-                r.world == world && r.dynamics == dynamics && r.rule == SensingRule::WithMove
+                r.world == world
+                    && r.dynamics == dynamics
+                    && r.rule == SensingRule::WithMove
+                    && drawn(r.learner)
             })
             .collect();
         let episodes = lines.first().map_or(1, |r| r.runs[0].summary.episodes) as f64;
@@ -715,12 +857,153 @@ fn draw_legend<DB: DrawingBackend>(
 mod tests {
     use super::*;
 
-    fn def(runs: u64) -> Definition {
-        Definition {
+    fn args(runs: u64) -> CostlyArgs {
+        CostlyArgs {
             runs,
             seed: 1,
-            learners: Learner::ALL.to_vec(),
+            shard: "1/1".to_string(),
+            threads: None,
+            out: PathBuf::from("unused"),
+            report: false,
+            bless: false,
+            worlds: vec![],
+            dynamics: vec![],
+            learners: vec![],
+            prices: vec![],
+            rules: vec![],
         }
+    }
+
+    fn def(runs: u64) -> Definition {
+        args(runs).definition().unwrap()
+    }
+
+    fn names(list: &str) -> Vec<String> {
+        list.split(',').map(str::to_string).collect()
+    }
+
+    #[test]
+    fn the_flags_select_part_of_the_table() {
+        let mut a = args(2);
+        a.worlds = names("frozenlake8x8");
+        a.dynamics = names("slippery,deterministic");
+        a.learners = names("belief,amrl-q-greedy-after-first");
+        a.prices = names("0.025");
+        a.rules = names("with-move");
+        let d = a.definition().unwrap();
+        assert!(!d.is_whole() && def(2).is_whole());
+        // In the table's order, whatever the order given.
+        assert_eq!(d.worlds, [1]);
+        assert_eq!(d.dynamics, [Dynamics::Deterministic, Dynamics::Slippery]);
+        assert_eq!(
+            d.learners,
+            [Learner::AmrlQGreedyAfterFirst, Learner::Belief]
+        );
+        assert_eq!(
+            (d.prices.clone(), d.rules.clone()),
+            (vec![0.025], vec![SensingRule::WithMove])
+        );
+        let n = total(&d).unwrap();
+        assert_eq!(n, 2 * 2 * 2);
+        for id in 0..n {
+            let j = job(&d, id);
+            assert_eq!(
+                (j.world, j.price, j.rule),
+                (1, 0.025, SensingRule::WithMove)
+            );
+            assert!(d.dynamics.contains(&j.dynamics) && d.learners.contains(&j.learner));
+        }
+        // A job of the part is the same job of the whole table: same seed, same run.
+        let whole = def(2);
+        let j = job(&d, n - 1);
+        let found = (0..total(&whole).unwrap())
+            .map(|id| job(&whole, id))
+            .find(|w| *w == j);
+        assert_eq!(found, Some(j));
+    }
+
+    #[test]
+    fn an_unknown_spelling_is_refused_with_the_valid_ones() {
+        type Field = fn(&mut CostlyArgs) -> &mut Vec<String>;
+        let cases: [(&str, Field, &str, &str); 5] = [
+            (
+                "--worlds",
+                |a| &mut a.worlds,
+                "frozenlake5x5",
+                "frozenlake4x4, frozenlake8x8",
+            ),
+            (
+                "--dynamics",
+                |a| &mut a.dynamics,
+                "semislippery",
+                "deterministic, semi-slippery, slippery",
+            ),
+            (
+                "--learners",
+                |a| &mut a.learners,
+                "amrlq",
+                "amrl-q, amrl-q-greedy-after-first, always-measuring, cs-ql, full-sensing, belief, cs-ql-belief",
+            ),
+            ("--prices", |a| &mut a.prices, "0.050", "0.025, 0.05"),
+            (
+                "--rules",
+                |a| &mut a.rules,
+                "after",
+                "with-move, after-outcome",
+            ),
+        ];
+        for (flag, field, bad, valid) in cases {
+            let mut a = args(1);
+            *field(&mut a) = vec![bad.to_string()];
+            let e = a.definition().unwrap_err().to_string();
+            assert!(e.contains(flag) && e.contains(&format!("`{bad}`")), "{e}");
+            assert!(e.ends_with(&format!("valid: {valid}")), "{e}");
+        }
+        let mut a = args(1);
+        a.prices = names("0.05,0.05");
+        let e = a.definition().unwrap_err().to_string();
+        assert!(e.contains("--prices names `0.05` twice"), "{e}");
+    }
+
+    #[test]
+    fn the_published_protocol_is_greedy_after_the_first_run() {
+        let lake = mdp::builtin_world("frozenlake4x4", &Dynamics::Deterministic.options()).unwrap();
+        let play = |learner: Learner, run: u64| {
+            let p = Play {
+                run,
+                lake: &lake,
+                world: "frozenlake4x4",
+                price: 0.025,
+                rule: SensingRule::WithMove,
+                episodes: 40,
+                max_moves: 100,
+                seed: 7,
+            };
+            CostlySummary::of(&learner.play(&p).unwrap())
+        };
+        // The first run explores as AMRL-Q does; a later one is greedy throughout, and so
+        // differs from AMRL-Q's run of the same seed.
+        assert_eq!(
+            play(Learner::AmrlQGreedyAfterFirst, 0),
+            play(Learner::AmrlQ, 0)
+        );
+        let greedy = play(Learner::AmrlQGreedyAfterFirst, 1);
+        assert_ne!(greedy, play(Learner::AmrlQ, 1));
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(7);
+        let params = AmrlParams {
+            greedy_share: 1.0,
+            ..AmrlParams::default()
+        };
+        let run = csql::amrl_q(
+            &lake,
+            &params,
+            0.05,
+            SensingRule::WithMove,
+            40,
+            100,
+            &mut rng,
+        );
+        assert_eq!(greedy, CostlySummary::of(&run));
     }
 
     #[test]
