@@ -199,7 +199,7 @@ pub enum Learner {
     /// measured apart (`csql::belief_planning`).
     Belief,
     /// CS-QL as [`Learner::CsQl`], sensing by its belief over descriptions
-    /// (`predict_sensing = "belief"`, `[prediction]` at its defaults).
+    /// (`predict_sensing = "weighed"`, `[prediction]` at its defaults).
     CsQlBelief,
 }
 
@@ -253,7 +253,7 @@ impl Learner {
             Learner::AlwaysMeasuring => Ok(amrl(play, Measuring::Always, AmrlParams::default())),
             Learner::CsQl => cs_ql(play, (LearnerKind::CsQl, PredictSensing::Off)),
             Learner::FullSensing => cs_ql(play, (LearnerKind::FullSensing, PredictSensing::Off)),
-            Learner::CsQlBelief => cs_ql(play, (LearnerKind::CsQl, PredictSensing::Belief)),
+            Learner::CsQlBelief => cs_ql(play, (LearnerKind::CsQl, PredictSensing::Weighed)),
             Learner::Belief => {
                 // Each coordinate costs 1: its price in reward units is the price.
                 let mut rng = Xoshiro256PlusPlus::seed_from_u64(play.seed);
@@ -316,8 +316,8 @@ fn cs_ql(play: &Play<'_>, (kind, level): (LearnerKind, PredictSensing)) -> Resul
     if let Some(q) = settings.cs_ql_mut() {
         q.predict_sensing = level;
     }
-    if level == PredictSensing::Belief {
-        // The belief level weighs sensing at the price it is scored at.
+    if level == PredictSensing::Weighed {
+        // The weighed level weighs sensing at the price it is scored at.
         settings.costly = Some(CostlySettings {
             price: play.price,
             rule: play.rule,

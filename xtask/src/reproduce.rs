@@ -78,7 +78,7 @@ pub fn compute(args: &ReproduceArgs) -> Result<Results> {
                 let out = match job {
                     Job::Csql { strategy, run } => {
                         let mut settings = base.clone();
-                        settings.learner = csql::Learner::cs_ql(strategy);
+                        settings.learner = csql::LearnerSettings::cs_ql(strategy);
                         settings.seed = args.seed + run;
                         let (report, rep) = csql::run_with_representation(&setup, &settings)?;
                         let fixed = csql::fixed_representation_reference(&setup, &settings, rep);

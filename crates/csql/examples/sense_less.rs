@@ -9,7 +9,7 @@
 //! best strategy to the best of the paper's four (level `off`), the runs that converged,
 //! and navigation's cost per move and success. `KEY=VALUE` sets a field of
 //! `[prediction]` (for example `memory_moves=100`) at the levels that take it (a level
-//! that refuses it runs with the defaults, and says so). The belief level weighs sensing at
+//! that refuses it runs with the defaults, and says so). The weighed level weighs sensing at
 //! `[costly] price` = the environment variable `PRICE` (default 0.01 reward units per
 //! unit of sensing cost).
 
@@ -40,7 +40,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     if let Some(q) = s.cs_ql_mut() {
                         q.predict_sensing = level;
                     }
-                    if level == PredictSensing::Belief {
+                    if level == PredictSensing::Weighed {
                         s.costly = Some(CostlySettings::new(price));
                     }
                     // The overrides tune the levels that take them (`memory_moves`: motion).

@@ -1,6 +1,6 @@
 //! CS-QL's agent: the paper's main loop ([`main_loop`]), the four strategies
 //! ([`strategy`]) and the detectors that tell when a description's utility fell
-//! ([`detector`]), learning over trials with the oracle watching ([`learn`]), and the
+//! ([`detector`]), learning over trials with the oracle watching ([`trials`]), and the
 //! same loop driven one move at a time by a caller ([`stepper`]).
 //!
 //! What these modules may use: the perceptions (`crate::perception`), the settings and
@@ -9,7 +9,7 @@
 //! `docs/architecture.md` lists each module's uses, and a test holds it to the code.
 
 pub(crate) mod detector;
-pub(crate) mod learn;
 pub(crate) mod main_loop;
 pub(crate) mod stepper;
 pub(crate) mod strategy;
+pub(crate) mod trials;

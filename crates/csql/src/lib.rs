@@ -40,10 +40,10 @@
 //! | [`StateTree`] | the cost-sensitive decision tree over the final descriptions (row 8) |
 //! | [`full_sensing_reference`], [`fixed_representation_reference`] | the paper's two points of comparison |
 //! | [`policy_svg`], [`descriptions_svg`], [`descriptions_table`] | the map with the learned policy, and the descriptions as pictures (Figure 4b) |
-//! | [`PredictSensing`], [`Prediction`], [`Predicting`], [`TransitionModel`] | sensing less (off by default): a learned model of the next description, and dead reckoning |
+//! | [`PredictSensing`], [`PredictionParams`], [`Predicting`], [`TransitionModel`] | sensing less (off by default): a learned model of the next description, and dead reckoning |
 //! | [`navigate`], [`Navigation`] | following the learned policy on the reduced map after learning |
 //! | [`WorldExtras`], [`Extensions`], [`Detector`], [`QualityReport`] | beyond the paper's assumptions (off by default): slip, sensor noise, a sensing range, a statistical detector, nearest matching, the policy quality |
-//! | [`Sensor`] | what a learner's sensors make of the world's exact reading: exact, or noisy with their own generator, read once or more (each read charged) |
+//! | [`SensorModel`] | what a learner's sensors make of the world's exact reading: exact, or noisy with their own generator, read once or more (each read charged) |
 //! | [`Remembering`], [`Classify::with_confirmation`], [`Classify::with_reads`] | remedies beyond the paper (off by default): a memory of recent steps, confirmed new descriptions, repeated reads |
 //! | [`LearnerKind`], [`UTree`], [`FullView`], [`Describes`] | the baselines: a U-Tree-like statistical splitter and full sensing, reported as CS-QL is |
 //!
@@ -164,12 +164,12 @@ mod settings;
 pub use agent::detector::{
     ActionDrop, AnyDrop, Detector, DetectorKind, RateParams, RateTest, RunDetector,
 };
-pub use agent::learn::{Judging, Scene};
 pub use agent::main_loop::{Agent, LoopParams, RefineFrom, TrialRecord};
 pub use agent::stepper::{Moment, Sense, StepError, Stepper};
 pub use agent::strategy::{
     Eager, Lazy, Never, RandomMoves, Reaction, Resetting, Strategy, StrategyKind, UnknownStrategy,
 };
+pub use agent::trials::{Judging, Scene};
 pub use error::{Error, SettingsProblem};
 pub use judging::diagnosis::NotLearned;
 pub use judging::figure::{descriptions_svg, descriptions_table, policy_svg};
@@ -199,14 +199,15 @@ pub use learners::utree::{UTree, ks_p_value};
 pub use observe::{Flow, KeepTrace, Observer, STOP_CHECK_MOVES, TracePoint};
 pub use perception::classify::{CACHE_MAX_READINGS, Classification, Classify};
 pub use perception::memory::Remembering;
-pub use perception::predict::level::{MAX_NAVIGATION_TRIALS, PredictSensing, Prediction};
-pub use perception::predict::model::TransitionModel;
-pub use perception::predict::{Predicting, PredictionStats};
 pub use perception::representation::{Description, DescriptionId, Representation};
 pub use perception::rows::{FULL_VIEW_LIMIT, FullView, Identified, Perception};
-pub use perception::sensor::Sensor;
+pub use perception::sense_less::level::{MAX_NAVIGATION_TRIALS, PredictSensing, PredictionParams};
+pub use perception::sense_less::model::TransitionModel;
+pub use perception::sense_less::{Predicting, PredictionStats};
+pub use perception::sensor::SensorModel;
 pub use perception::tree::{StateSensor, StateTree};
 pub use perception::view::{Describes, Sees};
+pub use perception::wraps::Wraps;
 pub use run::{
     Report, run, run_in, run_observed, run_on, run_on_with, run_resolved, run_with_representation,
 };
@@ -216,7 +217,7 @@ pub use settings::draft::{
     SettingsDraft, setting_key, setting_tables, settings_keys_help,
 };
 pub use settings::extensions::{Extensions, Matching, WorldExtras};
-pub use settings::learner::{CsQlSettings, Learner, LearnerKind, UTreeParams};
+pub use settings::learner::{CsQlSettings, LearnerKind, LearnerSettings, UTreeParams};
 pub use settings::resolve::{Resolved, is_world_name};
 pub use settings::setup::Setup;
 pub use settings::values::{

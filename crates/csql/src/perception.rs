@@ -3,8 +3,8 @@
 //! paper's CLASSIFY over a representation of descriptions ([`classify`],
 //! [`representation`]), the sensors it reads through ([`sensor`], [`grid`]), and the
 //! perceptions that wrap CLASSIFY: memory ([`memory`]) and sensing less by prediction
-//! ([`predict`]); the tree over the final descriptions ([`tree`]); the read-only views
-//! that measuring takes ([`view`]).
+//! ([`sense_less`]); the tree over the final descriptions ([`tree`]); the read-only views
+//! that measuring takes ([`view`]); a perception built on another ([`wraps`]).
 //!
 //! What these modules may use: each other and the settings of their own options
 //! (`settings::extensions`, `error`); never the agent, the learners or the measures.
@@ -21,7 +21,6 @@
 pub(crate) mod classify;
 pub(crate) mod grid;
 pub(crate) mod memory;
-pub(crate) mod predict;
 #[cfg_attr(
     not(test),
     expect(
@@ -38,6 +37,8 @@ pub(crate) mod representation;
     )
 )]
 pub(crate) mod rows;
+pub(crate) mod sense_less;
 pub(crate) mod sensor;
 pub(crate) mod tree;
 pub(crate) mod view;
+pub(crate) mod wraps;

@@ -5,9 +5,9 @@ use qlearn::QTable;
 use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
-use crate::agent::learn::{Scene, learn};
 use crate::agent::main_loop::Agent;
 use crate::agent::strategy::{Never, Strategy};
+use crate::agent::trials::{Scene, learn};
 use crate::error::Error;
 use crate::judging::audit::Audited;
 use crate::judging::navigate::navigate;
@@ -17,13 +17,14 @@ use crate::learners::utree::UTree;
 use crate::observe::{KeepTrace, Observer};
 use crate::perception::classify::Classify;
 use crate::perception::memory::Remembering;
-use crate::perception::predict::Predicting;
-use crate::perception::predict::level::PredictSensing;
 use crate::perception::representation::Representation;
 use crate::perception::rows::FullView;
 use crate::perception::rows::Perception;
+use crate::perception::sense_less::Predicting;
+use crate::perception::sense_less::level::PredictSensing;
 use crate::perception::view::{Describes, Sees};
-use crate::settings::learner::Learner;
+use crate::perception::wraps::Wraps;
+use crate::settings::learner::LearnerSettings;
 use crate::settings::resolve::Resolved;
 use crate::settings::setup::Setup;
 use crate::settings::values::RunSettings;
@@ -342,12 +343,12 @@ fn learn_classify<W: World + ?Sized>(
         .with_extensions(&extensions);
     let (q, predicting) = match &settings.learner {
         // AMRL-Q and sensing by belief never come here: `run_classify` refuses them.
-        Learner::FullSensing | Learner::AmrlQ(_) | Learner::Belief(_) => {
+        LearnerSettings::FullSensing | LearnerSettings::AmrlQ(_) | LearnerSettings::Belief(_) => {
             let perception = FullView::new(scene.world);
             let (report, _) = learn_and_report(scene, settings, perception, Never, observer);
             return (report, classify.into_representation());
         }
-        Learner::UTree(params) => {
+        LearnerSettings::UTree(params) => {
             let mut utree_rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
             utree_rng.jump();
             let perception = UTree::new(scene.world, *params, settings.gamma.get())
@@ -355,7 +356,7 @@ fn learn_classify<W: World + ?Sized>(
             let (report, _) = learn_and_report(scene, settings, perception, Never, observer);
             return (report, classify.into_representation());
         }
-        Learner::CsQl(q) => match q.predict_sensing {
+        LearnerSettings::CsQl(q) => match q.predict_sensing {
             PredictSensing::Off if extensions.memory > 0 => {
                 let perception = Remembering::new(classify, extensions.memory);
                 let strategy = q.strategy.build(q.random_moves);
@@ -381,13 +382,13 @@ fn learn_classify<W: World + ?Sized>(
                     None => Predicting::learned(classify, &q.prediction, scene.world.num_actions()),
                 },
             ),
-            PredictSensing::Belief => (
+            PredictSensing::Weighed => (
                 q,
-                Predicting::belief(
+                Predicting::weighed(
                     classify,
                     &q.prediction,
                     scene.world.num_actions(),
-                    // Validated: the belief level is given [costly] price.
+                    // Validated: the weighed level is given [costly] price.
                     settings.costly.map_or(0.0, |c| c.price),
                 ),
             ),
@@ -462,7 +463,7 @@ fn new_agent<W: World + ?Sized, P, S>(
     perception: P,
     strategy: S,
 ) -> Agent<P, S> {
-    crate::agent::learn::agent_of(
+    crate::agent::trials::agent_of(
         perception,
         strategy,
         QTable::new(world.num_actions())

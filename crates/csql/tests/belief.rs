@@ -174,7 +174,7 @@ fn the_learner_belief_of_a_runs_settings() {
         .unwrap()
         .build()
         .unwrap();
-    let csql::Learner::Belief(p) = s.learner else {
+    let csql::LearnerSettings::Belief(p) = s.learner else {
         panic!("{:?}", s.learner)
     };
     assert_eq!(

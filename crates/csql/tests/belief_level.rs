@@ -1,8 +1,10 @@
-//! `predict_sensing = "belief"`: at a price of 0 it is the paper's run, move for move;
+//! `predict_sensing = "weighed"`: at a price of 0 it is the paper's run, move for move;
 //! at a price it skips and narrows measurements, keeps the bound on wrong predictions and
 //! still converges; it is refused without a price, and scored on costed episodes.
 
-use csql::{CostlySettings, PredictSensing, Prediction, RunReport, RunSettings, StrategyKind};
+use csql::{
+    CostlySettings, PredictSensing, PredictionParams, RunReport, RunSettings, StrategyKind,
+};
 use mdp::SensingRule;
 
 fn settings(map: &str, strategy: StrategyKind, seed: u64, level: PredictSensing) -> RunSettings {
@@ -39,7 +41,7 @@ fn at_price_zero_the_belief_level_is_the_papers_run() {
         for strategy in StrategyKind::ALL {
             for seed in 1..=2 {
                 let off = priced(settings(map, strategy, seed, PredictSensing::Off), 0.0);
-                let belief = priced(settings(map, strategy, seed, PredictSensing::Belief), 0.0);
+                let belief = priced(settings(map, strategy, seed, PredictSensing::Weighed), 0.0);
                 let (a, b) = (csql::run(&off).unwrap(), csql::run(&belief).unwrap());
                 assert_eq!(
                     learned_part(&a),
@@ -74,7 +76,7 @@ fn at_price_zero_the_costed_episodes_are_cs_qls() {
             "frozenlake4x4",
             StrategyKind::Resetting,
             3,
-            PredictSensing::Belief,
+            PredictSensing::Weighed,
         );
         belief.costly = Some(CostlySettings { price: 0.0, rule });
         let a = csql::costed_episodes(&lake, &off, rule, 0.0, 300).unwrap();
@@ -91,12 +93,12 @@ fn at_a_price_it_senses_less_within_its_bound() {
     for (strategy, max_skips) in [(StrategyKind::Eager, 16), (StrategyKind::Lazy, 3)] {
         let off = csql::run(&settings("tan8x8", strategy, 2, PredictSensing::Off)).unwrap();
         let mut s = priced(
-            settings("tan8x8", strategy, 2, PredictSensing::Belief),
+            settings("tan8x8", strategy, 2, PredictSensing::Weighed),
             0.01,
         );
-        s.cs_ql_mut().unwrap().prediction = Prediction {
+        s.cs_ql_mut().unwrap().prediction = PredictionParams {
             max_skips,
-            ..Prediction::default()
+            ..PredictionParams::default()
         };
         let r = csql::run(&s).unwrap();
         let p = r.prediction.unwrap();
@@ -119,7 +121,7 @@ fn at_a_price_it_senses_less_within_its_bound() {
 #[test]
 fn on_a_slippery_lake_it_narrows_and_senses_less() {
     let toml = "map = \"frozenlake4x4\"\nmax_trials = 600\nstrategy = \"resetting\"\n\
-                predict_sensing = \"belief\"\n[world]\nsensing = \"factors\"\nslide = 0.5\n\
+                predict_sensing = \"weighed\"\n[world]\nsensing = \"factors\"\nslide = 0.5\n\
                 [costly]\nprice = 0.025";
     let belief = csql::SettingsDraft::from_toml(toml, "lake.toml")
         .unwrap()
@@ -132,7 +134,7 @@ fn on_a_slippery_lake_it_narrows_and_senses_less() {
     assert!(p.narrowed > 0 && p.skipped > 0, "{p:?}");
     // The bound holds where outcomes are random too (the oracle's count).
     assert!(
-        p.wrong > 0 && p.longest_wrong_run <= Prediction::default().max_skips,
+        p.wrong > 0 && p.longest_wrong_run <= PredictionParams::default().max_skips,
         "{p:?}"
     );
     let (ca, cb) = (a.costly.unwrap().summary, b.costly.unwrap().summary);
@@ -156,7 +158,7 @@ fn with_the_move_only_the_last_move_is_charged_more() {
             "frozenlake4x4",
             StrategyKind::Resetting,
             5,
-            PredictSensing::Belief,
+            PredictSensing::Weighed,
         );
         s.costly = Some(CostlySettings { price: 0.025, rule });
         csql::costed_episodes(&lake, &s, rule, 0.025, 400).unwrap()
@@ -173,7 +175,7 @@ fn with_the_move_only_the_last_move_is_charged_more() {
 
 #[test]
 fn the_belief_level_needs_a_price_in_reward_units() {
-    let s = settings("tan3x3", StrategyKind::Lazy, 1, PredictSensing::Belief);
+    let s = settings("tan3x3", StrategyKind::Lazy, 1, PredictSensing::Weighed);
     let err = csql::run(&s).unwrap_err().to_string();
     assert!(err.contains("[costly] price"), "{err}");
     // Scored at one price, it must weigh sensing at that price.
@@ -190,9 +192,9 @@ fn the_belief_level_needs_a_price_in_reward_units() {
 /// naming both settings.
 #[test]
 fn memory_moves_is_refused_away_from_the_motion_level() {
-    for level in [PredictSensing::Learned, PredictSensing::Belief] {
+    for level in [PredictSensing::Learned, PredictSensing::Weighed] {
         let mut s = settings("tan3x3", StrategyKind::Lazy, 1, level);
-        if level == PredictSensing::Belief {
+        if level == PredictSensing::Weighed {
             s = priced(s, 0.01);
         }
         s.cs_ql_mut().unwrap().prediction.memory_moves = 5;

@@ -5,14 +5,14 @@ mod common;
 
 use common::StopAfter;
 
-use csql::{PredictSensing, Prediction, RunReport, RunSettings, Setup, StrategyKind};
+use csql::{PredictSensing, PredictionParams, RunReport, RunSettings, Setup, StrategyKind};
 
 fn run(
     map: &str,
     strategy: StrategyKind,
     seed: u64,
     level: PredictSensing,
-    p: Prediction,
+    p: PredictionParams,
 ) -> RunReport {
     let mut s = RunSettings::tan1991(map, strategy, seed);
     let q = s.cs_ql_mut().unwrap();
@@ -51,7 +51,7 @@ fn the_levels_are_read_from_toml_and_appear_in_the_json() {
     assert_eq!((q.prediction.recheck, q.prediction.max_skips), (0.1, 4));
     assert_eq!(
         q.prediction.confirmations,
-        Prediction::default().confirmations
+        PredictionParams::default().confirmations
     );
     for bad in [
         "predict_sensing = \"always\"",
@@ -74,11 +74,11 @@ fn the_levels_are_read_from_toml_and_appear_in_the_json() {
 #[test]
 fn wrong_predictions_are_caught_within_max_skips_uses() {
     for max_skips in [1, 3] {
-        let p = Prediction {
+        let p = PredictionParams {
             max_skips,
             recheck: 0.0,
             confirmations: 1,
-            ..Prediction::default()
+            ..PredictionParams::default()
         };
         let mut wrong = 0;
         for seed in 1..=2 {
@@ -114,14 +114,14 @@ fn the_learned_level_converges_to_the_same_kind_of_representation_for_less() {
             strategy,
             1,
             PredictSensing::Off,
-            Prediction::default(),
+            PredictionParams::default(),
         );
         let on = run(
             "tan8x8",
             strategy,
             1,
             PredictSensing::Learned,
-            Prediction::default(),
+            PredictionParams::default(),
         );
         assert!(on.converged && off.converged);
         for r in [&on, &off] {
@@ -143,9 +143,9 @@ fn the_learned_level_converges_to_the_same_kind_of_representation_for_less() {
 #[test]
 fn motion_charges_less_for_the_same_run() {
     for memory_moves in [1, 100] {
-        let p = Prediction {
+        let p = PredictionParams {
             memory_moves,
-            ..Prediction::default()
+            ..PredictionParams::default()
         };
         // The learned level keeps no memory: memory_moves is the motion level's alone.
         let learned = run(
@@ -153,7 +153,7 @@ fn motion_charges_less_for_the_same_run() {
             StrategyKind::Random,
             2,
             PredictSensing::Learned,
-            Prediction {
+            PredictionParams {
                 memory_moves: 1,
                 ..p
             },

@@ -1,7 +1,9 @@
 //! The settings: each learner takes only its own, how a run is judged is one choice, and
 //! the flat form round-trips (specification 6.9).
 
-use csql::{Learner, LearnerKind, RunSettings, SettingsDraft, StrategyKind, UTreeParams, run};
+use csql::{
+    LearnerKind, LearnerSettings, RunSettings, SettingsDraft, StrategyKind, UTreeParams, run,
+};
 
 /// Why the settings file `text` is refused once built.
 fn refusal(text: &str) -> String {
@@ -84,7 +86,7 @@ fn the_judging_is_every_learners() {
     .unwrap();
     // Another learner starts from its defaults: CS-QL's reads are gone, the judging stays.
     s.apply_toml("learner = \"u-tree\"", "f").unwrap();
-    assert_eq!(s.learner, Learner::UTree(UTreeParams::default()));
+    assert_eq!(s.learner, LearnerSettings::UTree(UTreeParams::default()));
     assert!(s.judge.judge_by_quality);
 }
 
@@ -155,4 +157,27 @@ fn a_baseline_echoes_no_strategy() {
         }
         assert_eq!(v["settings"]["learner"], kind.name());
     }
+}
+
+/// The level of sensing less that weighs acting on the likely descriptions is spelled
+/// `weighed`; its old spelling `belief`, the name of another learner, is refused with a
+/// pointer, in a file as in a flag.
+#[test]
+fn the_old_spelling_of_the_weighed_level_points_to_the_new() {
+    let err = SettingsDraft::from_toml("predict_sensing = \"belief\"", "f.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("predict_sensing = \"weighed\""), "{err}");
+    assert!(err.contains("learner = \"belief\""), "{err}");
+    let flag = "belief"
+        .parse::<csql::PredictSensing>()
+        .unwrap_err()
+        .to_string();
+    assert!(flag.contains("predict_sensing = \"weighed\""), "{flag}");
+    let d = SettingsDraft::from_toml("predict_sensing = \"weighed\"\n[costly]\nprice = 0.01", "f")
+        .unwrap();
+    assert_eq!(
+        d.build().unwrap().predict_sensing(),
+        csql::PredictSensing::Weighed
+    );
 }

@@ -291,12 +291,12 @@ def test_cs_ql_belief_level_runs_as_the_cli_runs_it(cli, tmp_path):
     settings = {"world": {"sensing": "factors", "slide": 0.5}, "costly": {"price": 0.025}, "max_trials": 60}
     config = tmp_path / "level.toml"
     config.write_text(_csrl.settings_toml(settings))
-    flags = ["--world", "frozenlake4x4", "--predict-sensing", "belief", "--seed", "4", "--config", str(config)]
+    flags = ["--world", "frozenlake4x4", "--predict-sensing", "weighed", "--seed", "4", "--config", str(config)]
     expected = cli_json(cli, *flags)
-    got = csrl.run_json(world="frozenlake4x4", predict_sensing="belief", seed=4, settings=settings)
+    got = csrl.run_json(world="frozenlake4x4", predict_sensing="weighed", seed=4, settings=settings)
     assert got == expected
-    report = csrl.run(world="frozenlake4x4", predict_sensing="belief", seed=4, settings=settings)
+    report = csrl.run(world="frozenlake4x4", predict_sensing="weighed", seed=4, settings=settings)
     assert report["prediction"]["skipped"] > 0
     assert len(report["costly"]["returns"]) == report["trials"]
     with pytest.raises(csrl.SettingsError, match=r"\[costly\] price"):
-        csrl.run(world="tan3x3", predict_sensing="belief")
+        csrl.run(world="tan3x3", predict_sensing="weighed")

@@ -23,15 +23,15 @@
 //! misclassified, even after several passes: passes add an example only after a wrong
 //! prediction by the learner, whose attending drops examples that lack a measured feature,
 //! not by the tree. This is CS-ID3 as the paper defines it, not a defect of the tree; the
-//! learner's own prediction (`Learner::classify`) is what the held-out figures use.
+//! learner's own prediction (`ClassifierKind::classify`) is what the held-out figures use.
 
 use std::io::Write;
 
 use anyhow::{Context, Result};
 use cslearn::{Dataset, DatasetOptions, LearnerKind};
 
+use crate::classify_args::ClassifierKind;
 pub use crate::classify_args::ClassifyArgs;
-use crate::classify_args::Learner;
 use crate::progress::progress_bar;
 
 /// Accuracy and cost per object on one test part (or summed over folds).
@@ -194,8 +194,8 @@ fn held_out(args: &ClassifyArgs, data: &Dataset) -> Result<Option<(String, HeldO
     for (j, (train, test)) in splits.iter().enumerate() {
         let costs = data.costs().clone();
         let part = match args.learner {
-            Learner::CsId3 => split_eval(cslearn::cs_id3(costs), data, train, test, &bar),
-            Learner::CsIbl => split_eval(
+            ClassifierKind::CsId3 => split_eval(cslearn::cs_id3(costs), data, train, test, &bar),
+            ClassifierKind::CsIbl => split_eval(
                 cslearn::cs_ibl(costs, args.tolerance.unwrap_or(1)),
                 data,
                 train,
@@ -310,8 +310,8 @@ pub fn run(args: &ClassifyArgs, out: &mut dyn Write) -> Result<()> {
     options.positive_if.clone_from(&args.positive_if);
     let data = Dataset::load(&args.data, &args.costs, &options).context("cannot load the data")?;
     let (kind, name) = match args.learner {
-        Learner::CsId3 => (LearnerKind::CsId3, "cs-id3"),
-        Learner::CsIbl => (
+        ClassifierKind::CsId3 => (LearnerKind::CsId3, "cs-id3"),
+        ClassifierKind::CsIbl => (
             LearnerKind::CsIbl {
                 tolerance: args.tolerance.unwrap_or(1),
             },
@@ -320,7 +320,7 @@ pub fn run(args: &ClassifyArgs, out: &mut dyn Write) -> Result<()> {
         _ => (LearnerKind::Id3, "id3"),
     };
     anyhow::ensure!(
-        args.dot.is_none() || args.learner == Learner::CsId3,
+        args.dot.is_none() || args.learner == ClassifierKind::CsId3,
         "--dot draws CS-ID3's decision tree: it needs --learner cs-id3"
     );
     if let (Some(save), Some(dot)) = (&args.save, &args.dot) {

@@ -8,7 +8,7 @@ use clap::{Args, ValueEnum};
 /// The learners `csrl classify` can run: the incremental ones of the paper, and the
 /// batch trees of the test-cost family (`cslearn::testcost`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub(crate) enum Learner {
+pub(crate) enum ClassifierKind {
     /// CS-ID3: I^2/C selection, cheapest-first discrimination.
     CsId3,
     /// CS-IBL: instances ranked by mismatches, tolerant of wrong values.
@@ -44,21 +44,21 @@ pub(crate) enum Learner {
     Cvt,
 }
 
-impl Learner {
+impl ClassifierKind {
     /// The learner of the test-cost family, for a batch tree.
     pub(crate) fn family(self) -> Option<cslearn::testcost::Method> {
         use cslearn::testcost::Method;
         match self {
-            Learner::CsId3 | Learner::CsIbl | Learner::Id3 => None,
-            Learner::Id3Batch => Some(Method::Id3),
-            Learner::C45 => Some(Method::C45),
-            Learner::Idx => Some(Method::Idx),
-            Learner::CsId3Batch => Some(Method::CsId3Batch),
-            Learner::Eg2 => Some(Method::Eg2),
-            Learner::Dtmc => Some(Method::Dtmc),
-            Learner::Icet => Some(Method::Icet),
-            Learner::Act => Some(Method::Act),
-            Learner::Cvt => Some(Method::Cvt),
+            ClassifierKind::CsId3 | ClassifierKind::CsIbl | ClassifierKind::Id3 => None,
+            ClassifierKind::Id3Batch => Some(Method::Id3),
+            ClassifierKind::C45 => Some(Method::C45),
+            ClassifierKind::Idx => Some(Method::Idx),
+            ClassifierKind::CsId3Batch => Some(Method::CsId3Batch),
+            ClassifierKind::Eg2 => Some(Method::Eg2),
+            ClassifierKind::Dtmc => Some(Method::Dtmc),
+            ClassifierKind::Icet => Some(Method::Icet),
+            ClassifierKind::Act => Some(Method::Act),
+            ClassifierKind::Cvt => Some(Method::Cvt),
         }
     }
 
@@ -66,8 +66,8 @@ impl Learner {
     pub(crate) fn name(self) -> &'static str {
         match (self, self.family()) {
             (_, Some(method)) => method.name(),
-            (Learner::CsId3, None) => "cs-id3",
-            (Learner::CsIbl, None) => "cs-ibl",
+            (ClassifierKind::CsId3, None) => "cs-id3",
+            (ClassifierKind::CsIbl, None) => "cs-ibl",
             (_, None) => "id3",
         }
     }
@@ -102,8 +102,8 @@ pub struct ClassifyArgs {
     #[arg(long, value_name = "EXPR", allow_hyphen_values = true)]
     pub(crate) positive_if: Option<String>,
     /// The learner.
-    #[arg(long, value_enum, default_value_t = Learner::CsId3)]
-    pub(crate) learner: Learner,
+    #[arg(long, value_enum, default_value_t = ClassifierKind::CsId3)]
+    pub(crate) learner: ClassifierKind,
     /// The seed of the random order of the objects (and of ID3's discrimination orders;
     /// for the family, of the folds and of ICET's search).
     #[arg(long, default_value_t = 1)]

@@ -32,9 +32,9 @@ pub struct RunArgs {
     /// file (`--help` lists the keys, and the learners that read each).
     #[arg(long, long_help = config_help())]
     config: Option<PathBuf>,
-    /// off, learned, motion or belief: predict the next description instead of sensing
+    /// off, learned, motion or weighed: predict the next description instead of sensing
     /// it (default: the config's `predict_sensing`, else off; the `[prediction]` table of
-    /// the config tunes it). belief weighs acting on its belief against sensing at
+    /// the config tunes it). weighed weighs acting on the likely descriptions against sensing at
     /// `--price` and needs it.
     #[arg(long)]
     predict_sensing: Option<csql::PredictSensing>,
@@ -331,7 +331,7 @@ fn print_episodes(report: &csql::CostedReport, out: &mut dyn Write) -> std::io::
         report.costly.summary.episodes,
     );
     match &report.settings.learner {
-        csql::Learner::Belief(p) => writeln!(
+        csql::LearnerSettings::Belief(p) => writeln!(
             out,
             "Sensing by belief on {map}, seed {seed}: {n} episodes, each feature measured at its cost times {} reward units (the whole state at {}{})",
             report.costly.price,
@@ -413,11 +413,13 @@ fn print_policy(r: &RunReport, map: Option<&mdp::Map>, out: &mut dyn Write) -> s
 fn print_report(r: &RunReport, out: &mut dyn Write) -> std::io::Result<()> {
     let map = shown(&r.map);
     let who = match &r.settings.learner {
-        csql::Learner::CsQl(q) => format!("CS-QL on {map} with the {} strategy", q.strategy),
-        csql::Learner::UTree(_) => format!("U-Tree on {map}"),
-        csql::Learner::FullSensing => format!("Full sensing on {map}"),
-        csql::Learner::AmrlQ(_) => format!("AMRL-Q on {map}"),
-        csql::Learner::Belief(_) => format!("Sensing by belief on {map}"),
+        csql::LearnerSettings::CsQl(q) => {
+            format!("CS-QL on {map} with the {} strategy", q.strategy)
+        }
+        csql::LearnerSettings::UTree(_) => format!("U-Tree on {map}"),
+        csql::LearnerSettings::FullSensing => format!("Full sensing on {map}"),
+        csql::LearnerSettings::AmrlQ(_) => format!("AMRL-Q on {map}"),
+        csql::LearnerSettings::Belief(_) => format!("Sensing by belief on {map}"),
     };
     // The same three lines for every learner, so that runs compare line by line.
     let verdict = match r.judged_by {

@@ -234,7 +234,7 @@ fn a_settings_file_with_belief_is_read_back() {
     assert_eq!(v["settings"]["belief"]["prior"], 1.5);
     let settings: csql::RunSettings = serde_json::from_value(v["settings"].clone()).unwrap();
     match settings.learner {
-        csql::Learner::Belief(p) => {
+        csql::LearnerSettings::Belief(p) => {
             assert!(p.whole_state && p.max_uncertain == 4 && p.prior == 1.5);
         }
         other => panic!("{other:?}"),

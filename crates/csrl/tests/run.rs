@@ -242,7 +242,7 @@ fn svg_writes_the_descriptions_table_beside_it() {
 }
 
 /// A run that senses less says what it skipped; its JSON holds the same counts; the
-/// belief level needs a price.
+/// weighed level needs a price, and its old spelling `belief` is refused with a pointer.
 #[test]
 fn sensing_less_is_reported_in_the_text() {
     let args = [
@@ -252,7 +252,7 @@ fn sensing_less_is_reported_in_the_text() {
         "--strategy",
         "eager",
         "--predict-sensing",
-        "belief",
+        "weighed",
         "--price",
         "0.01",
     ];
@@ -262,13 +262,20 @@ fn sensing_less_is_reported_in_the_text() {
     assert!(skipped > 0, "{v}");
     assert!(
         text.contains(&format!(
-            "Sensing less (belief): {skipped} classifications skipped"
+            "Sensing less (weighed): {skipped} classifications skipped"
         )),
         "{text}"
     );
     let plain = ok(&["run", "--map", "tan8x8", "--strategy", "eager"]);
     assert!(!plain.contains("Sensing less"), "{plain}");
-    let out = csrl(&["run", "--map", "tan3x3", "--predict-sensing", "belief"]);
+    let out = csrl(&["run", "--map", "tan3x3", "--predict-sensing", "weighed"]);
     assert!(!out.status.success());
     assert!(stderr(&out).contains("[costly] price"), "{}", stderr(&out));
+    let old = csrl(&["run", "--map", "tan3x3", "--predict-sensing", "belief"]);
+    assert!(!old.status.success());
+    assert!(
+        stderr(&old).contains("predict_sensing = \"weighed\""),
+        "{}",
+        stderr(&old)
+    );
 }

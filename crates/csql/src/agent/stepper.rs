@@ -38,9 +38,9 @@ use crate::agent::main_loop::{Agent, Move, RefineFrom, Trial, TrialRecord};
 use crate::agent::strategy::Strategy;
 use crate::error::Error;
 use crate::perception::classify::Classify;
-use crate::perception::predict::level::PredictSensing;
 use crate::perception::representation::Representation;
 use crate::perception::rows::Perception;
+use crate::perception::sense_less::level::PredictSensing;
 use crate::settings::values::RunSettings;
 
 /// Which state a sensor is asked about.
@@ -388,7 +388,7 @@ impl Stepper {
         let mut nothing = |_: Moment, _: Feature| Reading(0);
         let probe = live(&features, StateId(0), &mut nothing);
         let classify = Classify::new(&probe).with_extensions(&q.extensions);
-        let agent = crate::agent::learn::agent_of(
+        let agent = crate::agent::trials::agent_of(
             classify,
             q.strategy.build(q.random_moves),
             table,

@@ -3,21 +3,19 @@
 //! run of wrong predictions of one transition between two of its measurements (the
 //! bound of `predict_sensing`, at most `max_skips`).
 //!
-//! [`Audited`] wraps a [`Predicting`] perception for a run. It passes every call through
-//! unchanged, and after each [`Perception::classify_next`] that used a transition without
+//! [`Audited`] wraps a [`Predicting`] perception for a run ([`Wraps`]: every call passes
+//! through unchanged), and after each [`Perception::classify_next`] that used a transition without
 //! measuring, it looks up the true description of the state reached through the free
 //! view ([`Perception::lookup`], the oracle's), never charged and never shown to the
 //! learner. The learner itself never calls the oracle.
 
 use std::collections::BTreeMap;
 
-use mdp::{ActionId, Reading, SensorNoise, StateId, World};
-use qlearn::{QTable, RowId};
-use rand::Rng;
+use mdp::World;
 
-use crate::perception::predict::{Predicting, PredictionStats};
 use crate::perception::rows::Perception;
-use crate::perception::view::{Describes, Sees};
+use crate::perception::sense_less::{Predicting, PredictionStats};
+use crate::perception::wraps::Wraps;
 
 /// A [`Predicting`] perception and the oracle's count of its wrong predictions.
 #[derive(Clone, Debug)]
@@ -50,37 +48,26 @@ impl Audited {
         }
     }
 
-    /// The learner audited.
-    pub(crate) fn inner_mut(&mut self) -> &mut Predicting {
-        &mut self.inner
-    }
-
     /// Give up the audit.
     pub(crate) fn into_inner(self) -> Predicting {
         self.inner
     }
 }
 
-impl Perception for Audited {
-    fn classify<W: World + ?Sized>(
-        &mut self,
-        world: &W,
-        s: StateId,
-        table: &mut QTable,
-    ) -> (RowId, f64) {
-        self.inner.classify(world, s, table)
+impl Wraps for Audited {
+    type Inner = Predicting;
+
+    fn inner(&self) -> &Predicting {
+        &self.inner
     }
 
-    fn classify_next<W: World + ?Sized, R: Rng + ?Sized>(
-        &mut self,
-        world: &W,
-        from: RowId,
-        a: ActionId,
-        s: StateId,
-        table: &mut QTable,
-        rng: &mut R,
-    ) -> (RowId, f64) {
-        let out = self.inner.classify_next(world, from, a, s, table, rng);
+    fn inner_mut(&mut self) -> &mut Predicting {
+        &mut self.inner
+    }
+
+    /// After a move classified by an unmeasured use of a transition: whether the
+    /// description given is the state's true one, through the oracle's free view.
+    fn after_next<W: World + ?Sized>(&mut self, world: &W) {
         if let Some((u, uses)) = self.inner.last_unmeasured() {
             let truth = self.inner.lookup(world, u.s);
             let run = self.runs.entry((u.from.0, u.a.0)).or_insert(0);
@@ -95,77 +82,5 @@ impl Perception for Audited {
                 self.longest_wrong_run = self.longest_wrong_run.max(*run);
             }
         }
-        out
-    }
-
-    fn classify_again<W: World + ?Sized>(
-        &mut self,
-        world: &W,
-        refined: RowId,
-        current: RowId,
-        s: StateId,
-        table: &mut QTable,
-    ) -> (RowId, f64) {
-        self.inner.classify_again(world, refined, current, s, table)
-    }
-
-    fn updated(
-        &mut self,
-        row: RowId,
-        a: ActionId,
-        reward: f64,
-        next: Option<RowId>,
-        table: &mut QTable,
-    ) {
-        self.inner.updated(row, a, reward, next, table);
-    }
-
-    fn refine<W: World + ?Sized>(&mut self, world: &W, row: RowId, s: StateId) -> Option<f64> {
-        self.inner.refine(world, row, s)
-    }
-
-    fn rows(&self) -> usize {
-        self.inner.rows()
-    }
-
-    fn lookup<W: World + ?Sized>(&mut self, world: &W, s: StateId) -> Option<RowId> {
-        self.inner.lookup(world, s)
-    }
-
-    fn learns_from_move(&self, ended: bool) -> bool {
-        self.inner.learns_from_move(ended)
-    }
-}
-
-impl Sees for Audited {
-    fn sees<W: World + ?Sized, R: Rng + ?Sized>(
-        &mut self,
-        world: &W,
-        s: StateId,
-        noise: SensorNoise,
-        rng: &mut R,
-    ) -> Option<RowId> {
-        self.inner.sees(world, s, noise, rng)
-    }
-    fn memoryless(&self) -> bool {
-        self.inner.memoryless()
-    }
-    fn begin(&mut self) {
-        self.inner.begin();
-    }
-    fn moved(&mut self, a: ActionId) {
-        self.inner.moved(a);
-    }
-}
-
-impl Describes for Audited {
-    fn described(&self) -> Vec<(RowId, Vec<(mdp::Feature, Reading)>)> {
-        self.inner.described()
-    }
-    fn cost_after_learning<W: World + ?Sized>(&mut self, world: &W, s: StateId) -> f64 {
-        self.inner.cost_after_learning(world, s)
-    }
-    fn table1_costs<W: World + ?Sized>(&mut self, world: &W) -> (f64, f64) {
-        self.inner.table1_costs(world)
     }
 }

@@ -14,10 +14,10 @@ use mdp::{ActionId, World};
 use serde::Serialize;
 
 use crate::agent::detector::DetectorKind;
-use crate::agent::learn::Judging;
 use crate::agent::strategy::StrategyKind;
+use crate::agent::trials::Judging;
 use crate::settings::defaults::WorldDefaults;
-use crate::settings::learner::{Learner, UTreeParams};
+use crate::settings::learner::{LearnerSettings, UTreeParams};
 use crate::settings::values::RunSettings;
 
 /// Why a run ended without learning (neither converged nor at policy quality 0.95 kept
@@ -209,7 +209,7 @@ pub(crate) fn diagnose<W: World + ?Sized>(
     let cold = rewards.largest > 1.0 && temperature < scaled / 2.0;
     let never_refined = settings.cs_ql().is_some() && end.decreases == 0 && end.descriptions <= 1;
     match &settings.learner {
-        Learner::CsQl(q) if never_refined => {
+        LearnerSettings::CsQl(q) if never_refined => {
             let floor = crate::judging::quality::value_floor(world, settings.gamma.get());
             let mut text = "No utility ever decreased, so the detector never fired and nothing was sensed: one description stands for every state.".to_string();
             let penalties = rewards.deterministic && floor < 0.0;
@@ -228,7 +228,7 @@ pub(crate) fn diagnose<W: World + ?Sized>(
             }
             why.push(text);
         }
-        Learner::UTree(p) if end.descriptions <= 1 => {
+        LearnerSettings::UTree(p) if end.descriptions <= 1 => {
             why.push("U-Tree never split its root: no distinction passed its test.".to_string());
             let looser = UTreeParams {
                 alpha: 0.2,

@@ -318,7 +318,7 @@ pub fn descriptions_svg(report: &RunReport) -> String {
         report.map,
         report.descriptions.len(),
         match report.settings.learner {
-            crate::Learner::CsQl(_) => format!("the {}", report.learned_by()),
+            crate::LearnerSettings::CsQl(_) => format!("the {}", report.learned_by()),
             _ => report.learned_by(),
         },
         report.seed

@@ -10,9 +10,9 @@ use mdp::{FeatureSpace, GridWorld, Mdp, StateId};
 use qlearn::QTable;
 use serde::Serialize;
 
-use crate::agent::learn::{Scene, learn};
 use crate::agent::main_loop::{Agent, LoopParams};
 use crate::agent::strategy::Never;
+use crate::agent::trials::{Scene, learn};
 use crate::observe::KeepTrace;
 use crate::perception::classify::Classify;
 use crate::perception::grid::bordered_features;

@@ -8,8 +8,8 @@ use mdp::World;
 use qlearn::QTable;
 use serde::Serialize;
 
-use crate::agent::learn::{Judging, Learned, Scene};
 use crate::agent::strategy::StrategyKind;
+use crate::agent::trials::{Judging, Learned, Scene};
 use crate::judging::judge::Verdict;
 use crate::judging::quality::QualityMethod;
 use crate::observe::TracePoint;
@@ -172,7 +172,7 @@ pub struct RunReport {
     /// What prediction did while learning; present only when `predict_sensing` is not
     /// `off`.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub prediction: Option<crate::perception::predict::PredictionStats>,
+    pub prediction: Option<crate::perception::sense_less::PredictionStats>,
     /// The policy quality and what it took (specification §6), in every run, whoever
     /// judged it: the measures every learner is compared on.
     pub quality: QualityReport,
@@ -207,11 +207,11 @@ impl RunReport {
     /// ```
     pub fn learned_by(&self) -> String {
         match &self.settings.learner {
-            crate::Learner::CsQl(q) => format!("{} strategy", q.strategy),
-            crate::Learner::UTree(_) => "U-Tree".to_string(),
-            crate::Learner::FullSensing => "full sensing".to_string(),
-            crate::Learner::AmrlQ(_) => "AMRL-Q".to_string(),
-            crate::Learner::Belief(_) => "sensing by belief".to_string(),
+            crate::LearnerSettings::CsQl(q) => format!("{} strategy", q.strategy),
+            crate::LearnerSettings::UTree(_) => "U-Tree".to_string(),
+            crate::LearnerSettings::FullSensing => "full sensing".to_string(),
+            crate::LearnerSettings::AmrlQ(_) => "AMRL-Q".to_string(),
+            crate::LearnerSettings::Belief(_) => "sensing by belief".to_string(),
         }
     }
 }

@@ -211,7 +211,7 @@ impl Counts {
     }
 }
 
-struct Learner<'w, W: World + ?Sized> {
+struct Planner<'w, W: World + ?Sized> {
     world: &'w W,
     params: BeliefParams,
     rule: SensingRule,
@@ -292,7 +292,7 @@ pub(crate) fn belief_planning_observed<W: World + ?Sized, R: Rng + ?Sized>(
             readings.push(world.read(StateId(s as u32), Feature(f as u32)).0);
         }
     }
-    let mut l = Learner {
+    let mut l = Planner {
         world,
         params: *params,
         rule,
@@ -376,7 +376,7 @@ enum Place {
     Lost(Vec<u32>),
 }
 
-impl<W: World + ?Sized> Learner<'_, W> {
+impl<W: World + ?Sized> Planner<'_, W> {
     fn na(&self) -> usize {
         self.world.num_actions()
     }

@@ -38,10 +38,10 @@ use crate::error::Error;
 use crate::learners::amrl::{CostlySummary, Episode};
 use crate::observe::Observer;
 use crate::perception::classify::Classify;
-use crate::perception::predict::Predicting;
-use crate::perception::predict::level::PredictSensing;
 use crate::perception::rows::{FullView, Perception};
-use crate::settings::learner::Learner;
+use crate::perception::sense_less::Predicting;
+use crate::perception::sense_less::level::PredictSensing;
+use crate::settings::learner::LearnerSettings;
 use crate::settings::values::{CostlySettings, RunSettings};
 
 /// What a perception would read classifying a state, learning nothing: the charge of a
@@ -178,9 +178,9 @@ pub fn costed_episodes<W: World + ?Sized>(
         episodes,
     };
     match &settings.learner {
-        Learner::FullSensing => Ok(play.run(FullView::new(world), Never, table)),
-        Learner::CsQl(q) => {
-            let belief = q.predict_sensing == PredictSensing::Belief;
+        LearnerSettings::FullSensing => Ok(play.run(FullView::new(world), Never, table)),
+        LearnerSettings::CsQl(q) => {
+            let belief = q.predict_sensing == PredictSensing::Weighed;
             if !(q.predict_sensing.is_off() || belief) || q.extensions.memory > 0 {
                 return Err(refuse(
                     format!("predict_sensing = {} or memory", q.predict_sensing),
@@ -199,10 +199,10 @@ pub fn costed_episodes<W: World + ?Sized>(
                 if settings.costly.map(|c| c.price) != Some(reward_per_cost) {
                     return Err(refuse(
                         "predict_sensing = belief".to_string(),
-                        "the belief level weighs sensing at the price it is scored at: give [costly] price the value of reward_per_cost",
+                        "the weighed level weighs sensing at the price it is scored at: give [costly] price the value of reward_per_cost",
                     ));
                 }
-                let p = Predicting::belief(
+                let p = Predicting::weighed(
                     classify,
                     &q.prediction,
                     world.num_actions(),
@@ -334,7 +334,7 @@ pub struct CostedReport {
 /// let r = csql::costed_report(&lake, "frozenlake4x4", &s, &mut csql::KeepTrace).unwrap();
 /// assert_eq!((r.costly.returns.len(), r.whole_state_price), (300, 0.05));
 /// // Sensing by belief, its features priced at [costly] price.
-/// s.learner = csql::Learner::Belief(csql::BeliefParams::default());
+/// s.learner = csql::LearnerSettings::Belief(csql::BeliefParams::default());
 /// let r = csql::costed_report(&lake, "frozenlake4x4", &s, &mut csql::KeepTrace).unwrap();
 /// assert_eq!((r.learner, r.costly.summary.episodes), (csql::LearnerKind::Belief, 300));
 /// ```
@@ -365,7 +365,7 @@ pub fn costed_report<W: World + ?Sized>(
         max_moves: settings.max_moves.get(),
     };
     let played = match &settings.learner {
-        Learner::AmrlQ(params) => crate::learners::amrl::amrl_q_observed(
+        LearnerSettings::AmrlQ(params) => crate::learners::amrl::amrl_q_observed(
             world,
             params,
             whole_state_price,
@@ -374,7 +374,7 @@ pub fn costed_report<W: World + ?Sized>(
             &mut rng,
             observer,
         ),
-        Learner::Belief(params) => crate::learners::belief::belief_planning_observed(
+        LearnerSettings::Belief(params) => crate::learners::belief::belief_planning_observed(
             world,
             params,
             costly.price,
@@ -443,7 +443,7 @@ impl<W: World + ?Sized> Play<'_, W> {
     ) -> Vec<Episode> {
         let world = self.world;
         let mut agent: Agent<P, S> =
-            crate::agent::learn::agent_of(perception, strategy, table, self.settings);
+            crate::agent::trials::agent_of(perception, strategy, table, self.settings);
         // The run's generator, drawn from as `csql::run` draws: a start, then the trial.
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(self.settings.seed);
         let mut out = Vec::with_capacity(self.episodes as usize);

@@ -46,7 +46,7 @@ use rand::Rng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 use crate::perception::rows::Perception;
-use crate::perception::sensor::Sensor;
+use crate::perception::sensor::SensorModel;
 use crate::settings::learner::UTreeParams;
 
 /// What a node tests.
@@ -118,7 +118,7 @@ pub struct UTree {
     params: UTreeParams,
     gamma: f64,
     /// What the learner's sensors make of the world's readings.
-    sensor: Sensor,
+    sensor: SensorModel,
     nodes: Vec<Node>,
     /// Per node: what the path to it tests, with the values it requires.
     paths: Vec<Vec<(Distinction, u32)>>,
@@ -151,7 +151,7 @@ impl UTree {
             prices: features.map(|f| world.price(f)).collect(),
             params,
             gamma,
-            sensor: Sensor::exact(),
+            sensor: SensorModel::exact(),
             nodes: Vec::new(),
             paths: Vec::new(),
             leaves: Vec::new(),
@@ -176,7 +176,7 @@ impl UTree {
     /// let tree = csql::UTree::new(&sensed, csql::UTreeParams::default(), 0.9).with_noise(noise, rng);
     /// ```
     pub fn with_noise(mut self, noise: SensorNoise, rng: Xoshiro256PlusPlus) -> UTree {
-        self.sensor = Sensor::noisy(noise, rng);
+        self.sensor = SensorModel::noisy(noise, rng);
         self
     }
 
@@ -384,7 +384,7 @@ impl UTree {
         if self.nodes.is_empty() {
             return None;
         }
-        let (mut cost, mut exact) = (0.0, Sensor::<Xoshiro256PlusPlus>::exact());
+        let (mut cost, mut exact) = (0.0, SensorModel::<Xoshiro256PlusPlus>::exact());
         descend(&self.nodes, 0, |d| {
             read(&self.prices, world, s, d, previous, &mut exact, &mut cost)
         })
@@ -494,7 +494,7 @@ impl crate::perception::view::Sees for UTree {
         }
         // The evaluation's own noise and generator; the charge is not counted.
         let (previous, mut cost) = (self.seen_previous, 0.0);
-        let mut sensor = Sensor::noisy(noise, rng);
+        let mut sensor = SensorModel::noisy(noise, rng);
         descend(&self.nodes, 0, |d| {
             read(&self.prices, world, s, d, previous, &mut sensor, &mut cost)
         })
@@ -544,7 +544,7 @@ impl crate::perception::view::Describes for UTree {
         let mut cost = 0.0;
         if !self.nodes.is_empty() {
             // A value with no branch ends the walk where it was read.
-            let mut exact = Sensor::<Xoshiro256PlusPlus>::exact();
+            let mut exact = SensorModel::<Xoshiro256PlusPlus>::exact();
             let _ = descend(&self.nodes, 0, |d| {
                 read(&self.prices, world, s, d, NO_ACTION, &mut exact, &mut cost)
             });
@@ -583,7 +583,7 @@ fn read<W: World + ?Sized, G: Rng>(
     s: StateId,
     d: Distinction,
     previous: u32,
-    sensor: &mut Sensor<G>,
+    sensor: &mut SensorModel<G>,
     cost: &mut f64,
 ) -> u32 {
     match d {

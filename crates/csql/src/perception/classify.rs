@@ -44,7 +44,7 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use self::cache::{Cache, Step};
 use crate::perception::representation::{DescriptionId, Representation, feature_id, value_of};
 use crate::perception::rows::Perception;
-use crate::perception::sensor::Sensor;
+use crate::perception::sensor::SensorModel;
 use crate::perception::tree::StateTree;
 use crate::perception::view::{Describes, Sees};
 use crate::settings::extensions::Matching;
@@ -117,7 +117,7 @@ pub struct Classify {
     cache_fits: bool,
     /// What the learner's sensors make of the world's readings, and how many reads each
     /// measurement is charged for.
-    sensor: Sensor,
+    sensor: SensorModel,
     matching: Matching,
     /// Sightings of a measurement before it makes a new description (1: at once, the
     /// paper's CLASSIFY), and the unmatched measurements seen so far.
@@ -168,7 +168,7 @@ impl Classify {
             probe: Vec::new(),
             use_cache: cache_fits,
             cache_fits,
-            sensor: Sensor::exact(),
+            sensor: SensorModel::exact(),
             matching: Matching::Exact,
             confirm: 1,
             sightings: std::collections::BTreeMap::new(),
@@ -195,7 +195,7 @@ impl Classify {
     /// ```
     pub fn with_noise(self, noise: SensorNoise, rng: Xoshiro256PlusPlus) -> Classify {
         let reads = self.sensor.reads();
-        self.with_sensor(Sensor::noisy(noise, rng).with_reads(reads))
+        self.with_sensor(SensorModel::noisy(noise, rng).with_reads(reads))
     }
 
     /// Read every measurement through `sensor` (exact by default): what
@@ -207,11 +207,11 @@ impl Classify {
     /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
     /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
     /// let rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
-    /// let sensor = csql::Sensor::noisy(mdp::SensorNoise::new(0.1).unwrap(), rng).with_reads(3);
+    /// let sensor = csql::SensorModel::noisy(mdp::SensorNoise::new(0.1).unwrap(), rng).with_reads(3);
     /// let c = csql::Classify::new(&sensed).with_sensor(sensor);
     /// assert_eq!(c.sensor().reads(), 3);
     /// ```
-    pub fn with_sensor(mut self, sensor: Sensor) -> Classify {
+    pub fn with_sensor(mut self, sensor: SensorModel) -> Classify {
         self.sensor = sensor;
         self
     }
@@ -224,7 +224,7 @@ impl Classify {
     /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
     /// assert!(csql::Classify::new(&sensed).sensor().is_exact());
     /// ```
-    pub fn sensor(&self) -> &Sensor {
+    pub fn sensor(&self) -> &SensorModel {
         &self.sensor
     }
 
@@ -761,7 +761,7 @@ impl Classify {
         rng: &mut R,
     ) -> Option<DescriptionId> {
         // The learner's number of reads, with the evaluation's noise and generator.
-        let mut sensor = Sensor::noisy(noise, rng).with_reads(self.sensor.reads());
+        let mut sensor = SensorModel::noisy(noise, rng).with_reads(self.sensor.reads());
         let found = if self.use_cache {
             let tree = (&mut self.cache, &self.rep, &self.costs[..]);
             walk(tree, &mut self.probe, world, s, &mut sensor)
@@ -827,7 +827,7 @@ impl Classify {
     /// The cached walk for `s` read exactly and for free into `probe`: the oracle's view.
     fn walk_free<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId) -> Option<DescriptionId> {
         if !self.use_cache {
-            return self.probe_plain(world, s, &mut Sensor::<Exact>::exact());
+            return self.probe_plain(world, s, &mut SensorModel::<Exact>::exact());
         }
         let tree = (&mut self.cache, &self.rep, &self.costs[..]);
         walk(
@@ -835,7 +835,7 @@ impl Classify {
             &mut self.probe,
             world,
             s,
-            &mut Sensor::<Exact>::exact(),
+            &mut SensorModel::<Exact>::exact(),
         )
     }
 
@@ -846,7 +846,7 @@ impl Classify {
         &mut self,
         world: &W,
         s: StateId,
-        sensor: &mut Sensor<G>,
+        sensor: &mut SensorModel<G>,
     ) -> Option<DescriptionId> {
         // The procedure reads what it measured from `measured`: the probe takes its place
         // for the walk, and the classification's measurements are kept aside.
@@ -913,17 +913,17 @@ fn walk<W: Sensors + ?Sized, G: Rng>(
     out: &mut Vec<(Feature, Reading)>,
     world: &W,
     s: StateId,
-    sensor: &mut Sensor<G>,
+    sensor: &mut SensorModel<G>,
 ) -> Option<DescriptionId> {
     match sensor {
-        Sensor::Exact { .. } => cache.walk(rep.library(), costs, out, |f| world.read(s, f)),
+        SensorModel::Exact { .. } => cache.walk(rep.library(), costs, out, |f| world.read(s, f)),
         noisy => cache.walk(rep.library(), costs, out, |f| noisy.read(world, s, f)),
     }
 }
 
 /// What measuring `measured` through `sensor` charges: each feature's price, once per
 /// read.
-fn charge<G>(prices: &[f64], measured: &[(Feature, Reading)], sensor: &Sensor<G>) -> f64 {
+fn charge<G>(prices: &[f64], measured: &[(Feature, Reading)], sensor: &SensorModel<G>) -> f64 {
     let once: f64 = measured.iter().map(|&(f, _)| prices[f.index()]).sum();
     once * f64::from(sensor.reads())
 }

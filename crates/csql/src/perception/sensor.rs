@@ -1,12 +1,12 @@
 //! What a learner's sensors do to the world's exact reading.
 //!
 //! The world's truth is exact ([`mdp::Sensors::read`]); errors and repeated reads belong
-//! to the sensor. A [`Sensor`] is exact (the truth, nothing drawn) or noisy (each read
+//! to the sensor. A [`SensorModel`] is exact (the truth, nothing drawn) or noisy (each read
 //! misread with the probability of an [`mdp::SensorNoise`], its errors drawn from the
-//! sensor's own generator), and reads each measured feature [`Sensor::reads`] times, every
+//! sensor's own generator), and reads each measured feature [`SensorModel::reads`] times, every
 //! read charged. A perception holds one and reads through it ([`crate::Classify`],
 //! [`crate::UTree`]); the free noisy views that evaluate a policy make one over the
-//! evaluation's generator (`Sensor<&mut R>`), so they never draw from the learner's.
+//! evaluation's generator (`SensorModel<&mut R>`), so they never draw from the learner's.
 //!
 //! Not to be confused with [`cslearn::Sensor`], cslearn's measuring of one object.
 
@@ -21,7 +21,7 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 /// the errors are drawn from: the sensor's own, or a borrowed one (`&mut R`).
 ///
 /// ```
-/// use csql::Sensor;
+/// use csql::SensorModel;
 /// use mdp::{Feature, SensorNoise, Sensors};
 /// use rand::SeedableRng;
 /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
@@ -30,15 +30,15 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 /// let s = world.states()[0];
 /// let truth = sensed.read(s, Feature(0));
 /// // Exact sensors read the truth, however many times.
-/// let mut exact: Sensor = Sensor::exact().with_reads(3);
+/// let mut exact: SensorModel = SensorModel::exact().with_reads(3);
 /// assert_eq!((exact.read(&sensed, s, Feature(0)), exact.reads()), (truth, 3));
 /// // Sensors that always misread never read the truth.
 /// let rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
-/// let mut wrong = Sensor::noisy(SensorNoise::new(1.0).unwrap(), rng);
+/// let mut wrong = SensorModel::noisy(SensorNoise::new(1.0).unwrap(), rng);
 /// assert_ne!(wrong.read(&sensed, s, Feature(0)), truth);
 /// ```
 #[derive(Clone, Debug)]
-pub enum Sensor<G = Xoshiro256PlusPlus> {
+pub enum SensorModel<G = Xoshiro256PlusPlus> {
     /// The world's reading as it is; nothing is drawn, however many reads.
     Exact {
         /// Reads of each measured feature, each charged.
@@ -56,20 +56,20 @@ pub enum Sensor<G = Xoshiro256PlusPlus> {
     },
 }
 
-impl<G> Default for Sensor<G> {
-    fn default() -> Sensor<G> {
-        Sensor::exact()
+impl<G> Default for SensorModel<G> {
+    fn default() -> SensorModel<G> {
+        SensorModel::exact()
     }
 }
 
-impl<G> Sensor<G> {
+impl<G> SensorModel<G> {
     /// Exact sensors reading once: the paper's.
     ///
     /// ```
-    /// assert_eq!(csql::Sensor::<rand_xoshiro::Xoshiro256PlusPlus>::exact().reads(), 1);
+    /// assert_eq!(csql::SensorModel::<rand_xoshiro::Xoshiro256PlusPlus>::exact().reads(), 1);
     /// ```
-    pub fn exact() -> Sensor<G> {
-        Sensor::Exact {
+    pub fn exact() -> SensorModel<G> {
+        SensorModel::Exact {
             reads: NonZeroU32::MIN,
         }
     }
@@ -81,13 +81,13 @@ impl<G> Sensor<G> {
     /// ```
     /// use rand::SeedableRng;
     /// let rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
-    /// assert!(csql::Sensor::noisy(mdp::SensorNoise::default(), rng).is_exact());
+    /// assert!(csql::SensorModel::noisy(mdp::SensorNoise::default(), rng).is_exact());
     /// ```
-    pub fn noisy(noise: SensorNoise, rng: G) -> Sensor<G> {
+    pub fn noisy(noise: SensorNoise, rng: G) -> SensorModel<G> {
         if noise.is_zero() {
-            return Sensor::exact();
+            return SensorModel::exact();
         }
-        Sensor::Noisy {
+        SensorModel::Noisy {
             noise,
             reads: NonZeroU32::MIN,
             rng,
@@ -98,13 +98,13 @@ impl<G> Sensor<G> {
     /// keeping the value read most often; every read is charged.
     ///
     /// ```
-    /// let s: csql::Sensor = csql::Sensor::exact().with_reads(0);
+    /// let s: csql::SensorModel = csql::SensorModel::exact().with_reads(0);
     /// assert_eq!(s.reads(), 1);
     /// ```
-    pub fn with_reads(mut self, reads: u32) -> Sensor<G> {
+    pub fn with_reads(mut self, reads: u32) -> SensorModel<G> {
         let reads = NonZeroU32::new(reads).unwrap_or(NonZeroU32::MIN);
         match &mut self {
-            Sensor::Exact { reads: r } | Sensor::Noisy { reads: r, .. } => *r = reads,
+            SensorModel::Exact { reads: r } | SensorModel::Noisy { reads: r, .. } => *r = reads,
         }
         self
     }
@@ -113,28 +113,28 @@ impl<G> Sensor<G> {
     /// the feature's price.
     ///
     /// ```
-    /// let s: csql::Sensor = csql::Sensor::exact().with_reads(5);
+    /// let s: csql::SensorModel = csql::SensorModel::exact().with_reads(5);
     /// assert_eq!(s.reads(), 5);
     /// ```
     pub fn reads(&self) -> u32 {
         match self {
-            Sensor::Exact { reads } | Sensor::Noisy { reads, .. } => reads.get(),
+            SensorModel::Exact { reads } | SensorModel::Noisy { reads, .. } => reads.get(),
         }
     }
 
     /// Whether the sensors read the truth (and never draw).
     ///
     /// ```
-    /// assert!(csql::Sensor::<rand_xoshiro::Xoshiro256PlusPlus>::exact().is_exact());
+    /// assert!(csql::SensorModel::<rand_xoshiro::Xoshiro256PlusPlus>::exact().is_exact());
     /// ```
     pub fn is_exact(&self) -> bool {
-        matches!(self, Sensor::Exact { .. })
+        matches!(self, SensorModel::Exact { .. })
     }
 }
 
-impl<G: Rng> Sensor<G> {
+impl<G: Rng> SensorModel<G> {
     /// What the sensors report for feature `f` of state `s`: the world's reading for
-    /// exact sensors (nothing drawn), else the majority of [`Sensor::reads`] noisy reads
+    /// exact sensors (nothing drawn), else the majority of [`SensorModel::reads`] noisy reads
     /// with the draws of [`SensorNoise::majority_reading`] (one read is
     /// [`SensorNoise::corrupt_reading`]).
     ///
@@ -149,7 +149,7 @@ impl<G: Rng> Sensor<G> {
     /// let mut a = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(4);
     /// let mut b = a.clone();
     /// // A sensor over a borrowed generator draws what the noise itself draws.
-    /// let mut sensor = csql::Sensor::noisy(noise, &mut a).with_reads(3);
+    /// let mut sensor = csql::SensorModel::noisy(noise, &mut a).with_reads(3);
     /// let read = sensor.read(&sensed, s, Feature(2));
     /// let truth = sensed.read(s, Feature(2));
     /// assert_eq!(read, noise.majority_reading(truth, sensed.readings(Feature(2)), 3, &mut b));
@@ -157,8 +157,8 @@ impl<G: Rng> Sensor<G> {
     #[inline]
     pub fn read<W: Sensors + ?Sized>(&mut self, world: &W, s: StateId, f: Feature) -> Reading {
         match self {
-            Sensor::Exact { .. } => world.read(s, f),
-            Sensor::Noisy { noise, reads, rng } => {
+            SensorModel::Exact { .. } => world.read(s, f),
+            SensorModel::Noisy { noise, reads, rng } => {
                 noise.majority_reading(world.read(s, f), world.readings(f), reads.get(), rng)
             }
         }

@@ -18,11 +18,11 @@ use serde::{Deserialize, Serialize};
 use crate::agent::detector::{DetectorKind, RateParams};
 use crate::agent::strategy::StrategyKind;
 use crate::error::{Error, SettingsProblem};
-use crate::perception::predict::level::{PredictSensing, Prediction};
+use crate::perception::sense_less::level::{PredictSensing, PredictionParams};
 use crate::settings::defaults::WorldDefaults;
 use crate::settings::extensions::{Extensions, Matching, WorldExtras};
 use crate::settings::learner::{
-    CsQlSettings, Learner, LearnerKind, PAPER_RANDOM_MOVES, UTreeParams,
+    CsQlSettings, LearnerKind, LearnerSettings, PAPER_RANDOM_MOVES, UTreeParams,
 };
 use crate::settings::values::{
     CostlySettings, JudgeSettings, MAX_ROWS, MAX_SETTINGS_BYTES, MapSource, NonNegative,
@@ -94,7 +94,7 @@ pub struct SettingsDraft {
     pub predict_sensing: Option<PredictSensing>,
     /// The table `[prediction]` (CS-QL, with `predict_sensing` other than `off`).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub prediction: Option<Prediction>,
+    pub prediction: Option<PredictionParams>,
     /// The table `[world]`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub world: Option<WorldExtras>,
@@ -848,7 +848,7 @@ impl SettingsDraft {
     /// assert_eq!(s.extensions().detector, csql::DetectorKind::Action);
     /// let d = csql::SettingsDraft::from_toml("learner = \"u-tree\"\n[u_tree]\nfringe = 3", "f").unwrap();
     /// let s = d.build().unwrap();
-    /// assert!(matches!(s.learner, csql::Learner::UTree(p) if p.fringe == 3));
+    /// assert!(matches!(s.learner, csql::LearnerSettings::UTree(p) if p.fringe == 3));
     /// let d = csql::SettingsDraft::from_toml("[u_tree]\nfringe = 3", "f").unwrap();
     /// assert!(d.build().unwrap_err().to_string().contains("learner = cs-ql"));
     /// let d = csql::SettingsDraft::from_toml("learner = \"amrl-q\"\ngamma = 0.9\n[costly]\nprice = 1", "f").unwrap();
@@ -913,23 +913,23 @@ impl SettingsDraft {
             return Err(Error::Conflict {
                 first: table_named("prediction", p),
                 second: "predict_sensing = off".to_string(),
-                why: "[prediction] tunes predict_sensing = \"learned\", \"motion\" or \"belief\"",
+                why: "[prediction] tunes predict_sensing = \"learned\", \"motion\" or \"weighed\"",
             });
         }
         let learner = match kind {
-            LearnerKind::CsQl => Learner::CsQl(CsQlSettings {
+            LearnerKind::CsQl => LearnerSettings::CsQl(CsQlSettings {
                 strategy: self.strategy.unwrap_or(StrategyKind::Resetting),
                 random_moves: self.random_moves.unwrap_or(PAPER_RANDOM_MOVES),
                 predict_sensing: self.predict_sensing.unwrap_or_default(),
                 prediction: self.prediction.unwrap_or_default(),
                 extensions,
             }),
-            LearnerKind::UTree => Learner::UTree(self.u_tree.unwrap_or_default()),
-            LearnerKind::FullSensing => Learner::FullSensing,
-            LearnerKind::AmrlQ => Learner::AmrlQ(self.amrl_q.unwrap_or_default()),
+            LearnerKind::UTree => LearnerSettings::UTree(self.u_tree.unwrap_or_default()),
+            LearnerKind::FullSensing => LearnerSettings::FullSensing,
+            LearnerKind::AmrlQ => LearnerSettings::AmrlQ(self.amrl_q.unwrap_or_default()),
             // Its features are priced at `[costly] price` (which the learner needs:
             // refused without it by `validate`).
-            LearnerKind::Belief => Learner::Belief(self.belief.unwrap_or_default()),
+            LearnerKind::Belief => LearnerSettings::Belief(self.belief.unwrap_or_default()),
         };
         let settings = RunSettings {
             map: self.map.clone().unwrap_or(paper.map),
@@ -1005,12 +1005,12 @@ impl From<&RunSettings> for SettingsDraft {
             judge: Some(s.judge).filter(|j| *j != JudgeSettings::default()),
             learner: Some(kind).filter(|k| !k.is_cs_ql()),
             u_tree: match s.learner {
-                Learner::UTree(p) if !p.is_default() => Some(p),
+                LearnerSettings::UTree(p) if !p.is_default() => Some(p),
                 _ => None,
             },
             max_rows: Some(s.max_rows).filter(|n| *n != MAX_ROWS),
             amrl_q: match s.learner {
-                Learner::AmrlQ(p) if !p.is_default() => Some(p),
+                LearnerSettings::AmrlQ(p) if !p.is_default() => Some(p),
                 _ => None,
             },
             costly: s.costly.map(|c| CostlyTable {
@@ -1018,7 +1018,7 @@ impl From<&RunSettings> for SettingsDraft {
                 rule: Some(c.rule),
             }),
             belief: match s.learner {
-                Learner::Belief(p) if !p.is_default() => Some(p),
+                LearnerSettings::Belief(p) if !p.is_default() => Some(p),
                 _ => None,
             },
         };

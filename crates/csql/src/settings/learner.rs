@@ -20,7 +20,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::agent::strategy::StrategyKind;
 use crate::error::Error;
-use crate::perception::predict::level::{PredictSensing, Prediction};
+use crate::perception::sense_less::level::{PredictSensing, PredictionParams};
 use crate::settings::extensions::Extensions;
 
 /// The learner of a run with the settings that are its own: CS-QL's strategy, prediction
@@ -29,14 +29,14 @@ use crate::settings::extensions::Extensions;
 /// are refused when the file is read ([`crate::SettingsDraft::build`]).
 ///
 /// ```
-/// use csql::{Learner, LearnerKind, StrategyKind};
-/// let l = Learner::cs_ql(StrategyKind::Eager);
+/// use csql::{LearnerSettings, LearnerKind, StrategyKind};
+/// let l = LearnerSettings::cs_ql(StrategyKind::Eager);
 /// assert_eq!(l.kind(), LearnerKind::CsQl);
 /// assert_eq!(l.strategy(), Some(StrategyKind::Eager));
-/// assert_eq!(Learner::from(LearnerKind::UTree).strategy(), None);
+/// assert_eq!(LearnerSettings::from(LearnerKind::UTree).strategy(), None);
 /// ```
 #[derive(Clone, Debug, PartialEq)]
-pub enum Learner {
+pub enum LearnerSettings {
     /// CS-QL, the paper's method.
     CsQl(CsQlSettings),
     /// A U-Tree-like statistical splitter ([`crate::UTree`]).
@@ -54,40 +54,40 @@ pub enum Learner {
     Belief(crate::BeliefParams),
 }
 
-impl Learner {
+impl LearnerSettings {
     /// CS-QL with `strategy` and otherwise the paper's settings ([`CsQlSettings::new`]).
     ///
     /// ```
-    /// let l = csql::Learner::cs_ql(csql::StrategyKind::Random);
+    /// let l = csql::LearnerSettings::cs_ql(csql::StrategyKind::Random);
     /// assert_eq!(l.strategy(), Some(csql::StrategyKind::Random));
     /// ```
-    pub fn cs_ql(strategy: StrategyKind) -> Learner {
-        Learner::CsQl(CsQlSettings::new(strategy))
+    pub fn cs_ql(strategy: StrategyKind) -> LearnerSettings {
+        LearnerSettings::CsQl(CsQlSettings::new(strategy))
     }
 
     /// Which learner this is.
     ///
     /// ```
-    /// assert_eq!(csql::Learner::FullSensing.kind(), csql::LearnerKind::FullSensing);
+    /// assert_eq!(csql::LearnerSettings::FullSensing.kind(), csql::LearnerKind::FullSensing);
     /// ```
     pub fn kind(&self) -> LearnerKind {
         match self {
-            Learner::CsQl(_) => LearnerKind::CsQl,
-            Learner::UTree(_) => LearnerKind::UTree,
-            Learner::FullSensing => LearnerKind::FullSensing,
-            Learner::AmrlQ(_) => LearnerKind::AmrlQ,
-            Learner::Belief(_) => LearnerKind::Belief,
+            LearnerSettings::CsQl(_) => LearnerKind::CsQl,
+            LearnerSettings::UTree(_) => LearnerKind::UTree,
+            LearnerSettings::FullSensing => LearnerKind::FullSensing,
+            LearnerSettings::AmrlQ(_) => LearnerKind::AmrlQ,
+            LearnerSettings::Belief(_) => LearnerKind::Belief,
         }
     }
 
     /// CS-QL's strategy; `None` for a baseline, which refines by none.
     ///
     /// ```
-    /// assert_eq!(csql::Learner::FullSensing.strategy(), None);
+    /// assert_eq!(csql::LearnerSettings::FullSensing.strategy(), None);
     /// ```
     pub fn strategy(&self) -> Option<StrategyKind> {
         match self {
-            Learner::CsQl(q) => Some(q.strategy),
+            LearnerSettings::CsQl(q) => Some(q.strategy),
             _ => None,
         }
     }
@@ -97,18 +97,18 @@ impl Learner {
 /// it when no strategy is given.
 ///
 /// ```
-/// use csql::{Learner, LearnerKind, StrategyKind};
-/// assert_eq!(Learner::from(LearnerKind::CsQl), Learner::cs_ql(StrategyKind::Resetting));
-/// assert_eq!(Learner::from(LearnerKind::UTree), Learner::UTree(csql::UTreeParams::default()));
+/// use csql::{LearnerSettings, LearnerKind, StrategyKind};
+/// assert_eq!(LearnerSettings::from(LearnerKind::CsQl), LearnerSettings::cs_ql(StrategyKind::Resetting));
+/// assert_eq!(LearnerSettings::from(LearnerKind::UTree), LearnerSettings::UTree(csql::UTreeParams::default()));
 /// ```
-impl From<LearnerKind> for Learner {
-    fn from(kind: LearnerKind) -> Learner {
+impl From<LearnerKind> for LearnerSettings {
+    fn from(kind: LearnerKind) -> LearnerSettings {
         match kind {
-            LearnerKind::CsQl => Learner::cs_ql(StrategyKind::Resetting),
-            LearnerKind::UTree => Learner::UTree(UTreeParams::default()),
-            LearnerKind::FullSensing => Learner::FullSensing,
-            LearnerKind::AmrlQ => Learner::AmrlQ(crate::AmrlParams::default()),
-            LearnerKind::Belief => Learner::Belief(crate::BeliefParams::default()),
+            LearnerKind::CsQl => LearnerSettings::cs_ql(StrategyKind::Resetting),
+            LearnerKind::UTree => LearnerSettings::UTree(UTreeParams::default()),
+            LearnerKind::FullSensing => LearnerSettings::FullSensing,
+            LearnerKind::AmrlQ => LearnerSettings::AmrlQ(crate::AmrlParams::default()),
+            LearnerKind::Belief => LearnerSettings::Belief(crate::BeliefParams::default()),
         }
     }
 }
@@ -133,7 +133,7 @@ pub struct CsQlSettings {
     pub predict_sensing: PredictSensing,
     /// The confidence rule, re-check rates and navigation trials of prediction (the
     /// TOML table `[prediction]`; only with `predict_sensing` other than `off`).
-    pub prediction: Prediction,
+    pub prediction: PredictionParams,
     /// CS-QL's remedies beyond the paper (the TOML table `[extensions]`).
     pub extensions: Extensions,
 }
@@ -154,7 +154,7 @@ impl CsQlSettings {
             strategy,
             random_moves: PAPER_RANDOM_MOVES,
             predict_sensing: PredictSensing::Off,
-            prediction: Prediction::default(),
+            prediction: PredictionParams::default(),
             extensions: Extensions::default(),
         }
     }

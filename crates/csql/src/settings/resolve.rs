@@ -213,7 +213,7 @@ pub(crate) fn check_size<W: mdp::World + ?Sized>(
     settings: &RunSettings,
     world: &W,
 ) -> Result<(), Error> {
-    if settings.learner == crate::Learner::FullSensing {
+    if settings.learner == crate::LearnerSettings::FullSensing {
         let needed = crate::FullView::readings_needed(world);
         if needed > crate::FULL_VIEW_LIMIT {
             return Err(Error::TooLarge {

@@ -1,5 +1,5 @@
 //! Run settings: one struct of validated values, with the learner's own settings in the
-//! learner ([`crate::Learner`]), and the paper's preset. The settings file's form, and
+//! learner ([`crate::LearnerSettings`]), and the paper's preset. The settings file's form, and
 //! the one conversion from it, are [`crate::SettingsDraft`].
 //!
 //! Every field holds only valid values: numbers are newtypes whose constructors and
@@ -14,9 +14,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::agent::strategy::StrategyKind;
 use crate::error::Error;
-use crate::perception::predict::level::{PredictSensing, Prediction};
+use crate::perception::sense_less::level::{PredictSensing, PredictionParams};
 use crate::settings::extensions::{Extensions, WorldExtras};
-use crate::settings::learner::{CsQlSettings, Learner, LearnerKind, PAPER_RANDOM_MOVES};
+use crate::settings::learner::{CsQlSettings, LearnerKind, LearnerSettings, PAPER_RANDOM_MOVES};
 
 /// The map of a run: a name (a built-in, a map file or a map spec such as
 /// `random:8x8:0.2:7`, resolved by [`mdp::resolve`]) or a map value. Reports show its
@@ -242,7 +242,7 @@ impl From<TrialCap> for u32 {
 /// Build one with [`RunSettings::tan1991`] (the paper's values) and change fields, read
 /// overrides from a TOML file with [`RunSettings::apply_toml`], or gather a file and
 /// flags in a [`crate::SettingsDraft`] and build it. The learner holds the settings that
-/// are only its own ([`Learner`]); how the run is judged is [`JudgeSettings`]. Every
+/// are only its own ([`LearnerSettings`]); how the run is judged is [`JudgeSettings`]. Every
 /// field holds a valid value by its type, and [`RunSettings::validate`] checks what spans
 /// several of them; a run checks them before it starts.
 ///
@@ -265,7 +265,7 @@ pub struct RunSettings {
     /// The map: a name (built-in, file or spec) or a map value.
     pub map: MapSource,
     /// The learner, with its own settings: CS-QL (the paper's method) or a baseline.
-    pub learner: Learner,
+    pub learner: LearnerSettings,
     /// Learning rate beta of equation 2.
     pub beta: LearningRate,
     /// Discount gamma of equation 2.
@@ -425,7 +425,7 @@ impl RunSettings {
         let q = qlearn::Params::tan1991();
         RunSettings {
             map: map.into(),
-            learner: Learner::cs_ql(strategy),
+            learner: LearnerSettings::cs_ql(strategy),
             beta: q.learning_rate,
             gamma: q.discount,
             temperature: q.temperature,
@@ -449,7 +449,7 @@ impl RunSettings {
     /// assert_eq!(s.learner.kind(), LearnerKind::UTree);
     /// ```
     pub fn with_learner(mut self, kind: LearnerKind) -> RunSettings {
-        self.learner = Learner::from(kind);
+        self.learner = LearnerSettings::from(kind);
         self
     }
 
@@ -461,7 +461,7 @@ impl RunSettings {
     /// ```
     pub fn cs_ql(&self) -> Option<&CsQlSettings> {
         match &self.learner {
-            Learner::CsQl(q) => Some(q),
+            LearnerSettings::CsQl(q) => Some(q),
             _ => None,
         }
     }
@@ -475,7 +475,7 @@ impl RunSettings {
     /// ```
     pub fn cs_ql_mut(&mut self) -> Option<&mut CsQlSettings> {
         match &mut self.learner {
-            Learner::CsQl(q) => Some(q),
+            LearnerSettings::CsQl(q) => Some(q),
             _ => None,
         }
     }
@@ -580,11 +580,11 @@ impl RunSettings {
             );
         }
         match &self.learner {
-            Learner::CsQl(q) => self.validate_cs_ql(q),
-            Learner::UTree(p) => p.validate(),
-            Learner::FullSensing => Ok(()),
-            Learner::AmrlQ(p) => p.validate(),
-            Learner::Belief(p) => p.validate(),
+            LearnerSettings::CsQl(q) => self.validate_cs_ql(q),
+            LearnerSettings::UTree(p) => p.validate(),
+            LearnerSettings::FullSensing => Ok(()),
+            LearnerSettings::AmrlQ(p) => p.validate(),
+            LearnerSettings::Belief(p) => p.validate(),
         }
     }
 
@@ -615,13 +615,14 @@ impl RunSettings {
             })
         };
         match &self.learner {
-            Learner::UTree(_) => conflict("learner = u-tree".to_string()),
-            Learner::CsQl(q)
-                if !(q.predict_sensing.is_off() || q.predict_sensing == PredictSensing::Belief) =>
+            LearnerSettings::UTree(_) => conflict("learner = u-tree".to_string()),
+            LearnerSettings::CsQl(q)
+                if !(q.predict_sensing.is_off()
+                    || q.predict_sensing == PredictSensing::Weighed) =>
             {
                 conflict(format!("predict_sensing = {}", q.predict_sensing))
             }
-            Learner::CsQl(q) if q.extensions.memory > 0 => {
+            LearnerSettings::CsQl(q) if q.extensions.memory > 0 => {
                 conflict(format!("[extensions] memory = {}", q.extensions.memory))
             }
             _ => Ok(()),
@@ -650,18 +651,18 @@ impl RunSettings {
                 "the rate test is the statistical detector's parameters: give them with detector = \"statistical\"",
             );
         }
-        if q.prediction != Prediction::default() && q.predict_sensing.is_off() {
+        if q.prediction != PredictionParams::default() && q.predict_sensing.is_off() {
             return conflict(
                 "[prediction] settings".to_string(),
                 "predict_sensing = off".to_string(),
-                "[prediction] tunes predict_sensing = \"learned\", \"motion\" or \"belief\"",
+                "[prediction] tunes predict_sensing = \"learned\", \"motion\" or \"weighed\"",
             );
         }
-        if q.predict_sensing == PredictSensing::Belief && self.costly.is_none() {
+        if q.predict_sensing == PredictSensing::Weighed && self.costly.is_none() {
             return conflict(
-                "predict_sensing = \"belief\"".to_string(),
+                "predict_sensing = \"weighed\"".to_string(),
                 "no [costly] price".to_string(),
-                "the belief level weighs the loss of acting on its belief against the price of measuring, in reward units: give [costly] price (csrl run --price)",
+                "the weighed level weighs the loss of acting on its belief against the price of measuring, in reward units: give [costly] price (csrl run --price)",
             );
         }
         if q.predict_sensing == PredictSensing::Motion
@@ -690,7 +691,7 @@ impl RunSettings {
             );
         }
         let moves = q.prediction.memory_moves;
-        if moves != Prediction::default().memory_moves
+        if moves != PredictionParams::default().memory_moves
             && q.predict_sensing != PredictSensing::Motion
         {
             return conflict(

@@ -1,4 +1,4 @@
-//! The belief level (`predict_sensing = "belief"`): after a move, the frequencies the
+//! The weighed level (`predict_sensing = "weighed"`): after a move, the frequencies the
 //! model measured give the descriptions the agent may now have, with their
 //! probabilities; the agent weighs acting on that belief against the price of measuring
 //! (specification 6.14, `docs/predict_sensing.md`).
@@ -38,7 +38,7 @@ use crate::perception::classify::Classify;
 use crate::perception::representation::DescriptionId;
 
 impl Predicting {
-    /// What the belief level chooses after action `a` from row `from`, before the
+    /// What the weighed level chooses after action `a` from row `from`, before the
     /// outcome.
     pub(super) fn choose(&self, from: RowId, a: ActionId, table: &QTable) -> Choice {
         let price = self.price.unwrap_or(0.0);
@@ -118,7 +118,7 @@ impl Predicting {
         if least.is_finite() { least } else { 0.0 }
     }
 
-    /// The belief level's [`Perception::classify_next`].
+    /// The weighed level's [`Perception::classify_next`].
     pub(super) fn next_by_belief<W: World + ?Sized, R: Rng + ?Sized>(
         &mut self,
         world: &W,
@@ -232,7 +232,7 @@ impl Predicting {
         }
     }
 
-    /// What the belief level would read on `s` reached by `a` from `from`, learning
+    /// What the weighed level would read on `s` reached by `a` from `from`, learning
     /// nothing: the charge of a move that ends an episode when sensing is chosen with
     /// the move.
     pub(crate) fn would_read_by_belief<W: World + ?Sized>(
@@ -257,7 +257,7 @@ impl Predicting {
         }
     }
 
-    /// Choose, before the outcome of action `a` from `from`, what the belief level
+    /// Choose, before the outcome of action `a` from `from`, what the weighed level
     /// will measure after it (the rule "with the move").
     pub(crate) fn choose_with_move(&mut self, from: RowId, a: ActionId, table: &QTable) {
         if self.price.is_some() {
@@ -280,8 +280,8 @@ mod tests {
     use qlearn::{Discount, LearningRate, Target};
 
     use super::*;
-    use crate::perception::predict::level::Prediction;
     use crate::perception::representation::Representation;
+    use crate::perception::sense_less::level::PredictionParams;
 
     /// A level at `price` whose model has seen action 0 from row 0 lead to rows 1 and 2
     /// twice each (told apart by feature 0), and a table where row 1 prefers action 0
@@ -296,7 +296,7 @@ mod tests {
         rep.push(&[(Feature(0), wall), (Feature(1), free)]);
         rep.push(&[(Feature(0), free), (Feature(1), free)]);
         let classify = Classify::with_representation(&sensed, rep);
-        let mut p = Predicting::belief(classify, &Prediction::default(), 4, price);
+        let mut p = Predicting::weighed(classify, &PredictionParams::default(), 4, price);
         for to in [1, 2, 2, 1, 2] {
             p.model.observe(RowId(0), ActionId(0), RowId(to));
         }

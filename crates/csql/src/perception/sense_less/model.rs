@@ -12,7 +12,7 @@ struct Entry {
     next: Option<RowId>,
     /// Every next description measured, in the order first seen.
     successors: Vec<RowId>,
-    /// How often each of `successors` was measured (the belief level's frequencies).
+    /// How often each of `successors` was measured (the weighed level's frequencies).
     counts: Vec<u32>,
     /// Measurements since the entry was last invalidated.
     measured: u32,
@@ -27,7 +27,7 @@ struct Entry {
 }
 
 /// The learned transition model at the level of descriptions: (description, action) ->
-/// next description, with the confidence rule of [`Prediction::confirmations`](crate::Prediction::confirmations).
+/// next description, with the confidence rule of [`PredictionParams::confirmations`](crate::PredictionParams::confirmations).
 ///
 /// ```
 /// use csql::TransitionModel;
@@ -173,7 +173,7 @@ impl TransitionModel {
 
     /// The measured frequencies of a transition's next descriptions, once it has been
     /// measured at least `confirmations` times and never found wrong since it was last
-    /// invalidated (the belief level's trust): `(description, count)` in the order first
+    /// invalidated (the weighed level's trust): `(description, count)` in the order first
     /// seen, and the number of measurements.
     ///
     /// ```

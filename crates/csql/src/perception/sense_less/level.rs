@@ -1,6 +1,6 @@
 //! The settings of sensing less: which knowledge lets the agent skip measurements
 //! ([`PredictSensing`], the run setting `predict_sensing`) and the rates and rules of
-//! `[prediction]` ([`Prediction`]). Depends only on the error type, so that the settings
+//! `[prediction]` ([`PredictionParams`]). Depends only on the error type, so that the settings
 //! can name them without knowing the perception that uses them.
 
 use serde::{Deserialize, Serialize};
@@ -15,7 +15,7 @@ use crate::error::Error;
 /// assert_eq!(PredictSensing::Motion.name(), "motion");
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
+#[serde(rename_all = "lowercase", try_from = "String")]
 pub enum PredictSensing {
     /// Classify every next state (the paper's procedure; the default).
     #[default]
@@ -27,8 +27,9 @@ pub enum PredictSensing {
     /// The learned model with the frequencies of every next description: the agent
     /// skips a measurement when acting on its belief loses less than measuring costs at
     /// `[costly] price`, and otherwise measures only what tells the likely descriptions
-    /// apart (see `docs/predict_sensing.md`).
-    Belief,
+    /// apart (see `docs/predict_sensing.md`). Spelled `belief` before; that spelling is
+    /// refused with a pointer here, since `learner = "belief"` is another thing.
+    Weighed,
 }
 
 impl PredictSensing {
@@ -41,10 +42,10 @@ impl PredictSensing {
         PredictSensing::Off,
         PredictSensing::Learned,
         PredictSensing::Motion,
-        PredictSensing::Belief,
+        PredictSensing::Weighed,
     ];
 
-    /// The setting's value: `off`, `learned`, `motion` or `belief`.
+    /// The setting's value: `off`, `learned`, `motion` or `weighed`.
     ///
     /// ```
     /// assert_eq!(csql::PredictSensing::Learned.name(), "learned");
@@ -54,7 +55,7 @@ impl PredictSensing {
             PredictSensing::Off => "off",
             PredictSensing::Learned => "learned",
             PredictSensing::Motion => "motion",
-            PredictSensing::Belief => "belief",
+            PredictSensing::Weighed => "weighed",
         }
     }
 
@@ -82,17 +83,40 @@ impl std::str::FromStr for PredictSensing {
             .find(|l| l.name() == s)
             .ok_or_else(|| Error::InvalidSetting {
                 value: format!("predict_sensing = {s}"),
-                expected: "one of off, learned, motion, belief",
+                expected: if s == "belief" {
+                    "predict_sensing = \"weighed\", the new spelling of the level that weighs \
+                     acting on the likely descriptions against measuring (learner = \"belief\" \
+                     is the learner that plans over beliefs)"
+                } else {
+                    "one of off, learned, motion, weighed"
+                },
             })
     }
 }
 
+/// A settings file's string, read as [`std::str::FromStr`] reads it, so that a file
+/// and a flag are refused with the same words.
+///
+/// ```
+/// let err = toml::from_str::<std::collections::BTreeMap<String, csql::PredictSensing>>(
+///     "predict_sensing = \"belief\"",
+/// )
+/// .unwrap_err();
+/// assert!(err.to_string().contains("predict_sensing = \"weighed\""), "{err}");
+/// ```
+impl TryFrom<String> for PredictSensing {
+    type Error = Error;
+    fn try_from(s: String) -> Result<PredictSensing, Error> {
+        s.parse()
+    }
+}
+
 /// The most evaluation trials of navigation from each state that a run may ask for
-/// ([`Prediction::navigation_trials`]): navigation makes that many from every non-goal
+/// ([`PredictionParams::navigation_trials`]): navigation makes that many from every non-goal
 /// state, each of up to `max_moves` moves.
 ///
 /// ```
-/// let p = csql::Prediction { navigation_trials: csql::MAX_NAVIGATION_TRIALS + 1, ..Default::default() };
+/// let p = csql::PredictionParams { navigation_trials: csql::MAX_NAVIGATION_TRIALS + 1, ..Default::default() };
 /// assert!(p.validate().unwrap_err().to_string().contains("at most 10000"));
 /// ```
 pub const MAX_NAVIGATION_TRIALS: u32 = 10_000;
@@ -102,14 +126,14 @@ pub const MAX_NAVIGATION_TRIALS: u32 = 10_000;
 /// `off`.
 ///
 /// ```
-/// let p = csql::Prediction::default();
+/// let p = csql::PredictionParams::default();
 /// assert_eq!((p.confirmations, p.max_skips, p.navigation_trials, p.memory_moves), (3, 16, 10, 1));
 /// assert_eq!((p.recheck, p.verify), (0.05, 0.05));
 /// assert!(p.validate().is_ok());
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
-pub struct Prediction {
+pub struct PredictionParams {
     /// Equal measurements in a row, and none different, before a transition is trusted
     /// (default 3).
     pub confirmations: u32,
@@ -128,9 +152,9 @@ pub struct Prediction {
     pub memory_moves: u32,
 }
 
-impl Default for Prediction {
-    fn default() -> Prediction {
-        Prediction {
+impl Default for PredictionParams {
+    fn default() -> PredictionParams {
+        PredictionParams {
             confirmations: 3,
             recheck: 0.05,
             max_skips: 16,
@@ -141,14 +165,14 @@ impl Default for Prediction {
     }
 }
 
-impl Prediction {
+impl PredictionParams {
     /// Whether every value is the default (for serde's `skip_serializing_if`).
     ///
     /// ```
-    /// assert!(csql::Prediction::default().is_default());
+    /// assert!(csql::PredictionParams::default().is_default());
     /// ```
     pub fn is_default(&self) -> bool {
-        *self == Prediction::default()
+        *self == PredictionParams::default()
     }
 
     /// Check the ranges: probabilities in [0, 1], at least one confirmation, skip,
@@ -156,7 +180,7 @@ impl Prediction {
     /// evaluation trials.
     ///
     /// ```
-    /// let p = csql::Prediction { recheck: 1.5, ..Default::default() };
+    /// let p = csql::PredictionParams { recheck: 1.5, ..Default::default() };
     /// let err = p.validate().unwrap_err();
     /// assert!(matches!(err, csql::Error::InvalidSetting { .. }));
     /// assert!(err.to_string().contains("prediction.recheck"));
@@ -204,15 +228,15 @@ mod tests {
     #[test]
     fn settings_are_checked() {
         for bad in [
-            Prediction {
+            PredictionParams {
                 verify: -0.1,
                 ..Default::default()
             },
-            Prediction {
+            PredictionParams {
                 max_skips: 0,
                 ..Default::default()
             },
-            Prediction {
+            PredictionParams {
                 confirmations: 0,
                 ..Default::default()
             },

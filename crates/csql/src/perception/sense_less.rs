@@ -11,9 +11,9 @@
 //! | `off` | nothing: every next state is classified (the paper's procedure) | [`crate::Classify`] alone |
 //! | `learned` | a model learned on the way: (description, action) -> next description | [`Predicting::learned`], [`TransitionModel`] |
 //! | `motion` | the learned model, and how its moves shift its view (dead reckoning) | [`Predicting::motion`] |
-//! | `belief` | the model's frequencies of next descriptions, weighed against a price in reward units (also in stochastic worlds) | [`Predicting::belief`] |
+//! | `weighed` | the model's frequencies of next descriptions, weighed against a price in reward units (also in stochastic worlds) | [`Predicting::weighed`] |
 //!
-//! The belief level is described in its own module (`predict/weighing.rs`, specification
+//! The weighed level is described in its own module (`sense_less/weighing.rs`, specification
 //! 6.14): what follows describes the learned and motion levels, whose rules it shares
 //! where it says so.
 //!
@@ -21,11 +21,11 @@
 //!
 //! [`TransitionModel`] counts, for each description and action, the next description
 //! measured. A transition is *trusted* once it has been measured
-//! [`Prediction::confirmations`] times in a row with the same answer and never with
+//! [`PredictionParams::confirmations`] times in a row with the same answer and never with
 //! another one. When the agent leaves a description by a trusted transition it does not
 //! classify the next state: it takes the predicted description, uncharged. It still
-//! re-checks (classifies, charged) with probability [`Prediction::recheck`], and always
-//! after [`Prediction::max_skips`] unmeasured uses in a row. A re-check that disagrees
+//! re-checks (classifies, charged) with probability [`PredictionParams::recheck`], and always
+//! after [`PredictionParams::max_skips`] unmeasured uses in a row. A re-check that disagrees
 //! marks the transition as not deterministic: it is never trusted again until one of its
 //! two descriptions is refined.
 //!
@@ -55,7 +55,7 @@
 //!
 //! At the `motion` level the agent also knows that after a move that was not blocked a
 //! cell sensed at offset `(dx, dy)` lies at `(dx - 1, dy)` (for a move right). It keeps
-//! the cells it sensed in the last [`Prediction::memory_moves`] moves, placed by dead
+//! the cells it sensed in the last [`PredictionParams::memory_moves`] moves, placed by dead
 //! reckoning from the start of the trial, and a measurement CLASSIFY asks for a cell it
 //! remembers is free. It knows whether a move was blocked only when it remembers the cell
 //! it moved towards; otherwise it forgets everything and starts over from where it is.
@@ -68,7 +68,7 @@
 //! [`crate::navigate`]: the descriptions and the model form a reduced map; the agent
 //! localises once (CLASSIFY, charged) and then follows its greedy policy on the graph,
 //! measuring only where the model does not trust the transition, or to verify it with
-//! probability [`Prediction::verify`] (and after `max_skips` unmeasured uses).
+//! probability [`PredictionParams::verify`] (and after `max_skips` unmeasured uses).
 
 pub(crate) mod level;
 pub(crate) mod model;
@@ -83,7 +83,7 @@ use qlearn::{QTable, RowId};
 use rand::{Rng, RngExt};
 use serde::Serialize;
 
-use self::level::{PredictSensing, Prediction};
+use self::level::{PredictSensing, PredictionParams};
 use self::model::TransitionModel;
 use self::reckoning::{Memory, charge};
 use crate::perception::classify::Classify;
@@ -114,7 +114,7 @@ pub struct PredictionStats {
     /// The most wrong predictions of one transition between two of its measurements
     /// (the guarantee: at most `max_skips`).
     pub longest_wrong_run: u32,
-    /// States the belief level resolved by measuring only what tells the likely
+    /// States the weighed level resolved by measuring only what tells the likely
     /// descriptions apart (charged, and absent from the JSON when 0).
     #[serde(skip_serializing_if = "is_zero")]
     pub narrowed: u64,
@@ -130,13 +130,13 @@ fn is_zero(n: &u64) -> bool {
 /// its features.
 ///
 /// ```
-/// use csql::{Agent, Classify, LoopParams, Predicting, Prediction, RunSettings, Setup, StrategyKind};
+/// use csql::{Agent, Classify, LoopParams, Predicting, PredictionParams, RunSettings, Setup, StrategyKind};
 /// use rand::SeedableRng;
 /// let settings = RunSettings::tan1991("tan3x3", StrategyKind::Lazy, 1);
 /// let setup = Setup::new(&settings).unwrap();
 /// let world = setup.sensed(&settings);
 /// let mut agent = Agent::new(
-///     Predicting::learned(Classify::new(&world), &Prediction::default(), 4),
+///     Predicting::learned(Classify::new(&world), &PredictionParams::default(), 4),
 ///     csql::Lazy::default(),
 ///     qlearn::QTable::new(4).unwrap(),
 ///     LoopParams::from(&settings),
@@ -167,21 +167,21 @@ pub struct Predicting {
     tree: Option<StateTree>,
     scratch: Vec<(Feature, Reading)>,
     stats: PredictionStats,
-    /// The belief level: its price of sensing, in reward units per unit of cost.
+    /// The weighed level: its price of sensing, in reward units per unit of cost.
     price: Option<f64>,
-    /// The belief level: what the agent knows of the state it is in.
+    /// The weighed level: what the agent knows of the state it is in.
     known: Known,
-    /// The belief level: moves since the last classification in full.
+    /// The weighed level: moves since the last classification in full.
     blind: u32,
-    /// The belief level: whether the state before the current one was given the most
+    /// The weighed level: whether the state before the current one was given the most
     /// likely of several descriptions (the current one's is `known`).
     left_guessed: bool,
-    /// The belief level: what was chosen with a move that ends an episode, before its
+    /// The weighed level: what was chosen with a move that ends an episode, before its
     /// outcome (costed episodes under the rule "with the move").
     chosen: Option<Choice>,
 }
 
-/// What the belief level knows of the state it is in.
+/// What the weighed level knows of the state it is in.
 #[derive(Clone, Debug, PartialEq)]
 enum Known {
     /// Classified in full: its description is measured.
@@ -201,7 +201,7 @@ impl Known {
     }
 }
 
-/// The belief level's choice after a move, made before its outcome is seen.
+/// The weighed level's choice after a move, made before its outcome is seen.
 #[derive(Clone, Debug, PartialEq)]
 enum Choice {
     /// Classify in full (the paper's procedure).
@@ -253,7 +253,7 @@ impl Predicting {
     /// let p = csql::Predicting::learned(csql::Classify::new(&sensed), &Default::default(), 4);
     /// assert_eq!(p.level(), csql::PredictSensing::Learned);
     /// ```
-    pub fn learned(classify: Classify, settings: &Prediction, actions: usize) -> Predicting {
+    pub fn learned(classify: Classify, settings: &PredictionParams, actions: usize) -> Predicting {
         Predicting {
             inner: classify,
             model: TransitionModel::new(actions, settings.confirmations),
@@ -274,7 +274,7 @@ impl Predicting {
         }
     }
 
-    /// The belief level: CLASSIFY and a model of the frequencies of next descriptions,
+    /// The weighed level: CLASSIFY and a model of the frequencies of next descriptions,
     /// weighed against sensing at `price` reward units per unit of sensing cost (a run's
     /// `[costly] price`). At a price of 0 measuring is free, and the agent measures
     /// everything the paper's procedure measures.
@@ -283,12 +283,12 @@ impl Predicting {
     /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
     /// let space = mdp::FeatureSpace::new(world.map(), &mdp::Manhattan).unwrap();
     /// let sensed = mdp::SensedGrid::new(&world, &space, mdp::Slip::default());
-    /// let p = csql::Predicting::belief(csql::Classify::new(&sensed), &Default::default(), 4, 0.01);
-    /// assert_eq!(p.level(), csql::PredictSensing::Belief);
+    /// let p = csql::Predicting::weighed(csql::Classify::new(&sensed), &Default::default(), 4, 0.01);
+    /// assert_eq!(p.level(), csql::PredictSensing::Weighed);
     /// ```
-    pub fn belief(
+    pub fn weighed(
         classify: Classify,
-        settings: &Prediction,
+        settings: &PredictionParams,
         actions: usize,
         price: f64,
     ) -> Predicting {
@@ -299,7 +299,7 @@ impl Predicting {
     }
 
     /// The motion level: the learned level and a memory of the cells sensed in the last
-    /// [`Prediction::memory_moves`] moves, placed by dead reckoning in `world`'s grid.
+    /// [`PredictionParams::memory_moves`] moves, placed by dead reckoning in `world`'s grid.
     ///
     /// ```
     /// let world = mdp::GridWorld::new(&mdp::builtin("tan3x3").unwrap());
@@ -310,7 +310,7 @@ impl Predicting {
     /// ```
     pub fn motion(
         classify: Classify,
-        settings: &Prediction,
+        settings: &PredictionParams,
         world: &GridWorld,
         space: &FeatureSpace,
     ) -> Predicting {
@@ -331,7 +331,7 @@ impl Predicting {
     /// ```
     pub fn level(&self) -> PredictSensing {
         match (&self.memory, self.price) {
-            (_, Some(_)) => PredictSensing::Belief,
+            (_, Some(_)) => PredictSensing::Weighed,
             (None, None) => PredictSensing::Learned,
             (Some(_), None) => PredictSensing::Motion,
         }
@@ -616,7 +616,7 @@ impl Perception for Predicting {
         Perception::lookup(&mut self.inner, world, s)
     }
 
-    /// The belief level learns nothing from a move from or (unless it ended the trial)
+    /// The weighed level learns nothing from a move from or (unless it ended the trial)
     /// to a state given the most likely of several descriptions.
     fn learns_from_move(&self, ended: bool) -> bool {
         !(self.known.guessed() || (!ended && self.left_guessed))
