@@ -159,9 +159,9 @@ impl Dynamics {
 
     fn options(self) -> WorldOptions {
         let (slip, slide) = match self {
-            Dynamics::Deterministic => (0.0, 0.0),
-            Dynamics::SemiSlippery => (0.0, 0.5),
-            Dynamics::Slippery => (2.0 / 3.0, 0.0),
+            Dynamics::Deterministic => (None, None),
+            Dynamics::SemiSlippery => (None, Some(0.5)),
+            Dynamics::Slippery => (Some(2.0 / 3.0), None),
         };
         WorldOptions {
             slip,

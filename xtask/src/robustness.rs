@@ -271,8 +271,8 @@ fn settings(
     s.judge.quality_patience = def.patience;
     match condition {
         Condition::Paper => {}
-        Condition::Slip(p) => s.world.slip = Slip::new(p)?,
-        Condition::Noise(p) => s.world.sensor_noise = SensorNoise::new(p)?,
+        Condition::Slip(p) => s.world.slip = Some(Slip::new(p)?),
+        Condition::Noise(p) => s.world.sensor_noise = Some(SensorNoise::new(p)?),
         Condition::Radius(r) => s.world.sensing_radius = Some(r),
     }
     if condition.stochastic() {

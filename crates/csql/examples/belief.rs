@@ -43,8 +43,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 let lake = mdp::builtin_world(
                     world,
                     &mdp::WorldOptions {
-                        slip,
-                        slide,
+                        slip: Some(slip),
+                        slide: Some(slide),
                         sensing: Some(mdp::SensingModel::Factors),
                         factor_costs: Some(vec![0.025, 0.025]),
                     },

@@ -339,7 +339,7 @@ fn learn_classify<W: World + ?Sized>(
     sensor_rng.jump();
     let extensions = settings.extensions();
     let classify = classify
-        .with_noise(settings.world.sensor_noise, sensor_rng)
+        .with_noise(settings.world.sensor_noise(), sensor_rng)
         .with_extensions(&extensions);
     let (q, predicting) = match &settings.learner {
         // AMRL-Q and sensing by belief never come here: `run_classify` refuses them.
@@ -352,7 +352,7 @@ fn learn_classify<W: World + ?Sized>(
             let mut utree_rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
             utree_rng.jump();
             let perception = UTree::new(scene.world, *params, settings.gamma.get())
-                .with_noise(settings.world.sensor_noise, utree_rng);
+                .with_noise(settings.world.sensor_noise(), utree_rng);
             let (report, _) = learn_and_report(scene, settings, perception, Never, observer);
             return (report, classify.into_representation());
         }

@@ -13,7 +13,7 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 
 fn lake(slide: f64) -> mdp::FiniteWorld {
     let options = WorldOptions {
-        slide,
+        slide: Some(slide),
         sensing: Some(SensingModel::Factors),
         ..WorldOptions::default()
     };

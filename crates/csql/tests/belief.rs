@@ -10,7 +10,7 @@ fn lake(name: &str, slide: f64, price: f64) -> mdp::FiniteWorld {
     builtin_world(
         name,
         &WorldOptions {
-            slide,
+            slide: Some(slide),
             sensing: Some(SensingModel::Factors),
             factor_costs: Some(vec![price, price]),
             ..Default::default()

@@ -60,7 +60,7 @@ fn at_price_zero_the_belief_level_is_the_papers_run() {
 #[test]
 fn at_price_zero_the_costed_episodes_are_cs_qls() {
     let options = mdp::WorldOptions {
-        slide: 0.5,
+        slide: Some(0.5),
         sensing: Some(mdp::SensingModel::Factors),
         ..Default::default()
     };

@@ -17,9 +17,12 @@ fn extensions_at_their_defaults_change_nothing() {
             "t",
         )
         .unwrap();
-    assert_eq!(json(&plain), json(&explicit));
+    // The same run; the echo of the settings says what was given (a key of [world] is
+    // given or not, whatever its value).
+    assert_eq!(outcome(&plain), outcome(&explicit));
     assert!(json(&plain).contains("\"judged_by\":\"oracle\""));
     assert!(!json(&plain).contains("slip"));
+    assert!(json(&explicit).contains("\"world\":{\"slip\":0.0,\"sensor_noise\":0.0}"));
 }
 
 /// The report without its echo of the settings: what the run did, and nothing it was told.

@@ -69,7 +69,7 @@ fn a_world_given_in_code_runs_as_the_same_world_named() {
     assert_eq!(report, named);
     // The world carries its own dynamics: settings that would change them are refused.
     let mut slipping = s.clone();
-    slipping.world.slip = mdp::Slip::new(0.2).unwrap();
+    slipping.world.slip = Some(mdp::Slip::new(0.2).unwrap());
     let lake = mdp::builtin_world("frozenlake4x4", &Default::default()).unwrap();
     let err = Resolved::given(lake, &slipping).unwrap_err().to_string();
     assert!(

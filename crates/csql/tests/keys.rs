@@ -84,6 +84,17 @@ fn sample(k: &SettingKey) -> (String, String) {
     (line.clone(), format!("{needs}{line}"))
 }
 
+/// The key at its default value, as TOML with its table's header, for the keys that have
+/// one: a key given is given, whatever its value, and is refused where it is not read
+/// just as at any other value.
+fn at_default(k: &SettingKey) -> Option<String> {
+    let value = match (k.table, k.name) {
+        (Some("world"), "slip" | "slide" | "sensor_noise") => "0.0",
+        _ => return None,
+    };
+    Some(format!("[{}]\n{} = {value}", k.table?, k.name))
+}
+
 /// `text` read, over the smallest settings of learner `kind` (`[costly] price` for the
 /// learners on costed episodes, unless `text` has its own `[costly]`).
 fn draft_for(kind: LearnerKind, text: &str) -> SettingsDraft {
@@ -107,38 +118,41 @@ fn every_key_is_refused_exactly_where_its_learner_does_not_read_it() {
     let mut refused = 0;
     for k in SETTING_KEYS.iter().filter(|k| k.name != "learner") {
         let (alone, with_needs) = sample(k);
-        for kind in EVERY {
-            let learner = format!("learner = {kind}");
-            if k.reads(kind) {
-                let draft = draft_for(kind, &with_needs);
-                if let Err(e) = draft.build() {
-                    panic!(
-                        "{} is read by {kind} but {with_needs:?} is refused: {e}",
-                        k.path()
+        let samples =
+            std::iter::once((alone, with_needs)).chain(at_default(k).map(|d| (d.clone(), d)));
+        for (alone, with_needs) in samples {
+            for kind in EVERY {
+                let learner = format!("learner = {kind}");
+                if k.reads(kind) {
+                    let draft = draft_for(kind, &with_needs);
+                    if let Err(e) = draft.build() {
+                        panic!(
+                            "{} is read by {kind} but {with_needs:?} is refused: {e}",
+                            k.path()
+                        );
+                    }
+                } else {
+                    let err = draft_for(kind, &alone)
+                        .build()
+                        .map(|_| ())
+                        .expect_err(&format!("{alone:?} with {kind} must be refused"));
+                    let err = err.to_string();
+                    assert!(
+                        err.contains(k.name) && err.contains(&learner),
+                        "{alone:?} with {kind}: {err}",
                     );
+                    if let Some(table) = k.table {
+                        assert!(err.contains(&format!("[{table}]")), "{err}");
+                    }
+                    refused += 1;
                 }
-            } else {
-                let err = draft_for(kind, &alone)
-                    .build()
-                    .map(|_| ())
-                    .expect_err(&format!("{} with {kind} must be refused", k.path()));
-                let err = err.to_string();
-                assert!(
-                    err.contains(k.name) && err.contains(&learner),
-                    "{} with {kind}: {err}",
-                    k.path()
-                );
-                if let Some(table) = k.table {
-                    assert!(err.contains(&format!("[{table}]")), "{err}");
-                }
-                refused += 1;
             }
         }
     }
-    // Nine keys of Q-learning and judging, and sensor noise, for each learner on costed
-    // episodes; CS-QL's keys for four learners; U-Tree's, AMRL-Q's and belief's for four;
-    // the price for U-Tree.
-    assert_eq!(refused, 2 * 10 + 4 * 15 + 3 * 4 * 6 + 4 + 2);
+    // Nine keys of Q-learning and judging, and sensor noise (at another value and at its
+    // default), for each learner on costed episodes; CS-QL's keys for four learners;
+    // U-Tree's, AMRL-Q's and belief's for four; the price for U-Tree.
+    assert_eq!(refused, 2 * 11 + 4 * 15 + 3 * 4 * 6 + 4 + 2);
 }
 
 /// A table of a learner that is not the run's is refused even empty or at its defaults,
@@ -192,6 +206,95 @@ fn another_learners_table_is_refused_even_at_its_defaults() {
             .starts_with("predict_sensing = off and learner = u-tree"),
         "{err}"
     );
+}
+
+/// A key of `[world]` is given or not, whatever its value: at its default it is refused,
+/// by name, wherever the world or the agent does not read it, as at any other value;
+/// where it is read, it is taken, echoed, and changes nothing else.
+#[test]
+fn world_keys_at_their_defaults_are_refused_where_the_world_does_not_read_them() {
+    let resolve = |text: &str| {
+        let s = SettingsDraft::from_toml(text, "f.toml")
+            .unwrap()
+            .build()
+            .unwrap_or_else(|e| panic!("{text:?}: {e}"));
+        csql::Resolved::new(&s).map(|_| ())
+    };
+    for (text, named) in [
+        // A grid map moves one cell at a time and senses around the robot.
+        (
+            "[world]\nslide = 0.0",
+            ["the grid map tan8x8", "[world] slide = 0"],
+        ),
+        (
+            "map = \"tan3x3\"\n[world]\nsensing = \"local\"",
+            ["the grid map tan3x3", "[world] sensing = \"local\""],
+        ),
+        // Taxi is deterministic: it reads no slip or slide.
+        ("map = \"taxi\"\n[world]\nslip = 0.0", ["taxi", "slip"]),
+        ("map = \"taxi\"\n[world]\nslide = 0.0", ["taxi", "slide"]),
+    ] {
+        let err = resolve(text)
+            .expect_err(&format!("{text:?} must be refused"))
+            .to_string();
+        for n in named {
+            assert!(err.contains(n), "{text:?}: {err}");
+        }
+    }
+    // Read, a key at its default is taken, runs as if absent, and is echoed.
+    for text in [
+        "[world]\nslip = 0.0\nsensor_noise = 0.0",
+        "map = \"frozenlake4x4\"\n[world]\nslip = 0.0\nslide = 0.0\nsensing = \"local\"",
+        "map = \"taxi\"\n[world]\nsensing = \"factors\"",
+    ] {
+        resolve(text).unwrap_or_else(|e| panic!("{text:?}: {e}"));
+        let s = SettingsDraft::from_toml(text, "f")
+            .unwrap()
+            .build()
+            .unwrap();
+        let echo = toml::to_string(&s).unwrap();
+        assert!(echo.contains("[world]"), "{echo}");
+        assert_eq!(
+            SettingsDraft::from_toml(&echo, "echo")
+                .unwrap()
+                .build()
+                .unwrap(),
+            s
+        );
+    }
+    // A world built in code carries its own dynamics, features and prices.
+    let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions::default()).unwrap();
+    for key in ["slip = 0.0", "slide = 0.0", "sensing = \"local\""] {
+        let s = SettingsDraft::from_toml(&format!("[world]\n{key}"), "f")
+            .unwrap()
+            .build()
+            .unwrap();
+        let err = csql::Resolved::given(lake.clone(), &s)
+            .map(|_| ())
+            .expect_err(key)
+            .to_string();
+        let name = key.split(' ').next().unwrap();
+        assert!(
+            err.contains("the world frozenlake4x4 given to the run")
+                && err.contains(&format!("[world] {name}")),
+            "{key}: {err}"
+        );
+    }
+    // A step-driven agent senses the caller's world: every key of [world] is refused.
+    for key in ["slip = 0.0", "sensor_noise = 0.0", "slide = 0.0"] {
+        let text = format!("[world]\n{key}");
+        let err = SettingsDraft::from_toml(&text, "f")
+            .unwrap()
+            .build_for_stepper()
+            .map(|_| ())
+            .expect_err(&text)
+            .to_string();
+        let name = key.split(' ').next().unwrap();
+        assert!(
+            err.starts_with(&format!("[world] {name} = 0 and a step-driven agent")),
+            "{text:?}: {err}"
+        );
+    }
 }
 
 /// The names serde's message of an unknown key lists as expected.
@@ -310,7 +413,7 @@ fn settings_of_every_learner_round_trip_and_change_learner() {
     s.apply_toml("learner = \"amrl-q\"\n[costly]\nprice = 0.5", "b")
         .unwrap();
     assert_eq!(s.learner.kind(), LearnerKind::AmrlQ);
-    assert!(s.world.sensor_noise.is_zero() && s.judge == csql::JudgeSettings::default());
+    assert!(s.world.sensor_noise.is_none() && s.judge == csql::JudgeSettings::default());
     s.apply_toml("learner = \"full-sensing\"\nbeta = 0.5", "c")
         .unwrap();
     assert_eq!(

@@ -151,7 +151,7 @@ fn a_finite_world_learns_as_run_does() {
 #[test]
 fn slippery_moves_drawn_from_the_same_generator_learn_as_run_does() {
     let mut settings = RunSettings::tan1991("tan8x8", StrategyKind::Lazy, 3);
-    settings.world.slip = mdp::Slip::new(0.1).unwrap();
+    settings.world.slip = Some(mdp::Slip::new(0.1).unwrap());
     let setup = csql::Setup::new(&settings).unwrap();
     let report = csql::run_on(&setup, &settings).unwrap();
     let world = setup.sensed(&settings);

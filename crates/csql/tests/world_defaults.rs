@@ -179,7 +179,7 @@ fn a_run_that_ends_without_learning_says_why_and_what_to_try() {
     assert_eq!(not.to_try, ["max_trials = 50"], "{}", not.why);
     // The slippery lake: random moves, judged by the quality.
     let mut slippery = defaults("frozenlake4x4", StrategyKind::Lazy, 1);
-    slippery.world.slip = mdp::Slip::new(2.0 / 3.0).unwrap();
+    slippery.world.slip = Some(mdp::Slip::new(2.0 / 3.0).unwrap());
     slippery.max_trials = csql::TrialCap::new(20).unwrap();
     let not = csql::run(&slippery).unwrap().not_learned.unwrap();
     assert!(not.why.contains("random"), "{}", not.why);

@@ -143,6 +143,8 @@ def test_errors_are_exceptions_with_the_rust_message():
         csrl.CsQlAgent([1.0], [2], 2, refine_from="later")
     with pytest.raises(csrl.SettingsError, match="cannot be used together"):
         csrl.CsQlAgent([1.0], [2], 2, settings={"world": {"slip": 0.1}})
+    with pytest.raises(csrl.SettingsError, match=r"\[world\] sensor_noise = 0 and a step-driven agent"):
+        csrl.CsQlAgent([1.0], [2], 2, settings={"world": {"sensor_noise": 0.0}})
     with pytest.raises(csrl.SettingsError, match="one price and one number of readings"):
         csrl.CsQlAgent([1.0], [2, 2], 2)
 

@@ -102,6 +102,12 @@ def test_world_file_runs_as_the_cli_runs_it(cli, tmp_path):
         (dict(world="no-such-map"), ["--world", "no-such-map"], csrl.WorldError),
         (dict(world="tan3x3", settings={"temprature": 0.2}), None, csrl.SettingsError),
         (dict(world="tan3x3", settings={"world": {"slide": 0.5}}), None, csrl.SettingsError),
+        # A key of [world] at its default, where the world or the learner does not read it.
+        (dict(world="tan3x3", settings={"world": {"slide": 0.0}}), None, csrl.SettingsError),
+        (dict(world="frozenlake4x4",
+              settings={"learner": "belief", "world": {"sensing": "factors", "sensor_noise": 0.0},
+                        "costly": {"price": 0.1}}),
+         None, csrl.SettingsError),
         (dict(world="tan3x3", learner="u-tree", strategy="lazy"),
          ["--world", "tan3x3", "--learner", "u-tree", "--strategy", "lazy"], csrl.SettingsError),
         (dict(world="tan3x3", settings={"gamma": 1.0}), None, csrl.SettingsError),

@@ -157,6 +157,18 @@ def test_a_world_object_refuses_world_settings():
     w = csrl.World("frozenlake4x4")
     with pytest.raises(csrl.SettingsError, match=r"the world frozenlake4x4 given to the run and \[world\] slip"):
         csrl.run(world=w, settings={"world": {"slip": 0.1}})
+    # Given at its default, a key is given all the same: the world reads none of them.
+    for key, value in [("slip", 0.0), ("slide", 0.0), ("sensing", "local")]:
+        with pytest.raises(csrl.SettingsError, match=rf"given to the run and \[world\] {key}"):
+            csrl.run(world=w, settings={"world": {key: value}})
+
+
+def test_a_world_refuses_options_it_does_not_read_even_at_their_defaults():
+    with pytest.raises(csrl.WorldError, match="reads no slip"):
+        csrl.World("taxi", slip=0.0)
+    with pytest.raises(csrl.SettingsError, match=r"the grid map tan3x3 and \[world\] slide = 0"):
+        csrl.World("tan3x3", slide=0.0)
+    assert csrl.World("frozenlake4x4", slip=0.0).outcomes(0, 1) == csrl.World("frozenlake4x4").outcomes(0, 1)
 
 
 @pytest.mark.parametrize("gamma", [1.0, 2.0, -0.5, float("nan"), float("inf")])

@@ -51,8 +51,8 @@ fn table(k: u32) -> Result<(), Box<dyn std::error::Error>> {
                 let lake = mdp::builtin_world(
                     world,
                     &WorldOptions {
-                        slip,
-                        slide,
+                        slip: Some(slip),
+                        slide: Some(slide),
                         sensing: Some(SensingModel::Factors),
                         factor_costs: Some(vec![price, price]),
                     },

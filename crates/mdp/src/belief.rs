@@ -854,7 +854,7 @@ impl BeliefPlan {
     ///
     /// ```
     /// use mdp::{BeliefPlan, CostlyModel, PlanOptions, ReferenceOptions, SensingMenu, StateId};
-    /// let o = mdp::WorldOptions { slide: 0.5, ..Default::default() };
+    /// let o = mdp::WorldOptions { slide: Some(0.5), ..Default::default() };
     /// let lake = mdp::builtin_world("frozenlake4x4", &o).unwrap();
     /// let m = CostlyModel::of(&lake).unwrap();
     /// let search = ReferenceOptions { max_uncertain: Some(2), ..Default::default() };

@@ -59,7 +59,7 @@
 //! ```
 //! use mdp::{ReferenceOptions, SensingMenu, SensingModel, SensingRule, WorldOptions};
 //! let options = WorldOptions {
-//!     slide: 0.5,
+//!     slide: Some(0.5),
 //!     sensing: Some(SensingModel::Factors),
 //!     factor_costs: Some(vec![0.025, 0.025]),
 //!     ..Default::default()
@@ -199,7 +199,7 @@ pub struct ReferencePoints {
 /// ```
 /// use mdp::{ReferenceOptions, SensingMenu, SensingModel, SensingRule, WorldOptions};
 /// let options = WorldOptions {
-///     slide: 0.5,
+///     slide: Some(0.5),
 ///     sensing: Some(SensingModel::Factors),
 ///     factor_costs: Some(vec![0.025, 0.025]),
 ///     ..Default::default()
@@ -269,7 +269,7 @@ pub fn always_measuring<W: World>(
 ///
 /// ```
 /// // On the semi-slippery lake a policy that knows the state always reaches the goal.
-/// let w = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { slide: 0.5, ..Default::default() }).unwrap();
+/// let w = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { slide: Some(0.5), ..Default::default() }).unwrap();
 /// let v = mdp::free_sensing(&w, &mdp::ReferenceOptions::default()).unwrap();
 /// assert!((v - 1.0).abs() < 1e-12);
 /// ```
@@ -332,7 +332,7 @@ fn measured(m: &CostlyModel, c: f64, rule: SensingRule, horizon: u32) -> f64 {
 /// ([`OpenLoop::exact`] false), unless it reaches the ceiling [`free_sensing`].
 ///
 /// ```
-/// let o = mdp::WorldOptions { slide: 0.5, ..Default::default() };
+/// let o = mdp::WorldOptions { slide: Some(0.5), ..Default::default() };
 /// let lake = mdp::builtin_world("frozenlake8x8", &o).unwrap();
 /// let o = mdp::ReferenceOptions { horizon: 20, max_plans: 100, ..Default::default() };
 /// let r = mdp::open_loop(&lake, &o).unwrap();
@@ -452,7 +452,7 @@ fn compare(a: &[f64], b: &[f64]) -> std::cmp::Ordering {
 ///
 /// ```
 /// use mdp::{ReferenceOptions, SensingMenu, SensingRule};
-/// let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { slide: 0.5, ..Default::default() }).unwrap();
+/// let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { slide: Some(0.5), ..Default::default() }).unwrap();
 /// let menu = SensingMenu::Whole { price: 0.05 };
 /// let o = ReferenceOptions { max_uncertain: Some(3), ..Default::default() };
 /// let with = mdp::best_sensing(&lake, menu, SensingRule::WithMove, &o).unwrap();
@@ -480,7 +480,7 @@ pub fn best_sensing<W: World>(
 ///
 /// ```
 /// use mdp::{ReferenceOptions, SensingMenu, SensingRule};
-/// let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { slide: 0.5, ..Default::default() }).unwrap();
+/// let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { slide: Some(0.5), ..Default::default() }).unwrap();
 /// let menu = SensingMenu::Whole { price: 0.05 };
 /// let o = ReferenceOptions { max_uncertain: Some(4), ..Default::default() };
 /// let low = mdp::best_sensing(&lake, menu, SensingRule::WithMove, &o).unwrap().value;

@@ -28,19 +28,24 @@ pub enum SensingModel {
 /// world's default sensing.
 ///
 /// ```
-/// let o = mdp::WorldOptions { slip: 2.0 / 3.0, ..Default::default() };
+/// let o = mdp::WorldOptions { slip: Some(2.0 / 3.0), ..Default::default() };
 /// let lake = mdp::builtin_world("frozenlake4x4", &o).unwrap();
 /// assert_eq!(lake.name(), "frozenlake4x4");
-/// let bad = mdp::WorldOptions { slip: 1.5, ..Default::default() };
+/// let bad = mdp::WorldOptions { slip: Some(1.5), ..Default::default() };
 /// assert!(mdp::builtin_world("frozenlake4x4", &bad).is_err());
+/// // Taxi reads no slip: given at all, even at 0, it is refused.
+/// let taxi = mdp::WorldOptions { slip: Some(0.0), ..Default::default() };
+/// assert!(mdp::builtin_world("taxi", &taxi).is_err());
 /// ```
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct WorldOptions {
-    /// The probability that a move goes sideways (in `[0, 1]`; not for Taxi).
-    pub slip: f64,
-    /// The probability of sliding one more cell (in `[0, 1]`; not for Taxi).
-    pub slide: f64,
+    /// The probability that a move goes sideways (in `[0, 1]`; `None`: 0). Not for
+    /// Taxi, which refuses it given at all.
+    pub slip: Option<f64>,
+    /// The probability of sliding one more cell (in `[0, 1]`; `None`: 0). Not for Taxi,
+    /// which refuses it given at all.
+    pub slide: Option<f64>,
     /// The sensing; `None` is the world's default (factors for Taxi, local otherwise).
     pub sensing: Option<SensingModel>,
     /// The prices of the factors, in factor order (factors sensing only; `None`: 1 each).
@@ -223,7 +228,8 @@ pub fn builtin_world(name: &str, options: &WorldOptions) -> Result<FiniteWorld, 
         option,
         reason,
     };
-    for (option, p) in [("slip", options.slip), ("slide", options.slide)] {
+    let given = [("slip", options.slip), ("slide", options.slide)];
+    for (option, p) in given.iter().filter_map(|&(o, p)| Some((o, p?))) {
         if !(0.0..=1.0).contains(&p) {
             return Err(bad(option, format!("{p} is not a probability in [0, 1]")));
         }
@@ -244,15 +250,13 @@ pub fn builtin_world(name: &str, options: &WorldOptions) -> Result<FiniteWorld, 
                     .to_string(),
             ));
         }
-        for (option, p) in [("slip", options.slip), ("slide", options.slide)] {
-            if p != 0.0 {
-                return Err(bad(
-                    option,
-                    format!(
-                        "{p}: Taxi-v3 is deterministic; slips and slides are for the grid worlds"
-                    ),
-                ));
-            }
+        if let Some((option, p)) = given.iter().find_map(|&(o, p)| Some((o, p?))) {
+            return Err(bad(
+                option,
+                format!(
+                    "{p}: Taxi-v3 is deterministic and reads no {option}; slips and slides are for the grid worlds"
+                ),
+            ));
         }
     }
     let factors = if is_taxi { 4 } else { 2 };
@@ -427,7 +431,7 @@ fn grid_world(
             Kind::Cliff => (id(p.0, p.1), -1.0, ch == b'G'),
         }
     };
-    let (p, q) = (options.slip, options.slide);
+    let (p, q) = (options.slip.unwrap_or(0.0), options.slide.unwrap_or(0.0));
     let mut transitions = Vec::new();
     for pos in cells() {
         if terminal_cell(at(pos)) {

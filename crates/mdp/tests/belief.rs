@@ -12,7 +12,7 @@ fn lake(slide: f64) -> mdp::FiniteWorld {
     builtin_world(
         "frozenlake4x4",
         &WorldOptions {
-            slide,
+            slide: Some(slide),
             sensing: Some(SensingModel::Factors),
             factor_costs: Some(vec![0.025, 0.025]),
             ..Default::default()

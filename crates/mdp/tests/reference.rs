@@ -437,8 +437,8 @@ fn lake(name: &str, slip: f64, slide: f64, price: f64) -> FiniteWorld {
     builtin_world(
         name,
         &WorldOptions {
-            slip,
-            slide,
+            slip: Some(slip),
+            slide: Some(slide),
             sensing: Some(SensingModel::Factors),
             factor_costs: Some(vec![price, price]),
         },
@@ -652,7 +652,7 @@ fn many_features_are_refused_with_the_move_and_taken_one_at_a_time_after() {
     let w = builtin_world(
         "frozenlake8x8",
         &WorldOptions {
-            slide: 0.5,
+            slide: Some(0.5),
             ..Default::default()
         },
     )

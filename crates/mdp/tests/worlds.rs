@@ -41,8 +41,8 @@ fn every_world() -> Vec<FiniteWorld> {
                 all.push(with(
                     name,
                     WorldOptions {
-                        slip,
-                        slide,
+                        slip: Some(slip),
+                        slide: Some(slide),
                         ..Default::default()
                     },
                 ));
@@ -112,7 +112,7 @@ fn frozenlake_facts() {
     let slippery = with(
         "frozenlake4x4",
         WorldOptions {
-            slip: 2.0 / 3.0,
+            slip: Some(2.0 / 3.0),
             ..Default::default()
         },
     );
@@ -128,7 +128,7 @@ fn frozenlake_facts() {
     let sliding = with(
         "frozenlake4x4",
         WorldOptions {
-            slide: 0.25,
+            slide: Some(0.25),
             ..Default::default()
         },
     );
@@ -154,8 +154,8 @@ fn frozenlake_facts() {
     let both = with(
         "frozenlake4x4",
         WorldOptions {
-            slip: 0.5,
-            slide: 0.5,
+            slip: Some(0.5),
+            slide: Some(0.5),
             ..Default::default()
         },
     );
@@ -381,7 +381,7 @@ fn the_oracle_solves_every_builtin_world() {
     let slippery = with(
         "frozenlake4x4",
         WorldOptions {
-            slip: 2.0 / 3.0,
+            slip: Some(2.0 / 3.0),
             ..Default::default()
         },
     );
@@ -409,7 +409,7 @@ fn sampling_draws_as_documented() {
     let slippery = with(
         "frozenlake4x4",
         WorldOptions {
-            slip: 0.5,
+            slip: Some(0.5),
             ..Default::default()
         },
     );
@@ -832,7 +832,7 @@ fn builtin_options_are_checked() {
     bad(
         "frozenlake4x4",
         WorldOptions {
-            slip: -0.1,
+            slip: Some(-0.1),
             ..Default::default()
         },
         "option `slip`: -0.1 is not a probability",
@@ -840,7 +840,7 @@ fn builtin_options_are_checked() {
     bad(
         "cliffwalking",
         WorldOptions {
-            slide: f64::NAN,
+            slide: Some(f64::NAN),
             ..Default::default()
         },
         "option `slide`: NaN",
@@ -848,7 +848,7 @@ fn builtin_options_are_checked() {
     bad(
         "taxi",
         WorldOptions {
-            slip: 0.1,
+            slip: Some(0.1),
             ..Default::default()
         },
         "Taxi-v3 is deterministic",

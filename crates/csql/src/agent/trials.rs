@@ -223,7 +223,7 @@ pub(crate) fn learn<W: World + ?Sized, P: Perception + Sees, S: Strategy>(
     // judge; runs judged by the quality keep the sweep their figures were made with.
     let mut meter = QualityMeter::new(
         scene.truth,
-        settings.world.sensor_noise,
+        settings.world.sensor_noise(),
         eval_rng,
         judging == Judging::Oracle,
     );

@@ -143,7 +143,7 @@ pub(crate) fn diagnose<W: World + ?Sized>(
             "Its representation passed max_rows = {} rows at trial {}, before it {goal}.",
             settings.max_rows, end.trials
         ));
-        if !settings.world.sensor_noise.is_zero() && settings.cs_ql().is_some() {
+        if !settings.world.sensor_noise().is_zero() && settings.cs_ql().is_some() {
             why.push(
                 "Under sensor noise CS-QL makes a new description for every misreading."
                     .to_string(),
@@ -252,7 +252,7 @@ pub(crate) fn diagnose<W: World + ?Sized>(
         ));
         tries.add("temperature", format!("temperature = {scaled}"));
     }
-    if !rewards.deterministic || !settings.world.sensor_noise.is_zero() {
+    if !rewards.deterministic || !settings.world.sensor_noise().is_zero() {
         why.push(format!(
             "Moves or readings are random here (slip, slide or sensor noise): a single decrease may be noise{}.",
             if beta > 0.1 {

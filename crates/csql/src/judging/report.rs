@@ -224,7 +224,7 @@ impl RunReport {
 /// assert_eq!(paper.judged_by, csql::Judging::Oracle);
 /// assert_eq!(paper.quality.policy_quality, 1.0); // converged: optimal
 /// assert!(paper.quality.trials_to_quality.unwrap() <= paper.trials);
-/// s.world.slip = mdp::Slip::new(0.1).unwrap();
+/// s.world.slip = Some(mdp::Slip::new(0.1).unwrap());
 /// let q = csql::run(&s).unwrap().quality;
 /// assert_eq!(q.method, csql::QualityMethod::Exact);
 /// assert!(q.policy_quality > 0.0 && q.policy_quality <= 1.0 + 1e-9);

@@ -241,7 +241,7 @@ struct Planner<'w, W: World + ?Sized> {
 ///
 /// ```
 /// use rand::SeedableRng;
-/// let o = mdp::WorldOptions { slide: 0.5, sensing: Some(mdp::SensingModel::Factors), factor_costs: Some(vec![0.025, 0.025]), ..Default::default() };
+/// let o = mdp::WorldOptions { slide: Some(0.5), sensing: Some(mdp::SensingModel::Factors), factor_costs: Some(vec![0.025, 0.025]), ..Default::default() };
 /// let lake = mdp::builtin_world("frozenlake4x4", &o).unwrap();
 /// let run = |seed| {
 ///     let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(seed);

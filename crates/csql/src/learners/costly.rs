@@ -192,7 +192,7 @@ pub fn costed_episodes<W: World + ?Sized>(
             let mut sensor_rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
             sensor_rng.jump();
             let classify = Classify::new(world)
-                .with_noise(settings.world.sensor_noise, sensor_rng)
+                .with_noise(settings.world.sensor_noise(), sensor_rng)
                 .with_extensions(&settings.extensions());
             let strategy = q.strategy.build(q.random_moves);
             if belief {
@@ -502,7 +502,7 @@ mod tests {
 
     fn lake(name: &str, slide: f64) -> mdp::FiniteWorld {
         let options = mdp::WorldOptions {
-            slide,
+            slide: Some(slide),
             sensing: Some(mdp::SensingModel::Factors),
             ..Default::default()
         };

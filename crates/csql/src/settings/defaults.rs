@@ -116,7 +116,7 @@ impl WorldDefaults {
     /// let plain = WorldExtras::default();
     /// assert_eq!(taxi.detector_for(1.0, &plain), DetectorKind::Action);
     /// assert_eq!(taxi.detector_for(0.5, &plain), DetectorKind::Decrease);
-    /// let slippery = WorldExtras { slip: mdp::Slip::new(0.1).unwrap(), ..Default::default() };
+    /// let slippery = WorldExtras { slip: Some(mdp::Slip::new(0.1).unwrap()), ..Default::default() };
     /// assert_eq!(taxi.detector_for(1.0, &slippery), DetectorKind::Decrease);
     /// ```
     pub fn detector_for(&self, beta: f64, world: &WorldExtras) -> DetectorKind {

@@ -246,17 +246,20 @@ impl ExtensionsTable {
 /// The keys a run reads and a step-driven agent ([`crate::Stepper`]) does not, as
 /// `(table, key)` (`"*"`: every key of the table), refused by
 /// [`SettingsDraft::build_for_stepper`]: the map, the trial and move caps, the tolerance
-/// of the oracle's checks, a report's rows, the judging keys and the costed return.
+/// of the oracle's checks, a report's rows, the judging keys, the costed return and every
+/// key of `[world]` (the agent senses the caller's world).
 ///
 /// ```
 /// assert!(csql::NOT_READ_BY_A_STEPPER.contains(&(None, "max_trials")));
+/// assert!(csql::NOT_READ_BY_A_STEPPER.contains(&(Some("world"), "*")));
 /// ```
-pub const NOT_READ_BY_A_STEPPER: [(Option<&str>, &str); 7] = [
+pub const NOT_READ_BY_A_STEPPER: [(Option<&str>, &str); 8] = [
     (None, "map"),
     (None, "max_trials"),
     (None, "max_moves"),
     (None, "tolerance"),
     (None, "max_rows"),
+    (Some("world"), "*"),
     (Some("judge"), "*"),
     (Some("costly"), "*"),
 ];
@@ -688,7 +691,7 @@ impl SettingsDraft {
     /// The first key given that learner `kind` does not read ([`SETTING_KEYS`]), as a
     /// message names it: the key and its value at the top level, a table given at all
     /// when the learner reads none of it (even empty, or at its defaults), a key of
-    /// `[world]` given other than its default.
+    /// `[world]` given (at any value, its default included).
     fn unread_given(&self, kind: LearnerKind) -> Option<String> {
         SETTING_KEYS
             .iter()
@@ -717,21 +720,20 @@ impl SettingsDraft {
                 "predict_sensing" => named(self.predict_sensing.map(|x| x.to_string())),
                 _ => None,
             },
-            // A key of [world] is known by its value: the table's keys are defaults
-            // when absent.
+            // A key of [world] is given or not, whatever its value (its absent keys
+            // are at their defaults): named with its value.
             Some("world") if table_read_by("world", kind) => {
                 let w = self.world.as_ref()?;
-                let d = WorldExtras::default();
-                let given = match k.name {
-                    "slip" => w.slip != d.slip,
-                    "sensing_radius" => w.sensing_radius.is_some(),
-                    "slide" => w.slide != d.slide,
-                    "sensing" => w.sensing.is_some(),
-                    "factor_costs" => w.factor_costs.is_some(),
-                    "sensor_noise" => w.sensor_noise != d.sensor_noise,
-                    _ => false,
+                let value = match k.name {
+                    "slip" => w.slip.map(|p| p.get().to_string()),
+                    "sensing_radius" => w.sensing_radius.map(|r| r.to_string()),
+                    "slide" => w.slide.map(|p| p.get().to_string()),
+                    "sensing" => w.sensing.map(|m| format!("{m:?}").to_lowercase()),
+                    "factor_costs" => w.factor_costs.as_ref().map(|c| format!("{c:?}")),
+                    "sensor_noise" => w.sensor_noise.map(|p| p.get().to_string()),
+                    _ => None,
                 };
-                given.then(|| format!("[world] {}", k.name))
+                value.map(|v| format!("[world] {} = {v}", k.name))
             }
             Some(table) => self.table_given(table),
         }
@@ -773,14 +775,13 @@ impl SettingsDraft {
                 (None, "predict_sensing") => self.predict_sensing = None,
                 (Some("world"), name) if table_read_by("world", kind) => {
                     if let Some(w) = &mut self.world {
-                        let d = WorldExtras::default();
                         match name {
-                            "slip" => w.slip = d.slip,
-                            "sensing_radius" => w.sensing_radius = d.sensing_radius,
-                            "slide" => w.slide = d.slide,
-                            "sensing" => w.sensing = d.sensing,
-                            "factor_costs" => w.factor_costs = d.factor_costs,
-                            "sensor_noise" => w.sensor_noise = d.sensor_noise,
+                            "slip" => w.slip = None,
+                            "sensing_radius" => w.sensing_radius = None,
+                            "slide" => w.slide = None,
+                            "sensing" => w.sensing = None,
+                            "factor_costs" => w.factor_costs = None,
+                            "sensor_noise" => w.sensor_noise = None,
                             _ => {}
                         }
                     }

@@ -11,35 +11,44 @@ use crate::agent::detector::{DetectorKind, RateParams};
 use crate::error::Error;
 
 /// How the world departs from the paper's assumptions (specification §6): slippery moves, noisy
-/// sensors, a sensing range. All off by default.
+/// sensors, a sensing range; what a built-in world senses and its prices. All absent by
+/// default. A key is given or not, whatever its value: given where the learner or the
+/// world does not read it (`sensor_noise` with a learner on costed episodes, `slide` on a
+/// grid map, `slip` on Taxi or on a world that carries its own dynamics, ...), it is
+/// refused, at its default value as at any other.
 ///
 /// ```
 /// let mut s = csql::RunSettings::tan1991("tan8x8", csql::StrategyKind::Lazy, 1);
 /// s.apply_toml("[world]\nslip = 0.1\nsensing_radius = 2", "x.toml").unwrap();
-/// assert_eq!(s.world.slip.get(), 0.1);
+/// assert_eq!(s.world.slip(), mdp::Slip::new(0.1).unwrap());
 /// assert!(!s.world.is_default());
+/// // Given at 0, slip is given (and echoed), and moves as if it were absent.
+/// s.apply_toml("[world]\nslip = 0.0", "x.toml").unwrap();
+/// assert!(s.world.slip.is_some() && s.world.slip().is_zero() && !s.world.departs_from_the_paper());
 /// ```
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct WorldExtras {
-    /// The probability that a move slips to a perpendicular direction (half each).
-    #[serde(skip_serializing_if = "Slip::is_zero")]
-    pub slip: Slip,
-    /// The probability that a measurement reads one of the other conditions.
-    #[serde(skip_serializing_if = "SensorNoise::is_zero")]
-    pub sensor_noise: SensorNoise,
+    /// The probability that a move slips to a perpendicular direction (half each); 0
+    /// when absent.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slip: Option<Slip>,
+    /// The probability that a measurement reads one of the other conditions; 0 when
+    /// absent.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sensor_noise: Option<SensorNoise>,
     /// The most a sensable feature may cost (with the paper's costs, the Manhattan
     /// distance; 1 means only the four neighbours). Unbounded when absent.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sensing_radius: Option<u32>,
     /// The probability that a move carries on one more cell in the same direction,
     /// unless the first cell ends the trial (built-in worlds beyond grid maps only:
-    /// FrozenLake's "semi-slippery" lake has 0.5).
-    #[serde(skip_serializing_if = "Slip::is_zero")]
-    pub slide: Slip,
+    /// FrozenLake's "semi-slippery" lake has 0.5); 0 when absent.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slide: Option<Slip>,
     /// What the agent senses in a built-in world: `local` (the cells around it) or
     /// `factors` (the world's own state variables); the world's default when absent.
-    /// Grid maps sense locally only.
+    /// Grid maps sense locally only, and refuse it.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sensing: Option<mdp::SensingModel>,
     /// The price of each factor, in the world's factor order (`sensing = "factors"`
@@ -58,6 +67,35 @@ impl WorldExtras {
         *self == WorldExtras::default()
     }
 
+    /// The probability that a move slips: `slip`, 0 where it is not given.
+    ///
+    /// ```
+    /// assert!(csql::WorldExtras::default().slip().is_zero());
+    /// ```
+    pub fn slip(&self) -> Slip {
+        self.slip.unwrap_or_default()
+    }
+
+    /// The probability that a move slides one more cell: `slide`, 0 where it is not
+    /// given.
+    ///
+    /// ```
+    /// assert!(csql::WorldExtras::default().slide().is_zero());
+    /// ```
+    pub fn slide(&self) -> Slip {
+        self.slide.unwrap_or_default()
+    }
+
+    /// The probability that a measurement reads wrong: `sensor_noise`, 0 where it is not
+    /// given.
+    ///
+    /// ```
+    /// assert!(csql::WorldExtras::default().sensor_noise().is_zero());
+    /// ```
+    pub fn sensor_noise(&self) -> SensorNoise {
+        self.sensor_noise.unwrap_or_default()
+    }
+
     /// Whether the world departs from the paper's assumptions (slip, slide, noise, a
     /// sensing range), so that runs are judged by the policy quality. The choice of
     /// sensing model and of prices does not.
@@ -66,27 +104,31 @@ impl WorldExtras {
     /// let mut w = csql::WorldExtras::default();
     /// w.sensing = Some(mdp::SensingModel::Factors);
     /// assert!(!w.departs_from_the_paper());
-    /// w.slide = mdp::Slip::new(0.5).unwrap();
+    /// w.slide = Some(mdp::Slip::new(0.0).unwrap());
+    /// assert!(!w.departs_from_the_paper());
+    /// w.slide = Some(mdp::Slip::new(0.5).unwrap());
     /// assert!(w.departs_from_the_paper());
     /// ```
     pub fn departs_from_the_paper(&self) -> bool {
-        !(self.slip.is_zero()
-            && self.slide.is_zero()
-            && self.sensor_noise.is_zero()
+        !(self.slip().is_zero()
+            && self.slide().is_zero()
+            && self.sensor_noise().is_zero()
             && self.sensing_radius.is_none())
     }
 
-    /// The options of a built-in world that these settings give.
+    /// The options of a built-in world that these settings give (each given or not, as
+    /// here).
     ///
     /// ```
     /// let mut w = csql::WorldExtras::default();
-    /// w.slip = mdp::Slip::new(0.2).unwrap();
-    /// assert_eq!(w.world_options().slip, 0.2);
+    /// assert_eq!(w.world_options().slip, None);
+    /// w.slip = Some(mdp::Slip::new(0.2).unwrap());
+    /// assert_eq!(w.world_options().slip, Some(0.2));
     /// ```
     pub fn world_options(&self) -> mdp::WorldOptions {
         mdp::WorldOptions {
-            slip: self.slip.get(),
-            slide: self.slide.get(),
+            slip: self.slip.map(Slip::get),
+            slide: self.slide.map(Slip::get),
             sensing: self.sensing,
             factor_costs: self.factor_costs.clone(),
         }

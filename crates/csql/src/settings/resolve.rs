@@ -48,6 +48,10 @@ impl Resolved {
     /// s.apply_toml("[world]\nslide = 0.5", "x.toml").unwrap();
     /// let err = csql::Resolved::new(&s).unwrap_err().to_string();
     /// assert!(err.contains("slide"), "{err}");
+    /// // A grid map reads no slide: given at its default, it is refused all the same.
+    /// s.apply_toml("[world]\nslide = 0.0", "x.toml").unwrap();
+    /// let err = csql::Resolved::new(&s).unwrap_err().to_string();
+    /// assert!(err.contains("[world] slide = 0"), "{err}");
     /// ```
     pub fn new(settings: &RunSettings) -> Result<Resolved, Error> {
         settings.validate()?;
@@ -67,11 +71,13 @@ impl Resolved {
             second: setting.to_string(),
             why: "grid maps sense the cells around the robot and move one cell at a time; use a built-in world (csrl world list) for these",
         };
-        if !world.slide.is_zero() {
-            return Err(grid_only("[world] slide"));
+        // A grid map reads none of these: given at all, at any value, they are refused.
+        if let Some(p) = world.slide {
+            return Err(grid_only(&format!("[world] slide = {}", p.get())));
         }
-        if world.sensing == Some(mdp::SensingModel::Factors) {
-            return Err(grid_only("[world] sensing = \"factors\""));
+        if let Some(m) = world.sensing {
+            let m = format!("{m:?}").to_lowercase();
+            return Err(grid_only(&format!("[world] sensing = \"{m}\"")));
         }
         if world.factor_costs.is_some() {
             return Err(grid_only("[world] factor_costs"));
@@ -97,9 +103,11 @@ impl Resolved {
     /// let report = csql::run_resolved(&resolved, &s, &mut csql::KeepTrace).unwrap();
     /// assert_eq!(report.trials().unwrap().map, "frozenlake4x4");
     /// let mut slipping = s.clone();
-    /// slipping.world.slip = mdp::Slip::new(0.1).unwrap();
-    /// let err = csql::Resolved::given(lake, &slipping).unwrap_err().to_string();
+    /// slipping.world.slip = Some(mdp::Slip::new(0.1).unwrap());
+    /// let err = csql::Resolved::given(lake.clone(), &slipping).unwrap_err().to_string();
     /// assert!(err.contains("slip"), "{err}");
+    /// slipping.world.slip = Some(mdp::Slip::default()); // given at 0: refused all the same
+    /// assert!(csql::Resolved::given(lake, &slipping).is_err());
     /// ```
     pub fn given(world: FiniteWorld, settings: &RunSettings) -> Result<Resolved, Error> {
         settings.validate()?;
@@ -129,13 +137,20 @@ impl Resolved {
 }
 
 /// Refuses the `[world]` settings that would change a world's dynamics, features or
-/// prices, for a world that carries its own (`what`: a world file, or one given).
+/// prices, for a world that carries its own (`what`: a world file, or one given): each
+/// given at all, at any value (a world that carries its own reads none of them).
 fn carries_its_own(settings: &RunSettings, what: &str) -> Result<(), Error> {
     let w = &settings.world;
-    if !w.slip.is_zero() || !w.slide.is_zero() || w.sensing.is_some() || w.factor_costs.is_some() {
+    let given = [
+        ("slip", w.slip.is_some()),
+        ("slide", w.slide.is_some()),
+        ("sensing", w.sensing.is_some()),
+        ("factor_costs", w.factor_costs.is_some()),
+    ];
+    if let Some((key, _)) = given.iter().find(|(_, given)| *given) {
         return Err(Error::Conflict {
             first: what.to_string(),
-            second: "[world] slip, slide, sensing or factor_costs".to_string(),
+            second: format!("[world] {key}"),
             why: "it carries its own dynamics, features and prices (give them when building it)",
         });
     }

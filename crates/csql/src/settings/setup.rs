@@ -56,7 +56,7 @@ impl Setup {
             space = space.within(f64::from(r));
         }
         let oracle = Oracle::for_grid(&world, settings.gamma.get())?;
-        let slip = settings.world.slip;
+        let slip = settings.world.slip();
         let stochastic_oracle = if slip.is_zero() {
             None
         } else {
@@ -78,7 +78,7 @@ impl Setup {
     ///
     /// ```
     /// let mut s = csql::RunSettings::tan1991("tan3x3", csql::StrategyKind::Lazy, 1);
-    /// s.world.slip = mdp::Slip::new(0.2).unwrap();
+    /// s.world.slip = Some(mdp::Slip::new(0.2).unwrap());
     /// let setup = csql::Setup::new(&s).unwrap();
     /// let here = setup.world.states()[0];
     /// assert!(setup.truth().v_star(here) < setup.oracle.v_star(here));
@@ -96,6 +96,6 @@ impl Setup {
     /// assert_eq!(setup.sensed(&settings).num_features(), setup.space.len());
     /// ```
     pub fn sensed(&self, settings: &RunSettings) -> SensedGrid<'_> {
-        SensedGrid::new(&self.world, &self.space, settings.world.slip)
+        SensedGrid::new(&self.world, &self.space, settings.world.slip())
     }
 }

@@ -511,7 +511,7 @@ impl RunSettings {
     /// assert!(!s.beyond_paper());
     /// s = s.with_learner(csql::LearnerKind::FullSensing);
     /// assert!(!s.beyond_paper());
-    /// s.world.slip = mdp::Slip::new(0.1).unwrap();
+    /// s.world.slip = Some(mdp::Slip::new(0.1).unwrap());
     /// assert!(s.beyond_paper());
     /// ```
     pub fn beyond_paper(&self) -> bool {
@@ -666,9 +666,9 @@ impl RunSettings {
             );
         }
         if q.predict_sensing == PredictSensing::Motion
-            && !(self.world.slip.is_zero()
-                && self.world.slide.is_zero()
-                && self.world.sensor_noise.is_zero())
+            && !(self.world.slip().is_zero()
+                && self.world.slide().is_zero()
+                && self.world.sensor_noise().is_zero())
         {
             return conflict(
                 "predict_sensing = \"motion\"".to_string(),

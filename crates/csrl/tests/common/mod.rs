@@ -48,7 +48,6 @@ pub fn config(dir: &Path, name: &str, extra: &str) -> PathBuf {
 pub fn lake() -> mdp::FiniteWorld {
     let options = mdp::WorldOptions {
         sensing: Some(mdp::SensingModel::Factors),
-        slide: 0.0,
         ..Default::default()
     };
     mdp::builtin_world("frozenlake4x4", &options).unwrap()
