@@ -52,17 +52,17 @@ def agent_steps(n):
     lake = csrl.World("frozenlake4x4", sensing="factors")
     readings = lake.readings()
     agent = csrl.CsQlAgent.for_world(lake, strategy="lazy", seed=1)
-    act, update, sample = agent.act, agent.update, lake.sample
-    x, moves = lake.sample_start(agent), 0
+    act, update, sample, rng = agent.act, agent.update, lake.sample, agent.rng
+    x, moves = lake.sample_start(rng), 0
     start = time.perf_counter()
     for _ in range(n):
         a = act(lambda f, s=x: readings[s][f])
-        nxt, reward, terminated = sample(x, a, agent)
+        nxt, reward, terminated = sample(x, a, rng)
         moves += 1
         truncated = moves == 100
         update(reward, terminated, truncated, lambda f, s=nxt: readings[s][f])
         if terminated or truncated:
-            x, moves = lake.sample_start(agent), 0
+            x, moves = lake.sample_start(rng), 0
         else:
             x = nxt
     return (time.perf_counter() - start) / n

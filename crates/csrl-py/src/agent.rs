@@ -256,6 +256,14 @@ impl PyAgent {
     }
 
     /// Trials started.
+    /// The agent's generator as a `csrl.Rng`: a world that draws its starts and outcomes
+    /// from it (`World.sample_start`, `World.sample`) shares the agent's one stream, in
+    /// `csrl.run`'s order.
+    #[getter]
+    fn rng(slf: Py<Self>) -> crate::rng::PyRng {
+        crate::rng::PyRng::of_agent(slf)
+    }
+
     #[getter]
     fn trials(&self) -> u32 {
         self.stepper.trials()

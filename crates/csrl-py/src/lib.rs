@@ -12,6 +12,8 @@
 //!   name (the same resolution as `csrl run --world`) or from a world file's JSON.
 //! * [`PyAgent`]: CS-QL stepped from Python ([`csql::Stepper`]), its sensors Python
 //!   callables.
+//! * `Rng`: the seeded generator a world's starts and outcomes are drawn from, its own
+//!   or an agent's.
 //! * [`Classifier`]: CS-ID3 or CS-IBL over integer-coded objects, for the scikit-learn
 //!   estimators.
 //! * [`TestCostTree`]: a tree of the test-cost family (`cslearn::testcost`: ID3, C4.5,
@@ -24,6 +26,7 @@
 
 mod agent;
 mod classifier;
+mod rng;
 mod settings;
 mod testcost;
 mod world;
@@ -305,6 +308,7 @@ fn _csrl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Classifier>()?;
     m.add_class::<TestCostTree>()?;
     m.add_class::<PyAgent>()?;
+    m.add_class::<rng::PyRng>()?;
     m.add_function(wrap_pyfunction!(value_floor, m)?)?;
     // The limits of a world, so that the Python side checks sizes before building one.
     m.add("MAX_STATES", mdp::MAX_STATES)?;

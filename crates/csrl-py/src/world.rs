@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use mdp::{FiniteWorld, Sensors, StochasticMdp, World as _};
 use pyo3::prelude::*;
 
+use crate::rng::PyRng;
 use crate::{run_error, world_error};
 
 /// A finite world with priced features (a `csrl-world` world file in memory).
@@ -174,19 +175,22 @@ impl PyWorld {
             .collect())
     }
 
-    /// Draw a trial's start state from `rng`'s generator (a `CsQlAgent`'s: the world's
-    /// draws and the agent's then come from one stream, in `csrl.run`'s order).
-    fn sample_start(&self, rng: &Bound<'_, crate::PyAgent>) -> u32 {
-        self.world.sample_start(rng.borrow_mut().stepper.rng()).0
+    /// Draw a trial's start state from `rng` (a `csrl.Rng`: `Rng(seed)`, or an agent's
+    /// `CsQlAgent.rng`, whose draws and the world's then come from one stream, in
+    /// `csrl.run`'s order).
+    fn sample_start(&self, py: Python<'_>, rng: &Bound<'_, PyRng>) -> PyResult<u32> {
+        rng.try_borrow_mut()?
+            .draw(py, |r| self.world.sample_start(r).0)
     }
 
-    /// Draw an outcome of action `a` in state `s` from `rng`'s generator (a
-    /// `CsQlAgent`'s): `(next, reward, terminated)`.
+    /// Draw an outcome of action `a` in state `s` from `rng` (see `sample_start`):
+    /// `(next, reward, terminated)`.
     fn sample(
         &self,
+        py: Python<'_>,
         s: u32,
         a: u32,
-        rng: &Bound<'_, crate::PyAgent>,
+        rng: &Bound<'_, PyRng>,
     ) -> PyResult<(u32, f64, bool)> {
         let n = self.world.num_states();
         if s as usize >= n
@@ -198,11 +202,9 @@ impl PyWorld {
                 self.world.num_actions()
             )));
         }
-        let step = self.world.sample(
-            mdp::StateId(s),
-            mdp::ActionId(a),
-            rng.borrow_mut().stepper.rng(),
-        );
+        let step = rng.try_borrow_mut()?.draw(py, |r| {
+            self.world.sample(mdp::StateId(s), mdp::ActionId(a), r)
+        })?;
         Ok((step.next.0, step.reward, step.terminated))
     }
 

@@ -9,13 +9,14 @@ import csrl
 
 def drive(world, agent, trials, max_moves=100, sensor_in_update=True):
     """Step `agent` in `world` as csrl.run does: the start and every outcome drawn from
-    the agent's generator, the trial cut at the move cap."""
+    the agent's generator (`agent.rng`), the trial cut at the move cap."""
     readings = world.readings()
+    rng = agent.rng
     for _ in range(trials):
-        x = world.sample_start(agent)
+        x = world.sample_start(rng)
         for moves in range(1, max_moves + 1):
             a = agent.act(lambda f, s=x: readings[s][f])
-            nxt, reward, terminated = world.sample(x, a, agent)
+            nxt, reward, terminated = world.sample(x, a, rng)
             truncated = moves == max_moves
             if sensor_in_update or truncated:
                 agent.update(reward, terminated, truncated, sensor=lambda f, s=nxt: readings[s][f])
@@ -63,6 +64,30 @@ def test_the_agent_learns_what_run_learns(name, options, strategy, seed):
     assert_same(world, agent, report)
 
 
+def test_a_world_draws_from_a_generator_and_an_agent_is_not_one():
+    world = csrl.World("frozenlake4x4", slip=0.5)
+    agent = csrl.CsQlAgent.for_world(world, seed=3)
+    # The agent itself is refused, with what to pass instead.
+    with pytest.raises(TypeError, match=r"takes a csrl.Rng, not a CsQlAgent: pass agent.rng"):
+        world.sample_start(agent)
+    with pytest.raises(TypeError, match=r"World.sample takes a csrl.Rng, not a CsQlAgent"):
+        world.sample(0, 1, agent)
+    with pytest.raises(TypeError, match=r"takes a csrl.Rng .* not int"):
+        world.sample_start(3)
+    # csrl.Rng(seed) is the generator a run, and an agent, seed with their seed: a fresh
+    # agent's stream draws what it draws; its own draws are reproducible from the seed.
+    own, shared = csrl.Rng(3), agent.rng
+    assert shared.shared and not own.shared
+    draws = [world.sample(0, 1, own) for _ in range(40)]
+    assert draws == [world.sample(0, 1, shared) for _ in range(40)]
+    assert len(set(draws)) > 1
+    assert draws == [world.sample(0, 1, r) for r in [csrl.Rng(3)] for _ in range(40)]
+    assert draws != [world.sample(0, 1, r) for r in [csrl.Rng(4)] for _ in range(40)]
+    for seed in (-1, 2**64):
+        with pytest.raises(OverflowError):
+            csrl.Rng(seed)
+
+
 def test_a_grid_map_learns_the_same_with_updates_learned_at_the_next_act():
     # The grid map as a finite world (`csrl world export`), the same run.
     world = csrl.World("tan3x3")
@@ -87,7 +112,7 @@ def test_refining_from_the_next_state_needs_no_sensor_of_the_past():
     agent = csrl.CsQlAgent.for_world(world, strategy="lazy", seed=1, refine_from="next")
     asked = []
     for _ in range(300):
-        x = world.sample_start(agent)
+        x = world.sample_start(agent.rng)
         for moves in range(1, 101):
             # A sensor of the present only: it reads wherever the world is now.
             here = {"s": x}
@@ -97,7 +122,7 @@ def test_refining_from_the_next_state_needs_no_sensor_of_the_past():
                 return readings[here["s"]][f]
 
             a = agent.act(live)
-            nxt, reward, terminated = world.sample(x, a, agent)
+            nxt, reward, terminated = world.sample(x, a, agent.rng)
             here["s"] = nxt
             agent.update(reward, terminated, moves == 100, sensor=live)
             if terminated:

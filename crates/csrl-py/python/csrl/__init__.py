@@ -38,6 +38,7 @@ from . import _csrl
 from ._csrl import (
     AgentError,
     DataError,
+    Rng,
     SensorError,
     SettingsError,
     WorldError,
@@ -53,6 +54,7 @@ __all__ = [
     "AgentError",
     "CsQlAgent",
     "DataError",
+    "Rng",
     "SensorError",
     "SettingsError",
     "World",

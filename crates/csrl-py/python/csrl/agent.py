@@ -27,7 +27,7 @@ class CsQlAgent:
     It is the agent of :func:`csrl.run` (CLASSIFY, the strategy, the same main loop and
     generator, the same settings), stepped from outside. Driven over a world that draws
     its starts and outcomes from the agent's generator (:meth:`csrl.World.sample_start`
-    and :meth:`csrl.World.sample` with ``rng=agent``) it learns exactly what
+    and :meth:`csrl.World.sample` with ``rng=agent.rng``) it learns exactly what
     :func:`csrl.run` learns for the same seed, bit for bit.
 
     * ``feature_costs[i]``: the price of measuring feature ``i``; ``feature_values[i]``:
@@ -165,6 +165,14 @@ class CsQlAgent:
         terminated (reached the goal) and whether it was truncated (your move cap), and a
         sensor of the state reached (needed when truncated and not terminated)."""
         self._inner.update(float(reward), bool(terminated), bool(truncated), sensor)
+
+    @property
+    def rng(self) -> "_csrl.Rng":
+        """The agent's generator as a :class:`csrl.Rng`: a world that draws its starts
+        and outcomes from it (:meth:`csrl.World.sample_start`, :meth:`csrl.World.sample`)
+        shares the agent's one stream, in :func:`csrl.run`'s order, and the agent then
+        learns what :func:`csrl.run` learns for the same seed."""
+        return self._inner.rng
 
     @property
     def trials(self) -> int:

@@ -59,6 +59,22 @@ def _at_most(count: int, limit: int, what: str) -> None:
         raise WorldError(f"{what}: {count}, more than the limit of {limit}")
 
 
+def _generator(rng: Any, method: str) -> "_csrl.Rng":
+    """``rng`` if it is a :class:`csrl.Rng`; a ``TypeError`` that says what to pass
+    otherwise (an agent itself is not a generator: its ``rng`` is)."""
+    if isinstance(rng, _csrl.Rng):
+        return rng
+    if isinstance(rng, _csrl.CsQlAgent) or isinstance(getattr(rng, "_inner", None), _csrl.CsQlAgent):
+        raise TypeError(
+            f"World.{method} takes a csrl.Rng, not a CsQlAgent: pass agent.rng to draw from "
+            "the agent's own generator (as csrl.run does), or csrl.Rng(seed) for a generator of its own"
+        )
+    raise TypeError(
+        f"World.{method} takes a csrl.Rng (csrl.Rng(seed), or a CsQlAgent's agent.rng), "
+        f"not {type(rng).__name__}"
+    )
+
+
 class World:
     """A finite world whose states are sensed through priced features.
 
@@ -487,33 +503,33 @@ class World:
         """Where trials start: ``(probability, state)`` pairs."""
         return self._inner.start()
 
-    def sample_start(self, rng: Any) -> int:
-        """Draw a trial's start state from the generator of ``rng``, a
-        :class:`csrl.CsQlAgent`: with :meth:`sample`, a simulator whose draws and the
-        agent's come from one stream in :func:`csrl.run`'s order (one draw for the start,
-        then per move the agent's draw and the outcome's), so that the agent learns what
-        :func:`csrl.run` learns for the same seed.
+    def sample_start(self, rng: "_csrl.Rng") -> int:
+        """Draw a trial's start state from ``rng``, a :class:`csrl.Rng`: ``csrl.Rng(seed)``
+        for a generator of its own, or a :class:`csrl.CsQlAgent`'s ``agent.rng``, with
+        which the world's draws and the agent's come from one stream in :func:`csrl.run`'s
+        order (one draw for the start, then per move the agent's draw and the outcome's),
+        so that the agent learns what :func:`csrl.run` learns for the same seed.
 
         >>> import csrl
         >>> w = csrl.World("tan3x3")
+        >>> w.sample_start(csrl.Rng(1)) in w.states()
+        True
         >>> agent = csrl.CsQlAgent.for_world(w, seed=1)
-        >>> w.sample_start(agent) in w.states()
+        >>> w.sample_start(agent.rng) in w.states()
         True
         """
-        return self._inner.sample_start(rng._inner)
+        return self._inner.sample_start(_generator(rng, "sample_start"))
 
-    def sample(self, state: int, action: int, rng: Any) -> tuple:
-        """Draw an outcome of ``action`` in the non-terminal ``state`` from the generator
-        of ``rng``, a :class:`csrl.CsQlAgent` (see :meth:`sample_start`): ``(next,
-        reward, terminated)``.
+    def sample(self, state: int, action: int, rng: "_csrl.Rng") -> tuple:
+        """Draw an outcome of ``action`` in the non-terminal ``state`` from ``rng``, a
+        :class:`csrl.Rng` (see :meth:`sample_start`): ``(next, reward, terminated)``.
 
         >>> import csrl
         >>> w = csrl.World("frozenlake4x4")
-        >>> agent = csrl.CsQlAgent.for_world(w, seed=1)
-        >>> w.sample(0, 2, agent)  # right, on ice that does not slip
+        >>> w.sample(0, 2, csrl.Rng(1))  # right, on ice that does not slip
         (1, 0.0, False)
         """
-        return self._inner.sample(state, action, rng._inner)
+        return self._inner.sample(state, action, _generator(rng, "sample"))
 
     def optimal_values(self, gamma: float = 0.9) -> list:
         """The optimal value of every state at discount ``gamma``."""
