@@ -67,7 +67,7 @@ impl Report {
     /// The report of a run played on costed episodes, if this is one.
     ///
     /// ```
-    /// let s = csql::SettingsDraft::from_toml("map = \"frozenlake4x4\"\nlearner = \"amrl-q\"\nmax_trials = 20\n[world]\nsensing = \"factors\"\n[costly]\nprice = 0.025", "f")
+    /// let s = csql::SettingsDraft::from_toml("map = \"frozenlake4x4\"\nlearner = \"amrl-q\"\nepisodes = 20\n[world]\nsensing = \"factors\"\n[costly]\nprice = 0.025", "f")
     ///     .unwrap()
     ///     .build()
     ///     .unwrap();
@@ -88,7 +88,7 @@ impl Report {
 /// code; both check the settings against it. The learners judged by trials (CS-QL,
 /// U-Tree, full sensing) learn and are measured against the world's oracle, with
 /// `observer` called after every trial; the learners played on episodes (AMRL-Q and
-/// sensing by belief) play `max_trials` episodes scored by the costed return, `observer`
+/// sensing by belief) play `episodes` episodes scored by the costed return, `observer`
 /// asked before every episode whether to go on.
 ///
 /// The other `run_*` functions are forms of this one for CS-QL's own uses (a prepared

@@ -167,7 +167,7 @@ fn bad_settings_are_refused_naming_them() {
 /// plays it, and refused by `csql::run`.
 #[test]
 fn the_learner_belief_of_a_runs_settings() {
-    let text = "map = \"frozenlake4x4\"\nlearner = \"belief\"\nmax_trials = 60\nseed = 8\n\
+    let text = "map = \"frozenlake4x4\"\nlearner = \"belief\"\nepisodes = 60\nseed = 8\n\
                 [belief]\ntrust = 2\nwhole_state = true\n[world]\nsensing = \"factors\"\n\
                 [costly]\nprice = 0.025\nrule = \"after-outcome\"";
     let s = csql::SettingsDraft::from_toml(text, "f")
@@ -250,7 +250,7 @@ impl csql::Observer for SayNoAt {
 /// its first episode, rather than after it (which would end with an episode played).
 #[test]
 fn a_plan_being_built_stops_when_the_observer_says_so() {
-    let text = "map = \"frozenlake4x4\"\nlearner = \"belief\"\nmax_trials = 20\n\
+    let text = "map = \"frozenlake4x4\"\nlearner = \"belief\"\nepisodes = 20\n\
                 [world]\nslip = 0.6666666666666666\nsensing = \"factors\"\n\
                 [costly]\nprice = 0.025\n\
                 [belief]\nmax_beliefs = 1000000\nmax_uncertain = 64";

@@ -27,6 +27,7 @@ fn sample(k: &SettingKey) -> (String, String) {
         (None, "seed") => ("5", ""),
         (None, "max_moves") => ("50", ""),
         (None, "max_trials") => ("30", ""),
+        (None, "episodes") => ("30", ""),
         (None, "beta") => ("0.5", ""),
         (None, "gamma") => ("0.8", ""),
         (None, "temperature") => ("0.3", ""),
@@ -151,8 +152,9 @@ fn every_key_is_refused_exactly_where_its_learner_does_not_read_it() {
     }
     // Nine keys of Q-learning and judging, and sensor noise (at another value and at its
     // default), for each learner on costed episodes; CS-QL's keys for four learners;
-    // U-Tree's, AMRL-Q's and belief's for four; the price for U-Tree.
-    assert_eq!(refused, 2 * 11 + 4 * 15 + 3 * 4 * 6 + 4 + 2);
+    // U-Tree's, AMRL-Q's and belief's for four; the price for U-Tree; `max_trials` for
+    // the two learners on episodes and `episodes` for the three judged over trials.
+    assert_eq!(refused, 2 * 11 + 4 * 15 + 3 * 4 * 6 + 4 + 2 + 2 + 3);
 }
 
 /// A table of a learner that is not the run's is refused even empty or at its defaults,

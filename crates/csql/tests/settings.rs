@@ -181,3 +181,48 @@ fn the_old_spelling_of_the_weighed_level_points_to_the_new() {
         csql::PredictSensing::Weighed
     );
 }
+
+/// Trials and episodes are two counts: `max_trials` with a learner played on episodes,
+/// and `episodes` with one judged over trials, are refused, each with a pointer to the
+/// other; a report's settings echo the count the learner read, and build again to it.
+#[test]
+fn trials_and_episodes_are_counted_apart() {
+    let err = refusal("learner = \"amrl-q\"\nmax_trials = 50\n[costly]\nprice = 0.1");
+    assert!(
+        err.starts_with("max_trials = 50 and learner = amrl-q cannot be used together"),
+        "{err}"
+    );
+    assert!(err.contains("write episodes"), "{err}");
+    let err = refusal("episodes = 50");
+    assert!(
+        err.starts_with("episodes = 50 and learner = cs-ql cannot be used together"),
+        "{err}"
+    );
+    assert!(err.contains("max_trials"), "{err}");
+    let s = SettingsDraft::from_toml(
+        "learner = \"belief\"\nepisodes = 40\n[costly]\nprice = 0.1",
+        "f",
+    )
+    .unwrap()
+    .build()
+    .unwrap();
+    assert_eq!(s.max_trials.get(), 40);
+    let echo = SettingsDraft::from(&s);
+    assert_eq!(
+        (echo.episodes.map(|n| n.get()), echo.max_trials),
+        (Some(40), None)
+    );
+    assert_eq!(echo.build().unwrap(), s);
+    let cs_ql = SettingsDraft::from(&run_settings_with_trials(70));
+    assert_eq!(
+        (cs_ql.max_trials.map(|n| n.get()), cs_ql.episodes),
+        (Some(70), None)
+    );
+}
+
+fn run_settings_with_trials(n: u32) -> RunSettings {
+    SettingsDraft::from_toml(&format!("max_trials = {n}"), "f")
+        .unwrap()
+        .build()
+        .unwrap()
+}

@@ -179,6 +179,7 @@ impl PyAgent {
             learner: None,
             settings,
             max_trials: None,
+            episodes: None,
             predict_sensing: None,
         };
         let s = args

@@ -146,7 +146,7 @@ impl csql::Observer for Signals {
 /// of a TOML settings file (as `--config` reads it); the other arguments are the flags
 /// of the same names.
 #[pyfunction]
-#[pyo3(signature = (world=None, strategy=None, seed=None, learner=None, settings=None, max_trials=None, predict_sensing=None, trace=false))]
+#[pyo3(signature = (world=None, strategy=None, seed=None, learner=None, settings=None, max_trials=None, episodes=None, predict_sensing=None, trace=false))]
 #[expect(
     clippy::too_many_arguments,
     reason = "one argument per flag of `csrl run`, all keywords in Python"
@@ -159,6 +159,7 @@ fn run<'py>(
     learner: Option<&str>,
     settings: Option<&str>,
     max_trials: Option<u32>,
+    episodes: Option<u32>,
     predict_sensing: Option<&str>,
     trace: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
@@ -181,6 +182,7 @@ fn run<'py>(
         learner,
         settings,
         max_trials,
+        episodes,
         predict_sensing,
     };
     let mut settings = args.settings()?;
@@ -220,7 +222,7 @@ fn run<'py>(
 /// The settings of a run as `csrl run` would resolve them, as Python objects (the
 /// report's `settings` dict), without running: to check settings before a long run.
 #[pyfunction]
-#[pyo3(signature = (world=None, strategy=None, seed=None, learner=None, settings=None, max_trials=None, predict_sensing=None))]
+#[pyo3(signature = (world=None, strategy=None, seed=None, learner=None, settings=None, max_trials=None, episodes=None, predict_sensing=None))]
 #[expect(
     clippy::too_many_arguments,
     reason = "one argument per flag of `csrl run`, all keywords in Python"
@@ -233,6 +235,7 @@ fn resolve_settings<'py>(
     learner: Option<&str>,
     settings: Option<&str>,
     max_trials: Option<u32>,
+    episodes: Option<u32>,
     predict_sensing: Option<&str>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let args = settings::RunArgs {
@@ -242,6 +245,7 @@ fn resolve_settings<'py>(
         learner,
         settings,
         max_trials,
+        episodes,
         predict_sensing,
     };
     let s = args.settings()?;

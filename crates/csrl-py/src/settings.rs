@@ -24,6 +24,8 @@ pub(crate) struct RunArgs<'a> {
     pub settings: Option<&'a str>,
     /// `--max-trials`.
     pub max_trials: Option<u32>,
+    /// `--episodes`.
+    pub episodes: Option<u32>,
     /// `--predict-sensing`.
     pub predict_sensing: Option<&'a str>,
 }
@@ -59,6 +61,10 @@ impl RunArgs<'_> {
             seed: self.seed,
             max_trials: self
                 .max_trials
+                .map(|n| TrialCap::new(n).map_err(|e| run_error(&e)))
+                .transpose()?,
+            episodes: self
+                .episodes
                 .map(|n| TrialCap::new(n).map_err(|e| run_error(&e)))
                 .transpose()?,
             predict_sensing: self

@@ -252,32 +252,32 @@ COSTED = [
 def test_learners_on_costed_episodes_run_as_the_cli_runs_them(cli, tmp_path, learner, settings):
     config = tmp_path / "costed.toml"
     config.write_text(_csrl.settings_toml(settings))
-    flags = ["--world", "frozenlake4x4", "--learner", learner, "--seed", "3", "--max-trials", "80",
+    flags = ["--world", "frozenlake4x4", "--learner", learner, "--seed", "3", "--episodes", "80",
              "--config", str(config)]
     expected = cli_json(cli, *flags)
-    got = csrl.run_json(world="frozenlake4x4", learner=learner, seed=3, max_trials=80, settings=settings)
+    got = csrl.run_json(world="frozenlake4x4", learner=learner, seed=3, episodes=80, settings=settings)
     assert got == expected
-    report = csrl.run(world="frozenlake4x4", learner=learner, seed=3, max_trials=80, settings=settings)
+    report = csrl.run(world="frozenlake4x4", learner=learner, seed=3, episodes=80, settings=settings)
     assert csrl.dumps(report) == expected
     assert report["learner"] == learner
     assert len(report["costly"]["returns"]) == 80
     assert report["settings"]["costly"]["price"] == 0.025
     # The learner in the settings is the same run.
     inside = dict(settings, learner=learner)
-    assert csrl.run_json(world="frozenlake4x4", seed=3, max_trials=80, settings=inside) == expected
+    assert csrl.run_json(world="frozenlake4x4", seed=3, episodes=80, settings=inside) == expected
 
 
 def test_belief_on_a_world_object():
     lake = csrl.World("frozenlake4x4", sensing="factors")
-    report = csrl.run(world=lake, learner="belief", seed=2, max_trials=30, settings={"costly": {"price": 0.025}})
+    report = csrl.run(world=lake, learner="belief", seed=2, episodes=30, settings={"costly": {"price": 0.025}})
     assert report["map"] == "frozenlake4x4" and report["learner"] == "belief"
     assert len(report["costly"]["returns"]) == 30
     # Only the keys the learner reads are echoed.
-    assert "gamma" not in report["settings"] and report["settings"]["max_trials"] == 30
+    assert "gamma" not in report["settings"] and report["settings"]["episodes"] == 30
 
 
 def test_belief_refusals_are_settings_errors(cli):
-    lake = dict(world="frozenlake4x4", learner="belief", max_trials=5)
+    lake = dict(world="frozenlake4x4", learner="belief", episodes=5)
     with pytest.raises(csrl.SettingsError, match="learner = belief"):
         csrl.run(**lake)  # no [costly] price
     with pytest.raises(csrl.SettingsError, match="belief.trust = 0"):
@@ -287,7 +287,7 @@ def test_belief_refusals_are_settings_errors(cli):
     with pytest.raises(csrl.SettingsError, match="trace"):
         csrl.run(**lake, settings={"costly": {"price": 0.1}}, trace=True)
     # The same message as the command's.
-    config_error = cli_error(cli, "--world", "frozenlake4x4", "--learner", "belief", "--max-trials", "5")
+    config_error = cli_error(cli, "--world", "frozenlake4x4", "--learner", "belief", "--episodes", "5")
     with pytest.raises(csrl.SettingsError) as e:
         csrl.run(**lake)
     assert str(e.value) == config_error

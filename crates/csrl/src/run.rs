@@ -44,7 +44,7 @@ pub struct RunArgs {
     /// the policy quality; every report also gives the cost and trials until quality
     /// 0.95. amrl-q (AMRL-Q, its published parameters by default, tuned by the config's
     /// `[amrl_q]`) and belief (sensing by belief: a learned model and a plan over
-    /// beliefs, tuned by the config's `[belief]`) play exactly `max_trials` episodes and
+    /// beliefs, tuned by the config's `[belief]`) play exactly `--episodes` episodes and
     /// need `--price`; their report is the costed return of every episode and their
     /// summary.
     #[arg(long)]
@@ -60,11 +60,15 @@ pub struct RunArgs {
     /// config's `[costly] rule`, else with-move).
     #[arg(long, value_parser = parse_rule)]
     sensing_rule: Option<mdp::SensingRule>,
-    /// Stop an unconverged run after this many trials (amrl-q, belief: the number of
-    /// episodes played; default: the config's, else 20000, or a built-in world's own:
-    /// `csrl world show NAME`).
+    /// Stop an unconverged run after this many trials (cs-ql, u-tree, full-sensing;
+    /// default: the config's, else 20000, or a built-in world's own: `csrl world show
+    /// NAME`).
     #[arg(long)]
     max_trials: Option<csql::TrialCap>,
+    /// The number of episodes amrl-q and belief play (the config's `episodes`, else
+    /// 20000).
+    #[arg(long)]
+    episodes: Option<csql::TrialCap>,
     /// Exit with code 3 if the run does not converge, or, for a run judged by the policy
     /// quality, if the quality did not reach 0.95 and stay there (by default a run that
     /// reaches its trial cap is a result like any other and exits 0).
@@ -95,6 +99,7 @@ impl RunArgs {
             strategy: self.strategy,
             seed: self.seed,
             max_trials: self.max_trials,
+            episodes: self.episodes,
             predict_sensing: self.predict_sensing,
             learner: self.learner,
             ..SettingsDraft::default()

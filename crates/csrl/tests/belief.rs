@@ -57,7 +57,7 @@ fn belief_in_csrl_run_is_csql_belief_planning() {
                 "0.025",
                 "--sensing-rule",
                 rule.name(),
-                "--max-trials",
+                "--episodes",
                 "150",
                 "--seed",
                 "4",
@@ -113,7 +113,7 @@ fn the_report_has_the_fields_of_a_run_on_costed_episodes() {
         "frozenlake4x4",
         "--price",
         "0.5",
-        "--max-trials",
+        "--episodes",
         "20",
         "--seed",
         "9",
@@ -159,7 +159,7 @@ fn the_report_has_the_fields_of_a_run_on_costed_episodes() {
     let s = &v["settings"];
     assert_eq!(s["learner"], "belief");
     assert_eq!(s["seed"], 9);
-    assert_eq!(s["max_trials"], 20);
+    assert_eq!(s["episodes"], 20);
     assert_eq!(s["costly"]["price"], 0.5);
     assert_eq!(
         s["belief"],
@@ -176,7 +176,7 @@ fn the_report_has_the_fields_of_a_run_on_costed_episodes() {
         "belief",
         "--price",
         "0.5",
-        "--max-trials",
+        "--episodes",
         "5",
         "--config",
         plain.to_str().unwrap(),
@@ -192,7 +192,7 @@ fn the_report_has_the_fields_of_a_run_on_costed_episodes() {
         "belief",
         "--price",
         "0.025",
-        "--max-trials",
+        "--episodes",
         "50",
         "--config",
         plain.to_str().unwrap(),
@@ -214,7 +214,7 @@ fn a_settings_file_with_belief_is_read_back() {
     let path = config(
         dir.path(),
         "first",
-        "learner = \"belief\"\nmax_trials = 40\nseed = 3\n[belief]\nwhole_state = true\nmax_uncertain = 4\nprior = 1.5\n[costly]\nprice = 0.025\nrule = \"after-outcome\"",
+        "learner = \"belief\"\nepisodes = 40\nseed = 3\n[belief]\nwhole_state = true\nmax_uncertain = 4\nprior = 1.5\n[costly]\nprice = 0.025\nrule = \"after-outcome\"",
     );
     let args = |p: &Path| {
         [
@@ -353,7 +353,7 @@ fn refused_settings_name_both_or_say_what_is_accepted() {
         "belief",
         "--price",
         "0.1",
-        "--max-trials",
+        "--episodes",
         "3",
     ]);
     assert!(
@@ -378,7 +378,7 @@ fn the_whole_state_on_a_grid_map() {
         "tan3x3",
         "--price",
         "0.01",
-        "--max-trials",
+        "--episodes",
         "30",
         "--config",
         path.to_str().unwrap(),

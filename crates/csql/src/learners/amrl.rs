@@ -90,12 +90,12 @@ impl AmrlParams {
     }
 }
 
-/// The most episodes a learner on costed episodes may play (`max_trials` of
+/// The most episodes a learner on costed episodes may play (`episodes` of
 /// `learner = "amrl-q"` or `"belief"`, and [`crate::costed_episodes`]): every episode is
 /// kept in the report, with its costed return.
 ///
 /// ```
-/// let s = csql::SettingsDraft::from_toml("learner = \"amrl-q\"\nmax_trials = 1000001\n[costly]\nprice = 0.1", "f").unwrap();
+/// let s = csql::SettingsDraft::from_toml("learner = \"amrl-q\"\nepisodes = 1000001\n[costly]\nprice = 0.1", "f").unwrap();
 /// assert!(s.build().unwrap_err().to_string().contains("at most 1000000 episodes"));
 /// assert_eq!(csql::MAX_EPISODES, 1_000_000);
 /// ```

@@ -272,11 +272,11 @@ pub(crate) fn costed_run<W: World + ?Sized>(
 }
 
 /// What `csrl run` reports for a learner played on episodes of the costed return
-/// (`--learner amrl-q` or `--learner belief`): `max_trials` episodes, each scored by its
+/// (`--learner amrl-q` or `--learner belief`): `episodes` episodes, each scored by its
 /// costed return.
 ///
 /// ```
-/// let mut s = csql::SettingsDraft::from_toml("learner = \"amrl-q\"\nmax_trials = 20\n[costly]\nprice = 0.5", "f")
+/// let mut s = csql::SettingsDraft::from_toml("learner = \"amrl-q\"\nepisodes = 20\n[costly]\nprice = 0.5", "f")
 ///     .unwrap()
 ///     .build()
 ///     .unwrap();
@@ -308,7 +308,7 @@ pub struct CostedReport {
 }
 
 /// The learner of `settings` played on episodes of the costed return in `world` (named
-/// `name`): `max_trials` episodes of at most `max_moves` moves, under `[costly] rule`,
+/// `name`): `episodes` episodes of at most `max_moves` moves, under `[costly] rule`,
 /// from one generator seeded with `seed`. `observer` is asked before every episode
 /// whether to go on ([`Observer::keep_going`]; within an episode of `amrl-q` too, every
 /// [`crate::STOP_CHECK_MOVES`] moves): a no ends the run there, and the report holds
@@ -400,7 +400,7 @@ pub fn costed_report<W: World + ?Sized>(
 /// `--learner belief` print.
 ///
 /// ```
-/// let s = csql::SettingsDraft::from_toml("map = \"frozenlake4x4\"\nlearner = \"belief\"\nmax_trials = 30\n[world]\nsensing = \"factors\"\n[costly]\nprice = 0.025", "f")
+/// let s = csql::SettingsDraft::from_toml("map = \"frozenlake4x4\"\nlearner = \"belief\"\nepisodes = 30\n[world]\nsensing = \"factors\"\n[costly]\nprice = 0.025", "f")
 ///     .unwrap()
 ///     .build()
 ///     .unwrap();

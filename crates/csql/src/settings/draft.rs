@@ -83,9 +83,13 @@ pub struct SettingsDraft {
     /// `decrease_threshold`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub decrease_threshold: Option<NonNegative>,
-    /// `max_trials`.
+    /// `max_trials`: the cap on the trials of a learner judged over trials.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_trials: Option<TrialCap>,
+    /// `episodes`: how many episodes a learner played on costed episodes plays
+    /// (`amrl-q`, `belief`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub episodes: Option<TrialCap>,
     /// `seed`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub seed: Option<u64>,
@@ -329,6 +333,8 @@ const PRICED: &[LearnerKind] = &[
     LearnerKind::AmrlQ,
     LearnerKind::Belief,
 ];
+/// The learners played on costed episodes, each a count of its own.
+const EPISODES: &[LearnerKind] = &[LearnerKind::AmrlQ, LearnerKind::Belief];
 const CS_QL: &[LearnerKind] = &[LearnerKind::CsQl];
 const U_TREE: &[LearnerKind] = &[LearnerKind::UTree];
 const AMRL_Q: &[LearnerKind] = &[LearnerKind::AmrlQ];
@@ -361,7 +367,7 @@ const fn inner(
 /// fields of the settings, to the learners' code, to `csrl run --help` and to the
 /// specification's list (6.9).
 ///
-/// AMRL-Q and sensing by belief play episodes of their own (`max_trials` of at most
+/// AMRL-Q and sensing by belief play episodes of their own (`episodes` of at most
 /// `max_moves` moves): they read no key of Q-learning, convergence or judging, nor
 /// sensor noise (their worlds are read exactly).
 ///
@@ -376,7 +382,8 @@ pub const SETTING_KEYS: &[SettingKey] = &[
     top("learner", EVERY),
     top("seed", EVERY),
     top("max_moves", EVERY),
-    top("max_trials", EVERY),
+    top("max_trials", TRIALS),
+    top("episodes", EPISODES),
     top("beta", TRIALS),
     top("gamma", TRIALS),
     top("temperature", TRIALS),
@@ -673,6 +680,7 @@ impl SettingsDraft {
             tolerance,
             decrease_threshold,
             max_trials,
+            episodes,
             seed,
             predict_sensing,
             prediction,
@@ -709,6 +717,7 @@ impl SettingsDraft {
                 "seed" => named(self.seed.map(|n| n.to_string())),
                 "max_moves" => named(self.max_moves.map(|n| n.get().to_string())),
                 "max_trials" => named(self.max_trials.map(|n| n.get().to_string())),
+                "episodes" => named(self.episodes.map(|n| n.get().to_string())),
                 "beta" => named(self.beta.map(|x| x.get().to_string())),
                 "gamma" => named(self.gamma.map(|x| x.get().to_string())),
                 "temperature" => named(self.temperature.map(|x| x.get().to_string())),
@@ -764,6 +773,7 @@ impl SettingsDraft {
                 (None, "seed") => self.seed = None,
                 (None, "max_moves") => self.max_moves = None,
                 (None, "max_trials") => self.max_trials = None,
+                (None, "episodes") => self.episodes = None,
                 (None, "beta") => self.beta = None,
                 (None, "gamma") => self.gamma = None,
                 (None, "temperature") => self.temperature = None,
@@ -858,6 +868,33 @@ impl SettingsDraft {
     /// ```
     pub fn build(&self) -> Result<RunSettings, Error> {
         let kind = self.learner.unwrap_or_default();
+        // Trials and episodes are counted apart: each count is refused with a pointer
+        // to the other where the learner reads the other.
+        let count = if kind.on_episodes() {
+            self.max_trials.map(|n| {
+                (
+                    format!("max_trials = {}", n.get()),
+                    "a learner played on costed episodes plays a count of episodes, not trials \
+                     judged by the oracle: write episodes (csrl run --episodes)",
+                )
+            })
+        } else {
+            self.episodes.map(|n| {
+                (
+                    format!("episodes = {}", n.get()),
+                    "this learner is judged over trials until it has learned: its cap is \
+                     max_trials (csrl run --max-trials); episodes counts the episodes of amrl-q \
+                     and belief",
+                )
+            })
+        };
+        if let Some((first, why)) = count {
+            return Err(Error::Conflict {
+                first,
+                second: format!("learner = {kind}"),
+                why,
+            });
+        }
         if let Some(first) = self.unread_given(kind) {
             return Err(Error::Conflict {
                 first,
@@ -941,7 +978,12 @@ impl SettingsDraft {
             max_moves: self.max_moves.unwrap_or(paper.max_moves),
             tolerance: self.tolerance.unwrap_or(paper.tolerance),
             decrease_threshold: self.decrease_threshold.unwrap_or(paper.decrease_threshold),
-            max_trials: self.max_trials.unwrap_or(defaults.max_trials),
+            max_trials: if kind.on_episodes() {
+                self.episodes
+            } else {
+                self.max_trials
+            }
+            .unwrap_or(defaults.max_trials),
             seed: self.seed.unwrap_or(paper.seed),
             world,
             judge,
@@ -987,7 +1029,8 @@ impl From<&RunSettings> for SettingsDraft {
                 .map(|q| q.random_moves),
             tolerance: Some(s.tolerance),
             decrease_threshold: Some(s.decrease_threshold),
-            max_trials: Some(s.max_trials),
+            max_trials: (!kind.on_episodes()).then_some(s.max_trials),
+            episodes: kind.on_episodes().then_some(s.max_trials),
             seed: Some(s.seed),
             predict_sensing: q.map(|q| q.predict_sensing).filter(|l| !l.is_off()),
             prediction: q.map(|q| q.prediction).filter(|p| !p.is_default()),

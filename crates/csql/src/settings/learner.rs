@@ -180,11 +180,11 @@ pub enum LearnerKind {
     /// Q-learning on the whole sensable view, charged every feature at every step.
     FullSensing,
     /// AMRL-Q, measuring the whole state or not at each step, on the costed return
-    /// (not a learner of [`crate::run`]: `csrl run` plays it for `max_trials` episodes).
+    /// (not a learner of [`crate::run`]: `csrl run` plays it for `episodes` episodes).
     AmrlQ,
     /// Sensing by belief, measuring what a plan over a learned model says is worth its
     /// price, on the costed return (not a learner of [`crate::run`]: `csrl run` plays it
-    /// for `max_trials` episodes).
+    /// for `episodes` episodes).
     Belief,
 }
 

@@ -575,7 +575,7 @@ impl RunSettings {
             && self.max_trials.get() > crate::learners::amrl::MAX_EPISODES
         {
             return refuse(
-                format!("max_trials = {}", self.max_trials.get()),
+                format!("episodes = {}", self.max_trials.get()),
                 "at most 1000000 episodes (csql::MAX_EPISODES) for a learner on costed episodes: every episode is kept in the report",
             );
         }

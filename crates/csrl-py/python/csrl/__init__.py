@@ -101,6 +101,7 @@ def run_json(
     settings: Settings = None,
     *,
     max_trials: Optional[int] = None,
+    episodes: Optional[int] = None,
     predict_sensing: Optional[str] = None,
     trace: bool = False,
 ) -> str:
@@ -120,6 +121,7 @@ def run_json(
             learner,
             settings,
             max_trials=max_trials,
+        episodes=episodes,
             predict_sensing=predict_sensing,
             trace=trace,
         )
@@ -134,6 +136,7 @@ def run(
     settings: Settings = None,
     *,
     max_trials: Optional[int] = None,
+    episodes: Optional[int] = None,
     predict_sensing: Optional[str] = None,
     trace: bool = False,
 ) -> dict:
@@ -143,14 +146,15 @@ def run(
 
     The arguments are the flags of ``csrl run``: ``world`` (``--world``: a built-in
     world or map, a map or world file, ``random:WxH:DENSITY:SEED``, or a :class:`World`),
-    ``strategy``, ``seed``, ``learner``, ``max_trials``, ``predict_sensing`` and ``trace``;
+    ``strategy``, ``seed``, ``learner``, ``max_trials``, ``episodes``, ``predict_sensing`` and ``trace``;
     ``settings`` is what ``--config`` reads: the path of a TOML settings file, or the same
     tables as a dict (``{"temperature": 0.2, "world": {"slip": 0.1}}``). Arguments left
     at ``None`` take the settings' value, else the paper's, or where ``world`` names a
     built-in world that asks for its own temperature, detector or trial cap (``taxi``,
     ``cliffwalking``, ``frozenlake8x8``), the world's. The learners played on
     episodes of the costed return, ``learner="amrl-q"`` and ``learner="belief"`` (tuned
-    by the settings' ``amrl_q`` and ``belief`` tables), need ``{"costly": {"price": ...}}``
+    by the settings' ``amrl_q`` and ``belief`` tables), play ``episodes`` episodes (not
+    ``max_trials``, the cap of a run judged over trials), need ``{"costly": {"price": ...}}``
     and give their report: the costed return of every episode and their summary.
 
     The GIL is released while the run goes on, and Ctrl-C stops it
@@ -168,6 +172,7 @@ def run(
         learner=learner,
         settings=_settings_text(settings),
         max_trials=max_trials,
+        episodes=episodes,
         predict_sensing=predict_sensing,
         trace=trace,
     )
@@ -182,6 +187,7 @@ def resolve_settings(
     settings: Settings = None,
     *,
     max_trials: Optional[int] = None,
+    episodes: Optional[int] = None,
     predict_sensing: Optional[str] = None,
 ) -> dict:
     """The settings a run with these arguments would use (the report's ``settings``),
@@ -198,6 +204,7 @@ def resolve_settings(
         learner=learner,
         settings=_settings_text(settings),
         max_trials=max_trials,
+        episodes=episodes,
         predict_sensing=predict_sensing,
     )
     return resolved

@@ -42,6 +42,7 @@ def run(
     learner: Optional[str] = None,
     settings: Optional[str] = None,
     max_trials: Optional[int] = None,
+    episodes: Optional[int] = None,
     predict_sensing: Optional[str] = None,
     trace: bool = False,
 ) -> dict[str, Any]: ...
@@ -52,6 +53,7 @@ def resolve_settings(
     learner: Optional[str] = None,
     settings: Optional[str] = None,
     max_trials: Optional[int] = None,
+    episodes: Optional[int] = None,
     predict_sensing: Optional[str] = None,
 ) -> dict[str, Any]: ...
 def settings_toml(settings: Any) -> str: ...
