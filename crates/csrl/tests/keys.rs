@@ -79,9 +79,10 @@ fn a_key_the_learner_does_not_read_is_refused_from_file_and_flag() {
         assert!(stderr(&out).contains(named), "{args:?}: {}", stderr(&out));
     };
     let lake = ["run", "--world", "frozenlake4x4", "--max-trials", "5"];
+    let episodes = ["run", "--world", "frozenlake4x4", "--episodes", "5"];
     refused(
         &[
-            &lake[..],
+            &episodes[..],
             &["--learner", "amrl-q", "--price", "0.1", "--config", gamma],
         ]
         .concat(),
@@ -102,7 +103,7 @@ fn a_key_the_learner_does_not_read_is_refused_from_file_and_flag() {
     let judged = config(dir.path(), "judged", "[judge]\nquality_every = 5");
     refused(
         &[
-            &lake[..],
+            &episodes[..],
             &["--learner", "belief", "--price", "0.1", "--config"],
             &[judged.to_str().unwrap()],
         ]
