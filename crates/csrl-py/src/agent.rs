@@ -256,15 +256,15 @@ impl PyAgent {
         }
     }
 
-    /// Trials started.
     /// The agent's generator as a `csrl.Rng`: a world that draws its starts and outcomes
     /// from it (`World.sample_start`, `World.sample`) shares the agent's one stream, in
     /// `csrl.run`'s order.
     #[getter]
     fn rng(slf: Py<Self>) -> crate::rng::PyRng {
-        crate::rng::PyRng::of_agent(slf)
+        crate::rng::PyRng::borrowed(Box::new(AgentRng(slf)))
     }
 
+    /// Trials started.
     #[getter]
     fn trials(&self) -> u32 {
         self.stepper.trials()
@@ -335,5 +335,19 @@ impl PyAgent {
             t.refinements,
             t.resets,
         ))
+    }
+}
+
+/// An agent lending its generator to a `csrl.Rng`.
+struct AgentRng(Py<PyAgent>);
+
+impl crate::rng::Lender for AgentRng {
+    fn lend(
+        &self,
+        py: Python<'_>,
+        draw: &mut dyn FnMut(&mut rand_xoshiro::Xoshiro256PlusPlus),
+    ) -> PyResult<()> {
+        draw(self.0.bind(py).try_borrow_mut()?.stepper.rng());
+        Ok(())
     }
 }

@@ -4,15 +4,19 @@ use pyo3::prelude::*;
 use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
-use crate::PyAgent;
+/// An object that lends its generator to a [`PyRng`] for one draw (a `CsQlAgent`, whose
+/// draws and the world's then come from one stream, as `csrl.run`'s do).
+pub(crate) trait Lender: Send + Sync {
+    /// Call `draw` once with the generator.
+    fn lend(&self, py: Python<'_>, draw: &mut dyn FnMut(&mut Xoshiro256PlusPlus)) -> PyResult<()>;
+}
 
 /// Where a [`PyRng`]'s draws come from.
 enum Source {
     /// A generator of its own, seeded by the caller.
     Own(Box<Xoshiro256PlusPlus>),
-    /// A `CsQlAgent`'s generator: the world's draws and the agent's come from one stream,
-    /// as `csrl.run`'s do.
-    Agent(Py<PyAgent>),
+    /// Another object's generator.
+    Borrowed(Box<dyn Lender>),
 }
 
 /// A seeded generator for `World.sample_start` and `World.sample`: `Rng(seed)` draws from
@@ -24,10 +28,10 @@ pub struct PyRng {
 }
 
 impl PyRng {
-    /// The generator of an agent (`CsQlAgent.rng`).
-    pub(crate) fn of_agent(agent: Py<PyAgent>) -> PyRng {
+    /// The generator another object lends (`CsQlAgent.rng`).
+    pub(crate) fn borrowed(from: Box<dyn Lender>) -> PyRng {
         PyRng {
-            source: Source::Agent(agent),
+            source: Source::Borrowed(from),
         }
     }
 
@@ -39,7 +43,18 @@ impl PyRng {
     ) -> PyResult<T> {
         match &mut self.source {
             Source::Own(rng) => Ok(draw(rng)),
-            Source::Agent(agent) => Ok(draw(agent.bind(py).try_borrow_mut()?.stepper.rng())),
+            Source::Borrowed(from) => {
+                let mut draw = Some(draw);
+                let mut out = None;
+                from.lend(py, &mut |rng| {
+                    if let Some(d) = draw.take() {
+                        out = Some(d(rng));
+                    }
+                })?;
+                out.ok_or_else(|| {
+                    pyo3::exceptions::PyRuntimeError::new_err("the generator was not lent")
+                })
+            }
         }
     }
 }
@@ -57,13 +72,13 @@ impl PyRng {
     /// Whether it draws from an agent's generator.
     #[getter]
     fn shared(&self) -> bool {
-        matches!(self.source, Source::Agent(_))
+        matches!(self.source, Source::Borrowed(_))
     }
 
     fn __repr__(&self) -> String {
         match self.source {
             Source::Own(_) => "csrl.Rng(a generator of its own)".to_string(),
-            Source::Agent(_) => "csrl.Rng(a CsQlAgent's generator)".to_string(),
+            Source::Borrowed(_) => "csrl.Rng(a CsQlAgent's generator)".to_string(),
         }
     }
 }
