@@ -25,8 +25,8 @@
 use std::collections::BTreeMap;
 
 use crate::costly::{
-    BELIEF_QUANTUM, MAX_MENU_FEATURES, ReferenceError, ReferenceOptions, SensingMenu, SensingRule,
-    bad, check_horizon, check_menu,
+    BELIEF_QUANTUM, MAX_MENU_FEATURES, PlanSize, ReferenceError, ReferenceOptions, SensingMenu,
+    SensingRule, bad, check_horizon, check_menu,
 };
 use crate::process::{ActionId, StateId};
 use crate::sensing::Feature;
@@ -452,6 +452,9 @@ pub(crate) struct Graph {
     counts: Vec<u32>,
     choices: Vec<Vec<Choice>>,
     cap: usize,
+    /// What the graph holds so far, and the most bytes it may be counted at.
+    size: PlanSize,
+    max_bytes: usize,
     k_text: String,
 }
 
@@ -469,6 +472,9 @@ impl Graph {
                 k: self.k_text.clone(),
             });
         }
+        self.size.beliefs += 1;
+        self.size.belief_states += b.len();
+        self.check_bytes()?;
         let i = self.beliefs.len();
         self.keys.insert(k, i);
         self.sizes.push(b.len());
@@ -478,6 +484,18 @@ impl Graph {
         self.counts.push(count);
         self.choices.push(Vec::new());
         Ok(i)
+    }
+
+    /// Refuse to grow past [`ReferenceOptions::max_bytes`].
+    fn check_bytes(&self) -> Result<(), ReferenceError> {
+        if self.size.bytes() > self.max_bytes {
+            return Err(ReferenceError::TooLarge {
+                max_bytes: self.max_bytes,
+                size: self.size,
+                k: self.k_text.clone(),
+            });
+        }
+        Ok(())
     }
 }
 
@@ -559,6 +577,8 @@ pub(crate) fn solve(
         counts: Vec::new(),
         choices: Vec::new(),
         cap: options.max_beliefs,
+        size: PlanSize::default(),
+        max_bytes: options.max_bytes,
         k_text: options
             .max_uncertain
             .map_or("unbounded".to_string(), |k| k.to_string()),
@@ -715,6 +735,9 @@ pub(crate) fn solve(
                 }
             }
         }
+        g.size.choices += choices.len();
+        g.size.edges += choices.iter().map(|c| c.children.len()).sum::<usize>();
+        g.check_bytes()?;
         g.choices[i] = choices;
         if keep {
             g.beliefs[i] = b;
@@ -850,7 +873,8 @@ impl BeliefPlan {
     ///
     /// # Errors
     /// Those of [`best_sensing`](crate::best_sensing): a bad setting, a root that cannot
-    /// be one, more beliefs than [`ReferenceOptions::max_beliefs`].
+    /// be one, more beliefs than [`ReferenceOptions::max_beliefs`], a graph counted at
+    /// more bytes than [`ReferenceOptions::max_bytes`] ([`ReferenceError::TooLarge`]).
     ///
     /// ```
     /// use mdp::{BeliefPlan, CostlyModel, PlanOptions, ReferenceOptions, SensingMenu, StateId};
@@ -927,6 +951,18 @@ impl BeliefPlan {
     /// ```
     pub fn point(&self, s: StateId) -> Option<NodeId> {
         self.points.get(&s.0).map(|&i| NodeId(i))
+    }
+
+    /// What the plan holds, and the bytes it is counted at ([`PlanSize::bytes`]).
+    ///
+    /// ```
+    /// # let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() }).unwrap();
+    /// # let model = mdp::CostlyModel::of(&lake).unwrap();
+    /// let plan = mdp::BeliefPlan::build(&model, &Default::default(), &[mdp::StateId(0)]).unwrap();
+    /// assert_eq!(plan.size().beliefs, 11);
+    /// ```
+    pub fn size(&self) -> PlanSize {
+        self.solved.graph.size
     }
 
     /// How many nodes the plan has.

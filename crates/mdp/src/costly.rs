@@ -124,7 +124,21 @@ pub struct ReferenceOptions {
     /// The most plans [`open_loop`](crate::open_loop) keeps at each step; beyond it the value is a lower
     /// bound ([`OpenLoop::exact`](crate::OpenLoop::exact) is false).
     pub max_plans: usize,
+    /// The most bytes a belief graph ([`best_sensing`](crate::best_sensing),
+    /// [`BeliefPlan`](crate::BeliefPlan)) may be counted at ([`PlanSize::bytes`]):
+    /// one that would pass it stops with [`ReferenceError::TooLarge`]
+    /// ([`DEFAULT_MAX_PLAN_BYTES`] by default).
+    pub max_bytes: usize,
 }
+
+/// The most bytes a belief graph may be counted at by default: 1.5 GB, so that with what
+/// else a process holds no plan takes it past 2 GB (`docs/costly.md`, "The memory of a
+/// plan", measures what a plan takes against what it is counted at).
+///
+/// ```
+/// assert_eq!(mdp::ReferenceOptions::default().max_bytes, mdp::DEFAULT_MAX_PLAN_BYTES);
+/// ```
+pub const DEFAULT_MAX_PLAN_BYTES: usize = 1_500_000_000;
 
 impl Default for ReferenceOptions {
     fn default() -> Self {
@@ -133,7 +147,65 @@ impl Default for ReferenceOptions {
             max_uncertain: Some(3),
             max_beliefs: DEFAULT_MAX_BELIEFS,
             max_plans: DEFAULT_MAX_PLANS,
+            max_bytes: DEFAULT_MAX_PLAN_BYTES,
         }
+    }
+}
+
+/// What a belief graph holds, counted as it is built ([`BeliefPlan::size`](crate::BeliefPlan::size)): the measure
+/// its memory is bounded in ([`ReferenceOptions::max_bytes`]).
+///
+/// ```
+/// let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() }).unwrap();
+/// let model = mdp::CostlyModel::of(&lake).unwrap();
+/// let plan = mdp::BeliefPlan::build(&model, &Default::default(), &[mdp::StateId(0)]).unwrap();
+/// let size = plan.size();
+/// assert_eq!(size.beliefs, plan.nodes());
+/// assert!(size.edges > 0 && size.bytes() > size.beliefs * mdp::PlanSize::BYTES_PER_BELIEF);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PlanSize {
+    /// The beliefs (nodes of the graph).
+    pub beliefs: usize,
+    /// The states of every belief, summed (a belief over three states counts three).
+    pub belief_states: usize,
+    /// The choices of every node, summed.
+    pub choices: usize,
+    /// The edges: the weighted children of every choice, summed.
+    pub edges: usize,
+}
+
+impl PlanSize {
+    /// The bytes a belief is counted at, beside its states, choices and edges: its entry
+    /// in the index of beliefs, its slots in the per-node tables, its values in value
+    /// iteration and the plan's copy (measured: `docs/costly.md`, "The memory of a plan").
+    pub const BYTES_PER_BELIEF: usize = 300;
+    /// The bytes a state of a belief is counted at: its probability, its key in the
+    /// index and its place in the plan's copy.
+    pub const BYTES_PER_BELIEF_STATE: usize = 64;
+    /// The bytes a choice is counted at (the choice and its list of children).
+    pub const BYTES_PER_CHOICE: usize = 48;
+    /// The bytes an edge (a weighted child of a choice) is counted at.
+    pub const BYTES_PER_EDGE: usize = 24;
+
+    /// The bytes the graph is counted at: each belief, state, choice and edge at its
+    /// `BYTES_PER_*` (saturating).
+    ///
+    /// ```
+    /// let s = mdp::PlanSize { beliefs: 1, belief_states: 1, choices: 0, edges: 0 };
+    /// assert_eq!(s.bytes(), mdp::PlanSize::BYTES_PER_BELIEF + mdp::PlanSize::BYTES_PER_BELIEF_STATE);
+    /// ```
+    pub fn bytes(&self) -> usize {
+        [
+            (self.beliefs, Self::BYTES_PER_BELIEF),
+            (self.belief_states, Self::BYTES_PER_BELIEF_STATE),
+            (self.choices, Self::BYTES_PER_CHOICE),
+            (self.edges, Self::BYTES_PER_EDGE),
+        ]
+        .iter()
+        .fold(0usize, |sum, &(n, b)| {
+            sum.saturating_add(n.saturating_mul(b))
+        })
     }
 }
 
@@ -166,6 +238,23 @@ pub enum ReferenceError {
     TooManyBeliefs {
         /// The cap.
         cap: usize,
+        /// The bound on uncertain steps, as text (`unbounded` for none).
+        k: String,
+    },
+    /// The belief graph would be counted at more bytes than its bound
+    /// ([`ReferenceOptions::max_bytes`]).
+    #[error(
+        "the belief graph would pass {max_bytes} bytes ({} beliefs over {} states, {} choices, {} edges so far, with at most {k} uncertain steps in a row); lower the bound on uncertain steps or the cap on beliefs",
+        size.beliefs,
+        size.belief_states,
+        size.choices,
+        size.edges
+    )]
+    TooLarge {
+        /// The bound.
+        max_bytes: usize,
+        /// What the graph held when it passed it.
+        size: PlanSize,
         /// The bound on uncertain steps, as text (`unbounded` for none).
         k: String,
     },

@@ -117,8 +117,8 @@ pub use belief::{
 };
 pub use builtin::{builtin, builtin_names};
 pub use costly::{
-    BELIEF_QUANTUM, DEFAULT_MAX_BELIEFS, DEFAULT_MAX_PLANS, MAX_MENU_FEATURES, ReferenceError,
-    ReferenceOptions, SensingMenu, SensingRule,
+    BELIEF_QUANTUM, DEFAULT_MAX_BELIEFS, DEFAULT_MAX_PLAN_BYTES, DEFAULT_MAX_PLANS,
+    MAX_MENU_FEATURES, PlanSize, ReferenceError, ReferenceOptions, SensingMenu, SensingRule,
 };
 pub use error::{MapError, MdpError, Position};
 pub use finite::{

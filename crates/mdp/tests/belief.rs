@@ -206,3 +206,61 @@ fn bad_tables_are_refused_with_where() {
     let err = BeliefPlan::build(&m, &o, &[StateId(0)]).err().unwrap();
     assert!(err.to_string().contains("move_cost"), "{err}");
 }
+
+/// A graph counted past its bound on bytes stops with an error that says so and what it
+/// held; the same search under the bound builds the same plan as with the default bound,
+/// and what the plan holds is counted at most at its bound.
+#[test]
+fn a_plan_past_its_bound_on_bytes_stops_with_what_it_held() {
+    let w = lake(0.5);
+    let m = CostlyModel::of(&w).unwrap();
+    let search = ReferenceOptions {
+        max_uncertain: Some(3),
+        ..Default::default()
+    };
+    let o = PlanOptions {
+        rule: SensingRule::AfterOutcome,
+        search,
+        ..Default::default()
+    };
+    let roots = [StateId(0)];
+    let plan = BeliefPlan::build(&m, &o, &roots).unwrap();
+    let size = plan.size();
+    assert_eq!(size.beliefs, plan.nodes());
+    assert!(size.bytes() <= mdp::DEFAULT_MAX_PLAN_BYTES);
+    // Bounded just at what it is counted at, it is the same plan; a byte less, refused.
+    let at = |max_bytes| PlanOptions {
+        search: ReferenceOptions {
+            max_bytes,
+            ..search
+        },
+        ..o
+    };
+    let same = BeliefPlan::build(&m, &at(size.bytes()), &roots).unwrap();
+    assert_eq!(same.size(), size);
+    let start = plan.point(StateId(0)).unwrap();
+    assert_eq!(same.value(start), plan.value(start));
+    match BeliefPlan::build(&m, &at(size.bytes() - 1), &roots) {
+        Err(e @ mdp::ReferenceError::TooLarge { .. }) => {
+            let text = e.to_string();
+            assert!(
+                text.starts_with(&format!(
+                    "the belief graph would pass {} bytes",
+                    size.bytes() - 1
+                )) && text.contains("with at most 3 uncertain steps in a row"),
+                "{text}"
+            );
+        }
+        other => panic!(
+            "a byte under what the plan is counted at: {:?}",
+            other.map(|p| p.size())
+        ),
+    }
+    // The reference search is bounded alike.
+    let tiny = ReferenceOptions {
+        max_bytes: 1000,
+        ..search
+    };
+    let err = best_sensing(&w, SensingMenu::Features, SensingRule::WithMove, &tiny).unwrap_err();
+    assert!(matches!(err, mdp::ReferenceError::TooLarge { .. }), "{err}");
+}

@@ -228,6 +228,8 @@ struct Planner<'w, W: World + ?Sized> {
     /// The bound `K` of the plans, lowered for the rest of the run when a plan passes
     /// the cap on beliefs.
     k: u32,
+    /// The most bytes a plan may be counted at ([`mdp::PlanSize::bytes`]).
+    max_bytes: usize,
 }
 
 /// Run `episodes` episodes of sensing by belief (specification 6.13) and return what
@@ -266,12 +268,27 @@ pub fn belief_planning<W: World + ?Sized, R: Rng + ?Sized>(
 }
 
 /// [`belief_planning`], asking `observer` before every episode whether to go on
-/// ([`Observer::keep_going`]): a no ends the run there.
+/// ([`Observer::keep_going`]): a no ends the run there. A plan is bounded at
+/// [`mdp::DEFAULT_MAX_PLAN_BYTES`]: one that would pass it ends the run with an error
+/// that names `[belief] max_uncertain` and `max_beliefs`.
 pub(crate) fn belief_planning_observed<W: World + ?Sized, R: Rng + ?Sized>(
     world: &W,
     params: &BeliefParams,
     price: f64,
     rule: SensingRule,
+    play: Episodes,
+    rng: &mut R,
+    observer: &mut dyn Observer,
+) -> Result<Vec<Episode>, ReferenceError> {
+    let bounded = (price, rule, mdp::DEFAULT_MAX_PLAN_BYTES);
+    belief_planning_bounded(world, params, bounded, play, rng, observer)
+}
+
+/// [`belief_planning_observed`] with each plan bounded at `max_bytes`.
+fn belief_planning_bounded<W: World + ?Sized, R: Rng + ?Sized>(
+    world: &W,
+    params: &BeliefParams,
+    (price, rule, max_bytes): (f64, SensingRule, usize),
     Episodes {
         episodes,
         max_moves,
@@ -310,6 +327,7 @@ pub(crate) fn belief_planning_observed<W: World + ?Sized, R: Rng + ?Sized>(
         prices,
         readings,
         k: params.max_uncertain,
+        max_bytes,
     };
     for (_, s) in world.start_distribution() {
         l.known[s.index()] = true;
@@ -421,8 +439,12 @@ impl<W: World + ?Sized> Planner<'_, W> {
         })
     }
 
-    /// Rebuild the plan from every known state, lowering `K` until it fits the cap.
+    /// Rebuild the plan from every known state, lowering `K` until it fits the cap on
+    /// beliefs; a plan that passes the bound on bytes ends the run with an error naming
+    /// the settings that size it.
     fn replan(&mut self, observer: &mut dyn Observer) -> Result<(), ReferenceError> {
+        // The plan it replaces goes first: one plan at a time is held.
+        self.plan = None;
         let model = self.model()?;
         let roots: Vec<StateId> = (0..self.known.len())
             .filter(|&s| self.known[s])
@@ -444,6 +466,7 @@ impl<W: World + ?Sized> Planner<'_, W> {
                     horizon: self.max_moves,
                     max_uncertain: Some(k),
                     max_beliefs: self.params.max_beliefs,
+                    max_bytes: self.max_bytes,
                     ..ReferenceOptions::default()
                 },
                 move_cost: self.params.move_cost,
@@ -457,6 +480,17 @@ impl<W: World + ?Sized> Planner<'_, W> {
                     return Ok(());
                 }
                 Err(ReferenceError::TooManyBeliefs { .. }) if k > 0 => self.k -= 1,
+                Err(ReferenceError::TooLarge {
+                    max_bytes, size, ..
+                }) => {
+                    return Err(ReferenceError::BadSetting {
+                        what: "belief.max_uncertain and belief.max_beliefs",
+                        problem: format!(
+                            "{k} uncertain steps in a row and {} beliefs: a plan of {} beliefs over {} states with {} edges passed the bound of {max_bytes} bytes on a plan's memory (mdp::DEFAULT_MAX_PLAN_BYTES); lower max_uncertain or max_beliefs",
+                            self.params.max_beliefs, size.beliefs, size.belief_states, size.edges
+                        ),
+                    });
+                }
                 Err(e) => return Err(e),
             }
         }
@@ -785,5 +819,54 @@ impl<W: World + ?Sized> Planner<'_, W> {
         let lost = Place::Lost(self.agreeing(truth, &all));
         read.extend(all);
         lost
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use rand::SeedableRng;
+
+    use super::*;
+
+    /// A plan that would pass its bound on bytes ends the run with an error that names the
+    /// settings that size it and the numbers; under the bound the run is the same.
+    #[test]
+    fn a_plan_past_its_bound_on_bytes_is_refused_by_name() {
+        let o = mdp::WorldOptions {
+            slip: Some(2.0 / 3.0),
+            sensing: Some(mdp::SensingModel::Factors),
+            factor_costs: Some(vec![0.025, 0.025]),
+            ..Default::default()
+        };
+        let lake = mdp::builtin_world("frozenlake4x4", &o).unwrap();
+        let params = BeliefParams::default();
+        let play = Episodes {
+            episodes: 20,
+            max_moves: 100,
+        };
+        let run = |max_bytes| {
+            let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(2);
+            let bounded = (1.0, SensingRule::WithMove, max_bytes);
+            belief_planning_bounded(&lake, &params, bounded, play, &mut rng, &mut KeepTrace)
+        };
+        let err = run(20_000).unwrap_err().to_string();
+        assert!(
+            err.starts_with("belief.max_uncertain and belief.max_beliefs: 7 uncertain steps in a row and 5000 beliefs: a plan of")
+                && err.contains("passed the bound of 20000 bytes"),
+            "{err}"
+        );
+        let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(2);
+        let default = belief_planning(
+            &lake,
+            &params,
+            1.0,
+            SensingRule::WithMove,
+            20,
+            100,
+            &mut rng,
+        )
+        .unwrap();
+        assert_eq!(run(mdp::DEFAULT_MAX_PLAN_BYTES).unwrap(), default);
+        assert_eq!(default.len(), 20);
     }
 }
