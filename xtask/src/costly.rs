@@ -200,7 +200,7 @@ pub enum Learner {
     Belief,
     /// CS-QL as [`Learner::CsQl`], sensing by its belief over descriptions
     /// (`predict_sensing = "weighed"`, `[prediction]` at its defaults).
-    CsQlBelief,
+    CsQlWeighed,
 }
 
 impl Learner {
@@ -211,7 +211,7 @@ impl Learner {
         Learner::CsQl,
         Learner::FullSensing,
         Learner::Belief,
-        Learner::CsQlBelief,
+        Learner::CsQlWeighed,
     ];
 
     fn name(self) -> &'static str {
@@ -222,7 +222,7 @@ impl Learner {
             Learner::CsQl => "cs-ql",
             Learner::FullSensing => "full-sensing",
             Learner::Belief => "belief",
-            Learner::CsQlBelief => "cs-ql-belief",
+            Learner::CsQlWeighed => "cs-ql-weighed",
         }
     }
 
@@ -235,7 +235,7 @@ impl Learner {
             Learner::CsQl => RGBColor(31, 119, 180),
             Learner::FullSensing => RGBColor(230, 120, 20),
             Learner::Belief => RGBColor(44, 160, 44),
-            Learner::CsQlBelief => RGBColor(148, 103, 189),
+            Learner::CsQlWeighed => RGBColor(148, 103, 189),
         }
     }
 
@@ -253,7 +253,7 @@ impl Learner {
             Learner::AlwaysMeasuring => Ok(amrl(play, Measuring::Always, AmrlParams::default())),
             Learner::CsQl => cs_ql(play, (LearnerKind::CsQl, PredictSensing::Off)),
             Learner::FullSensing => cs_ql(play, (LearnerKind::FullSensing, PredictSensing::Off)),
-            Learner::CsQlBelief => cs_ql(play, (LearnerKind::CsQl, PredictSensing::Weighed)),
+            Learner::CsQlWeighed => cs_ql(play, (LearnerKind::CsQl, PredictSensing::Weighed)),
             Learner::Belief => {
                 // Each coordinate costs 1: its price in reward units is the price.
                 let mut rng = Xoshiro256PlusPlus::seed_from_u64(play.seed);
@@ -942,7 +942,7 @@ mod tests {
                 "--learners",
                 |a| &mut a.learners,
                 "amrlq",
-                "amrl-q, amrl-q-greedy-after-first, always-measuring, cs-ql, full-sensing, belief, cs-ql-belief",
+                "amrl-q, amrl-q-greedy-after-first, always-measuring, cs-ql, full-sensing, belief, cs-ql-weighed",
             ),
             ("--prices", |a| &mut a.prices, "0.050", "0.025, 0.05"),
             (
