@@ -1,6 +1,7 @@
 //! The reference points of the costly-sensing benchmark: FrozenLake 4x4 and 8x8 with row
 //! and column sensing, three dynamics, two price variants, two sensing menus and two
-//! sensing rules. Prints a Markdown table.
+//! sensing rules. Prints two Markdown tables: the values, then what the policies measure
+//! in an episode.
 //!
 //! ```text
 //! cargo run --release -p mdp --example reference_points [-- K]
@@ -38,6 +39,15 @@ fn table(k: u32) -> Result<(), Box<dyn std::error::Error>> {
         "| world | dynamics | price per coordinate | sensing | rule | free sensing | always measuring | open loop | best (K = {k}) | nodes | ceiling (K = {k}) | optimum |"
     );
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
+    // The second table, printed after the first: measurements an episode, whole states
+    // where the whole state is measured, coordinates where they are apart.
+    let mut sensed = vec![
+        String::new(),
+        format!(
+            "| world | dynamics | price per coordinate | sensing | rule | always measuring | open loop | best (K = {k}) |"
+        ),
+        "|---|---|---|---|---|---|---|---|".to_string(),
+    ];
     let dynamics = [
         ("deterministic", 0.0, 0.0),
         ("semi-slippery", 0.0, 0.5),
@@ -95,16 +105,28 @@ fn table(k: u32) -> Result<(), Box<dyn std::error::Error>> {
                 ] {
                     for rule in [SensingRule::WithMove, SensingRule::AfterOutcome] {
                         let always = mdp::always_measuring(&lake, menu, rule, &options)?;
-                        let (best, best_text, nodes) =
+                        let always_sensed =
+                            mdp::always_measuring_sensing(&lake, menu, rule, &options)?;
+                        let (best, best_text, nodes, best_sensed) =
                             match mdp::best_sensing(&lake, menu, rule, &options) {
-                                Ok(b) => {
-                                    (b.value, format!("{:.4}", b.value), b.beliefs.to_string())
-                                }
-                                Err(e @ ReferenceError::TooManyBeliefs { .. }) => {
-                                    (f64::NEG_INFINITY, "refused".to_string(), format!("({e})"))
-                                }
+                                Ok(b) => (
+                                    b.value,
+                                    format!("{:.4}", b.value),
+                                    b.beliefs.to_string(),
+                                    format!("{:.2}", b.sensing),
+                                ),
+                                Err(e @ ReferenceError::TooManyBeliefs { .. }) => (
+                                    f64::NEG_INFINITY,
+                                    "refused".to_string(),
+                                    format!("({e})"),
+                                    "refused".to_string(),
+                                ),
                                 Err(e) => return Err(e.into()),
                             };
+                        sensed.push(format!(
+                            "| {world} | {name} | {price} | {menu_name} | {} | {always_sensed:.2} | 0 | {best_sensed} |",
+                            rule.name(),
+                        ));
                         let ceiling = match mdp::sensing_ceiling(&lake, menu, rule, &options) {
                             Ok(b) => b.value.min(free),
                             Err(ReferenceError::TooManyBeliefs { .. }) => free,
@@ -127,6 +149,9 @@ fn table(k: u32) -> Result<(), Box<dyn std::error::Error>> {
                 }
             }
         }
+    }
+    for line in sensed {
+        println!("{line}");
     }
     Ok(())
 }

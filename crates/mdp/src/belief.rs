@@ -504,6 +504,9 @@ pub(crate) struct Solved {
     pub(crate) graph: Graph,
     pub(crate) roots: Vec<usize>,
     pub(crate) values: Vec<f64>,
+    /// The expected probes of the best policy from each node, when they were counted
+    /// ([`solve_counted`]); empty otherwise.
+    pub(crate) probes: Vec<f64>,
     pub(crate) converged_at: u32,
 }
 
@@ -526,6 +529,21 @@ pub(crate) fn solve(
     plan: &PlanOptions,
     roots: &[u32],
     (reveal, keep): (bool, bool),
+    stop: &mut dyn FnMut() -> bool,
+) -> Result<Solved, ReferenceError> {
+    solve_counted(m, plan, roots, (reveal, keep, false), stop)
+}
+
+/// [`solve`]; with `count`, also the expected number of probes the best policy measures
+/// from each node in the horizon's moves ([`Solved::probes`]), its choices the first best
+/// of each node at each number of moves left. Values and choices are those of [`solve`]:
+/// only the iteration goes on past the values' convergence, up to the horizon or until
+/// the counts stop changing too.
+pub(crate) fn solve_counted(
+    m: &CostlyModel,
+    plan: &PlanOptions,
+    roots: &[u32],
+    (reveal, keep, count): (bool, bool, bool),
     stop: &mut dyn FnMut() -> bool,
 ) -> Result<Solved, ReferenceError> {
     let PlanOptions {
@@ -752,20 +770,40 @@ pub(crate) fn solve(
     // prev: values with h - 1 moves left (0 moves left: 0 everywhere, nothing sensed).
     let mut prev = vec![0.0; n];
     let mut cur = vec![0.0; n];
+    // The expected probes of the best policy, with h - 1 and h moves left.
+    let (mut probes_prev, mut probes_cur) = if count {
+        (vec![0.0; n], vec![0.0; n])
+    } else {
+        (Vec::new(), Vec::new())
+    };
+    let per_probe = probes.len();
     let mut converged_at = options.horizon;
+    let mut values_converged = false;
     for h in 1..=options.horizon {
         if stop() {
             return Err(ReferenceError::Stopped);
         }
-        for &i in &act_nodes {
-            cur[i] = best_of(&g.choices[i], &prev);
+        if count {
+            for &i in &act_nodes {
+                (cur[i], probes_cur[i]) =
+                    best_counted(&g.choices[i], &prev, &probes_prev, (per_probe, rule));
+            }
+        } else {
+            for &i in &act_nodes {
+                cur[i] = best_of(&g.choices[i], &prev);
+            }
         }
         if rule == SensingRule::AfterOutcome {
             // A sense node with h moves left acts now (an act node at h) or probes (sense
             // nodes at h). Act nodes read sense nodes with h - 1 moves left, so `cur`
             // must hold them: act values were computed from `prev`, now sense values.
             for &i in &sense_order {
-                cur[i] = best_of(&g.choices[i], &cur);
+                if count {
+                    (cur[i], probes_cur[i]) =
+                        best_counted(&g.choices[i], &cur, &probes_cur, (per_probe, rule));
+                } else {
+                    cur[i] = best_of(&g.choices[i], &cur);
+                }
             }
         }
         let same = if tolerance == 0.0 {
@@ -775,9 +813,14 @@ pub(crate) fn solve(
                 .zip(&prev)
                 .all(|(a, b)| a == b || (a - b).abs() <= tolerance)
         };
+        let probes_same = probes_cur == probes_prev;
         std::mem::swap(&mut prev, &mut cur);
-        if same {
+        std::mem::swap(&mut probes_prev, &mut probes_cur);
+        if same && !values_converged {
             converged_at = h;
+            values_converged = true;
+        }
+        if same && (!count || probes_same) {
             break;
         }
     }
@@ -785,8 +828,52 @@ pub(crate) fn solve(
         graph: g,
         roots: starts,
         values: prev,
+        probes: probes_prev,
         converged_at,
     })
+}
+
+/// How many probes a choice measures (of a menu of `per_probe`): those of its bit set
+/// with the move; every probe after a move that must be measured (under the rule after
+/// the outcome only if the episode goes on, the mass of its children); one for a probe
+/// after the outcome; none to act.
+fn probes_of(c: &Choice, per_probe: usize, rule: SensingRule) -> f64 {
+    match c.decision {
+        Decision::Move {
+            measure: EVERY_PROBE,
+            ..
+        } => match rule {
+            SensingRule::WithMove => per_probe as f64,
+            SensingRule::AfterOutcome => {
+                c.children.iter().map(|&(w, _)| w).sum::<f64>() * per_probe as f64
+            }
+        },
+        Decision::Move { measure, .. } => f64::from(measure.count_ones()),
+        Decision::Measure(_) => 1.0,
+        Decision::Act => 0.0,
+    }
+}
+
+/// The best value of the choices (`-inf` for none), as [`best_of`] gives it, and the
+/// expected probes of the first choice that reaches it (`probes`: of each node, with the
+/// moves left that `v` has).
+fn best_counted(
+    cs: &[Choice],
+    v: &[f64],
+    probes: &[f64],
+    (per_probe, rule): (usize, SensingRule),
+) -> (f64, f64) {
+    let mut best = f64::NEG_INFINITY;
+    let mut counted = 0.0;
+    for c in cs {
+        let q = value_of(c, v);
+        if q > best {
+            best = q;
+            counted = probes_of(c, per_probe, rule)
+                + c.children.iter().map(|&(w, j)| w * probes[j]).sum::<f64>();
+        }
+    }
+    (best, counted)
 }
 
 fn value_of(c: &Choice, v: &[f64]) -> f64 {

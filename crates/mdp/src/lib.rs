@@ -134,8 +134,8 @@ pub use oracle::Oracle;
 pub use process::{ActionId, Mdp, StateId, Step};
 pub use random::RandomMap;
 pub use reference::{
-    BestSensing, OpenLoop, ReferencePoints, always_measuring, best_sensing, free_sensing,
-    open_loop, reference_points, sensing_ceiling,
+    BestSensing, OpenLoop, ReferencePoints, always_measuring, always_measuring_sensing,
+    best_sensing, free_sensing, open_loop, reference_points, sensing_ceiling,
 };
 pub use render::{Overlay, render_svg, render_text};
 pub use sensing::{BadCost, CostModel, Feature, FeatureSpace, MAX_PRICE, Manhattan, Reading};

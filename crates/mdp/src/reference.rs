@@ -73,7 +73,7 @@
 //! assert!((apart.value - 0.95).abs() < 1e-9);
 //! ```
 
-use crate::belief::{CostlyModel, PlanOptions, solve};
+use crate::belief::{CostlyModel, PlanOptions, solve_counted};
 use crate::costly::{
     ReferenceError, ReferenceOptions, SensingMenu, SensingRule, bad, check_horizon, check_menu,
 };
@@ -115,6 +115,13 @@ pub struct BestSensing {
     pub beliefs: usize,
     /// The horizon at which the values stopped changing (`H` if they never did).
     pub converged_at: u32,
+    /// The expected number of probes the policy measures in an episode: coordinates
+    /// (features) with [`SensingMenu::Features`], whole states with
+    /// [`SensingMenu::Whole`]; of the best choices, the first in the order of
+    /// [`BeliefPlan::decide`](crate::BeliefPlan::decide) where several are best. For
+    /// [`sensing_ceiling`], the probes the relaxed policy pays for (not the states it is
+    /// told).
+    pub sensing: f64,
 }
 
 /// The three reference points of a world, one sensing menu and one rule.
@@ -132,6 +139,10 @@ pub struct ReferencePoints {
     pub free_sensing: f64,
     /// [`always_measuring`].
     pub always_measuring: f64,
+    /// [`always_measuring_sensing`]: what the always-measuring policy measures in an
+    /// episode (the open loop measures nothing; the best policy's is
+    /// [`BestSensing::sensing`]).
+    pub always_measuring_sensing: f64,
     /// [`open_loop`].
     pub open_loop: OpenLoop,
     /// [`best_sensing`].
@@ -230,6 +241,7 @@ pub fn reference_points<W: World>(
     Ok(ReferencePoints {
         free_sensing: free_sensing(world, options)?,
         always_measuring: always_measuring(world, menu, rule, options)?,
+        always_measuring_sensing: always_measuring_sensing(world, menu, rule, options)?,
         open_loop: open_loop(world, options)?,
         best_sensing: best_sensing(world, menu, rule, options)?,
     })
@@ -264,6 +276,41 @@ pub fn always_measuring<W: World>(
     Ok(measured(&m, c, rule, options.horizon))
 }
 
+/// The expected number of probes the policy of [`always_measuring`] measures in an
+/// episode: the whole state after every move (under [`SensingRule::AfterOutcome`], after
+/// every move the episode survives but the horizon's last), counted as one whole state
+/// with [`SensingMenu::Whole`] and as every feature with [`SensingMenu::Features`]; of
+/// the best moves, the first where several are best.
+///
+/// ```
+/// use mdp::{SensingMenu, SensingRule};
+/// let lake = mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), factor_costs: Some(vec![0.025, 0.025]), ..Default::default() };
+/// let w = mdp::builtin_world("frozenlake4x4", &lake).unwrap();
+/// let o = mdp::ReferenceOptions::default();
+/// let whole = SensingMenu::Whole { price: 0.05 };
+/// // Six moves, each measured, the last one too under the published rule.
+/// assert_eq!(mdp::always_measuring_sensing(&w, whole, SensingRule::WithMove, &o).unwrap(), 6.0);
+/// assert_eq!(mdp::always_measuring_sensing(&w, whole, SensingRule::AfterOutcome, &o).unwrap(), 5.0);
+/// // The row and the column of every state reached.
+/// let apart = SensingMenu::Features;
+/// assert_eq!(mdp::always_measuring_sensing(&w, apart, SensingRule::WithMove, &o).unwrap(), 12.0);
+/// ```
+pub fn always_measuring_sensing<W: World>(
+    world: &W,
+    menu: SensingMenu,
+    rule: SensingRule,
+    options: &ReferenceOptions,
+) -> Result<f64, ReferenceError> {
+    check_horizon(options)?;
+    check_menu(menu)?;
+    let m = CostlyModel::of(world)?;
+    let (c, per_measure) = match menu {
+        SensingMenu::Whole { price } => (price, 1.0),
+        SensingMenu::Features => (m.prices.iter().sum(), m.prices.len() as f64),
+    };
+    Ok(measured_counted(&m, c, rule, options.horizon, Some(per_measure)).1)
+}
+
 /// The best expected return when the state is known after every move for free: a
 /// ceiling of every reference point (no policy that senses less, or pays, does better).
 ///
@@ -284,40 +331,69 @@ pub fn free_sensing<W: World>(
 
 /// Backward induction over the states, the state measured at `c` after every move.
 fn measured(m: &CostlyModel, c: f64, rule: SensingRule, horizon: u32) -> f64 {
-    // v[s]: the value with h moves left, from a known state s.
+    measured_counted(m, c, rule, horizon, None).0
+}
+
+/// [`measured`], and with `per_measure` (what one measurement counts) the expected count
+/// of measurements of the first best move of each state at each number of moves left;
+/// the values are [`measured`]'s, the iteration going on past their convergence until
+/// the counts stop changing too (or the horizon).
+fn measured_counted(
+    m: &CostlyModel,
+    c: f64,
+    rule: SensingRule,
+    horizon: u32,
+    per_measure: Option<f64>,
+) -> (f64, f64) {
+    // v[s]: the value with h moves left, from a known state s; n[s] its measurements.
     let mut v = vec![0.0; m.n];
     let mut w = vec![0.0; m.n];
+    let mut n = vec![0.0; m.n];
+    let mut n_next = vec![0.0; m.n];
+    let per = per_measure.unwrap_or(0.0);
     for h in 1..=horizon {
         // Under the other rule a move that leaves the episode going measures, unless it
         // was the last move of the horizon.
         let after_price = if h > 1 { c } else { 0.0 };
+        let after_count = if h > 1 { per } else { 0.0 };
         for (s, ws) in w.iter_mut().enumerate() {
             if m.terminal[s] {
                 continue;
             }
             let mut best = f64::NEG_INFINITY;
+            let mut counted = 0.0;
             for a in 0..m.na {
                 let i = m.pair(s as u32, a);
                 let mut q = m.reward[i];
+                let mut k = 0.0;
                 for &(t, p) in &m.next[i] {
                     q += p * v[t as usize];
+                    k += p * n[t as usize];
                     if rule == SensingRule::AfterOutcome {
                         q -= p * after_price;
+                        k += p * after_count;
                     }
                 }
                 if rule == SensingRule::WithMove {
                     q -= c;
+                    k += per;
+                }
+                if q > best {
+                    counted = k;
                 }
                 best = best.max(q);
             }
             *ws = best;
+            n_next[s] = counted;
         }
-        if w == v {
+        let counts_same = per_measure.is_none() || n_next == n;
+        if w == v && counts_same {
             break;
         }
         std::mem::swap(&mut v, &mut w);
+        std::mem::swap(&mut n, &mut n_next);
     }
-    m.at_start(|s| v[s as usize])
+    (m.at_start(|s| v[s as usize]), m.at_start(|s| n[s as usize]))
 }
 
 /// The best expected return of an open-loop plan: `H` actions fixed at the start (which
@@ -516,7 +592,7 @@ fn search<W: World>(
         move_cost: 0.0,
         tolerance: 0.0,
     };
-    let solved = solve(&m, &plan, &roots, (reveal, false), &mut || false)?;
+    let solved = solve_counted(&m, &plan, &roots, (reveal, false, true), &mut || false)?;
     let value: f64 = m
         .start
         .iter()
@@ -530,9 +606,16 @@ fn search<W: World>(
             .min(options.horizon);
         return Err(ReferenceError::Infeasible { k: k_max });
     }
+    let sensing = m
+        .start
+        .iter()
+        .zip(&solved.roots)
+        .map(|(&(p, _), &i)| p * solved.probes[i])
+        .sum();
     Ok(BestSensing {
         value,
         beliefs: solved.values.len(),
         converged_at: solved.converged_at,
+        sensing,
     })
 }

@@ -663,3 +663,61 @@ fn many_features_are_refused_with_the_move_and_taken_one_at_a_time_after() {
     let after = best_sensing(&w, SensingMenu::Features, SensingRule::AfterOutcome, &o).unwrap();
     assert!(after.value.is_finite());
 }
+
+/// What the reference policies measure in an episode: on lakes where every policy of
+/// theirs reaches the goal, the value is 1 less the price of each probe times the probes
+/// counted; where moves slip, the count is what the value loses per unit of price.
+#[test]
+fn the_reference_points_count_what_they_measure() {
+    let o = options(100, Some(2));
+    // Deterministic: six moves, measured by the always-measuring policy (five after the
+    // outcome, the last one ending the episode); the best policy measures nothing.
+    let det = lake("frozenlake4x4", 0.0, 0.0, 0.025);
+    for (menu, per) in [
+        (SensingMenu::whole(&det), 1.0),
+        (SensingMenu::Features, 2.0),
+    ] {
+        for (rule, moves) in [
+            (SensingRule::WithMove, 6.0),
+            (SensingRule::AfterOutcome, 5.0),
+        ] {
+            let r = reference_points(&det, menu, rule, &o).unwrap();
+            assert_eq!(r.always_measuring_sensing, per * moves, "{menu:?} {rule:?}");
+            assert_eq!(r.best_sensing.sensing, 0.0, "{menu:?} {rule:?}");
+        }
+    }
+    // Semi-slippery: every policy here reaches the goal, so value = 1 - price x probes.
+    let semi = lake("frozenlake4x4", 0.0, 0.5, 0.025);
+    for (menu, price) in [
+        (SensingMenu::whole(&semi), 0.05),
+        (SensingMenu::Features, 0.025),
+    ] {
+        for rule in [SensingRule::WithMove, SensingRule::AfterOutcome] {
+            let r = reference_points(&semi, menu, rule, &o).unwrap();
+            let always = (1.0 - r.always_measuring) / price;
+            assert!((r.always_measuring_sensing - always).abs() < 1e-6, "{r:?}");
+            let best = (1.0 - r.best_sensing.value) / price;
+            assert!((r.best_sensing.sensing - best).abs() < 1e-6, "{r:?}");
+            assert!(r.best_sensing.sensing > 0.0, "{r:?}");
+        }
+    }
+    // 4x4 semi-slippery, row and column apart: 0.95, two coordinates an episode.
+    let apart = best_sensing(&semi, SensingMenu::Features, SensingRule::WithMove, &o).unwrap();
+    assert!((apart.sensing - 2.0).abs() < 1e-6, "{apart:?}");
+    // Slippery: a policy reaches the goal only sometimes; its count is the slope of its
+    // value in the price (the same policy at a price a little higher).
+    let slope = |w: &FiniteWorld, v: &FiniteWorld, menu, rule| {
+        let a = best_sensing(w, menu, rule, &o).unwrap();
+        let b = best_sensing(v, menu, rule, &o).unwrap();
+        (a.sensing, (a.value - b.value) / 1e-6)
+    };
+    let slip = lake("frozenlake4x4", 2.0 / 3.0, 0.0, 0.025);
+    let dearer = lake("frozenlake4x4", 2.0 / 3.0, 0.0, 0.025 + 1e-6);
+    for rule in [SensingRule::WithMove, SensingRule::AfterOutcome] {
+        let (counted, lost) = slope(&slip, &dearer, SensingMenu::Features, rule);
+        assert!(
+            counted > 0.0 && (counted - lost).abs() < 1e-3,
+            "{rule:?}: {counted} {lost}"
+        );
+    }
+}
