@@ -32,101 +32,221 @@ use crate::settings::values::{
 /// The map of a draft that names none (as `csrl run` has it).
 pub const DEFAULT_MAP: &str = "tan8x8";
 
-/// The settings as given: every key optional, in the settings file's flat layout.
-///
-/// Gather a file and flags over it ([`SettingsDraft::from_file`],
-/// [`SettingsDraft::overlay`]), then [`SettingsDraft::build`] the run's settings. What
-/// was not given takes the paper's value ([`RunSettings::tan1991`]), or where the map
-/// names a built-in world that asks for its own temperature, detector or trial cap, the
-/// world's ([`crate::WorldDefaults`]); the map [`DEFAULT_MAP`], CS-QL with the resetting
-/// strategy and seed 1 when those are not given either, as `csrl run` has them.
-///
-/// ```
-/// use csql::{LearnerKind, SettingsDraft, StrategyKind};
-/// let mut draft = SettingsDraft::from_toml("strategy = \"lazy\"\n[extensions]\nreads = 3", "my.toml").unwrap();
-/// draft.overlay(SettingsDraft { seed: Some(7), ..SettingsDraft::default() });
-/// let s = draft.build().unwrap();
-/// assert_eq!((s.learner.strategy(), s.seed), (Some(StrategyKind::Lazy), 7));
-/// assert_eq!(s.cs_ql().unwrap().extensions.reads, 3);
-/// // CS-QL's keys with a baseline mean nothing, and the message names both.
-/// draft.learner = Some(LearnerKind::UTree);
-/// let err = draft.build().unwrap_err().to_string();
-/// assert!(err.contains("strategy = lazy") && err.contains("learner = u-tree"), "{err}");
-/// ```
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SettingsDraft {
-    /// `map`: a built-in name, a file, a spec, or a world.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub map: Option<MapSource>,
-    /// `strategy` (CS-QL only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub strategy: Option<StrategyKind>,
-    /// `beta`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub beta: Option<LearningRate>,
-    /// `gamma`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub gamma: Option<Discount>,
-    /// `temperature`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub temperature: Option<Temperature>,
-    /// `max_moves`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub max_moves: Option<MoveCap>,
-    /// `random_moves` (CS-QL's random strategy only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub random_moves: Option<u32>,
-    /// `tolerance`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub tolerance: Option<NonNegative>,
-    /// `decrease_threshold`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub decrease_threshold: Option<NonNegative>,
-    /// `max_trials`: the cap on the trials of a learner judged over trials.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub max_trials: Option<TrialCap>,
-    /// `episodes`: how many episodes a learner played on costed episodes plays
-    /// (`amrl-q`, `belief`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub episodes: Option<TrialCap>,
-    /// `seed`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub seed: Option<u64>,
-    /// `predict_sensing` (CS-QL only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub predict_sensing: Option<PredictSensing>,
-    /// The table `[prediction]` (CS-QL, with `predict_sensing` other than `off`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub prediction: Option<PredictionParams>,
-    /// The table `[world]`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub world: Option<WorldExtras>,
-    /// The table `[extensions]`: CS-QL's extensions (CS-QL only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub extensions: Option<ExtensionsTable>,
-    /// The table `[judge]`: how the run is judged (the learners of [`crate::run`]).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub judge: Option<JudgeSettings>,
-    /// `learner`: `cs-ql` (when absent), `u-tree`, `full-sensing`, `amrl-q` or `belief`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub learner: Option<LearnerKind>,
-    /// The table `[u_tree]` (U-Tree only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub u_tree: Option<UTreeParams>,
-    /// `max_rows`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub max_rows: Option<usize>,
-    /// The table `[amrl_q]` (AMRL-Q only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub amrl_q: Option<crate::AmrlParams>,
-    /// The table `[costly]`: sensing priced in reward units.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub costly: Option<CostlyTable>,
-    /// The table `[belief]` (sensing by belief only; its `price_scale` is `[costly]
-    /// price`, not a key of the table).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub belief: Option<crate::BeliefParams>,
+/// The one declaration of the settings file's keys: each field of [`SettingsDraft`] is
+/// a top-level key, with the learners that read it (`map: MapSource => EVERY;`), or a
+/// table, with the learners that read each of its keys (`world: WorldExtras => { slip:
+/// EVERY, .. };`). From it come the struct, [`SETTING_KEYS`] (the top level's keys, then
+/// each table's, in the order declared), and the walks over the fields that
+/// [`SettingsDraft::overlay`], [`SettingsDraft::build`] and the conversions use, so that a
+/// key is added in one place. The fields' order is the order of a report's JSON.
+macro_rules! settings_draft {
+    (
+        $(#[$attr:meta])*
+        pub struct SettingsDraft {
+            $(
+                $(#[$field_doc:meta])*
+                $field:ident: $ty:ty => $($read_by:ident)? $({ $($key:ident: $key_read_by:ident),* $(,)? })?;
+            )*
+        }
+    ) => {
+        $(#[$attr])*
+        pub struct SettingsDraft {
+            $(
+                $(#[$field_doc])*
+                #[serde(skip_serializing_if = "Option::is_none")]
+                pub $field: Option<$ty>,
+            )*
+        }
+
+        /// Every key of a settings file, where it is written, and which learners read it: the one
+        /// definition that [`SettingsDraft::build`] refuses by (a key given that the learner does
+        /// not read), that [`SettingsDraft::from_toml`] places keys by (a key in the wrong table
+        /// says where it belongs), and that `csrl run --help` prints. A test holds it to the
+        /// fields of the settings, to the learners' code, to `csrl run --help` and to the
+        /// specification's list (6.9).
+        ///
+        /// AMRL-Q and sensing by belief play episodes of their own (`episodes` of at most
+        /// `max_moves` moves): they read no key of Q-learning, convergence or judging, nor
+        /// sensor noise (their worlds are read exactly).
+        ///
+        /// ```
+        /// use csql::{LearnerKind, SETTING_KEYS};
+        /// let read = |kind| SETTING_KEYS.iter().filter(|k| k.reads(kind)).count();
+        /// assert!(read(LearnerKind::CsQl) > read(LearnerKind::FullSensing));
+        /// assert!(SETTING_KEYS.iter().all(|k| !k.read_by.is_empty()));
+        /// ```
+        pub const SETTING_KEYS: &[SettingKey] = &[
+            $($(top(stringify!($field), $read_by),)?)*
+            $($($(inner(stringify!($field), stringify!($key), $key_read_by),)*)?)*
+        ];
+
+        impl SettingsDraft {
+            /// Each field that `later` has replaces this draft's.
+            fn take_given(&mut self, later: SettingsDraft) {
+                $(if later.$field.is_some() {
+                    self.$field = later.$field;
+                })*
+            }
+
+            /// The top-level key `name` as given, with its value (`beta = 0.5`).
+            fn top_given(&self, name: &str) -> Option<String> {
+                match name {
+                    // (Naming `$read_by` keeps this arm to the top-level keys.)
+                    $($(stringify!($field) => {
+                        let _: &[LearnerKind] = $read_by;
+                        self.$field.as_ref().map(|v| format!("{name} = {}", v.shown()))
+                    })?)*
+                    _ => None,
+                }
+            }
+
+            /// Table `table` as given: named with the keys that are not at their defaults.
+            fn table_given(&self, table: &str) -> Option<String> {
+                match table {
+                    // (Naming `$key` keeps this arm to the tables.)
+                    $($(stringify!($field) => {
+                        $(let _ = stringify!($key);)*
+                        self.$field.as_ref().map(|t| table_named(table, t))
+                    })?)*
+                    _ => None,
+                }
+            }
+
+            /// Forget the top-level key or the whole table `name`.
+            fn forget(&mut self, name: &str) {
+                match name {
+                    $(stringify!($field) => self.$field = None,)*
+                    _ => {}
+                }
+            }
+        }
+    };
+}
+
+settings_draft! {
+    /// The settings as given: every key optional, in the settings file's flat layout.
+    ///
+    /// Gather a file and flags over it ([`SettingsDraft::from_file`],
+    /// [`SettingsDraft::overlay`]), then [`SettingsDraft::build`] the run's settings. What
+    /// was not given takes the paper's value ([`RunSettings::tan1991`]), or where the map
+    /// names a built-in world that asks for its own temperature, detector or trial cap, the
+    /// world's ([`crate::WorldDefaults`]); the map [`DEFAULT_MAP`], CS-QL with the resetting
+    /// strategy and seed 1 when those are not given either, as `csrl run` has them.
+    ///
+    /// ```
+    /// use csql::{LearnerKind, SettingsDraft, StrategyKind};
+    /// let mut draft = SettingsDraft::from_toml("strategy = \"lazy\"\n[extensions]\nreads = 3", "my.toml").unwrap();
+    /// draft.overlay(SettingsDraft { seed: Some(7), ..SettingsDraft::default() });
+    /// let s = draft.build().unwrap();
+    /// assert_eq!((s.learner.strategy(), s.seed), (Some(StrategyKind::Lazy), 7));
+    /// assert_eq!(s.cs_ql().unwrap().extensions.reads, 3);
+    /// // CS-QL's keys with a baseline mean nothing, and the message names both.
+    /// draft.learner = Some(LearnerKind::UTree);
+    /// let err = draft.build().unwrap_err().to_string();
+    /// assert!(err.contains("strategy = lazy") && err.contains("learner = u-tree"), "{err}");
+    /// ```
+    #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct SettingsDraft {
+        /// `map`: a built-in name, a file, a spec, or a world.
+        map: MapSource => EVERY;
+        /// `strategy` (CS-QL only).
+        strategy: StrategyKind => CS_QL;
+        /// `beta`.
+        beta: LearningRate => TRIALS;
+        /// `gamma`.
+        gamma: Discount => TRIALS;
+        /// `temperature`.
+        temperature: Temperature => TRIALS;
+        /// `max_moves`.
+        max_moves: MoveCap => EVERY;
+        /// `random_moves` (CS-QL's random strategy only).
+        random_moves: u32 => CS_QL;
+        /// `tolerance`.
+        tolerance: NonNegative => TRIALS;
+        /// `decrease_threshold`.
+        decrease_threshold: NonNegative => TRIALS;
+        /// `max_trials`: the cap on the trials of a learner judged over trials.
+        max_trials: TrialCap => TRIALS;
+        /// `episodes`: how many episodes a learner played on costed episodes plays
+        /// (`amrl-q`, `belief`).
+        episodes: TrialCap => EPISODES;
+        /// `seed`.
+        seed: u64 => EVERY;
+        /// `predict_sensing` (CS-QL only).
+        predict_sensing: PredictSensing => CS_QL;
+        /// The table `[prediction]` (CS-QL, with `predict_sensing` other than `off`).
+        prediction: PredictionParams => {
+            confirmations: CS_QL,
+            recheck: CS_QL,
+            max_skips: CS_QL,
+            verify: CS_QL,
+            navigation_trials: CS_QL,
+            memory_moves: CS_QL,
+        };
+        /// The table `[world]`.
+        world: WorldExtras => {
+            slip: EVERY,
+            sensing_radius: EVERY,
+            slide: EVERY,
+            sensing: EVERY,
+            factor_costs: EVERY,
+            sensor_noise: TRIALS,
+        };
+        /// The table `[extensions]`: CS-QL's extensions (CS-QL only).
+        extensions: ExtensionsTable => {
+            detector: CS_QL,
+            rate: CS_QL,
+            matching: CS_QL,
+            confirm_new: CS_QL,
+            reads: CS_QL,
+            memory: CS_QL,
+        };
+        /// The table `[judge]`: how the run is judged (the learners of [`crate::run`]).
+        judge: JudgeSettings => {
+            judge_by_quality: TRIALS,
+            quality_every: TRIALS,
+            quality_patience: TRIALS,
+        };
+        /// `learner`: `cs-ql` (when absent), `u-tree`, `full-sensing`, `amrl-q` or `belief`.
+        learner: LearnerKind => EVERY;
+        /// The table `[u_tree]` (U-Tree only).
+        u_tree: UTreeParams => {
+            fringe: U_TREE,
+            alpha: U_TREE,
+            window: U_TREE,
+            test_every: U_TREE,
+            min_group: U_TREE,
+            patience: U_TREE,
+        };
+        /// `max_rows`.
+        max_rows: usize => TRIALS;
+        /// The table `[amrl_q]` (AMRL-Q only).
+        amrl_q: crate::AmrlParams => {
+            learning_rate: AMRL_Q,
+            epsilon: AMRL_Q,
+            discount: AMRL_Q,
+            measure_bias: AMRL_Q,
+            greedy_share: AMRL_Q,
+            measuring: AMRL_Q,
+        };
+        /// The table `[costly]`: sensing priced in reward units.
+        costly: CostlyTable => {
+            price: PRICED,
+            rule: PRICED,
+        };
+        /// The table `[belief]` (sensing by belief only; its `price_scale` is `[costly]
+        /// price`, not a key of the table).
+        belief: crate::BeliefParams => {
+            max_uncertain: BELIEF,
+            trust: BELIEF,
+            prior: BELIEF,
+            optimism: BELIEF,
+            whole_state: BELIEF,
+            max_beliefs: BELIEF,
+            move_cost: BELIEF,
+        };
+    }
 }
 
 /// The settings file's table `[costly]`: `price` (reward units per unit of sensing cost;
@@ -312,6 +432,59 @@ impl SettingKey {
     }
 }
 
+/// A value as a message names it: `beta = 0.5`, `[world] sensing = factors`.
+trait Shown {
+    fn shown(&self) -> String;
+}
+
+macro_rules! shown_as_displayed {
+    ($($ty:ty),*) => {$(
+        impl Shown for $ty {
+            fn shown(&self) -> String {
+                self.to_string()
+            }
+        }
+    )*};
+}
+shown_as_displayed!(
+    MapSource,
+    StrategyKind,
+    PredictSensing,
+    LearnerKind,
+    u32,
+    u64,
+    usize
+);
+
+macro_rules! shown_as_its_number {
+    ($($ty:ty),*) => {$(
+        impl Shown for $ty {
+            fn shown(&self) -> String {
+                self.get().to_string()
+            }
+        }
+    )*};
+}
+shown_as_its_number!(
+    LearningRate,
+    Discount,
+    Temperature,
+    MoveCap,
+    NonNegative,
+    TrialCap
+);
+
+/// A key of a table as it reads back: a number as Rust writes it, a name without quotes.
+impl Shown for toml::Value {
+    fn shown(&self) -> String {
+        match self {
+            toml::Value::Float(x) => x.to_string(),
+            toml::Value::String(s) => s.clone(),
+            other => other.to_string(),
+        }
+    }
+}
+
 /// Every learner.
 const EVERY: &[LearnerKind] = &[
     LearnerKind::CsQl,
@@ -360,83 +533,6 @@ const fn inner(
     }
 }
 
-/// Every key of a settings file, where it is written, and which learners read it: the one
-/// definition that [`SettingsDraft::build`] refuses by (a key given that the learner does
-/// not read), that [`SettingsDraft::from_toml`] places keys by (a key in the wrong table
-/// says where it belongs), and that `csrl run --help` prints. A test holds it to the
-/// fields of the settings, to the learners' code, to `csrl run --help` and to the
-/// specification's list (6.9).
-///
-/// AMRL-Q and sensing by belief play episodes of their own (`episodes` of at most
-/// `max_moves` moves): they read no key of Q-learning, convergence or judging, nor
-/// sensor noise (their worlds are read exactly).
-///
-/// ```
-/// use csql::{LearnerKind, SETTING_KEYS};
-/// let read = |kind| SETTING_KEYS.iter().filter(|k| k.reads(kind)).count();
-/// assert!(read(LearnerKind::CsQl) > read(LearnerKind::FullSensing));
-/// assert!(SETTING_KEYS.iter().all(|k| !k.read_by.is_empty()));
-/// ```
-pub const SETTING_KEYS: &[SettingKey] = &[
-    top("map", EVERY),
-    top("learner", EVERY),
-    top("seed", EVERY),
-    top("max_moves", EVERY),
-    top("max_trials", TRIALS),
-    top("episodes", EPISODES),
-    top("beta", TRIALS),
-    top("gamma", TRIALS),
-    top("temperature", TRIALS),
-    top("tolerance", TRIALS),
-    top("decrease_threshold", TRIALS),
-    top("max_rows", TRIALS),
-    top("strategy", CS_QL),
-    top("random_moves", CS_QL),
-    top("predict_sensing", CS_QL),
-    inner("world", "slip", EVERY),
-    inner("world", "sensing_radius", EVERY),
-    inner("world", "slide", EVERY),
-    inner("world", "sensing", EVERY),
-    inner("world", "factor_costs", EVERY),
-    inner("world", "sensor_noise", TRIALS),
-    inner("judge", "judge_by_quality", TRIALS),
-    inner("judge", "quality_every", TRIALS),
-    inner("judge", "quality_patience", TRIALS),
-    inner("costly", "price", PRICED),
-    inner("costly", "rule", PRICED),
-    inner("extensions", "detector", CS_QL),
-    inner("extensions", "rate", CS_QL),
-    inner("extensions", "matching", CS_QL),
-    inner("extensions", "confirm_new", CS_QL),
-    inner("extensions", "reads", CS_QL),
-    inner("extensions", "memory", CS_QL),
-    inner("prediction", "confirmations", CS_QL),
-    inner("prediction", "recheck", CS_QL),
-    inner("prediction", "max_skips", CS_QL),
-    inner("prediction", "verify", CS_QL),
-    inner("prediction", "navigation_trials", CS_QL),
-    inner("prediction", "memory_moves", CS_QL),
-    inner("u_tree", "fringe", U_TREE),
-    inner("u_tree", "alpha", U_TREE),
-    inner("u_tree", "window", U_TREE),
-    inner("u_tree", "test_every", U_TREE),
-    inner("u_tree", "min_group", U_TREE),
-    inner("u_tree", "patience", U_TREE),
-    inner("amrl_q", "learning_rate", AMRL_Q),
-    inner("amrl_q", "epsilon", AMRL_Q),
-    inner("amrl_q", "discount", AMRL_Q),
-    inner("amrl_q", "measure_bias", AMRL_Q),
-    inner("amrl_q", "greedy_share", AMRL_Q),
-    inner("amrl_q", "measuring", AMRL_Q),
-    inner("belief", "max_uncertain", BELIEF),
-    inner("belief", "trust", BELIEF),
-    inner("belief", "prior", BELIEF),
-    inner("belief", "optimism", BELIEF),
-    inner("belief", "whole_state", BELIEF),
-    inner("belief", "max_beliefs", BELIEF),
-    inner("belief", "move_cost", BELIEF),
-];
-
 /// The key `name` of `table` (`None`: the top level), if there is one.
 ///
 /// ```
@@ -453,7 +549,7 @@ pub fn setting_key(table: Option<&str>, name: &str) -> Option<&'static SettingKe
 ///
 /// ```
 /// let tables: Vec<_> = csql::setting_tables().collect();
-/// assert_eq!(tables[0], "world");
+/// assert_eq!(tables[0], "prediction");
 /// assert!(tables.contains(&"judge") && tables.len() == 8);
 /// ```
 pub fn setting_tables() -> impl Iterator<Item = &'static str> {
@@ -486,12 +582,12 @@ pub fn settings_keys_help() -> String {
     let tables = std::iter::once(None).chain(setting_tables().map(Some));
     let mut lines = Vec::new();
     for table in tables {
-        // Runs of keys read by the same learners, in order.
+        // The keys read by the same learners together, in the order first declared.
         let mut groups: Vec<(&[LearnerKind], Vec<&str>)> = Vec::new();
         for k in SETTING_KEYS.iter().filter(|k| k.table == table) {
-            match groups.last_mut() {
-                Some((readers, names)) if *readers == k.read_by => names.push(k.name),
-                _ => groups.push((k.read_by, vec![k.name])),
+            match groups.iter_mut().find(|(readers, _)| *readers == k.read_by) {
+                Some((_, names)) => names.push(k.name),
+                None => groups.push((k.read_by, vec![k.name])),
             }
         }
         let groups: Vec<String> = groups
@@ -666,34 +762,7 @@ impl SettingsDraft {
     /// assert_eq!((d.seed, d.beta.unwrap().get()), (Some(9), 0.5));
     /// ```
     pub fn overlay(&mut self, later: SettingsDraft) {
-        macro_rules! take {
-            ($($field:ident),*) => { $( if later.$field.is_some() { self.$field = later.$field; } )* };
-        }
-        take!(
-            map,
-            strategy,
-            beta,
-            gamma,
-            temperature,
-            max_moves,
-            random_moves,
-            tolerance,
-            decrease_threshold,
-            max_trials,
-            episodes,
-            seed,
-            predict_sensing,
-            prediction,
-            world,
-            extensions,
-            judge,
-            learner,
-            u_tree,
-            max_rows,
-            amrl_q,
-            costly,
-            belief
-        );
+        self.take_given(later);
     }
 
     /// The first key given that learner `kind` does not read ([`SETTING_KEYS`]), as a
@@ -709,57 +778,16 @@ impl SettingsDraft {
 
     /// Key `k` as given, named with its value (see [`SettingsDraft::unread_given`]).
     fn given(&self, k: &SettingKey, kind: LearnerKind) -> Option<String> {
-        let named = |value: Option<String>| value.map(|v| format!("{} = {v}", k.name));
         match k.table {
-            None => match k.name {
-                "map" => named(self.map.as_ref().map(|m| m.to_string())),
-                "learner" => named(self.learner.map(|l| l.to_string())),
-                "seed" => named(self.seed.map(|n| n.to_string())),
-                "max_moves" => named(self.max_moves.map(|n| n.get().to_string())),
-                "max_trials" => named(self.max_trials.map(|n| n.get().to_string())),
-                "episodes" => named(self.episodes.map(|n| n.get().to_string())),
-                "beta" => named(self.beta.map(|x| x.get().to_string())),
-                "gamma" => named(self.gamma.map(|x| x.get().to_string())),
-                "temperature" => named(self.temperature.map(|x| x.get().to_string())),
-                "tolerance" => named(self.tolerance.map(|x| x.get().to_string())),
-                "decrease_threshold" => named(self.decrease_threshold.map(|x| x.get().to_string())),
-                "max_rows" => named(self.max_rows.map(|n| n.to_string())),
-                "strategy" => named(self.strategy.map(|x| x.to_string())),
-                "random_moves" => named(self.random_moves.map(|n| n.to_string())),
-                "predict_sensing" => named(self.predict_sensing.map(|x| x.to_string())),
-                _ => None,
-            },
+            None => self.top_given(k.name),
             // A key of [world] is given or not, whatever its value (its absent keys
             // are at their defaults): named with its value.
             Some("world") if table_read_by("world", kind) => {
-                let w = self.world.as_ref()?;
-                let value = match k.name {
-                    "slip" => w.slip.map(|p| p.get().to_string()),
-                    "sensing_radius" => w.sensing_radius.map(|r| r.to_string()),
-                    "slide" => w.slide.map(|p| p.get().to_string()),
-                    "sensing" => w.sensing.map(|m| format!("{m:?}").to_lowercase()),
-                    "factor_costs" => w.factor_costs.as_ref().map(|c| format!("{c:?}")),
-                    "sensor_noise" => w.sensor_noise.map(|p| p.get().to_string()),
-                    _ => None,
-                };
-                value.map(|v| format!("[world] {} = {v}", k.name))
+                let value = toml::Table::try_from(self.world.as_ref()?).ok()?;
+                let value = value.get(k.name)?;
+                Some(format!("[world] {} = {}", k.name, value.shown()))
             }
             Some(table) => self.table_given(table),
-        }
-    }
-
-    /// Table `table` as given: named with the keys that are not at their defaults.
-    fn table_given(&self, table: &str) -> Option<String> {
-        match table {
-            "world" => self.world.as_ref().map(|t| table_named(table, t)),
-            "judge" => self.judge.as_ref().map(|t| table_named(table, t)),
-            "costly" => self.costly.as_ref().map(|t| table_named(table, t)),
-            "extensions" => self.extensions.as_ref().map(|t| table_named(table, t)),
-            "prediction" => self.prediction.as_ref().map(|t| table_named(table, t)),
-            "u_tree" => self.u_tree.as_ref().map(|t| table_named(table, t)),
-            "amrl_q" => self.amrl_q.as_ref().map(|t| table_named(table, t)),
-            "belief" => self.belief.as_ref().map(|t| table_named(table, t)),
-            _ => None,
         }
     }
 
@@ -767,47 +795,18 @@ impl SettingsDraft {
     /// of another, or when settings are written out).
     fn forget_unread(&mut self, kind: LearnerKind) {
         for k in SETTING_KEYS.iter().filter(|k| !k.reads(kind)) {
-            match (k.table, k.name) {
-                (None, "map") => self.map = None,
-                (None, "learner") => self.learner = None,
-                (None, "seed") => self.seed = None,
-                (None, "max_moves") => self.max_moves = None,
-                (None, "max_trials") => self.max_trials = None,
-                (None, "episodes") => self.episodes = None,
-                (None, "beta") => self.beta = None,
-                (None, "gamma") => self.gamma = None,
-                (None, "temperature") => self.temperature = None,
-                (None, "tolerance") => self.tolerance = None,
-                (None, "decrease_threshold") => self.decrease_threshold = None,
-                (None, "max_rows") => self.max_rows = None,
-                (None, "strategy") => self.strategy = None,
-                (None, "random_moves") => self.random_moves = None,
-                (None, "predict_sensing") => self.predict_sensing = None,
-                (Some("world"), name) if table_read_by("world", kind) => {
-                    if let Some(w) = &mut self.world {
-                        match name {
-                            "slip" => w.slip = None,
-                            "sensing_radius" => w.sensing_radius = None,
-                            "slide" => w.slide = None,
-                            "sensing" => w.sensing = None,
-                            "factor_costs" => w.factor_costs = None,
-                            "sensor_noise" => w.sensor_noise = None,
-                            _ => {}
-                        }
-                    }
-                    if self.world.as_ref().is_some_and(WorldExtras::is_default) {
-                        self.world = None;
-                    }
+            match k.table {
+                // [world] is read key by key: its other keys stay.
+                Some("world") if table_read_by("world", kind) => {
+                    let kept = self.world.as_ref().and_then(|w| {
+                        let mut keys = toml::Table::try_from(w).ok()?;
+                        keys.remove(k.name);
+                        keys.try_into::<WorldExtras>().ok()
+                    });
+                    self.world = kept.filter(|w| !w.is_default());
                 }
-                (Some("world"), _) => self.world = None,
-                (Some("judge"), _) => self.judge = None,
-                (Some("costly"), _) => self.costly = None,
-                (Some("extensions"), _) => self.extensions = None,
-                (Some("prediction"), _) => self.prediction = None,
-                (Some("u_tree"), _) => self.u_tree = None,
-                (Some("amrl_q"), _) => self.amrl_q = None,
-                (Some("belief"), _) => self.belief = None,
-                _ => {}
+                Some(table) => self.forget(table),
+                None => self.forget(k.name),
             }
         }
     }
