@@ -153,8 +153,11 @@ def test_bad_argument_types_are_refused():
 # run, does some Python work, and sends the process SIGINT. No clock and no fixed wait:
 # with the GIL held by the run, the helper could not run at all and the run, which would
 # go on for days, would never end; Ctrl-C not honoured, the same. Its ending proves both.
+# The child first takes Python's own Ctrl-C handler: a process started in the background
+# by a shell inherits SIGINT ignored, and Python then leaves it ignored.
 INTERRUPTER = (
     "import os, signal, sys, threading, csrl\n"
+    "signal.signal(signal.SIGINT, signal.default_int_handler)\n"
     "main = threading.main_thread().ident\n"
     "def inside_the_run():\n"
     "    f = sys._current_frames().get(main)\n"
@@ -174,9 +177,10 @@ INTERRUPTER = (
 
 
 def interrupted(run: str) -> tuple:
+    # The timeout guards against a hang only: a run deaf to Ctrl-C goes past it and fails.
     proc = subprocess.run(
         [sys.executable, "-c", INTERRUPTER + run + "\nprint('finished', flush=True)\n"],
-        capture_output=True, text=True,
+        capture_output=True, text=True, timeout=300,
     )
     return proc.returncode, proc.stdout, proc.stderr
 

@@ -139,9 +139,12 @@ def test_heart_data_in_a_pipeline(repo):
 # A fit that would run for an hour (CS-IBL on 300,000 objects of as many classes: each is
 # compared with every one stored before it), and a
 # helper thread that sends SIGINT once the main thread is inside the compiled learner
-# (its innermost Python frame is `fit`, at the line that calls `model.learn`).
+# (its innermost Python frame is `fit`, at the line that calls `model.learn`). The child
+# first takes Python's own Ctrl-C handler: a process started in the background by a shell
+# inherits SIGINT ignored, and Python then leaves it ignored.
 FIT_INTERRUPTED = """
 import inspect, os, signal, sys, threading
+signal.signal(signal.SIGINT, signal.default_int_handler)
 import numpy as np
 from csrl.sklearn import CsIblClassifier
 source, first = inspect.getsourcelines(CsIblClassifier.fit)
