@@ -7,7 +7,9 @@
 //!
 //! RUNS (3) runs of each lake, K (7) the bound on uncertain steps, FILTER a part of
 //! "WORLD DYNAMICS" to keep (e.g. `8x8 semi`); the variables `TRUST`, `PRIOR`, `MAXB` and `OPT`
-//! set `trust`, `prior` and `max_beliefs` (4, 3, 5000), `OPT` the optimism (1).
+//! set `trust`, `prior` and `max_beliefs` (4, 3, 5000), `OPT` the optimism (1), `BLIND`
+//! `blind_plans` (0). With `RUNS_SHOWN` set, each run's line is printed too (seed, mean
+//! over all episodes, over the last 10%).
 
 use rand::SeedableRng;
 
@@ -28,6 +30,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         prior: env("PRIOR", 3.0),
         max_beliefs: env("MAXB", 5000.0) as usize,
         optimism: env("OPT", 1.0),
+        blind_plans: env("BLIND", 0.0) as usize,
         ..Default::default()
     };
     for (world, episodes, horizon) in [("frozenlake4x4", 1000, 100), ("frozenlake8x8", 2000, 200)] {
@@ -57,6 +60,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                         &lake, &params, 1.0, rule, episodes, horizon, &mut rng,
                     )?;
                     let s = csql::CostlySummary::of(&run);
+                    if std::env::var("RUNS_SHOWN").is_ok() {
+                        println!(
+                            "run {world} {name} {} {seed} {} {} {}",
+                            rule.name(),
+                            s.mean_all,
+                            s.mean_last10,
+                            s.sensing_per_episode
+                        );
+                    }
                     for (x, v) in sums.iter_mut().zip([
                         s.mean_all,
                         s.mean_last10,

@@ -191,7 +191,7 @@ pub use judging::report::{
 pub use learners::amrl::{
     AmrlParams, CostlySummary, Episode, MAX_BIAS, MAX_EPISODES, Measuring, amrl_q,
 };
-pub use learners::belief::{BeliefParams, MAX_BELIEF_UNCERTAIN, belief_planning};
+pub use learners::belief::{BeliefParams, MAX_BELIEF_UNCERTAIN, MAX_BLIND_PLANS, belief_planning};
 pub use learners::costly::{
     CostedReport, CostedRun, costed_episodes, costed_report, costed_report_in,
 };

@@ -175,3 +175,34 @@ fn on_a_corridor_the_bound_on_uncertain_steps_keeps_it_measuring() {
         assert!(last.mean_all > 0.9, "{params:?}: {last:?}");
     }
 }
+
+/// With the choice to stop measuring (`blind_plans`), the same corridor and seed end
+/// measuring at most once in 20 episodes, at the open loop's value within 0.03; with 0
+/// the run is the default's, move for move.
+#[test]
+fn the_choice_to_stop_measuring_ends_the_corridors_measurements() {
+    let w = corridor();
+    let blind = BeliefParams {
+        blind_plans: 16,
+        ..BeliefParams::default()
+    };
+    let open = mdp::open_loop(
+        &w,
+        &ReferenceOptions {
+            horizon: MAX_MOVES,
+            ..ReferenceOptions::default()
+        },
+    )
+    .unwrap();
+    let last = last_tenth(&run(&w, &blind, SensingRule::WithMove, 1));
+    assert!(last.sensing_per_episode <= 0.05, "{last:?}");
+    assert!(last.mean_all >= open.value - 0.03, "{last:?}");
+    let off = BeliefParams {
+        blind_plans: 0,
+        ..blind
+    };
+    assert_eq!(
+        run(&w, &off, SensingRule::WithMove, 3),
+        run(&w, &BeliefParams::default(), SensingRule::WithMove, 3)
+    );
+}

@@ -39,6 +39,7 @@ fn belief_in_csrl_run_is_csql_belief_planning() {
         whole_state: false,
         max_beliefs: 3000,
         move_cost: 1e-5,
+        blind_plans: 0,
     };
     let tuned_table = "[belief]\nmax_uncertain = 5\ntrust = 3\nprior = 2.0\noptimism = 0.8\nmax_beliefs = 3000\nmove_cost = 1e-5";
     for (name, table, params) in [

@@ -68,6 +68,7 @@ fn plan(args: Vec<String>) -> Result<(), Box<dyn std::error::Error>> {
         search,
         move_cost: 1e-6,
         tolerance: 1e-9,
+        blind_plans: 0,
     };
     let model = CostlyModel::of(&lake)?;
     let roots: Vec<StateId> = lake.states();

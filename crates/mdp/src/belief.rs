@@ -421,6 +421,10 @@ pub enum Decision {
     Measure(usize),
     /// Under [`SensingRule::AfterOutcome`]: measure nothing more and choose a move.
     Act,
+    /// Measure nothing for the rest of the episode: make the moves of
+    /// [`BeliefPlan::blind_moves`], an open-loop plan from the node's belief (a choice of
+    /// every node where the agent is to move, with [`PlanOptions::blind_plans`]).
+    Blind,
 }
 
 /// One choice at a node: what it is, an immediate reward (net of prices) and weighted
@@ -508,6 +512,8 @@ pub(crate) struct Solved {
     /// ([`solve_counted`]); empty otherwise.
     pub(crate) probes: Vec<f64>,
     pub(crate) converged_at: u32,
+    /// The open-loop plans of [`Decision::Blind`], with [`PlanOptions::blind_plans`].
+    pub(crate) blind: Option<Blind>,
 }
 
 /// How many beliefs [`BeliefPlan::build_unless`] expands between two questions to its
@@ -552,6 +558,7 @@ pub(crate) fn solve_counted(
         search: ref options,
         move_cost,
         tolerance,
+        blind_plans,
     } = *plan;
     check_horizon(options)?;
     check_menu(menu)?;
@@ -606,6 +613,7 @@ pub(crate) fn solve_counted(
         SensingRule::WithMove => (0..=subsets_end).collect(),
         SensingRule::AfterOutcome => Vec::new(),
     };
+    let blind = (blind_plans > 0).then(|| Blind::of(m, options.horizon, blind_plans));
     let mut starts = Vec::new();
     for &s in roots {
         if s as usize >= m.n || m.terminal[s as usize] {
@@ -626,6 +634,16 @@ pub(crate) fn solve_counted(
         let mut choices = Vec::new();
         match g.kinds[i] {
             Kind::Act => {
+                if let Some(blind) = &blind {
+                    let (_, value) = blind.best(&b);
+                    if value.is_finite() {
+                        choices.push(Choice {
+                            decision: Decision::Blind,
+                            reward: value,
+                            children: Vec::new(),
+                        });
+                    }
+                }
                 for a in 0..m.na {
                     let mut reward = -move_cost;
                     let mut forced = false;
@@ -830,6 +848,7 @@ pub(crate) fn solve_counted(
         values: prev,
         probes: probes_prev,
         converged_at,
+        blind,
     })
 }
 
@@ -850,7 +869,7 @@ fn probes_of(c: &Choice, per_probe: usize, rule: SensingRule) -> f64 {
         },
         Decision::Move { measure, .. } => f64::from(measure.count_ones()),
         Decision::Measure(_) => 1.0,
-        Decision::Act => 0.0,
+        Decision::Act | Decision::Blind => 0.0,
     }
 }
 
@@ -876,6 +895,120 @@ fn best_counted(
     (best, counted)
 }
 
+/// The open-loop plans of [`Decision::Blind`]: built backwards over value vectors as
+/// [`open_loop`](crate::open_loop) builds them, each plan of `h` moves an action followed
+/// by a plan of `h - 1`, a pair that must be measured worth `-inf` (never in a plan).
+pub(crate) struct Blind {
+    /// The vectors of the plans of the horizon's length: each one's expected return from
+    /// every state (0 at terminal states).
+    top: Vec<Vec<f64>>,
+    /// The plans of `h` moves at `levels[h - 1]`: the first move and the index of the
+    /// rest among the plans of `h - 1` moves.
+    levels: Vec<Vec<(u32, u32)>>,
+}
+
+impl Blind {
+    fn of(m: &CostlyModel, horizon: u32, max_plans: usize) -> Blind {
+        let mut plans: Vec<Vec<f64>> = vec![vec![0.0; m.n]];
+        let mut levels = Vec::with_capacity(horizon as usize);
+        for _ in 0..horizon {
+            let mut candidates = Vec::with_capacity(plans.len() * m.na);
+            for a in 0..m.na {
+                for (j, alpha) in plans.iter().enumerate() {
+                    let v: Vec<f64> = (0..m.n)
+                        .map(|s| {
+                            if m.terminal[s] {
+                                return 0.0;
+                            }
+                            let i = m.pair(s as u32, a);
+                            if m.must_measure[i] {
+                                return f64::NEG_INFINITY;
+                            }
+                            m.reward[i]
+                                + m.next[i]
+                                    .iter()
+                                    .map(|&(t, p)| p * alpha[t as usize])
+                                    .sum::<f64>()
+                        })
+                        .collect();
+                    candidates.push(((a as u32, j as u32), v));
+                }
+            }
+            let mut kept = undominated_tagged(candidates);
+            kept.truncate(max_plans);
+            levels.push(kept.iter().map(|k| k.0).collect());
+            plans = kept.into_iter().map(|k| k.1).collect();
+        }
+        Blind { top: plans, levels }
+    }
+
+    /// The best plan from a belief, and its expected return (`-inf` if every plan takes a
+    /// pair that must be measured from a state of the belief).
+    fn best(&self, b: &[(u32, f64)]) -> (usize, f64) {
+        let mut best = (0, f64::NEG_INFINITY);
+        for (j, alpha) in self.top.iter().enumerate() {
+            let v: f64 = b.iter().map(|&(s, p)| p * alpha[s as usize]).sum();
+            if v > best.1 {
+                best = (j, v);
+            }
+        }
+        best
+    }
+
+    /// The moves of plan `j` of the horizon's length, in order.
+    fn moves(&self, mut j: usize) -> Vec<ActionId> {
+        let mut out = Vec::with_capacity(self.levels.len());
+        for level in self.levels.iter().rev() {
+            let (a, rest) = level[j];
+            out.push(ActionId(a));
+            j = rest as usize;
+        }
+        out
+    }
+}
+
+/// The vectors no other is at least as large as everywhere (within [`BLIND_TOLERANCE`]),
+/// as the open loop of [`open_loop`](crate::open_loop) keeps them, each with its tag, for
+/// vectors that may hold `-inf`; ranked by decreasing sum, ties by the vectors' order.
+fn undominated_tagged<T: Copy>(candidates: Vec<(T, Vec<f64>)>) -> Vec<(T, Vec<f64>)> {
+    let (tags, vectors): (Vec<T>, Vec<Vec<f64>>) = candidates.into_iter().unzip();
+    // Ranked by their sums, a `-inf` (a pair that must be measured) counted as -1e6.
+    let sums: Vec<f64> = vectors
+        .iter()
+        .map(|v| {
+            v.iter()
+                .map(|&x| if x.is_finite() { x } else { -1e6 })
+                .sum()
+        })
+        .collect();
+    let mut order: Vec<usize> = (0..vectors.len()).collect();
+    order.sort_by(|&i, &j| {
+        sums[j].total_cmp(&sums[i]).then_with(|| {
+            vectors[i]
+                .iter()
+                .zip(&vectors[j])
+                .map(|(x, y)| x.total_cmp(y))
+                .find(|o| o.is_ne())
+                .unwrap_or(std::cmp::Ordering::Equal)
+        })
+    });
+    let mut kept: Vec<(T, Vec<f64>)> = Vec::new();
+    for i in order {
+        let v = &vectors[i];
+        let dominated = kept
+            .iter()
+            .any(|(_, k)| k.iter().zip(v).all(|(a, b)| *a >= *b - BLIND_TOLERANCE));
+        if !dominated {
+            kept.push((tags[i], v.clone()));
+        }
+    }
+    kept
+}
+
+/// How much lower a vector may be somewhere and still count as dominated (rounding), as
+/// in the open loop.
+const BLIND_TOLERANCE: f64 = 1e-12;
+
 fn value_of(c: &Choice, v: &[f64]) -> f64 {
     c.reward + c.children.iter().map(|&(w, j)| w * v[j]).sum::<f64>()
 }
@@ -893,6 +1026,7 @@ fn best_of(cs: &[Choice], v: &[f64]) -> f64 {
 /// ```
 /// let o = mdp::PlanOptions::default();
 /// assert_eq!((o.menu, o.rule, o.move_cost, o.tolerance), (mdp::SensingMenu::Features, mdp::SensingRule::WithMove, 0.0, 0.0));
+/// assert_eq!(o.blind_plans, 0);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PlanOptions {
@@ -909,6 +1043,13 @@ pub struct PlanOptions {
     /// When value iteration stops before the horizon: 0 (exact) when a step leaves every
     /// value unchanged bit for bit; otherwise when it changes none by more than this.
     pub tolerance: f64,
+    /// With more than 0: every node where the agent is to move may also stop measuring
+    /// for the rest of the episode ([`Decision::Blind`]) and follow the best of the
+    /// open-loop plans of the horizon's length over the model, at most this many kept a
+    /// step (the undominated ones, as [`open_loop`](crate::open_loop) keeps them; a pair
+    /// that must be measured is never in one); valued as that plan's expected return
+    /// from the belief. 0: no such choice (the plans of before).
+    pub blind_plans: usize,
 }
 
 impl Default for PlanOptions {
@@ -919,6 +1060,7 @@ impl Default for PlanOptions {
             search: ReferenceOptions::default(),
             move_cost: 0.0,
             tolerance: 0.0,
+            blind_plans: 0,
         }
     }
 }
@@ -1113,6 +1255,30 @@ impl BeliefPlan {
         best.map(|(c, _)| (c, self.solved.graph.choices[node.0][c].decision))
     }
 
+    /// The moves of the open-loop plan [`Decision::Blind`] follows from a node: the best
+    /// for its belief among the plans of [`PlanOptions::blind_plans`], the horizon's
+    /// length of them; `None` when the plan was built without them or every one of them
+    /// takes a pair that must be measured.
+    ///
+    /// ```
+    /// use mdp::{BeliefPlan, CostlyModel, Decision, PlanOptions, StateId};
+    /// # let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() }).unwrap();
+    /// let model = CostlyModel::of(&lake).unwrap();
+    /// let opts = PlanOptions { blind_plans: 8, move_cost: 1e-6, ..PlanOptions::default() };
+    /// let plan = BeliefPlan::build(&model, &opts, &[StateId(0)]).unwrap();
+    /// let start = plan.point(StateId(0)).unwrap();
+    /// // Deterministic: the open loop reaches the goal, and so it is chosen.
+    /// assert_eq!(plan.decide(start).unwrap().1, Decision::Blind);
+    /// let moves = plan.blind_moves(start).unwrap();
+    /// assert_eq!(moves.len(), 100);
+    /// ```
+    pub fn blind_moves(&self, node: NodeId) -> Option<Vec<ActionId>> {
+        let blind = self.solved.blind.as_ref()?;
+        let b: Vec<(u32, f64)> = self.belief(node).iter().map(|&(s, p)| (s.0, p)).collect();
+        let (j, value) = blind.best(&b);
+        value.is_finite().then(|| blind.moves(j))
+    }
+
     /// The node a choice leads to, given what the probes it measured read in the state
     /// reached (`read(probe)`: feature `j`'s reading, or for the whole state its index).
     /// `None` when no belief of the plan agrees with the readings (the model was wrong),
@@ -1138,7 +1304,7 @@ impl BeliefPlan {
         let mask = match choice.decision {
             Decision::Move { measure, .. } => measure,
             Decision::Measure(j) => 1 << j,
-            Decision::Act => 0,
+            Decision::Act | Decision::Blind => 0,
         };
         if mask == 0 {
             // Nothing read: one belief, unless the episode ends.

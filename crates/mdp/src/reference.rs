@@ -591,6 +591,7 @@ fn search<W: World>(
         search: *options,
         move_cost: 0.0,
         tolerance: 0.0,
+        blind_plans: 0,
     };
     let solved = solve_counted(&m, &plan, &roots, (reveal, false, true), &mut || false)?;
     let value: f64 = m

@@ -39,6 +39,7 @@ fn the_plan_values_the_start_as_the_reference_search_does() {
                     search,
                     move_cost: 0.0,
                     tolerance: 0.0,
+                    blind_plans: 0,
                 };
                 let plan = BeliefPlan::build(&m, &o, &[StateId(0)]).unwrap();
                 let v = plan.value(plan.point(StateId(0)).unwrap());

@@ -81,6 +81,13 @@ pub struct BeliefParams {
     /// A price per move in the plan, in reward units, so that it does not wander between
     /// choices of equal value (1e-6).
     pub move_cost: f64,
+    /// With more than 0, the plan may stop measuring for the rest of the episode at any
+    /// belief where the agent is to move, and follow the best open-loop plan over its
+    /// model from that belief, at most this many plans kept a step
+    /// ([`mdp::PlanOptions::blind_plans`]); 0 (the default): no such choice, and the key
+    /// is left out of the settings' echo.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub blind_plans: usize,
 }
 
 impl Default for BeliefParams {
@@ -93,8 +100,14 @@ impl Default for BeliefParams {
             whole_state: false,
             max_beliefs: 5_000,
             move_cost: 1e-6,
+            blind_plans: 0,
         }
     }
+}
+
+/// Whether `[belief] blind_plans` is off, so that the echo of the settings is as before.
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 /// The largest `max_uncertain` a run's settings take ([`BeliefParams::validate`]): a plan
@@ -106,6 +119,16 @@ impl Default for BeliefParams {
 /// assert!(p.validate().unwrap_err().to_string().contains("belief.max_uncertain = 65"));
 /// ```
 pub const MAX_BELIEF_UNCERTAIN: u32 = 64;
+
+/// The most open-loop plans a step `[belief] blind_plans` takes
+/// ([`BeliefParams::validate`]): each plan is rebuilt with them, and their work grows
+/// with the square of their number.
+///
+/// ```
+/// let p = csql::BeliefParams { blind_plans: csql::MAX_BLIND_PLANS + 1, ..Default::default() };
+/// assert!(p.validate().unwrap_err().to_string().contains("belief.blind_plans = 4097"));
+/// ```
+pub const MAX_BLIND_PLANS: usize = 4096;
 
 impl BeliefParams {
     /// Whether every setting of `[belief]` is at its default: for the settings echo,
@@ -171,6 +194,13 @@ impl BeliefParams {
                 "move_cost",
                 self.move_cost.to_string(),
                 "a finite price of at least 0 reward units",
+            );
+        }
+        if self.blind_plans > MAX_BLIND_PLANS {
+            return bad(
+                "blind_plans",
+                self.blind_plans.to_string(),
+                "at most 4096 open-loop plans a step (csql::MAX_BLIND_PLANS)",
             );
         }
         if !(1..=mdp::DEFAULT_MAX_BELIEFS).contains(&self.max_beliefs) {
@@ -471,6 +501,7 @@ impl<W: World + ?Sized> Planner<'_, W> {
                 },
                 move_cost: self.params.move_cost,
                 tolerance: PLAN_TOLERANCE,
+                blind_plans: self.params.blind_plans,
             };
             match BeliefPlan::build_unless(&model, &options, &roots, &mut || !observer.keep_going())
             {
@@ -665,6 +696,13 @@ impl<W: World + ?Sized> Planner<'_, W> {
                     let plan = self.plan.as_ref().expect("a node is of a plan");
                     match plan.decide(*node) {
                         Some((c, Decision::Move { action, measure })) => (action, measure, Some(c)),
+                        Some((_, Decision::Blind)) => {
+                            if let Some(moves) = plan.blind_moves(*node) {
+                                self.blind(moves, truth, &mut e, rng);
+                                return Ok(e);
+                            }
+                            (self.fallback(&self.states(&place)), EVERY_PROBE, None)
+                        }
                         _ => (self.fallback(&self.states(&place)), EVERY_PROBE, None),
                     }
                 }
@@ -768,6 +806,31 @@ impl<W: World + ?Sized> Planner<'_, W> {
         Ok(e)
     }
 
+    /// The rest of an episode without measuring: `moves` in order from the state `truth`,
+    /// until the episode ends or reaches its cap. Nothing is read, so nothing is learned.
+    fn blind<R: Rng + ?Sized>(
+        &self,
+        moves: Vec<ActionId>,
+        mut truth: StateId,
+        e: &mut Episode,
+        rng: &mut R,
+    ) {
+        let w = self.world;
+        for action in moves {
+            if e.steps >= self.max_moves {
+                return;
+            }
+            let step = w.sample(truth, action, rng);
+            e.steps += 1;
+            e.reward += step.reward;
+            if step.terminated || w.is_terminal(step.next) {
+                e.reached_goal = step.reward > 0.0;
+                return;
+            }
+            truth = step.next;
+        }
+    }
+
     /// Under the rule after the outcome: follow the plan's sense nodes, reading one probe
     /// at a time; off the plan (or on a contradiction), read every feature at once.
     fn sense_after(
@@ -808,7 +871,7 @@ impl<W: World + ?Sized> Planner<'_, W> {
                     }
                 }
                 // An act node (reached after a forced measurement) or no choice.
-                Some((_, Decision::Move { .. })) => return Place::Node(node),
+                Some((_, Decision::Move { .. } | Decision::Blind)) => return Place::Node(node),
                 None => break,
             }
         }

@@ -245,6 +245,7 @@ settings_draft! {
             whole_state: BELIEF,
             max_beliefs: BELIEF,
             move_cost: BELIEF,
+            blind_plans: BELIEF,
         };
     }
 }
