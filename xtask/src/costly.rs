@@ -59,7 +59,8 @@ pub struct CostlyArgs {
     /// Dynamics, comma-separated, as `costly.csv` spells them (default: all).
     #[arg(long, value_delimiter = ',')]
     dynamics: Vec<String>,
-    /// Learners, comma-separated, as `costly.csv` spells them (default: all).
+    /// Learners, comma-separated, as `costly.csv` spells them (default: the table's; also
+    /// `belief-blind`, sensing by belief free to stop measuring, run only when named).
     #[arg(long, value_delimiter = ',')]
     learners: Vec<String>,
     /// Prices per coordinate, comma-separated, as `costly.csv` spells them (default: all).
@@ -114,9 +115,14 @@ impl CostlyArgs {
             })?,
             prices: select("--prices", &self.prices, &PRICES, |p| p.to_string())?,
             rules: select("--rules", &self.rules, &RULES, |r| r.name().to_string())?,
-            learners: select("--learners", &self.learners, &Learner::ALL, |l| {
-                l.name().to_string()
-            })?,
+            // The table's learners by default; the others only when named.
+            learners: if self.learners.is_empty() {
+                Learner::TABLE.to_vec()
+            } else {
+                select("--learners", &self.learners, &Learner::NAMED, |l| {
+                    l.name().to_string()
+                })?
+            },
         })
     }
 }
@@ -201,10 +207,18 @@ pub enum Learner {
     /// CS-QL as [`Learner::CsQl`], sensing by its belief over descriptions
     /// (`predict_sensing = "weighed"`, `[prediction]` at its defaults).
     CsQlWeighed,
+    /// Sensing by belief as [`Learner::Belief`], its plan also free to stop measuring for
+    /// the rest of an episode (`[belief] blind_plans` = [`BLIND_PLANS`]). Not in the
+    /// committed table: run by naming it in `--learners`.
+    BeliefBlind,
 }
 
+/// The open-loop plans a step of [`Learner::BeliefBlind`] (`[belief] blind_plans`).
+const BLIND_PLANS: usize = 16;
+
 impl Learner {
-    const ALL: [Learner; 7] = [
+    /// The learners of the committed table, in its order (the default of `--learners`).
+    const TABLE: [Learner; 7] = [
         Learner::AmrlQ,
         Learner::AmrlQGreedyAfterFirst,
         Learner::AlwaysMeasuring,
@@ -212,6 +226,18 @@ impl Learner {
         Learner::FullSensing,
         Learner::Belief,
         Learner::CsQlWeighed,
+    ];
+
+    /// Every learner `--learners` takes: the table's, then those run only when named.
+    const NAMED: [Learner; 8] = [
+        Learner::AmrlQ,
+        Learner::AmrlQGreedyAfterFirst,
+        Learner::AlwaysMeasuring,
+        Learner::CsQl,
+        Learner::FullSensing,
+        Learner::Belief,
+        Learner::CsQlWeighed,
+        Learner::BeliefBlind,
     ];
 
     fn name(self) -> &'static str {
@@ -223,6 +249,7 @@ impl Learner {
             Learner::FullSensing => "full-sensing",
             Learner::Belief => "belief",
             Learner::CsQlWeighed => "cs-ql-weighed",
+            Learner::BeliefBlind => "belief-blind",
         }
     }
 
@@ -236,6 +263,7 @@ impl Learner {
             Learner::FullSensing => RGBColor(230, 120, 20),
             Learner::Belief => RGBColor(44, 160, 44),
             Learner::CsQlWeighed => RGBColor(148, 103, 189),
+            Learner::BeliefBlind => RGBColor(140, 86, 75),
         }
     }
 
@@ -254,12 +282,20 @@ impl Learner {
             Learner::CsQl => cs_ql(play, (LearnerKind::CsQl, PredictSensing::Off)),
             Learner::FullSensing => cs_ql(play, (LearnerKind::FullSensing, PredictSensing::Off)),
             Learner::CsQlWeighed => cs_ql(play, (LearnerKind::CsQl, PredictSensing::Weighed)),
-            Learner::Belief => {
+            Learner::Belief | Learner::BeliefBlind => {
+                let params = csql::BeliefParams {
+                    blind_plans: if self == Learner::BeliefBlind {
+                        BLIND_PLANS
+                    } else {
+                        0
+                    },
+                    ..csql::BeliefParams::default()
+                };
                 // Each coordinate costs 1: its price in reward units is the price.
                 let mut rng = Xoshiro256PlusPlus::seed_from_u64(play.seed);
                 Ok(csql::belief_planning(
                     play.lake,
-                    &csql::BeliefParams::default(),
+                    &params,
                     play.price,
                     play.rule,
                     play.episodes,
@@ -354,7 +390,7 @@ impl Definition {
             && self.dynamics.len() == Dynamics::ALL.len()
             && self.prices.len() == PRICES.len()
             && self.rules.len() == RULES.len()
-            && self.learners.len() == Learner::ALL.len()
+            && self.learners == Learner::TABLE
     }
 }
 
@@ -714,7 +750,7 @@ fn draw(path: &Path, world: &str, rows: &[Row<'_>]) -> Result<()> {
     let mut svg = String::new();
     let (pw, ph) = (520_u32, 380_u32);
     // The legend below the panels: a column per learner, a row per price.
-    let learners: Vec<Learner> = Learner::ALL
+    let learners: Vec<Learner> = Learner::NAMED
         .into_iter()
         .filter(|&l| drawn(l) && rows.iter().any(|r| r.world == world && r.learner == l))
         .collect();
@@ -730,8 +766,13 @@ fn draw(path: &Path, world: &str, rows: &[Row<'_>]) -> Result<()> {
         )
         .map_err(|e| plot_err(&e))?;
     let (top, legend) = root.split_vertically(ph + 20);
-    let panels = top.split_evenly((1, 3));
-    for (panel, dynamics) in panels.iter().zip(Dynamics::ALL) {
+    // A panel per dynamics run (a part of the table may have fewer), side by side.
+    let shown: Vec<Dynamics> = Dynamics::ALL
+        .into_iter()
+        .filter(|&d| rows.iter().any(|r| r.world == world && r.dynamics == d))
+        .collect();
+    let panels = top.split_evenly((1, shown.len().max(1)));
+    for (panel, &dynamics) in panels.iter().zip(&shown) {
         let lines: Vec<&Row<'_>> = rows
             .iter()
             .filter(|r| {
@@ -796,7 +837,12 @@ fn draw(path: &Path, world: &str, rows: &[Row<'_>]) -> Result<()> {
             .map_err(|e| plot_err(&e))?;
         }
     }
-    draw_legend(&legend, &learners, pw * 3).map_err(|e| plot_err(&e))?;
+    // The prices run (a part of the table may have fewer), each in its row of the legend.
+    let prices: Vec<f64> = PRICES
+        .into_iter()
+        .filter(|&p| rows.iter().any(|r| r.world == world && r.price == p))
+        .collect();
+    draw_legend(&legend, &learners, &prices, pw * 3).map_err(|e| plot_err(&e))?;
     root.present().map_err(|e| plot_err(&e))?;
     drop(panels);
     drop(top);
@@ -814,6 +860,7 @@ const GREEDY: RGBColor = RGBColor(120, 120, 120);
 fn draw_legend<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     learners: &[Learner],
+    prices: &[f64],
     width: u32,
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     let font = ("sans-serif", 14).into_font().color(&BLACK);
@@ -832,6 +879,9 @@ fn draw_legend<DB: DrawingBackend>(
     for (c, learner) in learners.iter().enumerate() {
         let x = 40 + column * c as i32;
         for (r, price) in PRICES.iter().enumerate() {
+            if !prices.contains(price) {
+                continue;
+            }
             let y = 14 + 22 * r as i32;
             for p in sample(x, y, learner.colour(), r > 0, 2) {
                 area.draw(&p)?;
@@ -892,6 +942,13 @@ mod tests {
         a.rules = names("with-move");
         let d = a.definition().unwrap();
         assert!(!d.is_whole() && def(2).is_whole());
+        // A learner outside the table runs only when named.
+        assert!(!def(2).learners.contains(&Learner::BeliefBlind));
+        a.learners = names("belief-blind,belief");
+        let blind = a.definition().unwrap();
+        assert_eq!(blind.learners, [Learner::Belief, Learner::BeliefBlind]);
+        assert!(!blind.is_whole());
+        a.learners = names("belief,amrl-q-greedy-after-first");
         // In the table's order, whatever the order given.
         assert_eq!(d.worlds, [1]);
         assert_eq!(d.dynamics, [Dynamics::Deterministic, Dynamics::Slippery]);
@@ -942,7 +999,7 @@ mod tests {
                 "--learners",
                 |a| &mut a.learners,
                 "amrlq",
-                "amrl-q, amrl-q-greedy-after-first, always-measuring, cs-ql, full-sensing, belief, cs-ql-weighed",
+                "amrl-q, amrl-q-greedy-after-first, always-measuring, cs-ql, full-sensing, belief, cs-ql-weighed, belief-blind",
             ),
             ("--prices", |a| &mut a.prices, "0.050", "0.025, 0.05"),
             (
@@ -1010,7 +1067,7 @@ mod tests {
     fn every_job_is_numbered_once() {
         let d = def(3);
         let n = total(&d).unwrap();
-        assert_eq!(n, 2 * 3 * 2 * 2 * Learner::ALL.len() as u64 * 3);
+        assert_eq!(n, 2 * 3 * 2 * 2 * Learner::TABLE.len() as u64 * 3);
         let jobs: Vec<Job> = (0..n).map(|id| job(&d, id)).collect();
         for (i, a) in jobs.iter().enumerate() {
             assert!(jobs[i + 1..].iter().all(|b| b != a), "{a:?} twice");
