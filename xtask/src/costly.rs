@@ -217,18 +217,8 @@ pub enum Learner {
 const BLIND_PLANS: usize = 16;
 
 impl Learner {
-    /// The learners of the committed table, in its order (the default of `--learners`).
-    const TABLE: [Learner; 7] = [
-        Learner::AmrlQ,
-        Learner::AmrlQGreedyAfterFirst,
-        Learner::AlwaysMeasuring,
-        Learner::CsQl,
-        Learner::FullSensing,
-        Learner::Belief,
-        Learner::CsQlWeighed,
-    ];
-
-    /// Every learner `--learners` takes: the table's, then those run only when named.
+    /// Every learner `--learners` takes: the committed table's, in its order, then those
+    /// run only when named.
     const NAMED: [Learner; 8] = [
         Learner::AmrlQ,
         Learner::AmrlQGreedyAfterFirst,
@@ -239,6 +229,9 @@ impl Learner {
         Learner::CsQlWeighed,
         Learner::BeliefBlind,
     ];
+
+    /// The learners of the committed table (the default of `--learners`).
+    const TABLE: &[Learner] = Learner::NAMED.as_slice().split_at(7).0;
 
     fn name(self) -> &'static str {
         match self {

@@ -266,14 +266,26 @@ pub fn always_measuring<W: World>(
     rule: SensingRule,
     options: &ReferenceOptions,
 ) -> Result<f64, ReferenceError> {
+    let (m, c, _) = measuring_every_move(world, menu, options)?;
+    Ok(measured(&m, c, rule, options.horizon))
+}
+
+/// The model of `world`, what measuring its whole state costs with `menu`, and what one
+/// such measurement counts in probes (one whole state, or every feature), for the policy
+/// that measures after every move.
+fn measuring_every_move<W: World>(
+    world: &W,
+    menu: SensingMenu,
+    options: &ReferenceOptions,
+) -> Result<(CostlyModel, f64, f64), ReferenceError> {
     check_horizon(options)?;
     check_menu(menu)?;
     let m = CostlyModel::of(world)?;
-    let c = match menu {
-        SensingMenu::Whole { price } => price,
-        SensingMenu::Features => m.prices.iter().sum(),
+    let (c, per_measure) = match menu {
+        SensingMenu::Whole { price } => (price, 1.0),
+        SensingMenu::Features => (m.prices.iter().sum(), m.prices.len() as f64),
     };
-    Ok(measured(&m, c, rule, options.horizon))
+    Ok((m, c, per_measure))
 }
 
 /// The expected number of probes the policy of [`always_measuring`] measures in an
@@ -301,13 +313,7 @@ pub fn always_measuring_sensing<W: World>(
     rule: SensingRule,
     options: &ReferenceOptions,
 ) -> Result<f64, ReferenceError> {
-    check_horizon(options)?;
-    check_menu(menu)?;
-    let m = CostlyModel::of(world)?;
-    let (c, per_measure) = match menu {
-        SensingMenu::Whole { price } => (price, 1.0),
-        SensingMenu::Features => (m.prices.iter().sum(), m.prices.len() as f64),
-    };
+    let (m, c, per_measure) = measuring_every_move(world, menu, options)?;
     Ok(measured_counted(&m, c, rule, options.horizon, Some(per_measure)).1)
 }
 
