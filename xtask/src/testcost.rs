@@ -93,6 +93,14 @@ pub struct TestcostArgs {
     /// This machine's shard, `K/N`.
     #[arg(long, default_value = "1/1")]
     shard: String,
+    /// Results folders of other `cargo xtask testcost` runs whose learners join the report:
+    /// the same data sets, price sets, draws, folds, seed and settings, but their own
+    /// learners, runs and mc (a subset of `--mc`). Only learners this run does not have are
+    /// added, each row saying how many runs it averages and each ratio to CS-ID3 taken on
+    /// its own runs. The committed table takes ACT and CVT this way, from one run at mc 500
+    /// and 1000 (`docs/testcost.md`).
+    #[arg(long, value_delimiter = ',')]
+    with: Vec<PathBuf>,
     /// Only write the report from the results already in `--out`.
     #[arg(long)]
     report: bool,
@@ -529,6 +537,25 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
     }
     let results: Vec<JobResult> = by_id.into_values().collect();
     let rows = report::aggregate(&def, &results);
+    let mut table = report::Table {
+        def: def.clone(),
+        rows,
+        results,
+        added: Vec::new(),
+    };
+    for dir in &args.with {
+        let (other, by_id): (Definition, BTreeMap<u64, JobResult>) =
+            crate::shard::collect(std::slice::from_ref(dir))?;
+        check_joinable(&def, &other).with_context(|| {
+            format!(
+                "--with {}: its results cannot join this table",
+                dir.display()
+            )
+        })?;
+        let results: Vec<JobResult> = by_id.into_values().collect();
+        let rows = report::aggregate(&other, &results);
+        table.join(&other, rows, results);
+    }
     let published: BTreeMap<String, String> = catalogue
         .sources()
         .iter()
@@ -539,25 +566,37 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
         .zip(&loaded)
         .map(|(d, l)| (d.clone(), l.frame.len()))
         .collect();
-    report::write(
-        &def,
-        &rows,
-        &results,
-        &published,
-        &objects,
-        &args.out,
-        &args_line(args),
-    )?;
+    report::write(&table, &published, &objects, &args.out, &args_line(args))?;
     if args.bless {
         report::write(
-            &def,
-            &rows,
-            &results,
+            &table,
             &published,
             &objects,
             Path::new("docs/testcost"),
             &args_line(args),
         )?;
+    }
+    Ok(())
+}
+
+/// Whether another benchmark's rows may join `def`'s table: the same data sets, price sets,
+/// draws, folds, seed and settings (so the same folds and prices), any learners and runs,
+/// and misclassification costs among `def`'s.
+fn check_joinable(def: &Definition, other: &Definition) -> Result<()> {
+    if let Some(mc) = other.mc.iter().find(|m| !def.mc.contains(m)) {
+        bail!("it has mc {mc}, which this table does not");
+    }
+    let same_protocol = Definition {
+        learners: def.learners.clone(),
+        runs: def.runs,
+        mc: def.mc.clone(),
+        ..other.clone()
+    };
+    if &same_protocol != def {
+        bail!(
+            "it was run over other data sets, prices, folds, seed or settings \
+             ({other:?}, against {def:?})"
+        );
     }
     Ok(())
 }
@@ -584,6 +623,10 @@ fn args_line(args: &TestcostArgs) -> String {
     }
     if !args.learners.is_empty() {
         let _ = write!(line, " --learners {}", args.learners.join(","));
+    }
+    if !args.with.is_empty() {
+        let with: Vec<String> = args.with.iter().map(|d| d.display().to_string()).collect();
+        let _ = write!(line, " --with {}", with.join(","));
     }
     let mc: Vec<String> = args.mc.iter().map(|m| m.to_string()).collect();
     if mc.join(",") != "100,500,1000,5000" {
@@ -653,6 +696,7 @@ mod tests {
             out: out.to_path_buf(),
             threads: Some(threads),
             shard: "1/1".into(),
+            with: Vec::new(),
             report: false,
             bless: false,
         }
@@ -698,6 +742,91 @@ mod tests {
             let per_object: f64 = row.rsplit(',').next().unwrap().parse().unwrap();
             assert!(per_object >= 0.0 && per_object.is_finite(), "{row}");
         }
+    }
+
+    #[test]
+    fn another_benchmark_over_the_same_folds_adds_its_learners_with_their_runs() {
+        let (main, other, joined) = (
+            tempfile::tempdir().unwrap(),
+            tempfile::tempdir().unwrap(),
+            tempfile::tempdir().unwrap(),
+        );
+        let alone = args(main.path(), 1);
+        testcost(&alone).unwrap();
+        // Two runs, one mc, a learner the main table lacks and one it has.
+        let mut dear = args(other.path(), 1);
+        dear.learners = vec!["cs-id3-batch".into(), "c45".into(), "eg2".into()];
+        dear.mc = vec![500.0];
+        dear.runs = 2;
+        testcost(&dear).unwrap();
+        let mut with = args(joined.path(), 1);
+        with.with = vec![other.path().to_path_buf()];
+        testcost(&with).unwrap();
+        let read = |dir: &Path| std::fs::read_to_string(dir.join("testcost.csv")).unwrap();
+        let (base, both, dear_csv) = (read(main.path()), read(joined.path()), read(other.path()));
+        // The table's own rows are unchanged; the added learner's are the other run's,
+        // at its mc only, saying their runs.
+        let added: Vec<&str> = both.lines().filter(|l| l.contains(",c45,")).collect();
+        assert_eq!(
+            both.lines()
+                .filter(|l| !l.contains(",c45,"))
+                .collect::<Vec<_>>(),
+            base.lines().collect::<Vec<_>>()
+        );
+        assert_eq!(
+            added,
+            dear_csv
+                .lines()
+                .filter(|l| l.contains(",c45,"))
+                .collect::<Vec<_>>()
+        );
+        assert_eq!(
+            added.len(),
+            1 + 2,
+            "iris random, heart random and Turney, mc 500"
+        );
+        for line in &added {
+            let cells: Vec<&str> = line.split(',').collect();
+            assert_eq!((cells[2], cells[4]), ("500", "2"), "{line}");
+            assert!(
+                !cells[10].is_empty(),
+                "a ratio to CS-ID3 on its own runs: {line}"
+            );
+        }
+        // Rows stay in the table's order: c45 after the table's learners at mc 500.
+        let order: Vec<&str> = both
+            .lines()
+            .skip(1)
+            .filter(|l| l.starts_with("iris,random,500,"))
+            .map(|l| l.split(',').nth(3).unwrap())
+            .collect();
+        assert_eq!(order, ["eg2", "cs-id3-batch", "dtmc", "c45"]);
+        let md = std::fs::read_to_string(joined.path().join("testcost.md")).unwrap();
+        assert!(md.contains("c45: the first 2 runs only"), "{md}");
+        assert!(md.contains(" --with "), "the command names the folder");
+        let timing = std::fs::read_to_string(joined.path().join("timing.csv")).unwrap();
+        assert_eq!(timing.lines().filter(|l| l.contains(",c45,")).count(), 2);
+
+        // Other folds (another seed) cannot join.
+        let (elsewhere, refused) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
+        let mut reseeded = dear.clone();
+        reseeded.out = elsewhere.path().to_path_buf();
+        reseeded.seed = 6;
+        testcost(&reseeded).unwrap();
+        let mut with = args(refused.path(), 1);
+        with.with = vec![elsewhere.path().to_path_buf()];
+        let err = format!("{:#}", testcost(&with).unwrap_err());
+        assert!(err.contains("cannot join") && err.contains("seed"), "{err}");
+        // Nor an mc the table does not have.
+        let mut dearer = dear.clone();
+        let (third, refused) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
+        dearer.out = third.path().to_path_buf();
+        dearer.mc = vec![1000.0];
+        testcost(&dearer).unwrap();
+        let mut with = args(refused.path(), 1);
+        with.with = vec![third.path().to_path_buf()];
+        let err = format!("{:#}", testcost(&with).unwrap_err());
+        assert!(err.contains("mc 1000"), "{err}");
     }
 
     #[test]

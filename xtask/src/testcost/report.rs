@@ -29,8 +29,55 @@ pub(crate) struct Row {
     pub error_rate: f64,
     /// Mean total cost per object, in the prices' units.
     pub total: f64,
-    /// `normalised` over batch CS-ID3's on the same data set, prices and mc.
+    /// `normalised` over batch CS-ID3's on the same data set, prices, mc and runs.
     pub ratio: Option<f64>,
+    /// Runs of cross-validation the row averages.
+    pub runs: u64,
+}
+
+/// What a report shows: one benchmark's rows, and the learners other benchmarks over the
+/// same folds and prices add to it.
+pub(crate) struct Table {
+    /// The benchmark, its learners extended by the added ones.
+    pub def: Definition,
+    /// In the order of data sets, price sets, mc and learners of `def`.
+    pub rows: Vec<Row>,
+    pub results: Vec<JobResult>,
+    /// The added learners, with the runs and mc of the benchmark they come from.
+    pub added: Vec<(Vec<Method>, u64, Vec<f64>)>,
+}
+
+impl Table {
+    /// Adds the rows of `other`'s learners that the table lacks (`other` must be joinable:
+    /// the same data sets, price sets, folds, seed and settings).
+    pub(crate) fn join(&mut self, other: &Definition, rows: Vec<Row>, results: Vec<JobResult>) {
+        let new: Vec<Method> = other
+            .learners
+            .iter()
+            .copied()
+            .filter(|m| !self.def.learners.contains(m))
+            .collect();
+        if new.is_empty() {
+            return;
+        }
+        self.def.learners.extend(&new);
+        self.rows
+            .extend(rows.into_iter().filter(|r| new.contains(&r.learner)));
+        self.results
+            .extend(results.into_iter().filter(|r| new.contains(&r.learner)));
+        let def = &self.def;
+        let place = |r: &Row| {
+            let at = |i: Option<usize>| i.unwrap_or(usize::MAX);
+            (
+                at(def.datasets.iter().position(|d| *d == r.dataset)),
+                at(def.costs.iter().position(|c| *c == r.costs)),
+                at(def.mc.iter().position(|m| *m == r.mc)),
+                at(def.learners.iter().position(|m| *m == r.learner)),
+            )
+        };
+        self.rows.sort_by_key(place);
+        self.added.push((new, other.runs, other.mc.clone()));
+    }
 }
 
 type Key = (String, PriceSet, u64, Method);
@@ -78,6 +125,7 @@ pub(crate) fn aggregate(def: &Definition, results: &[JobResult]) -> Vec<Row> {
                         error_rate: mean(&v.iter().map(|x| x.2).collect::<Vec<_>>()),
                         total: mean(&v.iter().map(|x| x.3).collect::<Vec<_>>()),
                         ratio: base.filter(|b| *b > 0.0).map(|b| m / b),
+                        runs: def.runs,
                     });
                 }
             }
@@ -104,7 +152,7 @@ pub(crate) fn csv(def: &Definition, rows: &[Row]) -> String {
             r.costs.name(),
             r.mc,
             r.learner.name(),
-            def.runs,
+            r.runs,
             def.folds,
             r.normalised,
             r.ci95,
@@ -153,21 +201,23 @@ pub(crate) fn mean_ratios(
 
 /// Writes `testcost.csv`, `timing.csv`, `testcost.md` and `testcost.svg` into `dir`.
 pub(crate) fn write(
-    def: &Definition,
-    rows: &[Row],
-    results: &[JobResult],
+    table: &Table,
     published_names: &BTreeMap<String, String>,
     objects: &BTreeMap<String, usize>,
     dir: &Path,
     command: &str,
 ) -> Result<()> {
+    let (def, rows) = (&table.def, &table.rows);
     crate::files::create_dir(dir)?;
     crate::files::write_atomic(&dir.join("testcost.csv"), csv(def, rows))?;
-    crate::files::write_atomic(&dir.join("timing.csv"), timing_csv(def, results, objects))?;
+    crate::files::write_atomic(
+        &dir.join("timing.csv"),
+        timing_csv(def, &table.results, objects),
+    )?;
     figure(&dir.join("testcost.svg"), def, rows)?;
     crate::files::write_atomic(
         &dir.join("testcost.md"),
-        markdown(def, rows, published_names, command),
+        markdown(table, published_names, command),
     )?;
     crate::note(&format!(
         "wrote {}/testcost.csv, timing.csv, testcost.md and testcost.svg",
@@ -184,26 +234,44 @@ fn timing_csv(
     results: &[JobResult],
     objects: &BTreeMap<String, usize>,
 ) -> String {
-    let mut cells: BTreeMap<(String, Method), (f64, f64, f64, usize)> = BTreeMap::new();
+    /// One data set and learner's sums over its jobs.
+    #[derive(Clone, Copy, Default)]
+    struct Sums {
+        per_tree: f64,
+        classify: f64,
+        nodes: f64,
+        jobs: usize,
+        /// Times each object of the data set was classified (once per mc of a job).
+        classified: usize,
+    }
+    let mut cells: BTreeMap<(String, Method), Sums> = BTreeMap::new();
     for r in results {
         let e = cells.entry((r.dataset.clone(), r.learner)).or_default();
         let trees = if r.learner.depends_on_mc() {
-            def.folds * def.mc.len()
+            def.folds * r.by_mc.len()
         } else {
             def.folds
         };
-        e.0 += r.learn_seconds / trees as f64;
-        e.1 += r.classify_seconds;
-        e.2 += r.nodes;
-        e.3 += 1;
+        e.per_tree += r.learn_seconds / trees as f64;
+        e.classify += r.classify_seconds;
+        e.nodes += r.nodes;
+        e.jobs += 1;
+        e.classified += r.by_mc.len();
     }
     let mut out = String::from(
         "dataset,learner,ms_per_tree,nodes_per_tree,learn_seconds_per_job,us_per_classification\n",
     );
     for d in &def.datasets {
         for &m in &def.learners {
-            if let Some(&(per_tree, classify, nodes, n)) = cells.get(&(d.clone(), m)) {
-                let classified = objects.get(d).copied().unwrap_or(0) * def.mc.len() * n;
+            if let Some(&Sums {
+                per_tree,
+                classify,
+                nodes,
+                jobs: n,
+                classified,
+            }) = cells.get(&(d.clone(), m))
+            {
+                let classified = objects.get(d).copied().unwrap_or(0) * classified;
                 let jobs: f64 = results
                     .iter()
                     .filter(|r| &r.dataset == d && r.learner == m)
@@ -225,12 +293,8 @@ fn timing_csv(
     out
 }
 
-fn markdown(
-    def: &Definition,
-    rows: &[Row],
-    published_names: &BTreeMap<String, String>,
-    command: &str,
-) -> String {
+fn markdown(table: &Table, published_names: &BTreeMap<String, String>, command: &str) -> String {
+    let (def, rows) = (&table.def, table.rows.as_slice());
     let mut md = String::new();
     let _ = writeln!(md, "# The test-cost benchmark\n");
     let _ = writeln!(
@@ -240,7 +304,7 @@ fn markdown(
          cross-validation per data set and price assignment; random prices: {} assignments \
          per data set, each test {} [{}, {}]. Learners: {}. Selection functions see {}; \
          an object always pays after its path (a test done once is free further down). \
-         ICET prunes by {}. \
+         ICET prunes by {}.{} \
          `docs/testcost.md` reads the results.\n",
         def.runs,
         def.folds,
@@ -264,7 +328,8 @@ fn markdown(
         match def.icet_pruning {
             Pruning::Costs => "total cost (a test must pay for itself at the real prices)",
             Pruning::Errors => "errors, as C4.5",
-        }
+        },
+        added_sentence(&table.added),
     );
     for &mc in &def.mc {
         if !def.costs.contains(&PriceSet::Random) {
@@ -355,6 +420,25 @@ fn markdown(
          Times are in `timing.csv` (measured, so they vary between runs)."
     );
     md
+}
+
+/// What the report's header says of the learners another benchmark added: their runs
+/// (the first ones, on the same folds and prices) and their mc.
+fn added_sentence(added: &[(Vec<Method>, u64, Vec<f64>)]) -> String {
+    let mut out = String::new();
+    for (learners, runs, mc) in added {
+        let names: Vec<&str> = learners.iter().map(|m| m.name()).collect();
+        let mc: Vec<String> = mc.iter().map(|m| m.to_string()).collect();
+        let _ = write!(
+            out,
+            " {}: the first {runs} run{} only (the same folds and prices), at mc {} only, \
+             each ratio to CS-ID3 on those runs.",
+            names.join(", "),
+            if *runs == 1 { "" } else { "s" },
+            mc.join(", ")
+        );
+    }
+    out
 }
 
 /// Mean normalised cost over the data sets (random prices) against mc, one line per
