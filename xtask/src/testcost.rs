@@ -802,7 +802,21 @@ mod tests {
             .collect();
         assert_eq!(order, ["eg2", "cs-id3-batch", "dtmc", "c45"]);
         let md = std::fs::read_to_string(joined.path().join("testcost.md")).unwrap();
-        assert!(md.contains("c45: the first 2 runs only"), "{md}");
+        assert!(
+            md.contains("c45: the first 2 runs only (the same folds and prices), at mc 500 only"),
+            "{md}"
+        );
+        let mc100 = md
+            .split("mc = 100")
+            .nth(1)
+            .unwrap()
+            .split("mc = 500")
+            .next()
+            .unwrap();
+        assert!(
+            !mc100.contains("c45"),
+            "no empty column where it was not run: {mc100}"
+        );
         assert!(md.contains(" --with "), "the command names the folder");
         let timing = std::fs::read_to_string(joined.path().join("timing.csv")).unwrap();
         assert_eq!(timing.lines().filter(|l| l.contains(",c45,")).count(), 2);

@@ -345,16 +345,26 @@ fn markdown(table: &Table, published_names: &BTreeMap<String, String>, command: 
                 ""
             }
         );
+        // The learners measured at this mc (an added one may have other mc only).
+        let here: Vec<Method> = def
+            .learners
+            .iter()
+            .copied()
+            .filter(|&m| {
+                rows.iter()
+                    .any(|r| r.learner == m && r.mc == mc && r.costs == PriceSet::Random)
+            })
+            .collect();
         let _ = write!(md, "| data set |");
-        for m in &def.learners {
+        for m in &here {
             let _ = write!(md, " {} |", m.name());
         }
         let _ = writeln!(md);
-        let _ = writeln!(md, "|---|{}", "---|".repeat(def.learners.len()));
+        let _ = writeln!(md, "|---|{}", "---|".repeat(here.len()));
         for d in &def.datasets {
             let p = published_names.get(d).and_then(|n| published::row(n, mc));
             let _ = write!(md, "| {d} |");
-            for &m in &def.learners {
+            for &m in &here {
                 let ours = find(rows, d, PriceSet::Random, mc, m).map_or("".to_string(), |r| {
                     format!("{:.1} ± {:.1}", r.normalised, r.ci95)
                 });
@@ -429,13 +439,20 @@ fn added_sentence(added: &[(Vec<Method>, u64, Vec<f64>)]) -> String {
     for (learners, runs, mc) in added {
         let names: Vec<&str> = learners.iter().map(|m| m.name()).collect();
         let mc: Vec<String> = mc.iter().map(|m| m.to_string()).collect();
+        let mc = match mc.split_last() {
+            Some((last, rest)) if !rest.is_empty() => format!("{} and {last}", rest.join(", ")),
+            _ => mc.join(""),
+        };
+        let runs = if *runs == 1 {
+            "run".to_string()
+        } else {
+            format!("{runs} runs")
+        };
         let _ = write!(
             out,
-            " {}: the first {runs} run{} only (the same folds and prices), at mc {} only, \
+            " {}: the first {runs} only (the same folds and prices), at mc {mc} only, \
              each ratio to CS-ID3 on those runs.",
             names.join(", "),
-            if *runs == 1 { "" } else { "s" },
-            mc.join(", ")
         );
     }
     out
@@ -510,16 +527,41 @@ fn figure(path: &Path, def: &Definition, rows: &[Row]) -> Result<()> {
             .draw()
             .map_err(|e| plot_err(&e))?;
         for (k, (m, pts)) in series.iter().enumerate() {
-            let color = PALETTE[k % PALETTE.len()];
-            chart
-                .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
-                .map_err(|e| plot_err(&e))?
-                .label(m.name())
-                .legend(move |(x, y)| {
-                    EmptyElement::at((x + 12, y))
-                        + PathElement::new(vec![(-12, 0), (12, 0)], color.stroke_width(2))
-                        + marker::<SVGBackend<'_>>(k, (0, 0), color)
-                });
+            // Past the palette's seven, lines are dashed and colours shift, so that no two
+            // series share colour, marker and line.
+            let dashed = k >= PALETTE.len();
+            let color = PALETTE[(k + if dashed { 3 } else { 0 }) % PALETTE.len()];
+            if dashed {
+                chart
+                    .draw_series(DashedLineSeries::new(
+                        pts.clone(),
+                        6,
+                        4,
+                        color.stroke_width(2),
+                    ))
+                    .map_err(|e| plot_err(&e))?
+                    .label(m.name())
+                    .legend(move |(x, y)| {
+                        EmptyElement::at((x + 12, y))
+                            + plotters::element::DashedPathElement::new(
+                                vec![(-12, 0), (12, 0)],
+                                6,
+                                4,
+                                color.stroke_width(2),
+                            )
+                            + marker::<SVGBackend<'_>>(k, (0, 0), color)
+                    });
+            } else {
+                chart
+                    .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
+                    .map_err(|e| plot_err(&e))?
+                    .label(m.name())
+                    .legend(move |(x, y)| {
+                        EmptyElement::at((x + 12, y))
+                            + PathElement::new(vec![(-12, 0), (12, 0)], color.stroke_width(2))
+                            + marker::<SVGBackend<'_>>(k, (0, 0), color)
+                    });
+            }
             chart
                 .draw_series(
                     pts.iter()
@@ -529,7 +571,7 @@ fn figure(path: &Path, def: &Definition, rows: &[Row]) -> Result<()> {
         }
         chart
             .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
+            .position(SeriesLabelPosition::LowerRight)
             .background_style(WHITE.mix(0.9))
             .border_style(RGBColor(150, 150, 150))
             .label_font(("sans-serif", 14))
