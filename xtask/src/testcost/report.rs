@@ -43,8 +43,15 @@ pub(crate) struct Table {
     /// In the order of data sets, price sets, mc and learners of `def`.
     pub rows: Vec<Row>,
     pub results: Vec<JobResult>,
-    /// The added learners, with the runs and mc of the benchmark they come from.
-    pub added: Vec<(Vec<Method>, u64, Vec<f64>)>,
+    /// The learners other benchmarks added, one entry per benchmark.
+    pub added: Vec<Added>,
+}
+
+/// Learners another benchmark added to a [`Table`], with the runs and mc it measured them at.
+pub(crate) struct Added {
+    pub learners: Vec<Method>,
+    pub runs: u64,
+    pub mc: Vec<f64>,
 }
 
 impl Table {
@@ -76,7 +83,11 @@ impl Table {
             )
         };
         self.rows.sort_by_key(place);
-        self.added.push((new, other.runs, other.mc.clone()));
+        self.added.push(Added {
+            learners: new,
+            runs: other.runs,
+            mc: other.mc.clone(),
+        });
     }
 }
 
@@ -238,6 +249,7 @@ fn timing_csv(
     #[derive(Clone, Copy, Default)]
     struct Sums {
         per_tree: f64,
+        learn: f64,
         classify: f64,
         nodes: f64,
         jobs: usize,
@@ -253,6 +265,7 @@ fn timing_csv(
             def.folds
         };
         e.per_tree += r.learn_seconds / trees as f64;
+        e.learn += r.learn_seconds;
         e.classify += r.classify_seconds;
         e.nodes += r.nodes;
         e.jobs += 1;
@@ -265,6 +278,7 @@ fn timing_csv(
         for &m in &def.learners {
             if let Some(&Sums {
                 per_tree,
+                learn,
                 classify,
                 nodes,
                 jobs: n,
@@ -272,19 +286,13 @@ fn timing_csv(
             }) = cells.get(&(d.clone(), m))
             {
                 let classified = objects.get(d).copied().unwrap_or(0) * classified;
-                let jobs: f64 = results
-                    .iter()
-                    .filter(|r| &r.dataset == d && r.learner == m)
-                    .map(|r| r.learn_seconds)
-                    .sum::<f64>()
-                    / n as f64;
                 let _ = writeln!(
                     out,
                     "{d},{},{:.4},{:.1},{:.3},{:.3}",
                     m.name(),
                     1e3 * per_tree / n as f64,
                     nodes / n as f64,
-                    jobs,
+                    learn / n as f64,
                     1e6 * classify / classified.max(1) as f64
                 );
             }
@@ -434,9 +442,9 @@ fn markdown(table: &Table, published_names: &BTreeMap<String, String>, command: 
 
 /// What the report's header says of the learners another benchmark added: their runs
 /// (the first ones, on the same folds and prices) and their mc.
-fn added_sentence(added: &[(Vec<Method>, u64, Vec<f64>)]) -> String {
+fn added_sentence(added: &[Added]) -> String {
     let mut out = String::new();
-    for (learners, runs, mc) in added {
+    for Added { learners, runs, mc } in added {
         let names: Vec<&str> = learners.iter().map(|m| m.name()).collect();
         let mc: Vec<String> = mc.iter().map(|m| m.to_string()).collect();
         let mc = match mc.split_last() {
@@ -531,37 +539,24 @@ fn figure(path: &Path, def: &Definition, rows: &[Row]) -> Result<()> {
             // series share colour, marker and line.
             let dashed = k >= PALETTE.len();
             let color = PALETTE[(k + if dashed { 3 } else { 0 }) % PALETTE.len()];
+            let style = color.stroke_width(2);
+            let (dash, gap) = (6, 4);
             if dashed {
-                chart
-                    .draw_series(DashedLineSeries::new(
-                        pts.clone(),
-                        6,
-                        4,
-                        color.stroke_width(2),
-                    ))
-                    .map_err(|e| plot_err(&e))?
-                    .label(m.name())
-                    .legend(move |(x, y)| {
-                        EmptyElement::at((x + 12, y))
-                            + plotters::element::DashedPathElement::new(
-                                vec![(-12, 0), (12, 0)],
-                                6,
-                                4,
-                                color.stroke_width(2),
-                            )
-                            + marker::<SVGBackend<'_>>(k, (0, 0), color)
-                    });
+                chart.draw_series(DashedLineSeries::new(pts.clone(), dash, gap, style))
             } else {
-                chart
-                    .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
-                    .map_err(|e| plot_err(&e))?
-                    .label(m.name())
-                    .legend(move |(x, y)| {
-                        EmptyElement::at((x + 12, y))
-                            + PathElement::new(vec![(-12, 0), (12, 0)], color.stroke_width(2))
-                            + marker::<SVGBackend<'_>>(k, (0, 0), color)
-                    });
+                chart.draw_series(LineSeries::new(pts.clone(), style))
             }
+            .map_err(|e| plot_err(&e))?
+            .label(m.name())
+            .legend(move |(x, y)| {
+                let ends = vec![(-12, 0), (12, 0)];
+                let line: DynElement<'static, SVGBackend<'_>, (i32, i32)> = if dashed {
+                    plotters::element::DashedPathElement::new(ends, dash, gap, style).into_dyn()
+                } else {
+                    PathElement::new(ends, style).into_dyn()
+                };
+                EmptyElement::at((x + 12, y)) + line + marker::<SVGBackend<'_>>(k, (0, 0), color)
+            });
             chart
                 .draw_series(
                     pts.iter()
