@@ -8,6 +8,19 @@
 //! node's statistics once: a tree is a walk down the trie, choosing at each node by the
 //! prices of the moment. A single tree grown through the trie costs what growing it
 //! directly costs.
+//!
+//! Three things keep a node cheap, which matters most to ACT's lookahead (thousands of
+//! sampled trees per tree): a node holds only its objects (as positions among the root's
+//! objects) and their weights; the order of a numeric feature's values at a node is not
+//! kept but sorted when its statistics are first asked for, by each object's rank in the
+//! root's order (so it is the order the root's sort gives, ties included); and the
+//! statistics of a set of objects are remembered by the set ([`Memo`]), so a node reached
+//! again by another path, or made again after [`Splits::forget_since`], reads them instead
+//! of computing them. Statistics depend only on the node's objects and weights, in their
+//! order, so none of this changes a bit of what a tree reads.
+
+use std::collections::BTreeMap;
+use std::rc::Rc;
 
 use super::criterion::Criterion;
 use super::data::{Column, Frame, MISSING};
@@ -44,12 +57,13 @@ pub(crate) struct Children {
 /// A node of the trie: the objects reaching it (with C4.5's weights), what it knows of
 /// them, and the children made so far.
 pub(crate) struct Cell {
-    rows: Vec<u32>,
+    /// The objects reaching it, as positions among the root's objects.
+    objects: Vec<u32>,
     weights: Vec<f64>,
-    /// For each numeric feature, the positions in `rows` of the objects whose value is
-    /// known, in increasing order of the value (sorted once at the root, then kept in
-    /// order as objects are dealt to children); empty for nominal features.
-    order: Vec<Vec<u32>>,
+    /// The sum of `weights`.
+    total: f64,
+    /// Whether every weight is 1 (no object has come with a missing value).
+    unit: bool,
     /// The tests on the path to it, in order.
     pub path: Vec<usize>,
     /// Weight per class.
@@ -59,13 +73,84 @@ pub(crate) struct Cell {
     held_weights: Vec<f64>,
     /// The held-out objects' weight per class.
     pub held_classes: Vec<f64>,
-    stats: Option<Vec<Stat>>,
+    stats: Option<Rc<[Stat]>>,
     children: Vec<Children>,
+}
+
+/// The statistics computed so far, by the objects and weights they were computed for: a
+/// set of objects met again (by another path, or after [`Splits::forget_since`]) reads
+/// its statistics back. Exact: a hit compares the objects and weights themselves, not
+/// only their hash. Bounded: past [`Memo::MAX_BYTES`] nothing more is remembered, which
+/// costs time, never a different statistic.
+#[derive(Default)]
+struct Memo {
+    /// Entries by the hash of their objects and weights.
+    by_hash: BTreeMap<u64, Vec<usize>>,
+    entries: Vec<Remembered>,
+    bytes: usize,
+}
+
+/// One set of objects and weights (as bits) and its statistics.
+struct Remembered {
+    objects: Box<[u32]>,
+    weights: Box<[u64]>,
+    stats: Rc<[Stat]>,
+}
+
+impl Memo {
+    /// The most bytes of objects, weights and statistics remembered per trie.
+    const MAX_BYTES: usize = 256 << 20;
+
+    fn hash(objects: &[u32], weights: &[f64]) -> u64 {
+        // FNV-1a over whole words: enough spread for a hash map whose hits are checked.
+        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+        for &o in objects {
+            h = (h ^ u64::from(o)).wrapping_mul(0x0100_0000_01b3);
+        }
+        for &w in weights {
+            h = (h ^ w.to_bits()).wrapping_mul(0x0100_0000_01b3);
+        }
+        h ^ (h >> 29)
+    }
+
+    fn get(&self, hash: u64, objects: &[u32], weights: &[f64]) -> Option<Rc<[Stat]>> {
+        self.by_hash.get(&hash)?.iter().find_map(|&e| {
+            let e = &self.entries[e];
+            (*e.objects == *objects
+                && e.weights.len() == weights.len()
+                && e.weights.iter().zip(weights).all(|(a, b)| *a == b.to_bits()))
+            .then(|| Rc::clone(&e.stats))
+        })
+    }
+
+    fn insert(&mut self, hash: u64, objects: &[u32], weights: &[f64], stats: &Rc<[Stat]>) {
+        let bytes = objects.len() * 12 + stats.len() * std::mem::size_of::<Stat>() + 64;
+        if self.bytes + bytes > Memo::MAX_BYTES {
+            return;
+        }
+        self.bytes += bytes;
+        self.by_hash
+            .entry(hash)
+            .or_default()
+            .push(self.entries.len());
+        self.entries.push(Remembered {
+            objects: objects.into(),
+            weights: weights.iter().map(|w| w.to_bits()).collect(),
+            stats: Rc::clone(stats),
+        });
+    }
 }
 
 /// The trie over one set of objects, for one kind of statistics.
 pub(crate) struct Splits<'a> {
     frame: &'a Frame,
+    /// The root's objects: the frame's row of each position.
+    rows: Vec<u32>,
+    /// The class of each root position.
+    class_of: Vec<u32>,
+    /// For each feature, its values ranked (nothing for a nominal feature).
+    ranked: Vec<Ranked>,
+    memo: Memo,
     mc: &'a MisclassCosts,
     classes: usize,
     min_objects: f64,
@@ -92,30 +177,46 @@ fn min_split(min_objects: f64, classes: usize, known: f64) -> f64 {
     (0.1 * known / classes as f64).clamp(min_objects, 25.0_f64.max(min_objects))
 }
 
+/// The whole numbers below which `x log2 x` is read from a table.
+const TABLE: usize = 4096;
+
+/// `i log2 i` for `i` below [`TABLE`] (0 at 0).
+fn xlog2x_table() -> &'static [f64; TABLE] {
+    static VALUES: std::sync::OnceLock<Box<[f64; TABLE]>> = std::sync::OnceLock::new();
+    VALUES.get_or_init(|| {
+        let mut table = Box::new([0.0; TABLE]);
+        for (i, v) in table.iter_mut().enumerate().skip(1) {
+            *v = i as f64 * (i as f64).log2();
+        }
+        table
+    })
+}
+
 /// `x log2 x`, read from a table for the small whole numbers that unweighted objects
 /// give (0 at 0).
 fn xlog2x(x: f64) -> f64 {
-    const TABLE: usize = 4096;
-    static VALUES: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
     if x <= 0.0 {
         return 0.0;
     }
-    // `x as usize` truncates (0 < x < TABLE here): a whole number comes back unchanged.
-    if x < TABLE as f64 && (x as usize) as f64 == x {
-        let table = VALUES.get_or_init(|| {
-            (0..TABLE)
-                .map(|i| {
-                    if i == 0 {
-                        0.0
-                    } else {
-                        i as f64 * (i as f64).log2()
-                    }
-                })
-                .collect()
-        });
-        return table[x as usize];
+    if x < TABLE as f64 {
+        // `x as u32` truncates (0 < x < TABLE here): a whole number comes back unchanged.
+        let i = x as u32;
+        if f64::from(i) == x {
+            return xlog2x_table()[i as usize % TABLE];
+        }
     }
     x * x.log2()
+}
+
+/// `n log2 n` for a whole number `n`, as [`xlog2x`] gives it for `n as f64`.
+fn nlog2n(table: &[f64; TABLE], n: u32) -> f64 {
+    match table.get(n as usize) {
+        Some(&v) => v,
+        None => {
+            let x = f64::from(n);
+            x * x.log2()
+        }
+    }
 }
 
 /// `total * entropy(weights)`, as `total log2 total - sum w log2 w`, from the terms
@@ -160,6 +261,29 @@ struct Scratch {
     branch: Vec<f64>,
     /// (value, class, weight) of the objects with a known value, for numeric features.
     sorted: Vec<(f64, u32, f64)>,
+    /// (rank, position) of the objects with a known value, to sort.
+    keys: Vec<u64>,
+    /// The ranks of the objects with a known value, to sort (objects of weight 1).
+    ranks: Vec<u32>,
+    /// Per class, whole counts: known, then on the left (objects of weight 1).
+    counts: Vec<u32>,
+    /// Per class: known weight, missing weight, and five buffers of numeric scans.
+    classes: Vec<f64>,
+    /// Per value of a nominal feature, the weight of its branch.
+    sizes: Vec<f64>,
+}
+
+/// The rank of a missing value.
+const NO_RANK: u32 = u32::MAX;
+
+/// A numeric feature's values among the root's objects, in the order of the root's sort
+/// (by value, ties by position): each position's rank ([`NO_RANK`] where the value is
+/// missing), and the value and class of the object of each rank.
+#[derive(Default)]
+struct Ranked {
+    rank: Vec<u32>,
+    value: Vec<f64>,
+    class: Vec<u32>,
 }
 
 impl<'a> Splits<'a> {
@@ -174,24 +298,42 @@ impl<'a> Splits<'a> {
         min_objects: f64,
     ) -> Splits<'a> {
         let rows: Vec<u32> = rows.iter().map(|&r| r as u32).collect();
-        let order = (0..frame.feature_count())
+        let class_of: Vec<u32> = rows.iter().map(|&r| frame.class(r as usize)).collect();
+        let ranked = (0..frame.feature_count())
             .map(|f| match frame.column(f) {
                 Column::Numeric(x) => {
                     let mut known: Vec<u32> = (0..rows.len() as u32)
                         .filter(|&p| !x[rows[p as usize] as usize].is_nan())
                         .collect();
+                    // Stable: equal values keep the order of their positions.
                     known.sort_by(|&a, &b| {
                         x[rows[a as usize] as usize].total_cmp(&x[rows[b as usize] as usize])
                     });
-                    known
+                    let mut rank = vec![NO_RANK; rows.len()];
+                    for (k, &p) in known.iter().enumerate() {
+                        rank[p as usize] = k as u32;
+                    }
+                    Ranked {
+                        rank,
+                        value: known
+                            .iter()
+                            .map(|&p| x[rows[p as usize] as usize])
+                            .collect(),
+                        class: known.iter().map(|&p| class_of[p as usize]).collect(),
+                    }
                 }
-                Column::Nominal { .. } => Vec::new(),
+                Column::Nominal { .. } => Ranked::default(),
             })
             .collect();
+        let classes = frame.class_count();
         let mut splits = Splits {
             frame,
+            rows,
+            class_of,
+            ranked,
+            memo: Memo::default(),
             mc,
-            classes: frame.class_count(),
+            classes,
             min_objects,
             cost_based: matches!(criterion, Criterion::Dtmc),
             threshold_penalty: matches!(criterion, Criterion::C45),
@@ -200,13 +342,20 @@ impl<'a> Splits<'a> {
             scratch: Scratch {
                 branch: Vec::new(),
                 sorted: Vec::new(),
+                keys: Vec::new(),
+                ranks: Vec::new(),
+                counts: Vec::new(),
+                classes: vec![0.0; 7 * classes],
+                sizes: Vec::new(),
             },
         };
-        let class_weights = splits.class_weights(&rows, weights);
+        let objects: Vec<u32> = (0..splits.rows.len() as u32).collect();
+        let class_weights = splits.class_weights(&objects, weights);
         splits.cells.push(Cell {
-            rows,
+            objects,
             weights: weights.to_vec(),
-            order,
+            total: weights.iter().sum(),
+            unit: weights.iter().all(|&w| w == 1.0),
             path: Vec::new(),
             class_weights,
             held_rows: Vec::new(),
@@ -224,7 +373,7 @@ impl<'a> Splits<'a> {
     pub fn hold_out(&mut self, held_out: &[usize]) {
         let rows: Vec<u32> = held_out.iter().map(|&r| r as u32).collect();
         let weights = vec![1.0; rows.len()];
-        let classes = self.class_weights(&rows, &weights);
+        let classes = self.row_class_weights(&rows, &weights);
         let root = &mut self.cells[0];
         root.held_rows = rows;
         root.held_weights = weights;
@@ -269,24 +418,45 @@ impl<'a> Splits<'a> {
 
     /// The weight of objects in cell `c`.
     pub fn total(&self, c: u32) -> f64 {
-        self.cells[c as usize].weights.iter().sum()
+        self.cells[c as usize].total
     }
 
     /// The statistics of every feature that can split cell `c`.
     pub fn stats(&mut self, c: u32) -> &[Stat] {
-        if self.cells[c as usize].stats.is_none() {
+        if self.cells[c as usize].stats.is_some() {
+        } else if self.cells[c as usize].total < 2.0 * self.min_objects - 1e-6 {
+            // No test can leave the least branch size on two branches.
+            self.cells[c as usize].stats = Some(Rc::from([]));
+        } else {
             let cell = std::mem::replace(&mut self.cells[c as usize], Cell::placeholder());
-            let stats: Vec<Stat> = (0..self.frame.feature_count())
-                .filter_map(|f| self.stat(f, &cell))
-                .collect();
+            let hash = Memo::hash(&cell.objects, &cell.weights);
+            let stats = match self.memo.get(hash, &cell.objects, &cell.weights) {
+                Some(stats) => stats,
+                None => {
+                    let stats: Rc<[Stat]> = (0..self.frame.feature_count())
+                        .filter_map(|f| self.stat(f, &cell))
+                        .collect();
+                    self.memo.insert(hash, &cell.objects, &cell.weights, &stats);
+                    stats
+                }
+            };
             self.cells[c as usize] = cell;
             self.cells[c as usize].stats = Some(stats);
         }
         self.cells[c as usize].stats.as_deref().unwrap_or(&[])
     }
 
-    /// The weight per class of `rows`.
-    fn class_weights(&self, rows: &[u32], weights: &[f64]) -> Vec<f64> {
+    /// The weight per class of the root positions `objects`.
+    fn class_weights(&self, objects: &[u32], weights: &[f64]) -> Vec<f64> {
+        let mut out = vec![0.0; self.classes];
+        for (&o, &w) in objects.iter().zip(weights) {
+            out[self.class_of[o as usize] as usize] += w;
+        }
+        out
+    }
+
+    /// The weight per class of the frame's `rows`.
+    fn row_class_weights(&self, rows: &[u32], weights: &[f64]) -> Vec<f64> {
         let mut out = vec![0.0; self.classes];
         for (&r, &w) in rows.iter().zip(weights) {
             out[self.frame.class(r as usize) as usize] += w;
@@ -297,10 +467,11 @@ impl<'a> Splits<'a> {
     /// The best split of `feature` for the node's objects, or `None` if it has none
     /// (too few objects with a known value, a single value, no gain).
     fn stat(&mut self, feature: usize, cell: &Cell) -> Option<Stat> {
-        let (rows, weights) = (&cell.rows[..], &cell.weights[..]);
+        let (objects, weights) = (&cell.objects[..], &cell.weights[..]);
+        let rows = &self.rows[..];
         let node_weights = &cell.class_weights[..];
         let k = self.classes;
-        let total: f64 = weights.iter().sum();
+        let total = cell.total;
         let dtmc = self.cost_based;
         match self.frame.column(feature) {
             Column::Nominal { values, codes } => {
@@ -308,11 +479,12 @@ impl<'a> Splits<'a> {
                 let branch = &mut self.scratch.branch;
                 branch.clear();
                 branch.resize(v * k, 0.0);
-                let mut known = vec![0.0; k];
-                for (&r, &w) in rows.iter().zip(weights) {
-                    let code = codes[r as usize];
+                let (known, rest) = self.scratch.classes.split_at_mut(k);
+                known.fill(0.0);
+                for (&o, &w) in objects.iter().zip(weights) {
+                    let code = codes[rows[o as usize] as usize];
                     if code != MISSING {
-                        let c = self.frame.class(r as usize) as usize;
+                        let c = self.class_of[o as usize] as usize;
                         branch[code as usize * k + c] += w;
                         known[c] += w;
                     }
@@ -321,24 +493,26 @@ impl<'a> Splits<'a> {
                 if known_total <= 0.0 {
                     return None;
                 }
-                let sizes: Vec<f64> = (0..v)
-                    .map(|b| branch[b * k..(b + 1) * k].iter().sum())
-                    .collect();
+                let sizes = &mut self.scratch.sizes;
+                sizes.clear();
+                sizes.extend((0..v).map(|b| branch[b * k..(b + 1) * k].iter().sum::<f64>()));
                 let min = min_split(self.min_objects, self.classes, known_total);
                 if sizes.iter().filter(|&&s| s >= min).count() < 2 {
                     return None;
                 }
                 let share = known_total / total;
                 if dtmc {
+                    let with_missing = &mut rest[..k];
                     let after: f64 = (0..v)
                         .map(|b| {
                             let part = &branch[b * k..(b + 1) * k];
-                            let with_missing: Vec<f64> = part
-                                .iter()
-                                .zip(node_weights.iter().zip(&known))
-                                .map(|(w, (n, kn))| w + (n - kn) * sizes[b] / known_total)
-                                .collect();
-                            self.mc.best(&with_missing).1
+                            for (m, (w, (n, kn))) in with_missing
+                                .iter_mut()
+                                .zip(part.iter().zip(node_weights.iter().zip(&*known)))
+                            {
+                                *m = w + (n - kn) * sizes[b] / known_total;
+                            }
+                            self.mc.best(with_missing).1
                         })
                         .sum();
                     let before = self.mc.best(node_weights).1;
@@ -354,7 +528,7 @@ impl<'a> Splits<'a> {
                     .map(|b| sizes[b] * entropy(&branch[b * k..(b + 1) * k], sizes[b]))
                     .sum::<f64>()
                     / known_total;
-                let gain = share * (entropy(&known, known_total) - after);
+                let gain = share * (entropy(known, known_total) - after);
                 let split_info =
                     split_information(sizes.iter().copied().chain([total - known_total]), total);
                 Some(Stat {
@@ -365,35 +539,118 @@ impl<'a> Splits<'a> {
                     exp2_gain: gain.exp2() - 1.0,
                 })
             }
-            Column::Numeric(x) => {
+            Column::Numeric(_) if cell.unit && !dtmc => {
+                // Objects of weight 1: the same scan as below over whole counts, each
+                // entropy term read from the table by count (the very values `xlog2x`
+                // gives the weights, which are these counts, exactly).
+                let ranked = &self.ranked[feature];
+                let keys = &mut self.scratch.ranks;
+                keys.clear();
+                keys.extend(
+                    objects
+                        .iter()
+                        .map(|&o| ranked.rank[o as usize])
+                        .filter(|&r| r != NO_RANK),
+                );
+                if keys.len() < 2 {
+                    return None;
+                }
+                keys.sort_unstable();
+                let counts = &mut self.scratch.counts;
+                counts.clear();
+                counts.resize(2 * k, 0);
+                let (known_n, left_n) = counts.split_at_mut(k);
+                for &r in keys.iter() {
+                    known_n[ranked.class[r as usize] as usize] += 1;
+                }
+                let known = &mut self.scratch.classes[..k];
+                for (w, &n) in known.iter_mut().zip(&*known_n) {
+                    *w = f64::from(n);
+                }
+                let known_total: f64 = known.iter().sum();
+                let min = min_split(self.min_objects, self.classes, known_total);
+                let base = entropy(known, known_total);
+                let table = xlog2x_table();
+                let all = keys.len() as u32;
+                let mut best: Option<(f64, f64, f64)> = None; // (value, at, left_total)
+                let mut tested = 0usize;
+                for i in 0..keys.len() - 1 {
+                    let r = keys[i] as usize;
+                    left_n[ranked.class[r] as usize] += 1;
+                    let value = ranked.value[r];
+                    let next = ranked.value[keys[i + 1] as usize];
+                    if next <= value {
+                        continue;
+                    }
+                    let left = i as u32 + 1;
+                    let left_total = f64::from(left);
+                    let right_total = known_total - left_total;
+                    if left_total < min || right_total < min {
+                        continue;
+                    }
+                    tested += 1;
+                    let mut h_left = nlog2n(table, left);
+                    let mut h_right = nlog2n(table, all - left);
+                    for (&kn, &ln) in known_n.iter().zip(&*left_n) {
+                        h_left -= nlog2n(table, ln);
+                        h_right -= nlog2n(table, kn - ln);
+                    }
+                    let quality = -(h_left.max(0.0) + h_right.max(0.0));
+                    if best.is_none_or(|(q, _, _)| quality > q) {
+                        best = Some((quality, (value + next) / 2.0, left_total));
+                    }
+                }
+                let (quality, at, left_total) = best?;
+                self.information_stat(
+                    feature,
+                    quality,
+                    at,
+                    [left_total, known_total, total],
+                    base,
+                    tested,
+                )
+            }
+            Column::Numeric(_) => {
+                // The objects with a known value in the order of the root's sort.
+                let ranked = &self.ranked[feature];
+                let keys = &mut self.scratch.keys;
+                keys.clear();
+                for (p, &o) in objects.iter().enumerate() {
+                    let r = ranked.rank[o as usize];
+                    if r != NO_RANK {
+                        keys.push((u64::from(r) << 32) | p as u64);
+                    }
+                }
+                keys.sort_unstable();
                 let sorted = &mut self.scratch.sorted;
                 sorted.clear();
-                for &p in &cell.order[feature] {
-                    let r = rows[p as usize] as usize;
-                    sorted.push((x[r], self.frame.class(r), weights[p as usize]));
+                for &key in keys.iter() {
+                    let r = (key >> 32) as usize;
+                    let p = (key & u64::from(u32::MAX)) as usize;
+                    sorted.push((ranked.value[r], ranked.class[r], weights[p]));
                 }
                 if sorted.len() < 2 {
                     return None;
                 }
-                let mut known = vec![0.0; k];
+                let buffers = &mut self.scratch.classes[..7 * k];
+                buffers.fill(0.0);
+                let (known, rest) = buffers.split_at_mut(k);
+                let (missing, rest) = rest.split_at_mut(k);
                 for &(_, c, w) in sorted.iter() {
                     known[c as usize] += w;
                 }
                 let known_total: f64 = known.iter().sum();
                 let min = min_split(self.min_objects, self.classes, known_total);
-                let base = entropy(&known, known_total);
-                let missing: Vec<f64> = node_weights
-                    .iter()
-                    .zip(&known)
-                    .map(|(n, kn)| n - kn)
-                    .collect();
+                let base = entropy(known, known_total);
+                for (m, (n, kn)) in missing.iter_mut().zip(node_weights.iter().zip(&*known)) {
+                    *m = n - kn;
+                }
                 let before_cost = if dtmc {
                     self.mc.best(node_weights).1
                 } else {
                     0.0
                 };
-                let mut buffers = vec![0.0; 5 * k];
-                let (left, rest) = buffers.split_at_mut(k);
+                let (left, rest) = rest.split_at_mut(k);
                 let (right, rest) = rest.split_at_mut(k);
                 let (mixed, rest) = rest.split_at_mut(k);
                 // `xlog2x` of each class's weight on the left and on the right, kept as
@@ -449,7 +706,6 @@ impl<'a> Splits<'a> {
                     }
                 }
                 let (quality, at, left_total) = best?;
-                let right_total = known_total - left_total;
                 if dtmc {
                     return Some(Stat {
                         feature,
@@ -459,25 +715,49 @@ impl<'a> Splits<'a> {
                         exp2_gain: 0.0,
                     });
                 }
-                let share = known_total / total;
-                let mut gain = share * (base + quality / known_total);
-                if self.threshold_penalty && tested > 1 {
-                    // C4.5 (release 8) charges the choice among thresholds.
-                    gain -= (tested as f64).log2() / total;
-                }
-                let split_info = split_information(
-                    [left_total, right_total, total - known_total].into_iter(),
-                    total,
-                );
-                Some(Stat {
+                self.information_stat(
                     feature,
-                    at: Some(at),
-                    gain,
-                    split_info,
-                    exp2_gain: gain.exp2() - 1.0,
-                })
+                    quality,
+                    at,
+                    [left_total, known_total, total],
+                    base,
+                    tested,
+                )
             }
         }
+    }
+
+    /// A numeric test's statistics from its best threshold `at` of quality `quality`
+    /// (minus the weighted entropy after the split): the weights left of it, with a
+    /// known value and in all are `left_total`, `known_total` and `total`; `base` is the
+    /// entropy of the known ones, `tested` the thresholds compared.
+    fn information_stat(
+        &self,
+        feature: usize,
+        quality: f64,
+        at: f64,
+        [left_total, known_total, total]: [f64; 3],
+        base: f64,
+        tested: usize,
+    ) -> Option<Stat> {
+        let right_total = known_total - left_total;
+        let share = known_total / total;
+        let mut gain = share * (base + quality / known_total);
+        if self.threshold_penalty && tested > 1 {
+            // C4.5 (release 8) charges the choice among thresholds.
+            gain -= (tested as f64).log2() / total;
+        }
+        let split_info = split_information(
+            [left_total, right_total, total - known_total].into_iter(),
+            total,
+        );
+        Some(Stat {
+            feature,
+            at: Some(at),
+            gain,
+            split_info,
+            exp2_gain: gain.exp2() - 1.0,
+        })
     }
 
     /// The children of cell `c` for `stat`'s test, made on first use: the objects with a
@@ -527,25 +807,18 @@ impl<'a> Splits<'a> {
             }
         };
         let cell = &self.cells[c as usize];
-        let n = cell.rows.len();
-        // Each object's branch (`NONE` where its value is missing), counted per branch
-        // first so that every child's vectors are made at their size.
-        const NONE: u32 = u32::MAX;
-        let mut branch_of_p: Vec<u32> = Vec::with_capacity(n);
+        // The known weight and the count of each branch, and the objects whose value is
+        // missing, first: every child's vectors are then made at their size.
         let mut known_by_branch = vec![0.0; branches];
         let mut counts = vec![0usize; branches];
         let mut unknown: Vec<usize> = Vec::new();
-        for (p, (&r, &w)) in cell.rows.iter().zip(&cell.weights).enumerate() {
-            match branch_of(r) {
+        for (p, (&o, &w)) in cell.objects.iter().zip(&cell.weights).enumerate() {
+            match branch_of(self.rows[o as usize]) {
                 Some(b) => {
-                    branch_of_p.push(b as u32);
                     known_by_branch[b] += w;
                     counts[b] += 1;
                 }
-                None => {
-                    branch_of_p.push(NONE);
-                    unknown.push(p);
-                }
+                None => unknown.push(p),
             }
         }
         let known_total: f64 = known_by_branch.iter().sum();
@@ -556,25 +829,18 @@ impl<'a> Splits<'a> {
                 (Vec::with_capacity(size), Vec::with_capacity(size))
             })
             .collect();
-        // Where each of the cell's objects with a known value sits in its child; the
-        // objects with a missing value follow them in every branch of positive share, in
-        // the order of `unknown`.
-        let mut position: Vec<u32> = vec![NONE; n];
-        for (p, (&r, &w)) in cell.rows.iter().zip(&cell.weights).enumerate() {
-            let b = branch_of_p[p];
-            if b != NONE {
-                let part = &mut parts[b as usize];
-                position[p] = part.0.len() as u32;
-                part.0.push(r);
-                part.1.push(w);
+        // The objects with a known value go to their branch in the cell's order; those
+        // with a missing value follow them in every branch of positive share.
+        for (&o, &w) in cell.objects.iter().zip(&cell.weights) {
+            if let Some(b) = branch_of(self.rows[o as usize]) {
+                parts[b].0.push(o);
+                parts[b].1.push(w);
             }
         }
-        let mut unknown_rank: Vec<u32> = vec![NONE; if unknown.is_empty() { 0 } else { n }];
-        for (i, &p) in unknown.iter().enumerate() {
-            unknown_rank[p] = i as u32;
+        for &p in &unknown {
             for (b, part) in parts.iter_mut().enumerate() {
                 if shares[b] > 0.0 {
-                    part.0.push(cell.rows[p]);
+                    part.0.push(cell.objects[p]);
                     part.1.push(cell.weights[p] * shares[b]);
                 }
             }
@@ -602,61 +868,25 @@ impl<'a> Splits<'a> {
             Vec::new()
         } else {
             held.iter()
-                .map(|(rows, weights)| self.class_weights(rows, weights))
+                .map(|(rows, weights)| self.row_class_weights(rows, weights))
                 .collect()
         };
-        // Each child's order of every numeric feature, in one pass over the cell's order
-        // per feature: an object keeps its place among the known values in its branch
-        // (at `position`), and one with a missing value sits after the known ones of
-        // each branch it goes to (the `unknown_rank`-th of them).
-        let mut child_orders: Vec<Vec<Vec<u32>>> = (0..branches)
-            .map(|_| Vec::with_capacity(cell.order.len()))
-            .collect();
-        for sorted in &cell.order {
-            let mut per_branch: Vec<Vec<u32>> = (0..branches)
-                .map(|b| {
-                    if sorted.is_empty() {
-                        Vec::new()
-                    } else {
-                        Vec::with_capacity(parts[b].0.len())
-                    }
-                })
-                .collect();
-            for &p in sorted {
-                let p = p as usize;
-                let b = branch_of_p[p];
-                if b != NONE {
-                    per_branch[b as usize].push(position[p]);
-                } else {
-                    let rank = unknown_rank[p];
-                    for (b, order) in per_branch.iter_mut().enumerate() {
-                        if shares[b] > 0.0 {
-                            order.push(counts[b] as u32 + rank);
-                        }
-                    }
-                }
-            }
-            for (b, order) in per_branch.into_iter().enumerate() {
-                child_orders[b].push(order);
-            }
-        }
-        let mut child_orders = child_orders.into_iter();
         let mut path = cell.path.clone();
         path.push(feature);
         let mut made = Vec::with_capacity(branches);
-        for (b, ((rows, weights), (held_rows, held_weights))) in
+        for (b, ((objects, weights), (held_rows, held_weights))) in
             parts.into_iter().zip(held).enumerate()
         {
-            let order = child_orders.next().unwrap_or_default();
-            if rows.is_empty() {
+            if objects.is_empty() {
                 made.push(None);
                 continue;
             }
-            let class_weights = self.class_weights(&rows, &weights);
+            let class_weights = self.class_weights(&objects, &weights);
             self.cells.push(Cell {
-                rows,
+                total: weights.iter().sum(),
+                unit: weights.iter().all(|&w| w == 1.0),
+                objects,
                 weights,
-                order,
                 path: path.clone(),
                 class_weights,
                 held_classes: held_out.get(b).cloned().unwrap_or_default(),
@@ -685,9 +915,10 @@ impl Cell {
 
     fn placeholder() -> Cell {
         Cell {
-            rows: Vec::new(),
+            objects: Vec::new(),
             weights: Vec::new(),
-            order: Vec::new(),
+            total: 0.0,
+            unit: true,
             path: Vec::new(),
             class_weights: Vec::new(),
             held_rows: Vec::new(),
