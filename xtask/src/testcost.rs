@@ -14,8 +14,9 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use cslearn::testcost::{
-    Catalogue, CostTree, CvtParams, FamilyParams, Frame, IcetParams, Method, MisclassCosts,
-    Pruning, SelectionPrices, TestPrices, fit, folds, gain_prices, random_prices, standard_cost,
+    ActParams, Catalogue, CvtParams, FamilyParams, Frame, IcetParams, Method, MisclassCosts,
+    Pruning, SelectionPrices, TestPrices, fit_each, folds, gain_prices, random_prices,
+    standard_cost,
 };
 use serde::{Deserialize, Serialize};
 
@@ -69,6 +70,12 @@ pub struct TestcostArgs {
     /// The folds of CVT's cross-validation on each training part (the library's 5).
     #[arg(long, default_value_t = 5)]
     cvt_folds: usize,
+    /// ACT's trees sampled under each branch of each candidate test (`r`, the library's
+    /// 5; 0 values each branch as a leaf): ACT is anytime in it, more samples giving a
+    /// better estimate for more time (`docs/testcost.md` has the curve). CVT's lookahead
+    /// grower keeps its own 5.
+    #[arg(long, default_value_t = 5)]
+    act_samples: usize,
     /// The range random prices are drawn from: `LOW,HIGH`.
     #[arg(long, value_delimiter = ',', default_value = "1,100")]
     price_range: Vec<f64>,
@@ -132,6 +139,9 @@ pub(crate) struct Definition {
     /// Results written before this setting existed used the library's 5.
     #[serde(default = "library_cvt_folds")]
     pub cvt_folds: usize,
+    /// Results written before this setting existed sampled the library's 5.
+    #[serde(default = "library_act_samples")]
+    pub act_samples: usize,
     pub runs: u64,
     pub folds: usize,
     pub seed: u64,
@@ -145,6 +155,11 @@ fn library_search_objects() -> usize {
 /// CVT's folds in the library's defaults.
 fn library_cvt_folds() -> usize {
     CvtParams::default().folds
+}
+
+/// ACT's samples in the library's defaults.
+fn library_act_samples() -> usize {
+    ActParams::default().samples
 }
 
 /// How random prices are drawn.
@@ -325,6 +340,10 @@ fn run_job(
         cvt: CvtParams {
             folds: def.cvt_folds,
         },
+        act: ActParams {
+            samples: def.act_samples,
+            ..ActParams::default()
+        },
         ..FamilyParams::default()
     };
     let k = frame.class_count();
@@ -349,20 +368,13 @@ fn run_job(
             name,
             &[3, job.costs as u64, job.assignment, job.run, f as u64],
         );
-        // Learners whose tree does not depend on mc grow once and are relabelled.
-        let mut shared: Option<CostTree> = None;
-        for (m, mc) in mcs.iter().enumerate() {
-            let start = Instant::now();
-            let tree = if method.depends_on_mc() {
-                fit(method, frame, &train, &prices, mc, &params, icet_seed).tree
-            } else {
-                let tree = shared.get_or_insert_with(|| {
-                    fit(method, frame, &train, &prices, mc, &params, icet_seed).tree
-                });
-                tree.relabel(mc);
-                tree.clone()
-            };
-            learn += start.elapsed().as_secs_f64();
+        // Learners whose tree does not depend on mc grow once and are relabelled; ACT and
+        // CVT grow their trees at every mc through the same split tries (the same trees).
+        let start = Instant::now();
+        let fitted = fit_each(method, frame, &train, &prices, &mcs, &params, icet_seed);
+        learn += start.elapsed().as_secs_f64();
+        for (m, (mc, fitted)) in mcs.iter().zip(&fitted).enumerate() {
+            let tree = &fitted.tree;
             if method.depends_on_mc() || m == 0 {
                 nodes += tree.len();
                 trees += 1;
@@ -457,6 +469,8 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
         Pruning::parse(&args.icet_pruning).map_err(|e| anyhow::anyhow!("--icet-pruning: {e}"))?;
     let cvt =
         CvtParams::with_folds(args.cvt_folds).map_err(|e| anyhow::anyhow!("--cvt-folds: {e}"))?;
+    let act = ActParams::with_samples(args.act_samples)
+        .map_err(|e| anyhow::anyhow!("--act-samples: {e}"))?;
     if args.icet_search_objects < 2 {
         bail!("--icet-search-objects: ICET's search needs at least 2 objects (one per half)");
     }
@@ -475,6 +489,7 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
         icet_pruning,
         icet_search_objects: args.icet_search_objects,
         cvt_folds: cvt.folds,
+        act_samples: act.samples,
         runs: args.runs,
         folds: args.folds,
         seed: args.seed,
@@ -650,6 +665,9 @@ fn args_line(args: &TestcostArgs) -> String {
     if args.cvt_folds != 5 {
         let _ = write!(line, " --cvt-folds {}", args.cvt_folds);
     }
+    if args.act_samples != 5 {
+        let _ = write!(line, " --act-samples {}", args.act_samples);
+    }
     if args.price_range != [1.0, 100.0] {
         let _ = write!(
             line,
@@ -688,6 +706,7 @@ mod tests {
             icet_pruning: "costs".into(),
             icet_search_objects: 400,
             cvt_folds: 5,
+            act_samples: 5,
             price_range: vec![1.0, 100.0],
             runs: 1,
             folds: 3,

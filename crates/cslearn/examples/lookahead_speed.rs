@@ -11,7 +11,12 @@
 //! ```text
 //! cargo run --release -p cslearn --example lookahead_speed [-- DATASET,...|all [LEARNER,...]]
 //! cargo run --release -p cslearn --example lookahead_speed -- --check
+//! cargo run --release -p cslearn --example lookahead_speed -- --each [DATASET,...|all [LEARNER,...]]
 //! ```
+//!
+//! `--each` grows each learner's trees at the benchmark's four costs (mc 100, 500, 1000
+//! and 5000) one by one with `fit`, then all at once with `fit_each`, checks that they are
+//! the same trees, and prints both times.
 //!
 //! LEARNER is any of the family's names (default `eg2,act,cvt`); the columns give each
 //! learner's time over EG2's and over ACT's, where those ran before it.
@@ -20,7 +25,11 @@
 #[allow(dead_code)] // the pin test's parts this example does not use
 mod lookahead;
 
-use cslearn::testcost::{Method, SelectionPrices};
+use std::time::Instant;
+
+use cslearn::testcost::{
+    FamilyParams, Method, MisclassCosts, SelectionPrices, fit, fit_each, folds, random_prices,
+};
 use lookahead::{Case, catalogue, fingerprint, pins};
 
 fn check() -> Result<(), Box<dyn std::error::Error>> {
@@ -41,10 +50,58 @@ fn check() -> Result<(), Box<dyn std::error::Error>> {
     Ok(())
 }
 
+/// `--each`: one by one against all at once, on fold 0's training part (listed selection
+/// prices, random prices of seed 1, seed 1).
+fn each(names: &[String], learners: &[Method]) -> Result<(), Box<dyn std::error::Error>> {
+    let catalogue = catalogue();
+    println!("dataset        learner   one by one ms   all at once ms   ratio");
+    for name in names {
+        let loaded = catalogue.load(name)?;
+        let frame = &loaded.frame;
+        let prices = random_prices(frame.feature_count(), 1.0, 100.0, 1);
+        let mcs: Vec<MisclassCosts> = [100.0, 500.0, 1000.0, 5000.0]
+            .into_iter()
+            .map(|m| MisclassCosts::uniform(frame.class_count(), m))
+            .collect::<Result<_, _>>()?;
+        let test = &folds(frame, 10, 1)[0];
+        let train: Vec<usize> = (0..frame.len())
+            .filter(|r| test.binary_search(r).is_err())
+            .collect();
+        let params = FamilyParams {
+            selection_prices: SelectionPrices::Listed,
+            ..FamilyParams::default()
+        };
+        for &learner in learners {
+            let start = Instant::now();
+            let alone: Vec<_> = mcs
+                .iter()
+                .map(|mc| fit(learner, frame, &train, &prices, mc, &params, 1))
+                .collect();
+            let one_by_one = start.elapsed().as_secs_f64() * 1e3;
+            let start = Instant::now();
+            let together = fit_each(learner, frame, &train, &prices, &mcs, &params, 1);
+            let at_once = start.elapsed().as_secs_f64() * 1e3;
+            if alone != together {
+                return Err(format!("{name} {}: fit_each grew other trees", learner.name()).into());
+            }
+            println!(
+                "{name:<14} {:<7} {one_by_one:>15.1} {at_once:>16.1} {:>7.2}",
+                learner.name(),
+                at_once / one_by_one
+            );
+        }
+    }
+    Ok(())
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
     if args.first().map(String::as_str) == Some("--check") {
         return check();
+    }
+    let sweep = args.first().map(String::as_str) == Some("--each");
+    if sweep {
+        args.remove(0);
     }
     let catalogue = catalogue();
     let names: Vec<String> = match args.first() {
@@ -56,8 +113,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .split(',')
             .map(Method::parse)
             .collect::<Result<_, _>>()?,
+        None if sweep => vec![Method::Act, Method::Cvt],
         None => vec![Method::Eg2, Method::Act, Method::Cvt],
     };
+    if sweep {
+        return each(&names, &learners);
+    }
     println!("dataset        learner   ms/tree  nodes   x EG2   x ACT  fingerprint");
     for name in &names {
         let loaded = catalogue.load(name)?;

@@ -6,7 +6,7 @@ use std::path::Path;
 
 use cslearn::testcost::{
     Catalogue, Column, CostTree, Criterion, FamilyParams, Frame, GrowParams, Method, MisclassCosts,
-    SelectionPrices, Split, TestPrice, TestPrices, TurneyExtra, fit, standard_cost,
+    SelectionPrices, Split, TestPrice, TestPrices, TurneyExtra, fit, fit_each, standard_cost,
 };
 
 /// Eight objects, four of each class. Feature `a` (price 10) tells the class exactly:
@@ -288,6 +288,36 @@ fn act_is_reproducible_from_its_seed() {
     let grown = |seed| fit(Method::Act, &frame, &rows, &prices, &mc, &params, seed).tree;
     assert_eq!(grown(7), grown(7));
     assert!((1..6).any(|seed| grown(seed) != grown(7)));
+}
+
+/// Every learner's trees at several costs at once are its trees at each cost alone (for
+/// those whose tree does not depend on the costs, the tree at the first cost labelled at
+/// each): on heart, with missing values and group discounts, every second object.
+#[test]
+fn fit_each_grows_what_fit_grows_at_each_cost() {
+    let (frame, prices, _, rows) = heart_at_mc_500();
+    let rows: Vec<usize> = rows.into_iter().step_by(2).collect();
+    let mcs: Vec<MisclassCosts> = [50.0, 500.0, 5000.0]
+        .map(|m| MisclassCosts::uniform(2, m).unwrap())
+        .to_vec();
+    let mut params = FamilyParams::default();
+    params.icet.generations = 3;
+    params.icet.population = 6;
+    params.act.samples = 2;
+    for method in Method::ALL {
+        let each = fit_each(method, &frame, &rows, &prices, &mcs, &params, 11);
+        assert_eq!(each.len(), mcs.len());
+        for (fitted, mc) in each.iter().zip(&mcs) {
+            let mut alone = if method.depends_on_mc() {
+                fit(method, &frame, &rows, &prices, mc, &params, 11)
+            } else {
+                fit(method, &frame, &rows, &prices, &mcs[0], &params, 11)
+            };
+            alone.tree.relabel(mc);
+            assert_eq!(fitted, &alone, "{} at {mc:?}", method.name());
+        }
+    }
+    assert!(fit_each(Method::Act, &frame, &rows, &prices, &[], &params, 11).is_empty());
 }
 
 #[test]

@@ -95,28 +95,46 @@ pub(super) struct Act<'a> {
     pub seed: u64,
 }
 
-impl Act<'_> {
+impl<'b> Act<'b> {
     /// ACT's tree on the objects `rows` of `frame`: [`grown`](Act::grown), then pruned by
     /// cost.
     pub fn tree(&self, frame: &Frame, rows: &[usize]) -> CostTree {
-        let mut tree = self.grown(frame, rows);
-        tree.prune_by_cost(self.params.confidence, self.prices);
-        tree
+        let mut splits = self.trie(frame, rows);
+        self.tree_in(&mut splits)
     }
 
-    /// ACT's tree before its pruning: each split chosen by the sampled lookahead, a leaf
-    /// where answering costs less than every candidate's price plus sampled subtrees.
-    pub fn grown(&self, frame: &Frame, rows: &[usize]) -> CostTree {
+    /// The split trie ACT grows through on the objects `rows` of `frame`: EG2's kind of
+    /// statistics, which do not depend on the misclassification costs, and C4.5's least
+    /// branch size.
+    pub fn trie<'a>(&self, frame: &'a Frame, rows: &[usize]) -> Splits<'a>
+    where
+        'b: 'a,
+    {
         let grow = GrowParams::new(Criterion::Eg2 { w: self.w });
         let ones = vec![1.0; rows.len()];
-        let mut splits = Splits::new(
+        Splits::new(
             frame,
             rows,
             &ones,
             self.mc,
             grow.criterion,
             grow.min_objects,
-        );
+        )
+    }
+
+    /// [`tree`](Act::tree) through the split trie `splits` (see
+    /// [`grown_in`](Act::grown_in)).
+    pub fn tree_in(&self, splits: &mut Splits<'_>) -> CostTree {
+        let mut tree = self.grown_in(splits);
+        tree.prune_by_cost(self.params.confidence, self.prices);
+        tree
+    }
+
+    /// ACT's tree before its pruning: each split chosen by the sampled lookahead, a leaf
+    /// where answering costs less than every candidate's price plus sampled subtrees.
+    #[cfg(test)]
+    pub fn grown(&self, frame: &Frame, rows: &[usize]) -> CostTree {
+        let mut splits = self.trie(frame, rows);
         self.grown_in(&mut splits)
     }
 

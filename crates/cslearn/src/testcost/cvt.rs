@@ -150,19 +150,21 @@ impl Grower {
 }
 
 /// Every grower's tree on `rows`, in the order of [`GROWERS`], growers of one kind
-/// sharing a split trie; the lookahead's samples are drawn from `seed`.
-fn grow_all(
-    frame: &Frame,
+/// sharing a split trie; the lookahead's samples are drawn from `seed`. The tries are
+/// `tries` (those of another call on the same objects, with their statistics), and stay
+/// there but for DTMC's, whose statistics are priced at this call's `mc`.
+fn grow_all<'a>(
+    frame: &'a Frame,
     rows: &[usize],
     prices: &TestPrices,
-    mc: &MisclassCosts,
+    mc: &'a MisclassCosts,
     selection: SelectionPrices,
     seed: u64,
+    tries: &mut Vec<(Criterion, Splits<'a>)>,
 ) -> Vec<CostTree> {
     let ones = vec![1.0; rows.len()];
     let min_objects = GrowParams::new(Criterion::C45).min_objects;
-    let mut tries: Vec<(Criterion, Splits<'_>)> = Vec::new();
-    GROWERS
+    let trees = GROWERS
         .iter()
         .map(|&(_, grower)| {
             let kind = grower.kind();
@@ -175,7 +177,19 @@ fn grow_all(
             };
             grower.grow_in(&mut tries[t].1, prices, mc, selection, seed)
         })
-        .collect()
+        .collect();
+    tries.retain(|(kind, _)| *kind != Criterion::Dtmc);
+    trees
+}
+
+/// The split tries of CVT's trees on one set of training objects (and its folds), kept
+/// from one misclassification cost to the next ([`fit_each`](super::fit_each)): every
+/// statistic but DTMC's is the same at any cost, so a tree grown at a second cost reads
+/// what the first computed, and is the tree it would have been.
+#[derive(Default)]
+pub(super) struct CvtTries<'a> {
+    /// The tries on all the objects, then on each fold's training part.
+    roots: Vec<Vec<(Criterion, Splits<'a>)>>,
 }
 
 /// A seed of its own for the `k`-th tree a grower grows (SplitMix64's mix of the two).
@@ -245,6 +259,23 @@ pub(super) fn cvt_tree(
     selection: SelectionPrices,
     seed: u64,
 ) -> (CostTree, CvtChoice) {
+    let mut tries = CvtTries::default();
+    cvt_tree_in(frame, rows, prices, mc, params, selection, seed, &mut tries)
+}
+
+/// [`cvt_tree`] through `tries`, those of CVT's trees on the same objects, folds and
+/// prices at other costs (or none yet).
+#[allow(clippy::too_many_arguments)] // cvt_tree's own, and the tries
+pub(super) fn cvt_tree_in<'a>(
+    frame: &'a Frame,
+    rows: &[usize],
+    prices: &TestPrices,
+    mc: &'a MisclassCosts,
+    params: &CvtParams,
+    selection: SelectionPrices,
+    seed: u64,
+    tries: &mut CvtTries<'a>,
+) -> (CostTree, CvtChoice) {
     // Each fold's training objects and held-out objects, the same for every grower.
     let parts: Vec<(Vec<usize>, Vec<usize>)> = folds_of(frame, rows, params.folds.max(2), seed)
         .into_iter()
@@ -259,15 +290,23 @@ pub(super) fn cvt_tree(
         .collect();
     // Per grower: its tree on every object, its path's points, and the held-out total
     // cost at each point and then (last) under the pessimistic pruning.
-    let mut measured: Vec<(CostTree, Vec<f64>, Vec<f64>)> =
-        grow_all(frame, rows, prices, mc, selection, sub_seed(seed, 0))
-            .into_iter()
-            .map(|tree| {
-                let alphas = Costs::of(&tree, prices).path_points(&tree);
-                let held = vec![0.0; alphas.len() + 1];
-                (tree, alphas, held)
-            })
-            .collect();
+    tries.roots.resize_with(parts.len() + 1, Vec::new);
+    let mut measured: Vec<(CostTree, Vec<f64>, Vec<f64>)> = grow_all(
+        frame,
+        rows,
+        prices,
+        mc,
+        selection,
+        sub_seed(seed, 0),
+        &mut tries.roots[0],
+    )
+    .into_iter()
+    .map(|tree| {
+        let alphas = Costs::of(&tree, prices).path_points(&tree);
+        let held = vec![0.0; alphas.len() + 1];
+        (tree, alphas, held)
+    })
+    .collect();
     for (k, (train, out)) in parts.iter().enumerate() {
         let fold_trees = grow_all(
             frame,
@@ -276,6 +315,7 @@ pub(super) fn cvt_tree(
             mc,
             selection,
             sub_seed(seed, k as u64 + 1),
+            &mut tries.roots[k + 1],
         );
         for ((_, alphas, held), fold_tree) in measured.iter_mut().zip(&fold_trees) {
             let costs = Costs::of(fold_tree, prices);
@@ -661,7 +701,7 @@ mod tests {
     fn growers_sharing_a_trie_grow_what_each_grows_alone() {
         let (frame, prices, mc, train, _) = heart();
         let selection = SelectionPrices::Listed;
-        let trees = grow_all(&frame, &train, &prices, &mc, selection, 7);
+        let trees = grow_all(&frame, &train, &prices, &mc, selection, 7, &mut Vec::new());
         for (tree, &(name, grower)) in trees.iter().zip(&GROWERS) {
             let alone = match grower {
                 Grower::Greedy(criterion) => {

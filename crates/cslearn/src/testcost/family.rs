@@ -5,7 +5,7 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 
 use super::act::{Act, ActParams};
 use super::criterion::Criterion;
-use super::cvt::{CvtChoice, CvtParams, cvt_tree};
+use super::cvt::{CvtChoice, CvtParams, CvtTries, cvt_tree, cvt_tree_in};
 use super::data::Frame;
 use super::evaluate::shuffle;
 use super::prices::{MisclassCosts, TestPrices};
@@ -322,6 +322,101 @@ pub fn fit(
         tree: CostTree::grow(frame, rows, prices, mc, &method.grow_params(params)),
         genome: None,
         cvt: None,
+    }
+}
+
+/// The tree `method` learns on the objects `rows` of `frame` at each misclassification
+/// cost of `mcs`, in order: each one the tree [`fit`] learns at that cost with the same
+/// seed, to the bit, for less time. A learner whose tree does not depend on the costs
+/// ([`Method::depends_on_mc`]) grows it once and labels it at each; ACT and CVT grow
+/// through split tries kept from one cost to the next, so that the statistics of a set
+/// of objects (which do not depend on the costs, DTMC's aside) are computed once for
+/// all of them; DTMC and ICET fit at each cost alone.
+///
+/// ```
+/// use cslearn::testcost::{fit, fit_each, Column, FamilyParams, Frame, Method, MisclassCosts, TestPrices};
+/// let x: Vec<f64> = (0..60).map(|i| f64::from((i * 7) % 60)).collect();
+/// let y: Vec<f64> = (0..60).map(|i| f64::from((i * 11) % 60)).collect();
+/// let classes: Vec<u32> = (0..60).map(|i| u32::from(x[i] + y[i] > 50.0)).collect();
+/// let frame = Frame::new(vec!["x".into(), "y".into()], vec![Column::Numeric(x), Column::Numeric(y)],
+///     classes, vec!["a".into(), "b".into()]).unwrap();
+/// let prices = TestPrices::flat(&[4.0, 9.0]).unwrap();
+/// let mcs: Vec<MisclassCosts> = [20.0, 100.0, 500.0]
+///     .map(|m| MisclassCosts::uniform(2, m).unwrap()).to_vec();
+/// let rows: Vec<usize> = (0..60).collect();
+/// let params = FamilyParams::default();
+/// let each = fit_each(Method::Act, &frame, &rows, &prices, &mcs, &params, 3);
+/// for (fitted, mc) in each.iter().zip(&mcs) {
+///     assert_eq!(fitted, &fit(Method::Act, &frame, &rows, &prices, mc, &params, 3));
+/// }
+/// ```
+pub fn fit_each(
+    method: Method,
+    frame: &Frame,
+    rows: &[usize],
+    prices: &TestPrices,
+    mcs: &[MisclassCosts],
+    params: &FamilyParams,
+    seed: u64,
+) -> Vec<Fitted> {
+    let Some(first) = mcs.first() else {
+        return Vec::new();
+    };
+    match method {
+        Method::Act => {
+            let act = |mc| Act {
+                prices,
+                mc,
+                params: &params.act,
+                w: params.eg2_w,
+                selection: params.selection_prices,
+                seed,
+            };
+            let mut splits = act(first).trie(frame, rows);
+            mcs.iter()
+                .map(|mc| Fitted {
+                    tree: act(mc).tree_in(&mut splits),
+                    genome: None,
+                    cvt: None,
+                })
+                .collect()
+        }
+        Method::Cvt => {
+            let mut tries = CvtTries::default();
+            mcs.iter()
+                .map(|mc| {
+                    let (tree, choice) = cvt_tree_in(
+                        frame,
+                        rows,
+                        prices,
+                        mc,
+                        &params.cvt,
+                        params.selection_prices,
+                        seed,
+                        &mut tries,
+                    );
+                    Fitted {
+                        tree,
+                        genome: None,
+                        cvt: Some(choice),
+                    }
+                })
+                .collect()
+        }
+        _ if method.depends_on_mc() => mcs
+            .iter()
+            .map(|mc| fit(method, frame, rows, prices, mc, params, seed))
+            .collect(),
+        _ => {
+            let fitted = fit(method, frame, rows, prices, first, params, seed);
+            mcs.iter()
+                .map(|mc| {
+                    let mut each = fitted.clone();
+                    each.tree.relabel(mc);
+                    each
+                })
+                .collect()
+        }
     }
 }
 

@@ -82,7 +82,9 @@ pub use criterion::Criterion;
 pub use cvt::{CvtChoice, CvtParams, GROWERS, Grower};
 pub use data::{Column, Frame, FrameSpec, MISSING, read_rows};
 pub use evaluate::{feature_gains, folds, gain_prices, random_prices, standard_cost};
-pub use family::{FamilyParams, Fitted, IcetGenome, IcetParams, Method, fit, mean_total_cost};
+pub use family::{
+    FamilyParams, Fitted, IcetGenome, IcetParams, Method, fit, fit_each, mean_total_cost,
+};
 pub use model::{SavedModel, TREE_MODEL_FORMAT, TREE_MODEL_VERSION, TreeModel};
 pub use prices::{Basket, MisclassCosts, TestPrice, TestPrices, TurneyExtra};
 pub use tree::{

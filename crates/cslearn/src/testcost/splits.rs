@@ -118,7 +118,10 @@ impl Memo {
             let e = &self.entries[e];
             (*e.objects == *objects
                 && e.weights.len() == weights.len()
-                && e.weights.iter().zip(weights).all(|(a, b)| *a == b.to_bits()))
+                && e.weights
+                    .iter()
+                    .zip(weights)
+                    .all(|(a, b)| *a == b.to_bits()))
             .then(|| Rc::clone(&e.stats))
         })
     }
