@@ -14,6 +14,10 @@
 //! cargo run --release -p cslearn --example lookahead_speed -- --each [DATASET,...|all [LEARNER,...]]
 //! ```
 //!
+//! `--file CSV TARGET [LEARNER,...]` grows one tree per learner on every object of a CSV
+//! file, every test priced 1, mc 100 (the Spambase measurement of `docs/testcost.md`:
+//! `-- --file ../shared/data/uci/spambase/spambase.csv Outcome`).
+//!
 //! `--each` grows each learner's trees at the benchmark's four costs (mc 100, 500, 1000
 //! and 5000) one by one with `fit`, then all at once with `fit_each`, checks that they are
 //! the same trees, and prints both times.
@@ -28,9 +32,15 @@ mod lookahead;
 use std::time::Instant;
 
 use cslearn::testcost::{
-    FamilyParams, Method, MisclassCosts, SelectionPrices, fit, fit_each, folds, random_prices,
+    FamilyParams, Frame, FrameSpec, Method, MisclassCosts, SelectionPrices, TestPrices, fit,
+    fit_each, folds, random_prices,
 };
 use lookahead::{Case, catalogue, fingerprint, pins};
+
+/// mimalloc, as the benchmark (`cargo xtask testcost`) runs with: split tries allocate
+/// and free many small vectors.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 fn check() -> Result<(), Box<dyn std::error::Error>> {
     let catalogue = catalogue();
@@ -94,10 +104,54 @@ fn each(names: &[String], learners: &[Method]) -> Result<(), Box<dyn std::error:
     Ok(())
 }
 
+/// `--file`: one tree per learner on every object of a CSV file, every price 1, mc 100.
+fn file(path: &str, target: &str, learners: &[Method]) -> Result<(), Box<dyn std::error::Error>> {
+    let frame = Frame::read_csv(std::path::Path::new(path), &FrameSpec::new(target), None)?;
+    let prices = TestPrices::flat(&vec![1.0; frame.feature_count()])?;
+    let mc = MisclassCosts::uniform(frame.class_count(), 100.0)?;
+    let rows: Vec<usize> = (0..frame.len()).collect();
+    let params = FamilyParams::default();
+    println!(
+        "{path}: {} objects, {} tests priced 1, mc 100",
+        frame.len(),
+        frame.feature_count()
+    );
+    println!("learner        ms  nodes   x EG2");
+    let mut eg2 = None;
+    for &learner in learners {
+        let start = Instant::now();
+        let tree = fit(learner, &frame, &rows, &prices, &mc, &params, 1).tree;
+        let ms = start.elapsed().as_secs_f64() * 1e3;
+        let ratio = eg2.map_or("-".into(), |b: f64| format!("{:.1}", ms / b));
+        println!(
+            "{:<7} {ms:>9.1} {:>6} {ratio:>7}",
+            learner.name(),
+            tree.len()
+        );
+        if learner == Method::Eg2 {
+            eg2 = Some(ms);
+        }
+    }
+    Ok(())
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
     if args.first().map(String::as_str) == Some("--check") {
         return check();
+    }
+    if args.first().map(String::as_str) == Some("--file") {
+        let (Some(path), Some(target)) = (args.get(1), args.get(2)) else {
+            return Err("--file needs a CSV file and its class column".into());
+        };
+        let learners: Vec<Method> = match args.get(3) {
+            Some(list) => list
+                .split(',')
+                .map(Method::parse)
+                .collect::<Result<_, _>>()?,
+            None => vec![Method::Eg2, Method::Act, Method::Cvt],
+        };
+        return file(path, target, &learners);
     }
     let sweep = args.first().map(String::as_str) == Some("--each");
     if sweep {

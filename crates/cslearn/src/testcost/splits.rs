@@ -270,6 +270,9 @@ struct Scratch {
     ranks: Vec<u32>,
     /// Per class, whole counts: known, then on the left (objects of weight 1).
     counts: Vec<u32>,
+    /// Per root position, its position in the node whose statistics are computed, for a
+    /// node large enough to read its orders off the root's ([`NO_RANK`] elsewhere).
+    slot: Vec<u32>,
     /// Per class: known weight, missing weight, and five buffers of numeric scans.
     classes: Vec<f64>,
     /// Per value of a nominal feature, the weight of its branch.
@@ -285,6 +288,8 @@ const NO_RANK: u32 = u32::MAX;
 #[derive(Default)]
 struct Ranked {
     rank: Vec<u32>,
+    /// The position of each rank.
+    object: Vec<u32>,
     value: Vec<f64>,
     class: Vec<u32>,
 }
@@ -318,6 +323,7 @@ impl<'a> Splits<'a> {
                     }
                     Ranked {
                         rank,
+                        object: known.clone(),
                         value: known
                             .iter()
                             .map(|&p| x[rows[p as usize] as usize])
@@ -348,6 +354,7 @@ impl<'a> Splits<'a> {
                 keys: Vec::new(),
                 ranks: Vec::new(),
                 counts: Vec::new(),
+                slot: Vec::new(),
                 classes: vec![0.0; 7 * classes],
                 sizes: Vec::new(),
             },
@@ -436,9 +443,22 @@ impl<'a> Splits<'a> {
             let stats = match self.memo.get(hash, &cell.objects, &cell.weights) {
                 Some(stats) => stats,
                 None => {
+                    let large = self.reads_root_order(cell.objects.len());
+                    if large {
+                        let slot = &mut self.scratch.slot;
+                        slot.resize(self.rows.len(), NO_RANK);
+                        for (p, &o) in cell.objects.iter().enumerate() {
+                            slot[o as usize] = p as u32;
+                        }
+                    }
                     let stats: Rc<[Stat]> = (0..self.frame.feature_count())
-                        .filter_map(|f| self.stat(f, &cell))
+                        .filter_map(|f| self.stat(f, &cell, large))
                         .collect();
+                    if large {
+                        for &o in &cell.objects {
+                            self.scratch.slot[o as usize] = NO_RANK;
+                        }
+                    }
                     self.memo.insert(hash, &cell.objects, &cell.weights, &stats);
                     stats
                 }
@@ -447,6 +467,13 @@ impl<'a> Splits<'a> {
             self.cells[c as usize].stats = Some(stats);
         }
         self.cells[c as usize].stats.as_deref().unwrap_or(&[])
+    }
+
+    /// Whether a node of `m` objects reads each numeric feature's order off the root's (one
+    /// pass over the root's objects) rather than sorting its own ranks (`m log2 m`): the
+    /// same order either way.
+    fn reads_root_order(&self, m: usize) -> bool {
+        m as f64 * (m as f64).log2() > self.rows.len() as f64
     }
 
     /// The weight per class of the root positions `objects`.
@@ -469,7 +496,7 @@ impl<'a> Splits<'a> {
 
     /// The best split of `feature` for the node's objects, or `None` if it has none
     /// (too few objects with a known value, a single value, no gain).
-    fn stat(&mut self, feature: usize, cell: &Cell) -> Option<Stat> {
+    fn stat(&mut self, feature: usize, cell: &Cell, large: bool) -> Option<Stat> {
         let (objects, weights) = (&cell.objects[..], &cell.weights[..]);
         let rows = &self.rows[..];
         let node_weights = &cell.class_weights[..];
@@ -549,16 +576,24 @@ impl<'a> Splits<'a> {
                 let ranked = &self.ranked[feature];
                 let keys = &mut self.scratch.ranks;
                 keys.clear();
-                keys.extend(
-                    objects
-                        .iter()
-                        .map(|&o| ranked.rank[o as usize])
-                        .filter(|&r| r != NO_RANK),
-                );
+                if large {
+                    let slot = &self.scratch.slot;
+                    keys.extend(
+                        (0..ranked.object.len() as u32)
+                            .filter(|&r| slot[ranked.object[r as usize] as usize] != NO_RANK),
+                    );
+                } else {
+                    keys.extend(
+                        objects
+                            .iter()
+                            .map(|&o| ranked.rank[o as usize])
+                            .filter(|&r| r != NO_RANK),
+                    );
+                    keys.sort_unstable();
+                }
                 if keys.len() < 2 {
                     return None;
                 }
-                keys.sort_unstable();
                 let counts = &mut self.scratch.counts;
                 counts.clear();
                 counts.resize(2 * k, 0);
@@ -618,13 +653,23 @@ impl<'a> Splits<'a> {
                 let ranked = &self.ranked[feature];
                 let keys = &mut self.scratch.keys;
                 keys.clear();
-                for (p, &o) in objects.iter().enumerate() {
-                    let r = ranked.rank[o as usize];
-                    if r != NO_RANK {
-                        keys.push((u64::from(r) << 32) | p as u64);
+                if large {
+                    let slot = &self.scratch.slot;
+                    for (r, &o) in ranked.object.iter().enumerate() {
+                        let p = slot[o as usize];
+                        if p != NO_RANK {
+                            keys.push(((r as u64) << 32) | u64::from(p));
+                        }
                     }
+                } else {
+                    for (p, &o) in objects.iter().enumerate() {
+                        let r = ranked.rank[o as usize];
+                        if r != NO_RANK {
+                            keys.push((u64::from(r) << 32) | p as u64);
+                        }
+                    }
+                    keys.sort_unstable();
                 }
-                keys.sort_unstable();
                 let sorted = &mut self.scratch.sorted;
                 sorted.clear();
                 for &key in keys.iter() {
