@@ -4,7 +4,8 @@
 //! One job is one data set, one price assignment (Turney's, or random draw `a`), one run
 //! of `K`-fold cross-validation and one learner; it reports, for every misclassification
 //! cost `mc`, the mean total cost, test cost and error rate over the data set's objects
-//! (each object is tested once per run). Jobs are sharded and resumable like `sweep`'s.
+//! (each object is tested once per run), and the area under the ROC curve of the trees'
+//! class probabilities ([`auroc`]). Jobs are sharded and resumable like `sweep`'s.
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -221,6 +222,53 @@ pub(crate) struct Score {
     pub error_rate: f64,
     /// Turney's standard cost under the job's prices and this mc.
     pub standard: f64,
+    /// The area under the ROC curve of the trees' class probabilities
+    /// ([`Classification::probabilities`](cslearn::testcost::Classification::probabilities))
+    /// on the held-out objects, pooled over the run's folds ([`auroc`]); `None` in
+    /// results written before it was measured, and where it is undefined.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub auroc: Option<f64>,
+}
+
+/// The area under the ROC curve of class probabilities `scores` (one row per object,
+/// one column per class) against the objects' `actual` classes: for two classes, that
+/// of the second class's probability (the first's is its mirror); for more, the mean
+/// over classes of each class's one-vs-rest area (its probability ranking its objects
+/// against all the others), over the classes that have objects both in and out. Each
+/// area is the Mann-Whitney statistic, ties counted half. `None` when no class has
+/// objects both in and out (a single class).
+pub(crate) fn auroc(scores: &[Vec<f64>], actual: &[usize]) -> Option<f64> {
+    let k = scores.first().map_or(0, Vec::len);
+    let classes: Vec<usize> = if k == 2 { vec![1] } else { (0..k).collect() };
+    let mut areas = Vec::new();
+    for c in classes {
+        let mut ranked: Vec<(f64, bool)> = scores
+            .iter()
+            .zip(actual)
+            .map(|(p, &a)| (p[c], a == c))
+            .collect();
+        let positives = ranked.iter().filter(|x| x.1).count();
+        let negatives = ranked.len() - positives;
+        if positives == 0 || negatives == 0 {
+            continue;
+        }
+        ranked.sort_by(|a, b| a.0.total_cmp(&b.0));
+        // Ranks from 1, a run of equal scores sharing its mean rank.
+        let mut rank_sum = 0.0;
+        let mut i = 0;
+        while i < ranked.len() {
+            let mut j = i;
+            while j < ranked.len() && ranked[j].0 == ranked[i].0 {
+                j += 1;
+            }
+            let mean_rank = (i + 1 + j) as f64 / 2.0;
+            rank_sum += mean_rank * ranked[i..j].iter().filter(|x| x.1).count() as f64;
+            i = j;
+        }
+        let (p, n) = (positives as f64, negatives as f64);
+        areas.push((rank_sum - p * (p + 1.0) / 2.0) / (p * n));
+    }
+    (!areas.is_empty()).then(|| areas.iter().sum::<f64>() / areas.len() as f64)
 }
 
 impl JobLine for JobResult {
@@ -353,6 +401,9 @@ fn run_job(
         .map(|&m| MisclassCosts::uniform(k, m))
         .collect::<Result<_, _>>()?;
     let mut sums = vec![(0.0, 0.0, 0usize); mcs.len()];
+    // Each held-out object's class probabilities, per mc, with its class.
+    let mut probabilities: Vec<Vec<Vec<f64>>> = vec![Vec::new(); mcs.len()];
+    let mut actual_classes = Vec::new();
     let (mut nodes, mut trees) = (0usize, 0usize);
     let (mut learn, mut classify) = (0.0, 0.0);
     let fold_rows = folds(frame, def.folds, mix(def.seed, name, &[2, job.run]));
@@ -386,6 +437,10 @@ fn run_job(
                 sums[m].0 += c.test_cost + mc.cost(c.class as usize, actual);
                 sums[m].1 += c.test_cost;
                 sums[m].2 += usize::from(c.class as usize != actual);
+                probabilities[m].push(c.probabilities);
+                if m == 0 {
+                    actual_classes.push(actual);
+                }
             }
             classify += start.elapsed().as_secs_f64();
         }
@@ -395,12 +450,14 @@ fn run_job(
         .iter()
         .zip(&sums)
         .zip(&def.mc)
-        .map(|((mc, &(total, tests, errors)), &m)| Score {
+        .zip(&probabilities)
+        .map(|(((mc, &(total, tests, errors)), &m), scores)| Score {
             mc: m,
             total: total / n,
             tests: tests / n,
             error_rate: errors as f64 / n,
             standard: standard_cost(frame, &prices, mc),
+            auroc: auroc(scores, &actual_classes),
         })
         .collect();
     Ok(JobResult {
@@ -761,6 +818,109 @@ mod tests {
             let per_object: f64 = row.rsplit(',').next().unwrap().parse().unwrap();
             assert!(per_object >= 0.0 && per_object.is_finite(), "{row}");
         }
+        // AUROC beside the error rate, in a file of its own, one line per row of the
+        // table; the trees rank the held-out objects far better than chance.
+        let auroc = std::fs::read_to_string(one.path().join("auroc.csv")).unwrap();
+        assert_eq!(
+            auroc,
+            std::fs::read_to_string(two.path().join("auroc.csv")).unwrap()
+        );
+        let mut rows = auroc.lines();
+        assert_eq!(
+            rows.next().unwrap(),
+            "dataset,costs,mc,learner,runs,folds,error_rate,auroc"
+        );
+        assert_eq!(rows.clone().count(), (1 + 2) * 2 * 3);
+        for (row, table) in rows.zip(a.lines().skip(1)) {
+            let cells: Vec<&str> = row.split(',').collect();
+            let area: f64 = cells[7].parse().unwrap();
+            assert!(area > 0.6 && area <= 1.0, "{row}");
+            // The same row of the table, its error rate too.
+            let t: Vec<&str> = table.split(',').collect();
+            assert_eq!(cells[..6], t[..6], "{row}");
+            assert_eq!(cells[6], t[9], "{row}");
+        }
+    }
+
+    #[test]
+    fn auroc_by_hand() {
+        let two = |p: &[f64]| -> Vec<Vec<f64>> { p.iter().map(|&x| vec![1.0 - x, x]).collect() };
+        // Perfect, reversed, and all tied.
+        assert_eq!(auroc(&two(&[0.1, 0.2, 0.8, 0.9]), &[0, 0, 1, 1]), Some(1.0));
+        assert_eq!(auroc(&two(&[0.9, 0.8, 0.2, 0.1]), &[0, 0, 1, 1]), Some(0.0));
+        assert_eq!(auroc(&two(&[0.5; 4]), &[0, 1, 0, 1]), Some(0.5));
+        // Positives 0.4, 0.8 against negatives 0.1, 0.4, 0.6: of 6 pairs, 4 won and one
+        // tied: 4.5 / 6.
+        let area = auroc(&two(&[0.4, 0.8, 0.1, 0.4, 0.6]), &[1, 1, 0, 0, 0]).unwrap();
+        assert!((area - 0.75).abs() < 1e-15, "{area}");
+        // Three classes: the mean of each one-vs-rest area; a class with no object is
+        // left out; one class alone has no area.
+        let three = vec![
+            vec![0.8, 0.1, 0.1],
+            vec![0.2, 0.7, 0.1],
+            vec![0.6, 0.3, 0.1],
+            vec![0.1, 0.1, 0.8],
+        ];
+        // Class 0 ranks {0, 2} above {1, 3}: 1; class 1 ranks object 1 first: 1; class 2
+        // ranks object 3 first: 1.
+        assert_eq!(auroc(&three, &[0, 1, 0, 2]), Some(1.0));
+        // Class 0 (objects 0, 1, 3 at 0.8, 0.2, 0.1 against object 2 at 0.6: one pair
+        // of three won, 1/3), class 1 (object 2 at 0.3 against 0.1, 0.7, 0.1: 2/3); class
+        // 2 has no object.
+        let area = auroc(&three, &[0, 0, 1, 0]).unwrap();
+        assert!(
+            (area - (1.0 / 3.0 + 2.0 / 3.0) / 2.0).abs() < 1e-15,
+            "{area}"
+        );
+        assert_eq!(auroc(&two(&[0.3, 0.6]), &[1, 1]), None);
+        assert_eq!(auroc(&[], &[]), None);
+    }
+
+    #[test]
+    fn results_written_before_auroc_still_read_and_leave_the_table_alone() {
+        let old = r#"{"mc":100.0,"total":20.5,"tests":3.0,"error_rate":0.25,"standard":41.0}"#;
+        let score: Score = serde_json::from_str(old).unwrap();
+        assert_eq!(score.auroc, None);
+        // Written back, it is the same line: no field for what was not measured.
+        assert_eq!(serde_json::to_string(&score).unwrap(), old);
+        let result = JobResult {
+            id: 0,
+            dataset: "iris".into(),
+            costs: PriceSet::Random,
+            assignment: 0,
+            run: 0,
+            learner: Method::Eg2,
+            by_mc: vec![score],
+            nodes: 3.0,
+            learn_seconds: 0.0,
+            classify_seconds: 0.0,
+        };
+        let def = Definition {
+            datasets: vec!["iris".into()],
+            learners: vec![Method::Eg2],
+            mc: vec![100.0],
+            costs: vec![PriceSet::Random],
+            assignments: 1,
+            price_range: (1.0, 100.0),
+            price_draw: PriceDraw::Uniform,
+            selection_prices: SelectionPrices::Listed,
+            icet_pruning: Pruning::Costs,
+            icet_search_objects: 400,
+            cvt_folds: 5,
+            runs: 1,
+            folds: 3,
+            seed: 5,
+        };
+        let rows = report::aggregate(&def, std::slice::from_ref(&result));
+        assert_eq!(rows.len(), 1);
+        assert_eq!(report::auroc_csv(&def, &rows), None);
+        let mut measured = result;
+        measured.by_mc[0].auroc = Some(0.875);
+        let rows = report::aggregate(&def, &[measured]);
+        assert_eq!(
+            report::auroc_csv(&def, &rows).unwrap().lines().nth(1),
+            Some("iris,random,100,eg2,1,3,0.2500,0.8750")
+        );
     }
 
     #[test]

@@ -40,6 +40,7 @@ use crate::counts::{Fallback, NodeCounts, Terms};
 use crate::discriminate::{CheapestFirst, Discriminate, RandomOrder};
 use crate::example::{Example, Library};
 use crate::learner::{Classified, Outcome, StreamReport};
+use crate::predict::Votes;
 use crate::select::{InfoCost, MissingRule};
 use crate::sensing::{Ledger, Probe, Sensor};
 use crate::types::{ClassId, Cost, CostBlind, FeatureCosts, FeatureId, Value};
@@ -169,11 +170,42 @@ impl<D: Discriminate> IndexedLearner<D> {
     /// assert_eq!(learner.classify(&[Some(Value(0))][..]).class, Some(ClassId(4)));
     /// ```
     pub fn classify<T: Sensor>(&mut self, sensor: T) -> Classified {
-        let class = self.run(sensor, None);
+        let (class, _) = self.run(sensor, None);
         Classified {
             class,
             cost: self.ledger.cost(),
         }
+    }
+
+    /// [`classify`](IndexedLearner::classify), with the examples attended when it
+    /// predicted counted by class (the last non-empty attended set when a measurement
+    /// left none), as
+    /// [`Learner::classify_with_votes`](crate::Learner::classify_with_votes) counts them.
+    ///
+    /// ```
+    /// use cslearn::{ClassId, FeatureCosts, Value};
+    /// let mut learner = cslearn::cs_id3_indexed(FeatureCosts::from_f64(&[1.0]).unwrap());
+    /// learner.learn(&[Some(Value(0))][..], ClassId(1));
+    /// learner.learn(&[Some(Value(0))][..], ClassId(1));
+    /// let (answer, votes) = learner.classify_with_votes(&[Some(Value(0))][..]);
+    /// assert_eq!((answer.class, votes.total()), (Some(ClassId(1)), 2));
+    /// ```
+    pub fn classify_with_votes<T: Sensor>(&mut self, sensor: T) -> (Classified, Votes) {
+        let (class, voters) = self.run(sensor, None);
+        let votes = voters.map_or_else(Votes::default, |node| {
+            let library = &self.library;
+            Votes::of(
+                self.tree.nodes[node]
+                    .members
+                    .iter()
+                    .map(|&i| library[i as usize].class()),
+            )
+        });
+        let classified = Classified {
+            class,
+            cost: self.ledger.cost(),
+        };
+        (classified, votes)
     }
 
     /// Learn from one object whose true class is `class`, as
@@ -188,7 +220,7 @@ impl<D: Discriminate> IndexedLearner<D> {
     /// assert_eq!(learner.library()[1].pairs(), &[(FeatureId(0), Value(1))]);
     /// ```
     pub fn learn<T: Sensor>(&mut self, sensor: T, class: ClassId) -> Outcome {
-        let predicted = self.run(sensor, Some(class));
+        let (predicted, _) = self.run(sensor, Some(class));
         Outcome {
             predicted,
             class,
@@ -318,7 +350,13 @@ impl<D: Discriminate> IndexedLearner<D> {
 
     /// The cycle for one object, step for step the plain learner's (`learner.rs`) with
     /// attending, selection and prediction answered by the tree.
-    fn run<T: Sensor>(&mut self, sensor: T, label: Option<ClassId>) -> Option<ClassId> {
+    ///
+    /// Returns the class predicted first and the node whose examples it went by.
+    fn run<T: Sensor>(
+        &mut self,
+        sensor: T,
+        label: Option<ClassId>,
+    ) -> (Option<ClassId>, Option<NodeId>) {
         let IndexedLearner {
             costs,
             cost_blind,
@@ -337,9 +375,9 @@ impl<D: Discriminate> IndexedLearner<D> {
             select,
             cost_blind: *cost_blind,
         };
-        let (predicted, attended) = pass.predict(library, &mut probe);
+        let (predicted, attended, voters) = pass.predict(library, &mut probe);
         let Some(label) = label else {
-            return predicted;
+            return (predicted, voters);
         };
         let correct = predicted == Some(label);
         if !correct {
@@ -359,7 +397,7 @@ impl<D: Discriminate> IndexedLearner<D> {
             for _ in 0..=costs.len() {
                 let paid = probe.ledger().measured().len();
                 probe.ledger_mut().start_pass();
-                let (again, attended) = pass.predict(library, &mut probe);
+                let (again, attended, _) = pass.predict(library, &mut probe);
                 if again != Some(label) {
                     pass.tree.discriminate(
                         library,
@@ -382,7 +420,7 @@ impl<D: Discriminate> IndexedLearner<D> {
                 }
             }
         }
-        predicted
+        (predicted, voters)
     }
 }
 
@@ -395,22 +433,23 @@ struct Pass<'a> {
 
 impl Pass<'_> {
     /// Figure 2, step 1, down the tree: the class predicted (`None` for an empty
-    /// library) and the node whose examples were attended at the moment of prediction
-    /// (`None` when a measurement left none attended).
+    /// library), the node whose examples were attended at the moment of prediction
+    /// (`None` when a measurement left none attended), and the node whose examples the
+    /// prediction went by (that one, or the last non-empty attended set's).
     fn predict<T: Sensor>(
         &mut self,
         library: &Library,
         probe: &mut Probe<'_, T>,
-    ) -> (Option<ClassId>, Option<NodeId>) {
+    ) -> (Option<ClassId>, Option<NodeId>, Option<NodeId>) {
         if library.is_empty() {
             // Nothing attended and no earlier set: `Unanimous` abstains.
-            return (None, None);
+            return (None, None, None);
         }
         let mut node = self.tree.root(library);
         loop {
             let step = self.tree.step(node, self.select, probe, self.cost_blind);
             let feature = match step {
-                Step::Predict(class) => return (class, Some(node)),
+                Step::Predict(class) => return (class, Some(node), Some(node)),
                 Step::Measure(feature) => feature,
             };
             let value = probe.measure(feature);
@@ -419,7 +458,7 @@ impl Pass<'_> {
             {
                 // Nothing is attended any more: the majority of the last non-empty
                 // attended set, this node's.
-                return (self.tree.nodes[node].counts.majority(), None);
+                return (self.tree.nodes[node].counts.majority(), None, Some(node));
             }
             node = self.tree.child(node, feature, value, library);
         }

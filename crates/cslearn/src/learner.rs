@@ -6,7 +6,7 @@ use serde::Serialize;
 use crate::attend::{Attend, Attention, ObservationAttending, RankedAttending};
 use crate::discriminate::{CheapestFirst, Discriminate, RandomOrder};
 use crate::example::Library;
-use crate::predict::{Decision, Nearest, Predict, Unanimous};
+use crate::predict::{Decision, Nearest, Predict, Unanimous, Votes};
 use crate::select::{InfoCost, MissingRule, Select};
 use crate::sensing::{Ledger, Probe, Sensor};
 use crate::types::{ClassId, Cost, FeatureCosts, FeatureId};
@@ -253,6 +253,28 @@ where
             class,
             cost: self.ledger.cost(),
         }
+    }
+
+    /// [`classify`](Learner::classify), with the examples the prediction went by counted
+    /// by class ([`Predict::votes`]): for CS-ID3 the examples attended when it
+    /// predicted, for CS-IBL the attended ones when they agree and the nearest ones
+    /// otherwise. [`Votes::probabilities`] makes a distribution of them. The
+    /// classification is the one `classify` makes, charges included.
+    ///
+    /// ```
+    /// use cslearn::{ClassId, FeatureCosts, Value};
+    /// let mut learner = cslearn::cs_ibl(FeatureCosts::from_f64(&[1.0]).unwrap(), 0);
+    /// for class in [0, 1, 1] {
+    ///     learner.learn(&[Some(Value(class))][..], ClassId(class));
+    /// }
+    /// let (answer, votes) = learner.classify_with_votes(&[Some(Value(1))][..]);
+    /// assert_eq!(answer.class, Some(ClassId(1)));
+    /// assert_eq!(votes.count(ClassId(1)), votes.total());
+    /// ```
+    pub fn classify_with_votes<T: Sensor>(&mut self, sensor: T) -> (Classified, Votes) {
+        let classified = self.classify(sensor);
+        let votes = self.predict.votes(&self.library, &self.attention);
+        (classified, votes)
     }
 
     /// Learn from one object whose true class is `class`: predict it (charged), then

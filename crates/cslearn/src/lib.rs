@@ -225,7 +225,7 @@ pub use learner::{
     Classified, CsIbl, CsId3, Id3, Learner, Outcome, StreamReport, cs_ibl, cs_id3, id3,
 };
 pub use model::{MODEL_FORMAT, MODEL_VERSION, Model, Prediction};
-pub use predict::{Decision, Nearest, Predict, Unanimous};
+pub use predict::{Decision, Nearest, Predict, Unanimous, Votes};
 pub use select::{BestScore, InfoCost, MissingRule, Select, SplitCounts};
 pub use sensing::{Ledger, Probe, Sensor};
 pub use stream::{

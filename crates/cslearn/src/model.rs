@@ -12,6 +12,7 @@ use crate::error::Error;
 use crate::example::{Example, Library};
 use crate::indexed::{cs_id3_indexed, id3_indexed};
 use crate::learner::{Classified, cs_ibl};
+use crate::predict::Votes;
 use crate::stream::LearnerKind;
 use crate::types::{ClassId, Cost, FeatureCosts, FeatureId, Value};
 use rand::SeedableRng;
@@ -200,7 +201,10 @@ pub struct Model {
 /// One row classified by a [`Model`].
 ///
 /// ```
-/// let p = cslearn::Prediction { line: 2, class: None, cost: cslearn::Cost::ZERO, measured: vec![] };
+/// let p = cslearn::Prediction {
+///     line: 2, class: None, cost: cslearn::Cost::ZERO, measured: vec![],
+///     probabilities: vec![0.5, 0.5],
+/// };
 /// assert_eq!(p.line, 2);
 /// ```
 #[derive(Clone, Debug, PartialEq)]
@@ -213,6 +217,11 @@ pub struct Prediction {
     pub cost: Cost,
     /// The features measured, in the order they were measured.
     pub measured: Vec<FeatureId>,
+    /// The probability of each of the model's classes (indexed by class, summing to 1),
+    /// by Laplace's rule: for an incremental learner's model over the examples its
+    /// prediction went by ([`Votes`](crate::Votes)), for a tree over the node that
+    /// answered ([`Classification::probabilities`](crate::testcost::Classification::probabilities)).
+    pub probabilities: Vec<f64>,
 }
 
 impl Model {
@@ -472,14 +481,16 @@ impl Model {
         let (rows, lines) = self.encode(data, path)?;
         let n = self.file.features.len();
         let total = lines.len();
+        let classes = self.file.classes.len();
         let mut classify = self.classifier();
         for (i, line) in lines.into_iter().enumerate() {
-            let (c, measured) = classify(&rows[i * n..(i + 1) * n]);
+            let (c, votes, measured) = classify(&rows[i * n..(i + 1) * n]);
             let row = Prediction {
                 line,
                 class: c.class,
                 cost: c.cost,
                 measured,
+                probabilities: votes.probabilities(classes),
             };
             each(row, total);
         }
@@ -596,26 +607,37 @@ impl Model {
         clippy::type_complexity,
         reason = "a boxed classifier closure: its type is its signature"
     )]
-    fn classifier(&self) -> Box<dyn FnMut(&[Option<Value>]) -> (Classified, Vec<FeatureId>) + '_> {
+    fn classifier(
+        &self,
+    ) -> Box<dyn FnMut(&[Option<Value>]) -> (Classified, Votes, Vec<FeatureId>) + '_> {
         let costs = self.costs.clone();
         let library = self.library.clone();
         let measured = |ledger: &crate::Ledger| ledger.measured().iter().map(|&(f, _)| f).collect();
         match self.learner() {
             LearnerKind::CsId3 => {
                 let mut learner = cs_id3_indexed(costs).with_library(library);
-                Box::new(move |row| (learner.classify(row), measured(learner.ledger())))
+                Box::new(move |row| {
+                    let (c, votes) = learner.classify_with_votes(row);
+                    (c, votes, measured(learner.ledger()))
+                })
             }
             LearnerKind::Id3 => {
                 // Classifying draws nothing: the generator is only for discrimination,
                 // which happens only in learning.
                 let rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(0);
                 let mut learner = id3_indexed(costs, rng).with_library(library);
-                Box::new(move |row| (learner.classify(row), measured(learner.ledger())))
+                Box::new(move |row| {
+                    let (c, votes) = learner.classify_with_votes(row);
+                    (c, votes, measured(learner.ledger()))
+                })
             }
             LearnerKind::CsIbl { tolerance } => {
                 let mut learner = cs_ibl(costs, tolerance);
                 *learner.library_mut() = library;
-                Box::new(move |row| (learner.classify(row), measured(learner.ledger())))
+                Box::new(move |row| {
+                    let (c, votes) = learner.classify_with_votes(row);
+                    (c, votes, measured(learner.ledger()))
+                })
             }
         }
     }

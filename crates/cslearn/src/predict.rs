@@ -43,6 +43,106 @@ pub enum Decision {
 pub trait Predict {
     /// The decision for the current attention.
     fn predict(&mut self, library: &Library, attention: &Attention, exhausted: bool) -> Decision;
+
+    /// The classes of the examples a decision for `attention` went by, counted: what
+    /// [`Learner::classify_with_votes`](crate::Learner::classify_with_votes) reads a
+    /// distribution from. By default the attended examples, or the last non-empty
+    /// attended set when none is attended ([`Unanimous`]'s rule); a prediction function
+    /// that decides from other examples says which.
+    ///
+    /// ```
+    /// use cslearn::{Attend, Attention, ClassId, Example, Library, ObservationAttending, Predict, Unanimous};
+    /// let lib = Library::from(vec![Example::new(ClassId(0)), Example::new(ClassId(1)), Example::new(ClassId(1))]);
+    /// let mut a = Attention::new();
+    /// ObservationAttending.start(&lib, &mut a);
+    /// let votes = Unanimous::default().votes(&lib, &a);
+    /// assert_eq!((votes.count(ClassId(0)), votes.count(ClassId(1))), (1, 2));
+    /// ```
+    fn votes(&mut self, library: &Library, attention: &Attention) -> Votes {
+        Votes::of(
+            attention
+                .last_nonempty()
+                .iter()
+                .map(|&i| library[i].class()),
+        )
+    }
+}
+
+/// The stored examples a prediction went by, counted by class: the distribution an
+/// incremental learner's answer comes from.
+///
+/// [`probabilities`](Votes::probabilities) smooths the counts by Laplace's rule, as the
+/// test-cost trees smooth their leaves' weights: one added to each class's count, then
+/// normalised; so a prediction settled by one example is not a certainty, and one
+/// settled by no example (an empty library) is uniform. CS-ID3 predicts the majority of
+/// its votes (their one class when they agree) and CS-IBL the majority of its nearest
+/// examples, which are its votes when they disagree; so the class predicted is a class of
+/// largest probability, up to ties.
+///
+/// ```
+/// use cslearn::{ClassId, Votes};
+/// let votes = Votes::of([ClassId(1), ClassId(1), ClassId(1)]);
+/// assert_eq!(votes.total(), 3);
+/// // (0 + 1) / (3 + 3), (3 + 1) / (3 + 3), (0 + 1) / (3 + 3) over three classes.
+/// let p = votes.probabilities(3);
+/// assert!((p[1] - 4.0 / 6.0).abs() < 1e-15 && (p[0] - 1.0 / 6.0).abs() < 1e-15);
+/// ```
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Votes {
+    /// Examples per class id.
+    counts: Vec<u32>,
+}
+
+impl Votes {
+    /// The votes of examples of these classes.
+    ///
+    /// ```
+    /// let votes = cslearn::Votes::of([cslearn::ClassId(2)]);
+    /// assert_eq!(votes.count(cslearn::ClassId(2)), 1);
+    /// ```
+    pub fn of(classes: impl IntoIterator<Item = ClassId>) -> Votes {
+        let mut counts: Vec<u32> = Vec::new();
+        for class in classes {
+            let c = class.0 as usize;
+            if counts.len() <= c {
+                counts.resize(c + 1, 0);
+            }
+            counts[c] += 1;
+        }
+        Votes { counts }
+    }
+
+    /// The examples of `class` among the votes.
+    ///
+    /// ```
+    /// assert_eq!(cslearn::Votes::default().count(cslearn::ClassId(0)), 0);
+    /// ```
+    pub fn count(&self, class: ClassId) -> u32 {
+        self.counts.get(class.0 as usize).copied().unwrap_or(0)
+    }
+
+    /// The number of examples voting.
+    ///
+    /// ```
+    /// assert_eq!(cslearn::Votes::default().total(), 0);
+    /// ```
+    pub fn total(&self) -> u32 {
+        self.counts.iter().sum()
+    }
+
+    /// The probability of each class `0..classes` (more if a vote is for a higher class
+    /// id), by Laplace's rule: `(count + 1) / (total + number of classes)`.
+    ///
+    /// ```
+    /// assert_eq!(cslearn::Votes::default().probabilities(2), vec![0.5, 0.5]);
+    /// ```
+    pub fn probabilities(&self, classes: usize) -> Vec<f64> {
+        let k = classes.max(self.counts.len());
+        let total = f64::from(self.total()) + k as f64;
+        (0..k)
+            .map(|c| (f64::from(self.counts.get(c).copied().unwrap_or(0)) + 1.0) / total)
+            .collect()
+    }
 }
 
 /// Counts classes with a reusable buffer.
@@ -169,7 +269,38 @@ impl Nearest {
     }
 }
 
+impl Nearest {
+    /// The nearest examples of `pool` (of the whole library when it is empty): those of
+    /// fewest mismatches.
+    fn nearest_of<'a>(
+        library: &'a Library,
+        attention: &'a Attention,
+        pool: &'a [usize],
+    ) -> impl Iterator<Item = usize> + 'a {
+        let counts = attention.mismatches();
+        let distance = move |i: usize| counts.get(i).copied().unwrap_or(0);
+        let all: Vec<usize> = if pool.is_empty() {
+            (0..library.len()).collect()
+        } else {
+            pool.to_vec()
+        };
+        let min = all.iter().map(|&i| distance(i)).min();
+        all.into_iter().filter(move |&i| Some(distance(i)) == min)
+    }
+}
+
 impl Predict for Nearest {
+    /// The attended examples when they agree (what settled the class); otherwise the
+    /// nearest ones, whose majority is the answer.
+    fn votes(&mut self, library: &Library, attention: &Attention) -> Votes {
+        let attended = attention.attended();
+        let class_of = |i: usize| library[i].class();
+        if !attended.is_empty() && unanimous(attended.iter().map(|&i| class_of(i))).is_some() {
+            return Votes::of(attended.iter().map(|&i| class_of(i)));
+        }
+        Votes::of(Nearest::nearest_of(library, attention, attended).map(class_of))
+    }
+
     fn predict(&mut self, library: &Library, attention: &Attention, exhausted: bool) -> Decision {
         let attended = attention.attended();
         if attended.is_empty() {

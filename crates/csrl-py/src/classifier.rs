@@ -199,6 +199,38 @@ impl Classifier {
         Ok((classes, costs))
     }
 
+    /// [`classify`](Classifier::classify), with the probability of each of `classes`
+    /// classes per object: the classes of the examples its prediction went by
+    /// (`cslearn::Votes`: CS-ID3's attended examples, CS-IBL's agreeing or nearest ones),
+    /// smoothed by Laplace's rule; uniform where nothing could be predicted. The classes
+    /// and costs are `classify`'s. Ctrl-C stops it with `KeyboardInterrupt`.
+    #[expect(
+        clippy::type_complexity,
+        reason = "the tuple Python receives: classes, costs, probabilities"
+    )]
+    fn classify_proba(
+        &mut self,
+        py: Python<'_>,
+        rows: Rows,
+        classes: usize,
+    ) -> PyResult<(Vec<Option<u32>>, Vec<f64>, Vec<Vec<f64>>)> {
+        let rows = self.check(&rows)?;
+        let inner = &mut self.inner;
+        let mut answers = Vec::with_capacity(rows.len());
+        let mut costs = Vec::with_capacity(rows.len());
+        let mut probabilities = Vec::with_capacity(rows.len());
+        interruptible(py, rows.len(), |i| {
+            let (c, votes) = match inner {
+                Inner::Id3(l) => l.classify_with_votes(&rows[i][..]),
+                Inner::Ibl(l) => l.classify_with_votes(&rows[i][..]),
+            };
+            answers.push(c.class.map(|c| c.0));
+            costs.push(c.cost.get());
+            probabilities.push(votes.probabilities(classes));
+        })?;
+        Ok((answers, costs, probabilities))
+    }
+
     /// The number of examples in the learner's library.
     #[getter]
     fn library_size(&self) -> usize {

@@ -317,17 +317,19 @@ impl TestCostTree {
     }
 
     /// Classify the objects (columns as in `fit`; a nominal column's values must be
-    /// those of `fit`): the class code of each, the price of the tests it paid for, and
-    /// those tests (feature indices, in the order done).
+    /// those of `fit`): the class code of each, the price of the tests it paid for,
+    /// those tests (feature indices, in the order done) and the probability of each
+    /// class (`Classification::probabilities`: the Laplace-smoothed class weights of the
+    /// leaf, or mix of leaves, that answered).
     #[expect(
         clippy::type_complexity,
-        reason = "the tuple Python receives: classes, costs, tests"
+        reason = "the tuple Python receives: classes, costs, tests, probabilities"
     )]
     fn classify(
         &self,
         py: Python<'_>,
         columns: Vec<PyColumn<'_>>,
-    ) -> PyResult<(Vec<u32>, Vec<f64>, Vec<Vec<usize>>)> {
+    ) -> PyResult<(Vec<u32>, Vec<f64>, Vec<Vec<usize>>, Vec<Vec<f64>>)> {
         let n = match columns.first() {
             None => 0,
             Some((_, cells)) => cells.len()?,
@@ -340,7 +342,7 @@ impl TestCostTree {
             )));
         }
         if n == 0 {
-            return Ok((Vec::new(), Vec::new(), Vec::new()));
+            return Ok((Vec::new(), Vec::new(), Vec::new(), Vec::new()));
         }
         let (frame, _) = frame(
             &self.names,
@@ -354,13 +356,15 @@ impl TestCostTree {
             let mut classes = Vec::with_capacity(n);
             let mut costs = Vec::with_capacity(n);
             let mut tests = Vec::with_capacity(n);
+            let mut probabilities = Vec::with_capacity(n);
             for row in 0..n {
                 let c = tree.classify(&frame, row, prices);
                 classes.push(c.class);
                 costs.push(c.test_cost);
                 tests.push(c.tests);
+                probabilities.push(c.probabilities);
             }
-            (classes, costs, tests)
+            (classes, costs, tests, probabilities)
         }))
     }
 

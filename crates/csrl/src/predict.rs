@@ -21,6 +21,13 @@ pub struct PredictArgs {
     /// Write the classified rows to this file instead of stdout.
     #[arg(long, value_name = "FILE.csv")]
     out: Option<PathBuf>,
+    /// Add the probability of each class, one column per class named `p_CLASS`, in the
+    /// model's class order: for a tree, the class weights of the leaf (or mix of leaves,
+    /// below a missing value) that answered; for CS-ID3 or CS-IBL, the classes of the
+    /// examples its prediction went by; either way smoothed by Laplace's rule (one added
+    /// to each class, then normalised).
+    #[arg(long)]
+    probabilities: bool,
 }
 
 /// Quote a CSV field when it needs it.
@@ -44,6 +51,13 @@ impl Loaded {
             Loaded::Classifier(m) => m.class_name(class),
             Loaded::Tree(m) => m.class_name(class.0),
         }
+    }
+
+    /// The names of the classes, in class order.
+    fn class_names(&self) -> Vec<&str> {
+        (0u32..)
+            .map_while(|c| self.class_name(cslearn::ClassId(c)))
+            .collect()
     }
 
     fn feature_name(&self, feature: cslearn::FeatureId) -> Option<&str> {
@@ -112,6 +126,14 @@ pub fn run(args: &PredictArgs, out: &mut dyn Write) -> Result<()> {
             failed = Some(e);
         }
     };
+    let mut header = String::from("line,class,cost,measured");
+    if args.probabilities {
+        for name in model.class_names() {
+            header.push(',');
+            header.push_str(&field(&format!("p_{name}")));
+        }
+    }
+    header.push('\n');
     let bar = crate::progress::progress_bar(0);
     let mut total = 0.0;
     let mut line = String::new();
@@ -127,7 +149,7 @@ pub fn run(args: &PredictArgs, out: &mut dyn Write) -> Result<()> {
                 .collect();
             total += row.cost.get();
             line.clear();
-            let _ = writeln!(
+            let _ = write!(
                 line,
                 "{},{},{},{}",
                 row.line,
@@ -135,9 +157,15 @@ pub fn run(args: &PredictArgs, out: &mut dyn Write) -> Result<()> {
                 row.cost.get(),
                 field(&measured.join(";"))
             );
+            if args.probabilities {
+                for p in &row.probabilities {
+                    let _ = write!(line, ",{p}");
+                }
+            }
+            line.push('\n');
             if !started {
                 started = true;
-                write("line,class,cost,measured\n");
+                write(&header);
             }
             write(&line);
         })

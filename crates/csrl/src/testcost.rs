@@ -8,7 +8,10 @@
 //! together) or what `--mc-matrix` says. Every object is classified once by a tree grown
 //! without it (`--folds K`, stratified, 10 by default; or `--holdout F`, a share of each
 //! class), and the report gives, per test object, the price of the tests its tree did,
-//! the error rate, the misclassification cost and their sum, the total cost.
+//! the error rate, the misclassification cost and their sum, the total cost. With
+//! `--json` it lists every test object too: its answer, what its tests cost and the
+//! probability of each class (the Laplace-smoothed class weights of the leaf, or mix of
+//! leaves, that answered).
 
 use std::io::Write;
 use std::path::Path;
@@ -47,6 +50,8 @@ struct Part {
     tree_nodes: usize,
     genome: Option<IcetGenome>,
     cvt: Option<cslearn::testcost::CvtChoice>,
+    /// Each test object's classification, with its place in the data.
+    objects: Vec<(usize, cslearn::testcost::Classification)>,
 }
 
 /// The feature names the price files use: the data's, renamed by `--cost-name`.
@@ -290,6 +295,38 @@ fn cvt_json(choice: &cslearn::testcost::CvtChoice) -> serde_json::Value {
     })
 }
 
+/// Every test object's classification, in the data's order: its place in the data
+/// (`object`, from 0), the split that tested it (`split`, from 0), its class, the answer,
+/// what its tests cost and the probability of each class by name
+/// ([`Classification::probabilities`](cslearn::testcost::Classification::probabilities)).
+fn predictions_json(frame: &Frame, results: &[Part]) -> serde_json::Value {
+    let names = frame.class_names();
+    let mut objects: Vec<(usize, usize, &cslearn::testcost::Classification)> = results
+        .iter()
+        .enumerate()
+        .flat_map(|(j, p)| p.objects.iter().map(move |(r, c)| (*r, j, c)))
+        .collect();
+    objects.sort_by_key(|&(r, j, _)| (r, j));
+    objects
+        .into_iter()
+        .map(|(r, j, c)| {
+            let probabilities: serde_json::Map<String, serde_json::Value> = names
+                .iter()
+                .zip(&c.probabilities)
+                .map(|(n, p)| (n.clone(), serde_json::json!(p)))
+                .collect();
+            serde_json::json!({
+                "object": r,
+                "split": j,
+                "actual": names[frame.class(r) as usize],
+                "class": names[c.class as usize],
+                "test_cost": c.test_cost,
+                "probabilities": probabilities,
+            })
+        })
+        .collect()
+}
+
 /// CVT's choice as one line of text.
 fn cvt_text(choice: &cslearn::testcost::CvtChoice) -> String {
     format!(
@@ -401,6 +438,9 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
             part.test_cost += c.test_cost;
             part.delayed += usize::from(c.tests.iter().any(|&t| prices.test(t).delayed));
             part.mc_cost += mc.cost(c.class as usize, actual as usize);
+            if args.json {
+                part.objects.push((r, c));
+            }
         }
         results.push(part);
         bar.inc(1);
@@ -489,6 +529,7 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
                 v
             }).collect::<Vec<_>>(),
         });
+        json["predictions"] = predictions_json(&frame, &results);
         if let (Some(path), Some(fitted)) = (&args.save, &saved) {
             let mut v = serde_json::json!({
                 "path": path.display().to_string(),

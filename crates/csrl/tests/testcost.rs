@@ -838,3 +838,136 @@ fn turneys_delays_beside_the_prices_are_reported_never_priced() {
         f(&json, "total_cost_per_object")
     );
 }
+
+/// The probabilities of a row: its class name's column to the value.
+fn probabilities_of(v: &serde_json::Value) -> Vec<(String, f64)> {
+    v.as_object()
+        .unwrap_or_else(|| panic!("not an object: {v}"))
+        .iter()
+        .map(|(k, p)| (k.clone(), p.as_f64().unwrap()))
+        .collect()
+}
+
+#[test]
+fn classify_json_gives_every_test_object_its_class_probabilities() {
+    // Three classes, a missing value in a tenth of the objects, so some go down several
+    // branches.
+    let dir = tempfile::tempdir().unwrap();
+    let mut data = String::from("a,b,t\n");
+    for i in 0..60 {
+        let a = if i % 10 == 3 {
+            "?".to_string()
+        } else {
+            (i % 7).to_string()
+        };
+        let t = ["lo", "mid", "hi"][(i % 7) % 3];
+        data.push_str(&format!("{a},{},{t}\n", ["x", "y"][i % 2]));
+    }
+    let path = |n: &str| dir.path().join(n).to_string_lossy().into_owned();
+    std::fs::write(path("d.csv"), data).unwrap();
+    std::fs::write(path("c.csv"), "feature,cost\na,3\nb,1\n").unwrap();
+    for learner in ["c45", "eg2", "dtmc"] {
+        let (d, c) = (path("d.csv"), path("c.csv"));
+        let args = [
+            "classify",
+            "--data",
+            &d,
+            "--costs",
+            &c,
+            "--target",
+            "t",
+            "--learner",
+            learner,
+            "--folds",
+            "4",
+            "--mc",
+            "50",
+            "--json",
+        ];
+        let v = common::json(&args);
+        let objects = v["predictions"].as_array().expect("a predictions array");
+        assert_eq!(objects.len(), 60, "{learner}: every object tested once");
+        let mut errors = 0;
+        for (i, o) in objects.iter().enumerate() {
+            assert_eq!(o["object"].as_u64(), Some(i as u64), "{o}");
+            let p = probabilities_of(&o["probabilities"]);
+            let mut names: Vec<&str> = p.iter().map(|(n, _)| n.as_str()).collect();
+            names.sort_unstable();
+            assert_eq!(names, ["hi", "lo", "mid"], "{o}");
+            let sum: f64 = p.iter().map(|(_, x)| x).sum();
+            assert!((sum - 1.0).abs() < 1e-12, "{o}");
+            assert!(p.iter().all(|(_, x)| *x > 0.0 && *x < 1.0), "{o}");
+            // Uniform costs: the answer is a class of largest probability.
+            let answer = o["class"].as_str().unwrap();
+            let largest = p.iter().map(|(_, x)| *x).fold(0.0, f64::max);
+            let mine = p.iter().find(|(n, _)| n == answer).unwrap().1;
+            assert!(mine >= largest - 1e-9, "{learner}: {o}");
+            errors += usize::from(o["actual"] != o["class"]);
+        }
+        assert_eq!(errors as u64, v["errors"].as_u64().unwrap(), "{learner}");
+    }
+}
+
+#[test]
+fn predict_writes_the_probabilities_a_saved_tree_gives() {
+    let s = Scratch::new();
+    let model = s.path("m.json");
+    let out = s.classify("eg2", "prices.expense", &["--folds", "3", "--save", &model]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let rows = s.file("rows.csv", "a,b\n0,x\n1,y\n?,?\n5,z\n");
+    let plain = common::ok(&["predict", "--model", &model, "--data", &rows]);
+    let with = common::ok(&[
+        "predict",
+        "--model",
+        &model,
+        "--data",
+        &rows,
+        "--probabilities",
+    ]);
+    let lines: Vec<&str> = with.lines().collect();
+    // The class names of the scratch data, in the model's order (as they first come).
+    assert_eq!(lines[0], "line,class,cost,measured,p_p,p_n");
+    assert_eq!(lines.len(), 5, "{with}");
+    let mut unequal = 0;
+    for (line, before) in lines[1..].iter().zip(plain.lines().skip(1)) {
+        // The same row as without the flag, probabilities after it.
+        let cells: Vec<&str> = line.split(',').collect();
+        assert_eq!(cells[..4].join(","), before);
+        let p: Vec<f64> = cells[4..].iter().map(|c| c.parse().unwrap()).collect();
+        assert!((p.iter().sum::<f64>() - 1.0).abs() < 1e-12, "{line}");
+        // The default mc is uniform: the answer is the more probable class.
+        let answer = if p[0] > p[1] { "p" } else { "n" };
+        assert!(p[0] == p[1] || cells[1] == answer, "{line}");
+        unequal += usize::from(p[0] != p[1]);
+    }
+    assert!(unequal > 0, "{with}");
+}
+
+#[test]
+fn predict_writes_the_probabilities_of_an_incremental_model_too() {
+    let s = Scratch::new();
+    let model = s.path("m.json");
+    s.file("costs.csv", "feature,cost\na,10\nb,8\n");
+    let out = s.classify("cs-id3", "costs.csv", &["--save", &model]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let rows = s.file("rows.csv", "a,b\n0,x\n1,y\n");
+    let with = common::ok(&[
+        "predict",
+        "--model",
+        &model,
+        "--data",
+        &rows,
+        "--probabilities",
+    ]);
+    let lines: Vec<&str> = with.lines().collect();
+    // This model's classes are in sorted order.
+    assert_eq!(lines[0], "line,class,cost,measured,p_n,p_p", "{with}");
+    for line in &lines[1..] {
+        let cells: Vec<&str> = line.split(',').collect();
+        let p: Vec<f64> = cells[4..].iter().map(|c| c.parse().unwrap()).collect();
+        assert!((p.iter().sum::<f64>() - 1.0).abs() < 1e-12, "{line}");
+        // The majority of the examples it went by, ties to the first class.
+        let answer = if p[0] >= p[1] { "n" } else { "p" };
+        assert_eq!(cells[1], answer, "{line}");
+    }
+}

@@ -33,6 +33,9 @@ pub(crate) struct Row {
     pub ratio: Option<f64>,
     /// Runs of cross-validation the row averages.
     pub runs: u64,
+    /// Mean area under the ROC curve of the class probabilities, when every job of the
+    /// row measured it (results written before it was measured did not).
+    pub auroc: Option<f64>,
 }
 
 /// What a report shows: one benchmark's rows, and the learners other benchmarks over the
@@ -96,12 +99,17 @@ type Key = (String, PriceSet, u64, Method);
 /// The rows, in the definition's order of data sets, price sets, mc and learners.
 pub(crate) fn aggregate(def: &Definition, results: &[JobResult]) -> Vec<Row> {
     let mut cells: BTreeMap<Key, Vec<(f64, f64, f64, f64)>> = BTreeMap::new();
+    let mut aurocs: BTreeMap<Key, Vec<Option<f64>>> = BTreeMap::new();
     for r in results {
         for s in &r.by_mc {
-            cells
-                .entry((r.dataset.clone(), r.costs, s.mc.to_bits(), r.learner))
-                .or_default()
-                .push((100.0 * s.total / s.standard, s.tests, s.error_rate, s.total));
+            let key = (r.dataset.clone(), r.costs, s.mc.to_bits(), r.learner);
+            aurocs.entry(key.clone()).or_default().push(s.auroc);
+            cells.entry(key).or_default().push((
+                100.0 * s.total / s.standard,
+                s.tests,
+                s.error_rate,
+                s.total,
+            ));
         }
     }
     let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
@@ -137,6 +145,10 @@ pub(crate) fn aggregate(def: &Definition, results: &[JobResult]) -> Vec<Row> {
                         total: mean(&v.iter().map(|x| x.3).collect::<Vec<_>>()),
                         ratio: base.filter(|b| *b > 0.0).map(|b| m / b),
                         runs: def.runs,
+                        auroc: aurocs
+                            .get(&key(learner))
+                            .and_then(|a| a.iter().copied().collect::<Option<Vec<f64>>>())
+                            .map(|a| mean(&a)),
                     });
                 }
             }
@@ -175,6 +187,33 @@ pub(crate) fn csv(def: &Definition, rows: &[Row]) -> String {
     out
 }
 
+/// `auroc.csv`, beside `testcost.csv` (which keeps its columns, so that a table of
+/// results measured before AUROC reads the same): one line per row that measured it,
+/// its error rate and mean area under the ROC curve (`auroc` in `testcost.rs`: the
+/// second class's for two classes, the one-vs-rest mean over classes for more); `None`
+/// when no row measured it.
+pub(crate) fn auroc_csv(def: &Definition, rows: &[Row]) -> Option<String> {
+    let mut out = String::from("dataset,costs,mc,learner,runs,folds,error_rate,auroc\n");
+    let mut any = false;
+    for r in rows {
+        let Some(auroc) = r.auroc else { continue };
+        any = true;
+        let _ = writeln!(
+            out,
+            "{},{},{},{},{},{},{:.4},{:.4}",
+            r.dataset,
+            r.costs.name(),
+            r.mc,
+            r.learner.name(),
+            r.runs,
+            def.folds,
+            r.error_rate,
+            auroc,
+        );
+    }
+    any.then_some(out)
+}
+
 /// The mean over data sets of each learner's ratio to CS-ID3, ours and published, over
 /// the data sets that have both, at `mc`: (learner, ours, published, data sets).
 pub(crate) fn mean_ratios(
@@ -210,7 +249,8 @@ pub(crate) fn mean_ratios(
     out
 }
 
-/// Writes `testcost.csv`, `timing.csv`, `testcost.md` and `testcost.svg` into `dir`.
+/// Writes `testcost.csv`, `timing.csv`, `testcost.md` and `testcost.svg` into `dir`, and
+/// `auroc.csv` when the results measured AUROC ([`auroc_csv`]).
 pub(crate) fn write(
     table: &Table,
     published_names: &BTreeMap<String, String>,
@@ -221,6 +261,10 @@ pub(crate) fn write(
     let (def, rows) = (&table.def, &table.rows);
     crate::files::create_dir(dir)?;
     crate::files::write_atomic(&dir.join("testcost.csv"), csv(def, rows))?;
+    let auroc = auroc_csv(def, rows);
+    if let Some(text) = &auroc {
+        crate::files::write_atomic(&dir.join("auroc.csv"), text.clone())?;
+    }
     crate::files::write_atomic(
         &dir.join("timing.csv"),
         timing_csv(def, &table.results, objects),
@@ -231,8 +275,9 @@ pub(crate) fn write(
         markdown(table, published_names, command),
     )?;
     crate::note(&format!(
-        "wrote {}/testcost.csv, timing.csv, testcost.md and testcost.svg",
-        dir.display()
+        "wrote {}/testcost.csv, timing.csv, {}testcost.md and testcost.svg",
+        dir.display(),
+        if auroc.is_some() { "auroc.csv, " } else { "" }
     ));
     Ok(())
 }

@@ -11,7 +11,9 @@
 //! missing goes down every branch with its weight split as the known objects split (C4.5's
 //! rule), in training and in classification, where it pays for the tests of every branch
 //! it follows. Every node answers the class of least expected misclassification cost, not
-//! the majority.
+//! the majority; beside the answer, a classification gives the probability of each class
+//! ([`Classification::probabilities`]): the class weights of the node that answered (the
+//! mix of the leaves reached, below a missing value), smoothed by Laplace's rule.
 //!
 //! # The family as instances of the five functions
 //!
@@ -89,4 +91,5 @@ pub use model::{SavedModel, TREE_MODEL_FORMAT, TREE_MODEL_VERSION, TreeModel};
 pub use prices::{Basket, MisclassCosts, TestPrice, TestPrices, TurneyExtra};
 pub use tree::{
     Classification, CostTree, GrowParams, NodeIndex, Pruning, SelectionPrices, Split, TreeNode,
+    laplace,
 };

@@ -426,7 +426,9 @@ impl TreeModel {
 
     /// Classify every row of a CSV table (see [`frame_for`](TreeModel::frame_for)), in
     /// file order, calling `each` with each row's [`Prediction`] (its line, class, what
-    /// its tests cost and the tests done, in order) and the number of rows. The whole
+    /// its tests cost, the tests done, in order, and the probability of each class,
+    /// [`Classification::probabilities`](super::Classification::probabilities)) and the
+    /// number of rows. The whole
     /// table is read and checked before the first call. Returns the number of rows.
     pub fn predict_file_each(
         &self,
@@ -443,6 +445,7 @@ impl TreeModel {
                     class: Some(ClassId(c.class)),
                     cost: Cost::new(c.test_cost).unwrap_or(Cost::ZERO),
                     measured: c.tests.iter().map(|&t| FeatureId(t as u32)).collect(),
+                    probabilities: c.probabilities,
                 },
                 rows,
             );

@@ -279,17 +279,43 @@ pub struct TreeNode {
 /// What classifying one object cost and answered.
 ///
 /// ```
-/// let c = cslearn::testcost::Classification { class: 1, test_cost: 3.0, tests: vec![0] };
+/// let c = cslearn::testcost::Classification {
+///     class: 1, test_cost: 3.0, tests: vec![0], probabilities: vec![0.25, 0.75],
+/// };
 /// assert_eq!(c.tests.len(), 1);
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Classification {
-    /// The answer.
+    /// The answer: the class of least expected misclassification cost, which is not
+    /// always the most probable one (see [`probabilities`](Classification::probabilities)).
     pub class: u32,
     /// The tests paid for (discounts applied).
     pub test_cost: f64,
     /// The tests done, in the order they were done.
     pub tests: Vec<usize>,
+    /// The probability of each class (indexed by class, summing to 1): the class weights
+    /// of the node that answered, smoothed by Laplace's rule (one added to each class's
+    /// weight, then normalised), so that a leaf of few training objects never claims
+    /// certainty. Where a missing value sent the object down several branches, the
+    /// weights are the mix [`class`](Classification::class) was chosen from: each leaf's
+    /// class shares weighted by the share of the object that reached it, scaled to the
+    /// training weight those leaves hold on average (so the smoothing is as strong as at
+    /// a leaf of that weight), then smoothed the same way. Smoothing keeps the order of
+    /// the classes, so under uniform misclassification costs `class` is a class of
+    /// largest probability (up to ties).
+    pub probabilities: Vec<f64>,
+}
+
+/// Laplace's rule over class weights: `(w_c + 1) / (sum of w + k)` for `k` classes.
+///
+/// ```
+/// let p = cslearn::testcost::laplace(&[3.0, 0.0]);
+/// assert_eq!(p, vec![0.8, 0.2]);
+/// assert_eq!(cslearn::testcost::laplace(&[0.0, 0.0, 0.0]), vec![1.0 / 3.0; 3]);
+/// ```
+pub fn laplace(weights: &[f64]) -> Vec<f64> {
+    let total: f64 = weights.iter().map(|w| w + 1.0).sum();
+    weights.iter().map(|w| (w + 1.0) / total).collect()
 }
 
 /// A decision tree over a [`Frame`]'s features, grown to classify for little total cost.
@@ -735,6 +761,8 @@ impl CostTree {
     /// test already done is free; groups get their discount). An object whose value is
     /// missing goes down every branch, paying for the tests of all of them, and gets the
     /// answer of least expected cost over the leaves it reached, weighted as in training.
+    /// The classification carries the probability of each class
+    /// ([`Classification::probabilities`]), from the same leaves.
     ///
     /// ```
     /// use cslearn::testcost::{Column, CostTree, Criterion, Frame, GrowParams, MisclassCosts, TestPrices};
@@ -745,6 +773,10 @@ impl CostTree {
     /// let tree = CostTree::grow(&frame, &[0, 1, 2, 3], &prices, &mc, &GrowParams::new(Criterion::Id3));
     /// assert_eq!(tree.classify(&frame, 0, &prices).test_cost, 7.0);
     /// assert_eq!(tree.classify(&frame, 4, &prices).tests, vec![0]);
+    /// // The leaf of objects 0 and 1 holds two of class a: (2 + 1) / (2 + 2).
+    /// assert_eq!(tree.classify(&frame, 0, &prices).probabilities, vec![0.75, 0.25]);
+    /// // A missing value: half of each leaf, as training split, two objects behind each.
+    /// assert_eq!(tree.classify(&frame, 4, &prices).probabilities, vec![0.5, 0.5]);
     /// ```
     pub fn classify(&self, frame: &Frame, row: usize, prices: &TestPrices) -> Classification {
         let mut tests: Vec<usize> = Vec::new();
@@ -758,6 +790,7 @@ impl CostTree {
                     class: node.label,
                     test_cost: spent,
                     tests,
+                    probabilities: laplace(&node.weights),
                 };
             };
             let feature = split.feature();
@@ -773,6 +806,8 @@ impl CostTree {
         // A missing value: explore every branch from here, weighted.
         let classes = self.nodes[0].weights.len();
         let mut mixed = vec![0.0; classes];
+        // The training weight of the leaves reached, weighted as the object reached them.
+        let mut held = 0.0;
         let mut stack = vec![(at, 1.0)];
         while let Some((i, weight)) = stack.pop() {
             let node = &self.nodes[i];
@@ -783,6 +818,7 @@ impl CostTree {
                         for (m, w) in mixed.iter_mut().zip(&node.weights) {
                             *m += weight * w / total;
                         }
+                        held += weight * total;
                     }
                 }
                 Some(split) => {
@@ -803,10 +839,12 @@ impl CostTree {
                 }
             }
         }
+        let scaled: Vec<f64> = mixed.iter().map(|m| m * held).collect();
         Classification {
             class: self.best_for(&mixed),
             test_cost: spent,
             tests,
+            probabilities: laplace(&scaled),
         }
     }
 

@@ -195,6 +195,36 @@ class _CostSensitiveClassifier(ClassifierMixin, BaseEstimator):
         """``(predict(X), predict_cost(X))`` in one classification."""
         return self._classify(X)
 
+    def predict_proba(self, X: Any) -> np.ndarray:
+        """The probability of each class (columns in the order of ``classes_``, rows
+        summing to 1): the classes of the stored examples the prediction went by (for
+        CS-ID3 the examples attended when it predicted, for CS-IBL the attended ones when
+        they agree and the nearest ones otherwise), smoothed by Laplace's rule (one added
+        to each class's count, then normalised). ``predict`` answers a class of largest
+        probability (ties to the first in ``classes_``). Where no example speaks (never
+        after ``fit``), the classes of the training objects, smoothed the same way, as
+        ``predict`` then answers their majority.
+
+        >>> import numpy as np
+        >>> from csrl.sklearn import CsId3Classifier
+        >>> X = np.array([[0, 0], [1, 0], [0, 1], [1, 1]] * 3)
+        >>> clf = CsId3Classifier(feature_costs=[1.0, 100.0]).fit(X, X[:, 0])
+        >>> clf.predict_proba([[1, 1]]).round(3).tolist()  # twelve examples of class 1 agree
+        [[0.071, 0.929]]
+        """
+        check_is_fitted(self, "classes_")
+        X = validate_data(self, X, reset=False, dtype="numeric", ensure_all_finite="allow-nan")
+        k = len(self.classes_)
+        classes, _, probabilities = self._model.classify_proba(self._encode(X), k)
+        proba = np.asarray(probabilities, dtype=float).reshape(len(classes), k)
+        if any(c is None for c in classes):
+            counts = np.bincount(self._fit_data[1], minlength=k) + 1.0
+            prior = counts / counts.sum()
+            for i, c in enumerate(classes):
+                if c is None:
+                    proba[i] = prior
+        return proba
+
     def __sklearn_tags__(self):
         tags = super().__sklearn_tags__()
         tags.input_tags.allow_nan = True
@@ -418,8 +448,12 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
             back at (``None`` where it was pruned by its pessimistic cost instead) and
             the ``held_out_cost`` (mean total cost per held-out object).
 
-    There is no ``predict_proba``: a node answers the class of least expected cost,
-    which is not always the most probable one.
+    ``predict_proba`` gives the probability of each class: the class weights of the
+    leaf that answers, smoothed by Laplace's rule (one added to each class's training
+    weight, then normalised); below a missing value, the mix of the leaves reached,
+    weighted as the object reached them. A node answers the class of least expected
+    misclassification cost, which is a class of largest probability when every error
+    costs the same, and need not be otherwise.
     """
 
     # Not a pytest test class, for all that its name starts with "Test".
@@ -791,13 +825,30 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
     def _classify(self, X: Any):
         check_is_fitted(self, "classes_")
         X, categories = self._read(X)
-        codes, costs, tests = self._model.classify(self._columns(X, categories))
-        return np.asarray(codes, dtype=np.intp), np.asarray(costs, dtype=float), tests
+        codes, costs, tests, rows = self._model.classify(self._columns(X, categories))
+        proba = np.asarray(rows, dtype=float).reshape(len(codes), len(self.classes_))
+        return np.asarray(codes, dtype=np.intp), np.asarray(costs, dtype=float), tests, proba
 
     def predict(self, X: Any) -> np.ndarray:
         """The class of each object."""
-        codes, _, _ = self._classify(X)
+        codes = self._classify(X)[0]
         return self.classes_[codes]
+
+    def predict_proba(self, X: Any) -> np.ndarray:
+        """The probability of each class (columns in the order of ``classes_``, rows
+        summing to 1): the Laplace-smoothed class weights of the leaf that answers, or of
+        the mix of leaves an object with a missing value reaches (see the class
+        documentation). Under a uniform ``misclassification_cost``, ``predict`` answers a
+        class of largest probability.
+
+        >>> import numpy as np
+        >>> from csrl.sklearn import Id3Classifier
+        >>> X = np.array([[0.0], [1.0], [2.0], [3.0], [np.nan]])
+        >>> clf = Id3Classifier().fit(X[:4], ["a", "a", "b", "b"])
+        >>> clf.predict_proba(X).tolist()  # leaves of two objects; the NaN reaches both
+        [[0.75, 0.25], [0.75, 0.25], [0.25, 0.75], [0.25, 0.75], [0.5, 0.5]]
+        """
+        return self._classify(X)[3]
 
     def predict_cost(self, X: Any) -> np.ndarray:
         """What classifying each object costs: the prices of the tests on its path (a
@@ -807,7 +858,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
 
     def predict_with_cost(self, X: Any):
         """``(predict(X), predict_cost(X))`` in one classification."""
-        codes, costs, _ = self._classify(X)
+        codes, costs = self._classify(X)[:2]
         return self.classes_[codes], costs
 
     def predict_tests(self, X: Any) -> list:
@@ -817,7 +868,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
     def total_cost(self, X: Any, y: Any) -> float:
         """The mean total cost of classifying ``X`` whose classes are ``y``: the tests'
         prices plus the misclassification cost of each answer."""
-        codes, costs, _ = self._classify(X)
+        codes, costs = self._classify(X)[:2]
         y = column_or_1d(y, warn=True)
         if len(y) != len(codes):
             raise ValueError(f"X has {len(codes)} objects but y has {len(y)} classes")
