@@ -907,6 +907,7 @@ mod tests {
             icet_pruning: Pruning::Costs,
             icet_search_objects: 400,
             cvt_folds: 5,
+            act_samples: 5,
             runs: 1,
             folds: 3,
             seed: 5,
