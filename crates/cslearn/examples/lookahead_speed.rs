@@ -26,7 +26,7 @@
 //! learner's time over EG2's and over ACT's, where those ran before it.
 
 #[path = "../tests/support/lookahead.rs"]
-#[allow(dead_code)] // the pin test's parts this example does not use
+#[expect(dead_code, reason = "the pin test's parts this example does not use")]
 mod lookahead;
 
 use std::time::Instant;

@@ -265,7 +265,10 @@ pub(super) fn cvt_tree(
 
 /// [`cvt_tree`] through `tries`, those of CVT's trees on the same objects, folds and
 /// prices at other costs (or none yet).
-#[allow(clippy::too_many_arguments)] // cvt_tree's own, and the tries
+#[expect(
+    clippy::too_many_arguments,
+    reason = "cvt_tree's own arguments, and the tries"
+)]
 pub(super) fn cvt_tree_in<'a>(
     frame: &'a Frame,
     rows: &[usize],
