@@ -90,16 +90,18 @@ struct Memo {
     bytes: usize,
 }
 
-/// One set of objects and weights (as bits) and its statistics.
+/// One set of objects, their weights (as bits; none when every weight is 1) and its
+/// statistics.
 struct Remembered {
     objects: Box<[u32]>,
-    weights: Box<[u64]>,
+    weights: Option<Box<[u64]>>,
     stats: Rc<[Stat]>,
 }
 
 impl Memo {
-    /// The most bytes of objects, weights and statistics remembered per trie.
-    const MAX_BYTES: usize = 256 << 20;
+    /// The most bytes of objects, weights and statistics remembered per trie (a fit may
+    /// hold several: CVT's fourteen, one per fold and kind).
+    const MAX_BYTES: usize = 16 << 20;
 
     fn hash(objects: &[u32], weights: &[f64]) -> u64 {
         // FNV-1a over whole words: enough spread for a hash map whose hits are checked.
@@ -113,21 +115,35 @@ impl Memo {
         h ^ (h >> 29)
     }
 
-    fn get(&self, hash: u64, objects: &[u32], weights: &[f64]) -> Option<Rc<[Stat]>> {
+    /// The statistics remembered for `objects` with `weights` (all 1 where `unit`).
+    fn get(&self, hash: u64, objects: &[u32], weights: &[f64], unit: bool) -> Option<Rc<[Stat]>> {
         self.by_hash.get(&hash)?.iter().find_map(|&e| {
             let e = &self.entries[e];
-            (*e.objects == *objects
-                && e.weights.len() == weights.len()
-                && e.weights
-                    .iter()
-                    .zip(weights)
-                    .all(|(a, b)| *a == b.to_bits()))
-            .then(|| Rc::clone(&e.stats))
+            let same_weights = match &e.weights {
+                None => unit,
+                Some(bits) => {
+                    !unit
+                        && bits.len() == weights.len()
+                        && bits.iter().zip(weights).all(|(a, b)| *a == b.to_bits())
+                }
+            };
+            (same_weights && *e.objects == *objects).then(|| Rc::clone(&e.stats))
         })
     }
 
-    fn insert(&mut self, hash: u64, objects: &[u32], weights: &[f64], stats: &Rc<[Stat]>) {
-        let bytes = objects.len() * 12 + stats.len() * std::mem::size_of::<Stat>() + 64;
+    fn insert(
+        &mut self,
+        hash: u64,
+        objects: &[u32],
+        weights: &[f64],
+        unit: bool,
+        stats: &Rc<[Stat]>,
+    ) {
+        // The objects, the weights unless all are 1, the statistics, and about 96 bytes
+        // of boxes, entry and map.
+        let bytes = objects.len() * if unit { 4 } else { 12 }
+            + stats.len() * std::mem::size_of::<Stat>()
+            + 96;
         if self.bytes + bytes > Memo::MAX_BYTES {
             return;
         }
@@ -138,7 +154,7 @@ impl Memo {
             .push(self.entries.len());
         self.entries.push(Remembered {
             objects: objects.into(),
-            weights: weights.iter().map(|w| w.to_bits()).collect(),
+            weights: (!unit).then(|| weights.iter().map(|w| w.to_bits()).collect()),
             stats: Rc::clone(stats),
         });
     }
@@ -440,7 +456,7 @@ impl<'a> Splits<'a> {
         } else {
             let cell = std::mem::replace(&mut self.cells[c as usize], Cell::placeholder());
             let hash = Memo::hash(&cell.objects, &cell.weights);
-            let stats = match self.memo.get(hash, &cell.objects, &cell.weights) {
+            let stats = match self.memo.get(hash, &cell.objects, &cell.weights, cell.unit) {
                 Some(stats) => stats,
                 None => {
                     let large = self.reads_root_order(cell.objects.len());
@@ -459,7 +475,8 @@ impl<'a> Splits<'a> {
                             self.scratch.slot[o as usize] = NO_RANK;
                         }
                     }
-                    self.memo.insert(hash, &cell.objects, &cell.weights, &stats);
+                    self.memo
+                        .insert(hash, &cell.objects, &cell.weights, cell.unit, &stats);
                     stats
                 }
             };
