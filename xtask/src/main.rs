@@ -9,6 +9,7 @@
 //!   assumptions (see `docs/robustness.md`).
 //! * `cargo xtask testcost`: the test-cost tree family on the UCI benchmark (see
 //!   `docs/testcost.md`).
+//! * `cargo xtask anytime`: ACT's cost against its time as its samples per branch grow.
 //! * `cargo xtask bench scale` and `cargo xtask bench throughput`: how CS-QL's cost grows
 //!   with the world, and its moves per second against a plain Q-learning loop.
 //! * `cargo xtask test`: every test, Rust and Python (the README's test command).
@@ -83,6 +84,9 @@ enum Command {
     /// The test-cost tree family on the UCI benchmark of Esmeir's thesis, beside the
     /// published figures.
     Testcost(testcost::TestcostArgs),
+    /// ACT's cost against its time as its samples per branch grow, on the benchmark's
+    /// folds and prices.
+    Anytime(testcost::anytime::AnytimeArgs),
     /// Benchmarks: CS-QL's growth with the world's size, and its moves per second.
     Bench(bench::BenchArgs),
     /// Every test: `cargo test --workspace`, then the Python package's tests in a virtual
@@ -112,6 +116,7 @@ fn main() -> ExitCode {
         Command::Robustness(args) => robustness::robustness(args),
         Command::Costly(args) => costly::costly(args),
         Command::Testcost(args) => testcost::testcost(args),
+        Command::Anytime(args) => testcost::anytime::anytime(args),
         Command::Bench(args) => bench::run(args),
         Command::Test(args) => pytest::test(args),
     };

@@ -23,6 +23,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::shard::JobLine;
 
+pub mod anytime;
 mod published;
 mod report;
 
