@@ -388,6 +388,7 @@ fn run_job(
         },
         cvt: CvtParams {
             folds: def.cvt_folds,
+            ..CvtParams::default()
         },
         act: ActParams {
             samples: def.act_samples,

@@ -320,6 +320,26 @@ fn fit_each_grows_what_fit_grows_at_each_cost() {
     assert!(fit_each(Method::Act, &frame, &rows, &prices, &[], &params, 11).is_empty());
 }
 
+/// CVT's cross-validation grows its roots on several threads to the same tree and the
+/// same choice as on one, whatever the number of threads (0: every core).
+#[test]
+fn cvt_grows_the_same_tree_on_any_number_of_threads() {
+    let (frame, prices, mc, rows) = heart_at_mc_500();
+    let mut params = FamilyParams::default();
+    params.act.samples = 1;
+    let grown = |threads| {
+        let params = FamilyParams {
+            cvt: params.cvt.with_threads(threads),
+            ..params
+        };
+        fit(Method::Cvt, &frame, &rows, &prices, &mc, &params, 5)
+    };
+    let one = grown(1);
+    for threads in [2, 3, 7, 0] {
+        assert_eq!(grown(threads), one, "{threads} threads");
+    }
+}
+
 #[test]
 fn icet_is_reproducible_from_its_seed() {
     let (frame, prices, mc, rows) = heart_at_mc_500();

@@ -43,6 +43,15 @@ pub struct CvtParams {
     /// The folds of the cross-validation that chooses the grower and where to stop (5 by
     /// default; the front ends refuse fewer than 2, and the library takes fewer as 2).
     pub folds: usize,
+    /// The most threads one fit uses (1 by default; 0 for every core): the trees on all
+    /// the objects and on each fold's training part grow at the same time, each from its
+    /// own seed, so the tree chosen does not depend on the number of threads.
+    #[serde(default = "one_thread")]
+    pub threads: usize,
+}
+
+fn one_thread() -> usize {
+    1
 }
 
 impl CvtParams {
@@ -61,13 +70,38 @@ impl CvtParams {
                 reason: "a cross-validation needs at least 2 folds".into(),
             });
         }
-        Ok(CvtParams { folds })
+        Ok(CvtParams {
+            folds,
+            ..CvtParams::default()
+        })
+    }
+
+    /// These settings using up to `threads` threads (0: every core).
+    ///
+    /// ```
+    /// use cslearn::testcost::CvtParams;
+    /// assert_eq!(CvtParams::default().with_threads(2).threads, 2);
+    /// ```
+    pub fn with_threads(self, threads: usize) -> CvtParams {
+        CvtParams { threads, ..self }
+    }
+
+    /// The threads a fit uses: `threads`, every core for 0, never more than `jobs`.
+    fn threads_for(&self, jobs: usize) -> usize {
+        let wanted = match self.threads {
+            0 => std::thread::available_parallelism().map_or(1, std::num::NonZero::get),
+            n => n,
+        };
+        wanted.clamp(1, jobs.max(1))
     }
 }
 
 impl Default for CvtParams {
     fn default() -> CvtParams {
-        CvtParams { folds: 5 }
+        CvtParams {
+            folds: 5,
+            threads: 1,
+        }
     }
 }
 
@@ -149,6 +183,9 @@ impl Grower {
     }
 }
 
+/// The split tries of one set of objects, one per kind of statistics.
+type Tries<'a> = Vec<(Criterion, Splits<'a>)>;
+
 /// Every grower's tree on `rows`, in the order of [`GROWERS`], growers of one kind
 /// sharing a split trie; the lookahead's samples are drawn from `seed`. The tries are
 /// `tries` (those of another call on the same objects, with their statistics), and stay
@@ -160,7 +197,7 @@ fn grow_all<'a>(
     mc: &'a MisclassCosts,
     selection: SelectionPrices,
     seed: u64,
-    tries: &mut Vec<(Criterion, Splits<'a>)>,
+    tries: &mut Tries<'a>,
 ) -> Vec<CostTree> {
     let ones = vec![1.0; rows.len()];
     let min_objects = GrowParams::new(Criterion::C45).min_objects;
@@ -189,7 +226,68 @@ fn grow_all<'a>(
 #[derive(Default)]
 pub(super) struct CvtTries<'a> {
     /// The tries on all the objects, then on each fold's training part.
-    roots: Vec<Vec<(Criterion, Splits<'a>)>>,
+    roots: Vec<Tries<'a>>,
+}
+
+/// Every grower's trees on each root's objects (root `k` from seed `sub_seed(seed, k)`,
+/// through `tries[k]`), in the order of the roots, grown on up to `threads` threads: the
+/// roots are dealt to the threads in turn, and each tree depends only on its root.
+#[expect(
+    clippy::too_many_arguments,
+    reason = "grow_all's own arguments, per root"
+)]
+fn grow_roots<'a>(
+    frame: &'a Frame,
+    roots: &[&[usize]],
+    prices: &TestPrices,
+    mc: &'a MisclassCosts,
+    selection: SelectionPrices,
+    seed: u64,
+    tries: &mut [Tries<'a>],
+    threads: usize,
+) -> Vec<Vec<CostTree>> {
+    let grow = |k: usize, tries: &mut Tries<'a>| {
+        grow_all(
+            frame,
+            roots[k],
+            prices,
+            mc,
+            selection,
+            sub_seed(seed, k as u64),
+            tries,
+        )
+    };
+    if threads <= 1 {
+        return tries
+            .iter_mut()
+            .enumerate()
+            .map(|(k, t)| grow(k, t))
+            .collect();
+    }
+    let mut dealt: Vec<Vec<(usize, &mut Tries<'a>)>> = (0..threads).map(|_| Vec::new()).collect();
+    for (k, t) in tries.iter_mut().enumerate() {
+        dealt[k % threads].push((k, t));
+    }
+    let mut trees: Vec<(usize, Vec<CostTree>)> = std::thread::scope(|scope| {
+        let handles: Vec<_> = dealt
+            .into_iter()
+            .map(|share| {
+                let grow = &grow;
+                scope.spawn(move || {
+                    share
+                        .into_iter()
+                        .map(|(k, t)| (k, grow(k, t)))
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        handles
+            .into_iter()
+            .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+            .collect()
+    });
+    trees.sort_by_key(|(k, _)| *k);
+    trees.into_iter().map(|(_, t)| t).collect()
 }
 
 /// A seed of its own for the `k`-th tree a grower grows (SplitMix64's mix of the two).
@@ -291,35 +389,37 @@ pub(super) fn cvt_tree_in<'a>(
             (!train.is_empty() && !out.is_empty()).then_some((train, out))
         })
         .collect();
-    // Per grower: its tree on every object, its path's points, and the held-out total
-    // cost at each point and then (last) under the pessimistic pruning.
+    // Every grower's trees on all the objects (root 0) and on each fold's training part
+    // (root k), each root from its own seed, on up to `threads` threads.
     tries.roots.resize_with(parts.len() + 1, Vec::new);
-    let mut measured: Vec<(CostTree, Vec<f64>, Vec<f64>)> = grow_all(
+    let roots: Vec<&[usize]> = std::iter::once(rows)
+        .chain(parts.iter().map(|(train, _)| &train[..]))
+        .collect();
+    let threads = params.threads_for(roots.len());
+    let mut grown = grow_roots(
         frame,
-        rows,
+        &roots,
         prices,
         mc,
         selection,
-        sub_seed(seed, 0),
-        &mut tries.roots[0],
+        seed,
+        &mut tries.roots[..roots.len()],
+        threads,
     )
-    .into_iter()
-    .map(|tree| {
-        let alphas = Costs::of(&tree, prices).path_points(&tree);
-        let held = vec![0.0; alphas.len() + 1];
-        (tree, alphas, held)
-    })
-    .collect();
-    for (k, (train, out)) in parts.iter().enumerate() {
-        let fold_trees = grow_all(
-            frame,
-            train,
-            prices,
-            mc,
-            selection,
-            sub_seed(seed, k as u64 + 1),
-            &mut tries.roots[k + 1],
-        );
+    .into_iter();
+    // Per grower: its tree on every object, its path's points, and the held-out total
+    // cost at each point and then (last) under the pessimistic pruning.
+    let mut measured: Vec<(CostTree, Vec<f64>, Vec<f64>)> = grown
+        .next()
+        .unwrap_or_default()
+        .into_iter()
+        .map(|tree| {
+            let alphas = Costs::of(&tree, prices).path_points(&tree);
+            let held = vec![0.0; alphas.len() + 1];
+            (tree, alphas, held)
+        })
+        .collect();
+    for ((_, out), fold_trees) in parts.iter().zip(grown) {
         for ((_, alphas, held), fold_tree) in measured.iter_mut().zip(&fold_trees) {
             let costs = Costs::of(fold_tree, prices);
             let reached = fold_tree.reach(frame, out);

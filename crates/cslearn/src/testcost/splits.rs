@@ -22,7 +22,7 @@
 //! what a tree reads (`tests/pins/lookahead.txt` holds sixty trees to it).
 
 use std::collections::BTreeMap;
-use std::rc::Rc;
+use std::sync::Arc;
 
 use super::criterion::Criterion;
 use super::data::{Column, Frame, MISSING};
@@ -75,7 +75,7 @@ pub(crate) struct Cell {
     held_weights: Vec<f64>,
     /// The held-out objects' weight per class.
     pub held_classes: Vec<f64>,
-    stats: Option<Rc<[Stat]>>,
+    stats: Option<Arc<[Stat]>>,
     children: Vec<Children>,
 }
 
@@ -97,7 +97,7 @@ struct Memo {
 struct Remembered {
     objects: Box<[u32]>,
     weights: Option<Box<[u64]>>,
-    stats: Rc<[Stat]>,
+    stats: Arc<[Stat]>,
 }
 
 impl Memo {
@@ -118,7 +118,7 @@ impl Memo {
     }
 
     /// The statistics remembered for `objects` with `weights` (all 1 where `unit`).
-    fn get(&self, hash: u64, objects: &[u32], weights: &[f64], unit: bool) -> Option<Rc<[Stat]>> {
+    fn get(&self, hash: u64, objects: &[u32], weights: &[f64], unit: bool) -> Option<Arc<[Stat]>> {
         self.by_hash.get(&hash)?.iter().find_map(|&e| {
             let e = &self.entries[e];
             let same_weights = match &e.weights {
@@ -129,7 +129,7 @@ impl Memo {
                         && bits.iter().zip(weights).all(|(a, b)| *a == b.to_bits())
                 }
             };
-            (same_weights && *e.objects == *objects).then(|| Rc::clone(&e.stats))
+            (same_weights && *e.objects == *objects).then(|| Arc::clone(&e.stats))
         })
     }
 
@@ -139,7 +139,7 @@ impl Memo {
         objects: &[u32],
         weights: &[f64],
         unit: bool,
-        stats: &Rc<[Stat]>,
+        stats: &Arc<[Stat]>,
     ) {
         // The objects, the weights unless all are 1, the statistics, and about 96 bytes
         // of boxes, entry and map.
@@ -157,7 +157,7 @@ impl Memo {
         self.entries.push(Remembered {
             objects: objects.into(),
             weights: (!unit).then(|| weights.iter().map(|w| w.to_bits()).collect()),
-            stats: Rc::clone(stats),
+            stats: Arc::clone(stats),
         });
     }
 }
@@ -454,7 +454,7 @@ impl<'a> Splits<'a> {
         if self.cells[c as usize].stats.is_some() {
         } else if self.cells[c as usize].total < 2.0 * self.min_objects - 1e-6 {
             // No test can leave the least branch size on two branches.
-            self.cells[c as usize].stats = Some(Rc::from([]));
+            self.cells[c as usize].stats = Some(Arc::from([]));
         } else {
             let cell = std::mem::replace(&mut self.cells[c as usize], Cell::placeholder());
             let hash = Memo::hash(&cell.objects, &cell.weights);
@@ -469,7 +469,7 @@ impl<'a> Splits<'a> {
                             slot[o as usize] = p as u32;
                         }
                     }
-                    let stats: Rc<[Stat]> = (0..self.frame.feature_count())
+                    let stats: Arc<[Stat]> = (0..self.frame.feature_count())
                         .filter_map(|f| self.stat(f, &cell, large))
                         .collect();
                     if large {
