@@ -118,22 +118,39 @@ fn file(path: &str, target: &str, learners: &[Method]) -> Result<(), Box<dyn std
         frame.len(),
         frame.feature_count()
     );
-    println!("learner        ms  nodes   x EG2");
+    println!("learner  threads        ms  nodes   x EG2");
     // One untimed tree first, as in the table of data sets.
     fit(Method::Eg2, &frame, &rows, &prices, &mc, &params, 1);
     let mut eg2 = None;
     for &learner in learners {
-        let start = Instant::now();
-        let tree = fit(learner, &frame, &rows, &prices, &mc, &params, 1).tree;
-        let ms = start.elapsed().as_secs_f64() * 1e3;
-        let ratio = eg2.map_or("-".into(), |b: f64| format!("{:.1}", ms / b));
-        println!(
-            "{:<7} {ms:>9.1} {:>6} {ratio:>7}",
-            learner.name(),
-            tree.len()
-        );
-        if learner == Method::Eg2 {
-            eg2 = Some(ms);
+        // CVT on one thread and on two: the same tree.
+        let threads: &[usize] = if learner == Method::Cvt {
+            &[1, 2]
+        } else {
+            &[1]
+        };
+        let mut trees = Vec::new();
+        for &t in threads {
+            let params = FamilyParams {
+                cvt: params.cvt.with_threads(t),
+                ..params
+            };
+            let start = Instant::now();
+            let tree = fit(learner, &frame, &rows, &prices, &mc, &params, 1).tree;
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            let ratio = eg2.map_or("-".into(), |b: f64| format!("{:.1}", ms / b));
+            println!(
+                "{:<7} {t:>8} {ms:>9.1} {:>6} {ratio:>7}",
+                learner.name(),
+                tree.len()
+            );
+            if learner == Method::Eg2 {
+                eg2 = Some(ms);
+            }
+            trees.push(tree);
+        }
+        if trees.windows(2).any(|w| w[0] != w[1]) {
+            return Err(format!("{}: another tree on more threads", learner.name()).into());
         }
     }
     Ok(())
