@@ -185,24 +185,25 @@ impl Sampler<'_> {
     }
 
     /// The tests that can split cell `c` (a positive gain and EG2 score), with their
-    /// EG2 scores at the selection prices.
-    fn candidates(&self, splits: &mut Splits<'_>, c: u32) -> Vec<(Stat, f64)> {
+    /// EG2 scores at the selection prices, into `out` (emptied first).
+    fn candidates(&self, splits: &mut Splits<'_>, c: u32, out: &mut Vec<(Stat, f64)>) {
+        out.clear();
         let path = std::mem::take(&mut splits.cell_mut(c).path);
-        let scored = splits
-            .stats(c)
-            .iter()
-            .filter(|s| s.gain > 1e-9)
-            .map(|s| {
-                let price = match self.selection {
-                    SelectionPrices::Path => price_after(self.prices, s.feature, &path),
-                    SelectionPrices::Listed => self.prices.test(s.feature).full,
-                };
-                (*s, self.scorer.score(s, price))
-            })
-            .filter(|(_, score)| *score > 0.0)
-            .collect();
+        out.extend(
+            splits
+                .stats(c)
+                .iter()
+                .filter(|s| s.gain > 1e-9)
+                .map(|s| {
+                    let price = match self.selection {
+                        SelectionPrices::Path => price_after(self.prices, s.feature, &path),
+                        SelectionPrices::Listed => self.prices.test(s.feature).full,
+                    };
+                    (*s, self.scorer.score(s, price))
+                })
+                .filter(|(_, score)| *score > 0.0),
+        );
         splits.cell_mut(c).path = path;
-        scored
     }
 
     /// The test ACT splits cell `c` on: the candidate whose price plus cheapest sampled
@@ -215,18 +216,26 @@ impl Sampler<'_> {
     ) -> Option<Stat> {
         let leaf = self.leaf(splits, c);
         let mut best: Option<(Stat, f64)> = None;
-        for (stat, _) in self.candidates(splits, c) {
+        let mut candidates = Vec::new();
+        self.candidates(splits, c, &mut candidates);
+        // One buffer for the candidates of every sampled node below (each node is done
+        // with it before it goes down a branch).
+        let mut below = Vec::new();
+        for (stat, _) in candidates {
             let mut cost = self.test_price(splits, c, &stat);
-            let branches = splits.children(c, &stat).cells.clone();
+            let list = splits.made_children(c, &stat);
             // The sampled trees are thrown away once valued: the trie keeps only the
             // candidates' children, so its memory follows the tree grown, not the samples.
             let mark = splits.mark();
-            for child in branches.into_iter().flatten() {
+            for b in 0..splits.branches(c, list) {
+                let Some(child) = splits.child(c, list, b) else {
+                    continue;
+                };
                 cost += if self.samples == 0 {
                     self.leaf(splits, child)
                 } else {
                     (0..self.samples)
-                        .map(|_| self.sample(splits, child, rng))
+                        .map(|_| self.sample(splits, child, rng, &mut below))
                         .fold(f64::INFINITY, f64::min)
                 };
             }
@@ -245,13 +254,19 @@ impl Sampler<'_> {
 
     /// The expected total cost of a tree grown from cell `c` by stochastic EG2, cut back
     /// wherever a leaf is cheaper.
-    fn sample(&self, splits: &mut Splits<'_>, c: u32, rng: &mut Xoshiro256PlusPlus) -> f64 {
+    fn sample(
+        &self,
+        splits: &mut Splits<'_>,
+        c: u32,
+        rng: &mut Xoshiro256PlusPlus,
+        candidates: &mut Vec<(Stat, f64)>,
+    ) -> f64 {
         let leaf = self.leaf(splits, c);
         let cell = splits.cell(c);
         if is_pure(&cell.class_weights) || cell.path.len() >= self.max_depth {
             return leaf;
         }
-        let candidates = self.candidates(splits, c);
+        self.candidates(splits, c, candidates);
         let sum: f64 = candidates.iter().map(|(_, score)| score).sum();
         if candidates.is_empty() || !(sum > 0.0 && sum.is_finite()) {
             return leaf;
@@ -266,13 +281,16 @@ impl Sampler<'_> {
             .unwrap_or(candidates.len() - 1);
         let stat = candidates[drawn].0;
         let mut cost = self.test_price(splits, c, &stat);
-        let branches = splits.children(c, &stat).cells.clone();
-        for child in branches.into_iter().flatten() {
+        let list = splits.made_children(c, &stat);
+        for b in 0..splits.branches(c, list) {
+            let Some(child) = splits.child(c, list, b) else {
+                continue;
+            };
             if cost >= leaf {
                 // The subtree is already dearer than the leaf it would be cut back to.
                 return leaf;
             }
-            cost += self.sample(splits, child, rng);
+            cost += self.sample(splits, child, rng, candidates);
         }
         cost.min(leaf)
     }

@@ -835,8 +835,20 @@ impl<'a> Splits<'a> {
         &self.cells[c as usize].children[index]
     }
 
-    /// The index among cell `c`'s children lists of `stat`'s, made on first use.
-    fn made_children(&mut self, c: u32, stat: &Stat) -> usize {
+    /// The cell of branch `b` of cell `c`'s children list `list` (an index from
+    /// [`made_children`](Splits::made_children)), `None` where no object goes.
+    pub fn child(&self, c: u32, list: usize, b: usize) -> Option<u32> {
+        self.cells[c as usize].children[list].cells[b]
+    }
+
+    /// The branches of cell `c`'s children list `list`.
+    pub fn branches(&self, c: u32, list: usize) -> usize {
+        self.cells[c as usize].children[list].cells.len()
+    }
+
+    /// The index among cell `c`'s children lists of `stat`'s, made on first use; it stays
+    /// valid until [`forget_since`](Splits::forget_since) a mark taken before it was made.
+    pub fn made_children(&mut self, c: u32, stat: &Stat) -> usize {
         let found = self.cells[c as usize]
             .children
             .iter()
