@@ -300,6 +300,7 @@ impl TestCostTree {
             selection_prices,
             act,
             cvt,
+            budget: cslearn::testcost::Budget::UNLIMITED,
         };
         let rows: Vec<usize> = (0..frame.len()).collect();
         let fitted = py
