@@ -15,9 +15,9 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use cslearn::testcost::{
-    ActParams, Catalogue, CvtParams, FamilyParams, Frame, IcetParams, Method, MisclassCosts,
-    Pruning, SelectionPrices, TestPrices, fit_each, folds, gain_prices, random_prices,
-    standard_cost,
+    ActParams, Budget, Catalogue, CvtParams, FamilyParams, Frame, IcetParams, Method,
+    MisclassCosts, Pruning, SelectionPrices, TestPrices, fit_each, folds, gain_prices,
+    random_prices, standard_cost,
 };
 use serde::{Deserialize, Serialize};
 
@@ -78,6 +78,14 @@ pub struct TestcostArgs {
     /// grower keeps its own 5.
     #[arg(long, default_value_t = 5)]
     act_samples: usize,
+    /// A hard budget per object: at most K distinct tests. The greedy learners grow within
+    /// it, every learner's trees classify within it (none by default).
+    #[arg(long, value_name = "K")]
+    max_tests: Option<usize>,
+    /// A hard budget per object: at most B paid for its tests (after the path's discounts),
+    /// held as `--max-tests` is (none by default).
+    #[arg(long, value_name = "B", allow_negative_numbers = true)]
+    max_test_cost: Option<f64>,
     /// The range random prices are drawn from: `LOW,HIGH`.
     #[arg(long, value_delimiter = ',', default_value = "1,100")]
     price_range: Vec<f64>,
@@ -144,6 +152,13 @@ pub(crate) struct Definition {
     /// Results written before this setting existed sampled the library's 5.
     #[serde(default = "library_act_samples")]
     pub act_samples: usize,
+    /// The budget per object in tests; results written before it existed had none (and
+    /// a definition without it is written as before).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_tests: Option<usize>,
+    /// The budget per object in price, as `max_tests`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_test_cost: Option<f64>,
     pub runs: u64,
     pub folds: usize,
     pub seed: u64,
@@ -394,6 +409,7 @@ fn run_job(
             samples: def.act_samples,
             ..ActParams::default()
         },
+        budget: Budget::new(def.max_test_cost, def.max_tests)?,
         ..FamilyParams::default()
     };
     let k = frame.class_count();
@@ -434,7 +450,7 @@ fn run_job(
             }
             let start = Instant::now();
             for &r in test {
-                let c = tree.classify(frame, r, &prices);
+                let c = tree.classify_within(frame, r, &prices, &params.budget);
                 let actual = frame.class(r) as usize;
                 sums[m].0 += c.test_cost + mc.cost(c.class as usize, actual);
                 sums[m].1 += c.test_cost;
@@ -530,6 +546,12 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
         CvtParams::with_folds(args.cvt_folds).map_err(|e| anyhow::anyhow!("--cvt-folds: {e}"))?;
     let act = ActParams::with_samples(args.act_samples)
         .map_err(|e| anyhow::anyhow!("--act-samples: {e}"))?;
+    let budget = match args.max_test_cost {
+        Some(b) if !(b.is_finite() && b >= 0.0) => {
+            bail!("--max-test-cost {b}: a budget must be a finite price, not negative")
+        }
+        b => Budget::new(b, args.max_tests).map_err(|e| anyhow::anyhow!("--max-test-cost: {e}"))?,
+    };
     if args.icet_search_objects < 2 {
         bail!("--icet-search-objects: ICET's search needs at least 2 objects (one per half)");
     }
@@ -549,6 +571,8 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
         icet_search_objects: args.icet_search_objects,
         cvt_folds: cvt.folds,
         act_samples: act.samples,
+        max_tests: args.max_tests,
+        max_test_cost: budget.max_test_cost(),
         runs: args.runs,
         folds: args.folds,
         seed: args.seed,
@@ -727,6 +751,12 @@ fn args_line(args: &TestcostArgs) -> String {
     if args.act_samples != 5 {
         let _ = write!(line, " --act-samples {}", args.act_samples);
     }
+    if let Some(k) = args.max_tests {
+        let _ = write!(line, " --max-tests {k}");
+    }
+    if let Some(b) = args.max_test_cost {
+        let _ = write!(line, " --max-test-cost {b}");
+    }
     if args.price_range != [1.0, 100.0] {
         let _ = write!(
             line,
@@ -766,6 +796,8 @@ mod tests {
             icet_search_objects: 400,
             cvt_folds: 5,
             act_samples: 5,
+            max_tests: None,
+            max_test_cost: None,
             price_range: vec![1.0, 100.0],
             runs: 1,
             folds: 3,
@@ -844,6 +876,62 @@ mod tests {
         }
     }
 
+    /// A budget is a setting of the benchmark's definition: absent from results written
+    /// before it (which read as no budget and write back the same), and held to: with a
+    /// budget of nothing no object pays for a test.
+    #[test]
+    fn a_budget_is_a_setting_that_old_results_do_not_have() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut free = args(dir.path(), 1);
+        free.datasets = vec!["iris".into()];
+        free.costs = vec!["random".into()];
+        let mut zero = free.clone();
+        zero.max_test_cost = Some(0.0);
+        zero.out = dir.path().join("zero");
+        testcost(&zero).unwrap();
+        let table = std::fs::read_to_string(zero.out.join("testcost.csv")).unwrap();
+        for line in table.lines().skip(1) {
+            assert_eq!(line.split(',').nth(8), Some("0.000"), "{line}");
+        }
+        // The definition without a budget is written as before, and read back so.
+        let budgetless = Definition {
+            datasets: vec!["iris".into()],
+            learners: vec![Method::Eg2],
+            mc: vec![100.0],
+            costs: vec![PriceSet::Random],
+            assignments: 1,
+            price_range: (1.0, 100.0),
+            price_draw: PriceDraw::Uniform,
+            selection_prices: SelectionPrices::Listed,
+            icet_pruning: Pruning::Costs,
+            icet_search_objects: 400,
+            cvt_folds: 5,
+            act_samples: 5,
+            max_tests: None,
+            max_test_cost: None,
+            runs: 1,
+            folds: 3,
+            seed: 5,
+        };
+        let text = serde_json::to_string(&budgetless).unwrap();
+        assert!(!text.contains("max_test"), "{text}");
+        assert_eq!(
+            serde_json::from_str::<Definition>(&text).unwrap(),
+            budgetless
+        );
+        let with = Definition {
+            max_tests: Some(2),
+            ..budgetless.clone()
+        };
+        let text = serde_json::to_string(&with).unwrap();
+        assert!(text.contains("\"max_tests\":2"), "{text}");
+        assert_eq!(serde_json::from_str::<Definition>(&text).unwrap(), with);
+        let mut bad = free.clone();
+        bad.max_test_cost = Some(-1.0);
+        let err = testcost(&bad).unwrap_err().to_string();
+        assert!(err.contains("--max-test-cost -1"), "{err}");
+    }
+
     #[test]
     fn auroc_by_hand() {
         let two = |p: &[f64]| -> Vec<Vec<f64>> { p.iter().map(|&x| vec![1.0 - x, x]).collect() };
@@ -910,6 +998,8 @@ mod tests {
             icet_search_objects: 400,
             cvt_folds: 5,
             act_samples: 5,
+            max_tests: None,
+            max_test_cost: None,
             runs: 1,
             folds: 3,
             seed: 5,

@@ -10,8 +10,9 @@
 //! plain Python values (`__reduce__`).
 
 use cslearn::testcost::{
-    ActParams, Column, CostTree, CvtChoice, CvtParams, FamilyParams, Frame, IcetGenome, IcetParams,
-    MISSING, Method, MisclassCosts, Pruning, SelectionPrices, Split, TestPrice, TestPrices,
+    ActParams, Budget, Column, CostTree, CvtChoice, CvtParams, FamilyParams, Frame, IcetGenome,
+    IcetParams, MISSING, Method, MisclassCosts, Pruning, SelectionPrices, Split, TestPrice,
+    TestPrices,
 };
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyType};
@@ -31,6 +32,12 @@ enum Kind {
 
 fn data_error(e: &cslearn::Error) -> PyErr {
     DataError::new_err(message(e))
+}
+
+/// The budget of `max_test_cost` and `max_tests`; a price that is negative or not finite
+/// is refused, naming it.
+fn budget(max_test_cost: Option<f64>, max_tests: Option<usize>) -> PyResult<Budget> {
+    Budget::new(max_test_cost, max_tests).map_err(|e| data_error(&e))
 }
 
 /// The columns as a frame (classes given for training, all 0 for classifying), checked
@@ -210,10 +217,11 @@ impl TestCostTree {
     /// ACT's samples); `samples` ACT's trees sampled per branch; `selection_prices` the
     /// price selection functions see ("path" or "listed"); `icet_pruning` how ICET
     /// prunes ("errors" or "costs") and `search_objects` the most objects its search
-    /// uses; `folds` CVT's cross-validation (`seed` also its folds). The GIL is released
-    /// while it grows.
+    /// uses; `folds` CVT's cross-validation (`seed` also its folds); `max_test_cost` and
+    /// `max_tests` a budget per object (`Budget`), within which the greedy learners grow
+    /// (`None`: no limit). The GIL is released while it grows.
     #[staticmethod]
-    #[pyo3(signature = (learner, names, columns, classes, class_names, prices, group_names, misclassification, confidence=0.25, w=1.0, seed=0, population=50, generations=20, samples=5, selection_prices="path", icet_pruning="errors", search_objects=400, folds=5))]
+    #[pyo3(signature = (learner, names, columns, classes, class_names, prices, group_names, misclassification, confidence=0.25, w=1.0, seed=0, population=50, generations=20, samples=5, selection_prices="path", icet_pruning="errors", search_objects=400, folds=5, max_test_cost=None, max_tests=None))]
     #[expect(
         clippy::too_many_arguments,
         reason = "one argument per setting, all keywords from Python"
@@ -238,7 +246,10 @@ impl TestCostTree {
         icet_pruning: &str,
         search_objects: usize,
         folds: usize,
+        max_test_cost: Option<f64>,
+        max_tests: Option<usize>,
     ) -> PyResult<TestCostTree> {
+        let budget = budget(max_test_cost, max_tests)?;
         let method = Method::parse(learner).map_err(|e| data_error(&e))?;
         if prices.len() != names.len() {
             return Err(DataError::new_err(format!(
@@ -300,6 +311,7 @@ impl TestCostTree {
             selection_prices,
             act,
             cvt,
+            budget,
         };
         let rows: Vec<usize> = (0..frame.len()).collect();
         let fitted = py
@@ -321,15 +333,22 @@ impl TestCostTree {
     /// those tests (feature indices, in the order done) and the probability of each
     /// class (`Classification::probabilities`: the Laplace-smoothed class weights of the
     /// leaf, or mix of leaves, that answered).
+    /// With `max_test_cost` or `max_tests`, each object is held to that budget
+    /// (`CostTree::classify_within`): a test that would take it past the budget is not
+    /// bought, and the node that asked for it answers.
     #[expect(
         clippy::type_complexity,
         reason = "the tuple Python receives: classes, costs, tests, probabilities"
     )]
+    #[pyo3(signature = (columns, max_test_cost=None, max_tests=None))]
     fn classify(
         &self,
         py: Python<'_>,
         columns: Vec<PyColumn<'_>>,
+        max_test_cost: Option<f64>,
+        max_tests: Option<usize>,
     ) -> PyResult<(Vec<u32>, Vec<f64>, Vec<Vec<usize>>, Vec<Vec<f64>>)> {
+        let budget = budget(max_test_cost, max_tests)?;
         let n = match columns.first() {
             None => 0,
             Some((_, cells)) => cells.len()?,
@@ -358,7 +377,7 @@ impl TestCostTree {
             let mut tests = Vec::with_capacity(n);
             let mut probabilities = Vec::with_capacity(n);
             for row in 0..n {
-                let c = tree.classify(&frame, row, prices);
+                let c = tree.classify_within(&frame, row, prices, &budget);
                 classes.push(c.class);
                 costs.push(c.test_cost);
                 tests.push(c.tests);

@@ -174,4 +174,14 @@ pub struct ClassifyArgs {
     /// its grower and where its tree stops (default 5; at least 2).
     #[arg(long, value_name = "K")]
     pub(crate) cvt_folds: Option<usize>,
+    /// Family only: the most one object may pay for its tests (after group discounts; a
+    /// test done once is free further down). The greedy learners (id3-batch, c45, idx,
+    /// cs-id3-batch, eg2, dtmc) grow within it; every learner's tree classifies within it,
+    /// answering from the node whose test the object cannot afford.
+    #[arg(long, value_name = "B", allow_negative_numbers = true)]
+    pub(crate) max_test_cost: Option<f64>,
+    /// Family only: the most distinct tests one object may buy, held as --max-test-cost
+    /// is (the two together: whichever binds first).
+    #[arg(long, value_name = "K")]
+    pub(crate) max_tests: Option<usize>,
 }

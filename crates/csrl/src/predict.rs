@@ -28,6 +28,14 @@ pub struct PredictArgs {
     /// to each class, then normalised).
     #[arg(long)]
     probabilities: bool,
+    /// Trees only: the most one row may pay for its tests (after group discounts; a test
+    /// done once is free further down). A test that would take the row past it is not
+    /// bought: the row is answered from the node that asked for it.
+    #[arg(long, value_name = "B", allow_negative_numbers = true)]
+    max_test_cost: Option<f64>,
+    /// Trees only: the most distinct tests one row may buy, held as --max-test-cost is.
+    #[arg(long, value_name = "K")]
+    max_tests: Option<usize>,
 }
 
 /// Quote a CSV field when it needs it.
@@ -70,11 +78,12 @@ impl Loaded {
     fn predict_file_each(
         &self,
         path: &std::path::Path,
+        budget: &cslearn::testcost::Budget,
         each: &mut dyn FnMut(cslearn::Prediction, usize),
     ) -> Result<usize, cslearn::Error> {
         match self {
             Loaded::Classifier(m) => m.predict_file_each(path, each),
-            Loaded::Tree(m) => m.predict_file_each(path, each),
+            Loaded::Tree(m) => m.predict_file_each_within(path, budget, each),
         }
     }
 
@@ -101,6 +110,22 @@ pub fn run(args: &PredictArgs, out: &mut dyn Write) -> Result<()> {
             cslearn::testcost::SavedModel::Classifier(m) => Loaded::Classifier(m),
             cslearn::testcost::SavedModel::Tree(m) => Loaded::Tree(m),
         };
+    let budget = crate::testcost::budget_from_flags(args.max_test_cost, args.max_tests)?;
+    if let Loaded::Classifier(_) = &model
+        && !budget.is_unlimited()
+    {
+        let flag = if args.max_test_cost.is_some() {
+            "--max-test-cost"
+        } else {
+            "--max-tests"
+        };
+        anyhow::bail!(
+            "{flag} is read with a tree of the test-cost family (format `csrl-cost-tree`); {} \
+             is a model of {}",
+            args.model.display(),
+            model.describe()
+        );
+    }
     // Rows are written as they are classified, so memory does not grow with the output.
     // The table is read and checked whole before the first row comes, so `--out` is
     // created only then: a refused table leaves an existing file as it was.
@@ -138,7 +163,7 @@ pub fn run(args: &PredictArgs, out: &mut dyn Write) -> Result<()> {
     let mut total = 0.0;
     let mut line = String::new();
     let rows = model
-        .predict_file_each(&args.data, &mut |row, rows| {
+        .predict_file_each(&args.data, &budget, &mut |row, rows| {
             bar.set_length(rows as u64);
             bar.inc(1);
             let class = row.class.and_then(|c| model.class_name(c)).unwrap_or("");

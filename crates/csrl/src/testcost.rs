@@ -11,15 +11,18 @@
 //! the error rate, the misclassification cost and their sum, the total cost. With
 //! `--json` it lists every test object too: its answer, what its tests cost and the
 //! probability of each class (the Laplace-smoothed class weights of the leaf, or mix of
-//! leaves, that answered).
+//! leaves, that answered). With `--max-test-cost B` or `--max-tests K` every object is
+//! held to that budget (the greedy learners grow within it, every tree classifies within
+//! it), and the report says how many tests an object bought on average and that none
+//! paid past the budget.
 
 use std::io::Write;
 use std::path::Path;
 
 use anyhow::{Context, Result};
 use cslearn::testcost::{
-    ActParams, CvtParams, Frame, FrameSpec, IcetGenome, Method, MisclassCosts, Pruning, TestPrices,
-    TreeModel,
+    ActParams, Budget, CvtParams, Frame, FrameSpec, IcetGenome, Method, MisclassCosts, Pruning,
+    TestPrices, TreeModel,
 };
 
 use crate::classify_args::ClassifyArgs;
@@ -50,6 +53,11 @@ struct Part {
     tree_nodes: usize,
     genome: Option<IcetGenome>,
     cvt: Option<cslearn::testcost::CvtChoice>,
+    /// Distinct tests bought, over the test objects.
+    tests_bought: usize,
+    /// Test objects that paid, or bought, more than the budget allows (none, by
+    /// construction; counted so that the report says so from what it measured).
+    over_budget: usize,
     /// Each test object's classification, with its place in the data.
     objects: Vec<(usize, cslearn::testcost::Classification)>,
 }
@@ -264,6 +272,26 @@ fn genome_json(genome: &IcetGenome, names: &[String]) -> serde_json::Value {
     })
 }
 
+/// The budget of `--max-test-cost` and `--max-tests` (unlimited without them).
+fn read_budget(args: &ClassifyArgs) -> Result<Budget> {
+    budget_from_flags(args.max_test_cost, args.max_tests)
+}
+
+/// A budget from the values of `--max-test-cost` and `--max-tests`, a bad price refused
+/// naming its flag.
+pub(crate) fn budget_from_flags(
+    max_test_cost: Option<f64>,
+    max_tests: Option<usize>,
+) -> Result<Budget> {
+    if let Some(b) = max_test_cost {
+        anyhow::ensure!(
+            b.is_finite() && b >= 0.0,
+            "--max-test-cost {b}: a budget must be a finite price, not negative"
+        );
+    }
+    Budget::new(max_test_cost, max_tests).map_err(|e| anyhow::anyhow!("--max-test-cost: {e}"))
+}
+
 /// A flag that only the learner `owner` reads: refused for any other `method`, read by
 /// `read` when given (its refusal named by the flag), the learner's default when not.
 fn learner_flag<V, T: Default>(
@@ -402,7 +430,9 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
         method,
         CvtParams::with_folds,
     )?;
+    let budget = read_budget(args)?;
     let params = cslearn::testcost::FamilyParams {
+        budget,
         selection_prices,
         cvt,
         icet: cslearn::testcost::IcetParams {
@@ -432,8 +462,13 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
             ..Part::default()
         };
         for &r in test {
-            let c = fitted.tree.classify(&frame, r, &prices);
+            let c = fitted.tree.classify_within(&frame, r, &prices, &budget);
             let actual = frame.class(r);
+            part.tests_bought += c.tests.len();
+            part.over_budget += usize::from(
+                budget.max_test_cost().is_some_and(|b| c.test_cost > b)
+                    || budget.max_tests().is_some_and(|k| c.tests.len() > k),
+            );
             part.errors += usize::from(c.class != actual);
             part.test_cost += c.test_cost;
             part.delayed += usize::from(c.tests.iter().any(|&t| prices.test(t).delayed));
@@ -478,6 +513,8 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
         .map(|t| frame.names()[t].as_str())
         .collect();
     let test_cost = per(results.iter().map(|p| p.test_cost).sum());
+    let tests_bought = per(results.iter().map(|p| p.tests_bought as f64).sum());
+    let over_budget: usize = results.iter().map(|p| p.over_budget).sum();
     let mc_cost = per(results.iter().map(|p| p.mc_cost).sum());
     let error_rate = errors as f64 / tested.max(1) as f64;
     let nodes = results.iter().map(|p| p.tree_nodes).sum::<usize>() as f64 / results.len() as f64;
@@ -504,6 +541,10 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
             "cvt_folds": (method == cslearn::testcost::Method::Cvt).then_some(params.cvt.folds),
             "all_tests_cost": prices.total(),
             "test_cost_per_object": test_cost,
+            "tests_per_object": tests_bought,
+            "max_test_cost": budget.max_test_cost(),
+            "max_tests": budget.max_tests(),
+            "objects_over_budget": over_budget,
             "errors": errors,
             "error_rate": error_rate,
             "delayed_tests": delayed_tests,
@@ -577,6 +618,23 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
         "evaluation  {scheme}: {tested} test objects, each classified by a tree grown without it"
     )?;
     writeln!(out, "test cost   {test_cost:.2} per object")?;
+    if !budget.is_unlimited() {
+        let limits: Vec<String> = budget
+            .max_test_cost()
+            .map(|b| format!("at most {b} in price"))
+            .into_iter()
+            .chain(budget.max_tests().map(|k| format!("at most {k} tests")))
+            .collect();
+        writeln!(
+            out,
+            "budget      {} per object: {tests_bought:.2} tests bought per object, {}",
+            limits.join(" and "),
+            match over_budget {
+                0 => "no object past the budget".to_string(),
+                n => format!("{n} objects past the budget"),
+            }
+        )?;
+    }
     if !delayed_tests.is_empty() {
         writeln!(
             out,

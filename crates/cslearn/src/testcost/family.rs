@@ -4,6 +4,7 @@ use rand::{RngExt, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 use super::act::{Act, ActParams};
+use super::budget::Budget;
 use super::criterion::Criterion;
 use super::cvt::{CvtChoice, CvtParams, CvtTries, cvt_tree, cvt_tree_in};
 use super::data::Frame;
@@ -133,7 +134,28 @@ impl Method {
                 .pruning_by(Pruning::Costs),
             Method::Cvt => GrowParams::new(Criterion::Eg2 { w: 0.0 }),
         };
-        grow.selecting_at(params.selection_prices)
+        let grow = grow.selecting_at(params.selection_prices);
+        if self.grows_within_budget() {
+            grow.within(params.budget)
+        } else {
+            grow
+        }
+    }
+
+    /// Whether [`fit`] grows the learner's tree within [`FamilyParams::budget`] (the
+    /// greedy learners: ID3, C4.5, IDX, CS-ID3, EG2, DTMC), rather than leaving the budget
+    /// to classification ([`CostTree::classify_within`]): ICET chooses its tests at
+    /// biased prices, ACT's lookahead and CVT's growers choose theirs through their own
+    /// searches, and their trees are cut only where an object runs out of budget.
+    ///
+    /// ```
+    /// use cslearn::testcost::{Budget, FamilyParams, Method};
+    /// let params = FamilyParams { budget: Budget::new(None, Some(2)).unwrap(), ..FamilyParams::default() };
+    /// assert_eq!(Method::Eg2.grow_params(&params).budget, params.budget);
+    /// assert!(!Method::Act.grows_within_budget());
+    /// ```
+    pub fn grows_within_budget(self) -> bool {
+        !matches!(self, Method::Icet | Method::Act | Method::Cvt)
     }
 }
 
@@ -161,6 +183,12 @@ pub struct FamilyParams {
     /// path (the default) or as listed.
     #[serde(default)]
     pub selection_prices: SelectionPrices,
+    /// The most one object may spend on tests. The greedy learners grow within it
+    /// ([`Method::grows_within_budget`]); every learner's tree is held to it when it
+    /// classifies through [`CostTree::classify_within`]. Unlimited by default, which
+    /// learns the same trees as before budgets existed.
+    #[serde(default, skip_serializing_if = "Budget::is_unlimited")]
+    pub budget: Budget,
 }
 
 impl Default for FamilyParams {
@@ -172,6 +200,7 @@ impl Default for FamilyParams {
             act: ActParams::default(),
             cvt: CvtParams::default(),
             selection_prices: SelectionPrices::Path,
+            budget: Budget::UNLIMITED,
         }
     }
 }

@@ -67,6 +67,7 @@
 //! ```
 
 mod act;
+mod budget;
 mod catalogue;
 mod criterion;
 mod cvt;
@@ -79,6 +80,7 @@ mod splits;
 mod tree;
 
 pub use act::ActParams;
+pub use budget::Budget;
 pub use catalogue::{Catalogue, Loaded, Source};
 pub use criterion::Criterion;
 pub use cvt::{CvtChoice, CvtParams, GROWERS, Grower};

@@ -5,6 +5,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use super::budget::Budget;
 use super::data::{Column, Frame};
 use super::family::{Fitted, IcetGenome, Method};
 use super::prices::{MisclassCosts, TestPrices};
@@ -435,10 +436,26 @@ impl TreeModel {
         path: &Path,
         each: &mut dyn FnMut(Prediction, usize),
     ) -> Result<usize, Error> {
+        self.predict_file_each_within(path, &Budget::UNLIMITED, each)
+    }
+
+    /// [`predict_file_each`](TreeModel::predict_file_each) with every row held to
+    /// `budget` ([`CostTree::classify_within`](super::CostTree::classify_within)): a test
+    /// that would take a row past it is not bought, and the row is answered from the node
+    /// that asked for it. Without a limit, the same predictions to the bit.
+    pub fn predict_file_each_within(
+        &self,
+        path: &Path,
+        budget: &Budget,
+        each: &mut dyn FnMut(Prediction, usize),
+    ) -> Result<usize, Error> {
         let (frame, lines) = self.frame_for(path)?;
         let rows = frame.len();
         for (row, &line) in lines.iter().enumerate() {
-            let c = self.file.tree.classify(&frame, row, &self.file.prices);
+            let c = self
+                .file
+                .tree
+                .classify_within(&frame, row, &self.file.prices, budget);
             each(
                 Prediction {
                     line,

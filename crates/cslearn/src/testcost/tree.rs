@@ -4,6 +4,7 @@
 //! split ([`Criterion`], the framework's selection function), whether growth stops when
 //! no test pays for itself (DTMC), and whether the tree is pruned afterwards.
 
+use super::budget::Budget;
 use super::criterion::Criterion;
 use super::data::{Column, Frame};
 use super::prices::{MisclassCosts, TestPrices};
@@ -33,6 +34,12 @@ pub struct GrowParams {
     /// What pessimistic pruning weighs (when `confidence` is set).
     #[serde(default)]
     pub pruning: Pruning,
+    /// The most an object may spend on the tests of its path: at a node, a test whose
+    /// price after the node's path would take the path past the budget (in price, at the
+    /// prices the tree is grown with, or in distinct tests) is not a candidate. Unlimited
+    /// by default, which grows the same trees as before budgets existed.
+    #[serde(default, skip_serializing_if = "Budget::is_unlimited")]
+    pub budget: Budget,
 }
 
 /// What pessimistic pruning weighs a subtree against a leaf by.
@@ -169,6 +176,7 @@ impl GrowParams {
             max_depth: 64,
             selection_prices: SelectionPrices::Path,
             pruning: Pruning::Errors,
+            budget: Budget::UNLIMITED,
         }
     }
 
@@ -204,6 +212,18 @@ impl GrowParams {
     /// ```
     pub fn pruning_by(mut self, pruning: Pruning) -> GrowParams {
         self.pruning = pruning;
+        self
+    }
+
+    /// The same, growing within `budget`: no path buys more than it allows.
+    ///
+    /// ```
+    /// use cslearn::testcost::{Budget, Criterion, GrowParams};
+    /// let b = Budget::new(None, Some(2)).unwrap();
+    /// assert_eq!(GrowParams::new(Criterion::Idx).within(b).budget, b);
+    /// ```
+    pub fn within(mut self, budget: Budget) -> GrowParams {
+        self.budget = budget;
         self
     }
 }
@@ -779,26 +799,78 @@ impl CostTree {
     /// assert_eq!(tree.classify(&frame, 4, &prices).probabilities, vec![0.5, 0.5]);
     /// ```
     pub fn classify(&self, frame: &Frame, row: usize, prices: &TestPrices) -> Classification {
+        self.classify_within(frame, row, prices, &Budget::UNLIMITED)
+    }
+
+    /// [`classify`](CostTree::classify) for an object held to `budget`: a test that would
+    /// take the object past it is not bought, and the object answers from the node that
+    /// asked for it, as if it were a leaf (its label, and its class weights smoothed as a
+    /// leaf's for the probabilities). Without a limit the result is
+    /// [`classify`](CostTree::classify)'s, to the bit.
+    ///
+    /// An object whose value is missing follows several branches with one purse: it buys
+    /// tests in the order it meets them (depth first, branches in order, as `classify`
+    /// walks them), each at its price after the tests bought so far on any branch, and a
+    /// branch whose next test the purse cannot afford stops at that node, which joins the
+    /// mix of answering nodes as a leaf would. What the object pays therefore never
+    /// exceeds the budget, whatever it is missing.
+    ///
+    /// ```
+    /// use cslearn::testcost::{Budget, Column, CostTree, Criterion, Frame, GrowParams, MisclassCosts, TestPrices};
+    /// let frame = Frame::new(vec!["x".into()], vec![Column::Numeric(vec![1.0, 2.0, 3.0, 4.0, 5.0])],
+    ///     vec![0, 0, 1, 1, 1], vec!["a".into(), "b".into()]).unwrap();
+    /// let prices = TestPrices::flat(&[7.0]).unwrap();
+    /// let mc = MisclassCosts::uniform(2, 10.0).unwrap();
+    /// let tree = CostTree::grow(&frame, &[0, 1, 2, 3, 4], &prices, &mc, &GrowParams::new(Criterion::Id3));
+    /// // Six is not enough for the test at 7: the root answers, with nothing paid.
+    /// let poor = tree.classify_within(&frame, 0, &prices, &Budget::new(Some(6.0), None).unwrap());
+    /// assert_eq!((poor.class, poor.test_cost, poor.tests.len()), (1, 0.0, 0));
+    /// // The root holds two of a and three of b: (2 + 1) / (5 + 2) and (3 + 1) / (5 + 2).
+    /// assert_eq!(poor.probabilities, vec![3.0 / 7.0, 4.0 / 7.0]);
+    /// let rich = tree.classify_within(&frame, 0, &prices, &Budget::new(Some(7.0), None).unwrap());
+    /// assert_eq!(rich, tree.classify(&frame, 0, &prices));
+    /// ```
+    pub fn classify_within(
+        &self,
+        frame: &Frame,
+        row: usize,
+        prices: &TestPrices,
+        budget: &Budget,
+    ) -> Classification {
         let mut tests: Vec<usize> = Vec::new();
         let mut spent = 0.0;
+        // Whether the purse affords `feature` now, and its price if so.
+        let afford = |feature: usize, tests: &[usize], spent: f64| -> Option<f64> {
+            if tests.contains(&feature) {
+                return Some(0.0);
+            }
+            let price = price_after(prices, feature, tests);
+            budget
+                .allows(spent, tests.len(), price, true)
+                .then_some(price)
+        };
         // The common case: no missing value on the path.
         let mut at = 0usize;
         loop {
             let node = &self.nodes[at];
+            let answer = |tests, spent| Classification {
+                class: node.label,
+                test_cost: spent,
+                tests,
+                probabilities: laplace(&node.weights),
+            };
             let Some(split) = &node.split else {
-                return Classification {
-                    class: node.label,
-                    test_cost: spent,
-                    tests,
-                    probabilities: laplace(&node.weights),
-                };
+                return answer(tests, spent);
             };
             let feature = split.feature();
+            let Some(price) = afford(feature, &tests, spent) else {
+                return answer(tests, spent);
+            };
             if frame.column(feature).is_missing(row) {
                 break;
             }
             if !tests.contains(&feature) {
-                spent += price_after(prices, feature, &tests);
+                spent += price;
                 tests.push(feature);
             }
             at = self.child(split, frame, row) as usize;
@@ -811,7 +883,11 @@ impl CostTree {
         let mut stack = vec![(at, 1.0)];
         while let Some((i, weight)) = stack.pop() {
             let node = &self.nodes[i];
-            match &node.split {
+            let affordable = node
+                .split
+                .as_ref()
+                .and_then(|split| Some((split, afford(split.feature(), &tests, spent)?)));
+            match affordable {
                 None => {
                     let total: f64 = node.weights.iter().sum();
                     if total > 0.0 {
@@ -821,10 +897,10 @@ impl CostTree {
                         held += weight * total;
                     }
                 }
-                Some(split) => {
+                Some((split, price)) => {
                     let feature = split.feature();
                     if !tests.contains(&feature) {
-                        spent += price_after(prices, feature, &tests);
+                        spent += price;
                         tests.push(feature);
                     }
                     if frame.column(feature).is_missing(row) {
@@ -1126,6 +1202,25 @@ fn choose(
     let total = splits.total(c);
     let cost_based = splits.cost_based();
     let path = std::mem::take(&mut splits.cell_mut(c).path);
+    // Whether the path can afford a test (always, without a budget). What the path has
+    // paid is summed as classification sums it, test by test in the path's order.
+    let budget = params.budget;
+    let (paid, bought) = if budget.is_unlimited() {
+        (0.0, 0)
+    } else {
+        path_spending(prices, &path)
+    };
+    let affords = |stat: &Stat| -> bool {
+        budget.is_unlimited() || {
+            let new = !path.contains(&stat.feature);
+            let price = if new {
+                price_after(prices, stat.feature, &path)
+            } else {
+                0.0
+            };
+            budget.allows(paid, bought, price, new)
+        }
+    };
     // (value, score) of a test: the gain (DTMC: the reduction of the expected total cost)
     // and the criterion's score at the test's price on this path.
     let judge = |stat: &Stat| -> (f64, f64) {
@@ -1144,6 +1239,7 @@ fn choose(
     let floor = if matches!(criterion, Criterion::C45) {
         let (sum, n) = stats
             .iter()
+            .filter(|s| affords(s))
             .map(|s| judge(s).0)
             .filter(|&v| v > 1e-9)
             .fold((0.0, 0usize), |(s, n), v| (s + v, n + 1));
@@ -1153,6 +1249,9 @@ fn choose(
     };
     let mut best: Option<(Stat, f64, f64)> = None;
     for stat in stats {
+        if !affords(stat) {
+            continue;
+        }
         let (value, score) = judge(stat);
         if value <= 1e-9 || value < floor || score <= 0.0 {
             continue;
@@ -1167,6 +1266,21 @@ fn choose(
     }
     splits.cell_mut(c).path = path;
     best.map(|b| b.0)
+}
+
+/// What an object following `path` pays and how many distinct tests it buys: each
+/// test at its price after the ones before it, summed in order as
+/// [`CostTree::classify`] sums them (a test met again adds nothing).
+pub(super) fn path_spending(prices: &TestPrices, path: &[usize]) -> (f64, usize) {
+    let mut done: Vec<usize> = Vec::with_capacity(path.len());
+    let mut spent = 0.0;
+    for &test in path {
+        if !done.contains(&test) {
+            spent += price_after(prices, test, &done);
+            done.push(test);
+        }
+    }
+    (spent, done.len())
 }
 
 /// The price of `test` after the tests `done`: nothing if it was done, its discount if a

@@ -172,9 +172,14 @@ class TestCostTree:
         icet_pruning: str = "errors",
         search_objects: int = 400,
         folds: int = 5,
+        max_test_cost: Optional[float] = None,
+        max_tests: Optional[int] = None,
     ) -> TestCostTree: ...
     def classify(
-        self, columns: list[_Column]
+        self,
+        columns: list[_Column],
+        max_test_cost: Optional[float] = None,
+        max_tests: Optional[int] = None,
     ) -> tuple[list[int], list[float], list[list[int]], list[list[float]]]: ...
     def nodes(
         self,

@@ -54,6 +54,7 @@ needs measured:
 
 from __future__ import annotations
 
+import math
 import numbers
 from collections.abc import Mapping
 from typing import Any, Optional
@@ -432,6 +433,17 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         icet_search_objects: the most training objects ICET's search uses, half to grow
             and half to score (400; at least 2); the final tree grows on all of them.
         cvt_folds: the folds of CVT's cross-validation (5; at least 2).
+        max_test_cost: the most one object may pay for its tests (a number at least 0,
+            after group discounts, a test done once free further down), or ``None``: no
+            limit. ``predict``, ``predict_proba``, ``predict_cost`` and the rest never
+            buy a test that would take an object past it: the node that asked for the
+            test answers (its class, and its smoothed class weights as probabilities);
+            below a missing value, the object's branches share one purse. The greedy
+            learners (``id3-batch``, ``c45``, ``idx``, ``cs-id3-batch``, ``eg2``,
+            ``dtmc``) also grow within it: no path of their trees costs more.
+        max_tests: the most distinct tests one object may buy (an integer at least 0),
+            held as ``max_test_cost`` is; ``None``: no limit. A budget of 0 answers
+            every object from the root, paying nothing.
 
     Attributes:
         classes_, n_features_in_, feature_names_in_: as scikit-learn's.
@@ -479,6 +491,8 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         icet_pruning: str = "errors",
         icet_search_objects: int = 400,
         cvt_folds: int = 5,
+        max_test_cost: Optional[float] = None,
+        max_tests: Optional[int] = None,
     ) -> None:
         self.learner = learner
         self.feature_costs = feature_costs
@@ -496,8 +510,32 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         self.icet_pruning = icet_pruning
         self.icet_search_objects = icet_search_objects
         self.cvt_folds = cvt_folds
+        self.max_test_cost = max_test_cost
+        self.max_tests = max_tests
 
     # -- parameters -------------------------------------------------------------------
+
+    def _budget_params(self) -> dict:
+        """``max_test_cost`` and ``max_tests`` checked, as ``_csrl.TestCostTree`` takes
+        them."""
+        max_test_cost = getattr(self, "max_test_cost", None)
+        max_tests = getattr(self, "max_tests", None)
+        if max_test_cost is not None:
+            if (
+                isinstance(max_test_cost, bool)
+                or not isinstance(max_test_cost, (numbers.Real, np.integer, np.floating))
+                or not (math.isfinite(float(max_test_cost)) and float(max_test_cost) >= 0)
+            ):
+                raise ValueError(
+                    f"max_test_cost must be None or a finite number at least 0, found {max_test_cost!r}"
+                )
+            max_test_cost = float(max_test_cost)
+        if max_tests is not None:
+            integer = isinstance(max_tests, (numbers.Integral, np.integer)) and not isinstance(max_tests, bool)
+            if not integer or not 0 <= max_tests < 2**64:
+                raise ValueError(f"max_tests must be None or an integer at least 0, found {max_tests!r}")
+            max_tests = int(max_tests)
+        return {"max_test_cost": max_test_cost, "max_tests": max_tests}
 
     def _learner_name(self) -> str:
         name = self._learner or self.learner
@@ -741,7 +779,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
 
     def fit(self, X: Any, y: Any) -> "TestCostTreeClassifier":
         """Grow the tree on ``X`` (objects x features) and ``y`` (their classes)."""
-        for fitted in ("classes_", "_model", "icet_genome_", "cvt_choice_"):  # unfitted if this fit fails
+        for fitted in ("classes_", "_model", "_budget", "icet_genome_", "cvt_choice_"):  # unfitted if this fit fails
             self.__dict__.pop(fitted, None)
         learner = self._learner_name()
         X, y, nominal, categories = self._read(X, y, fitting=True)
@@ -781,6 +819,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
                 raise ValueError(f"{what} must be an integer at least {least}, found {v!r}")
         if act_samples > 1000:
             raise ValueError(f"act_samples must be at most 1000, found {act_samples!r}")
+        budget = self._budget_params()
         model = _csrl.TestCostTree.fit(
             learner,
             self._names(n),
@@ -800,6 +839,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
             icet_pruning=str(icet_pruning),
             search_objects=int(icet_search_objects),
             folds=int(cvt_folds),
+            **budget,
         )
         self.classes_ = classes
         self.nominal_features_ = nominal
@@ -807,6 +847,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         self.feature_costs_ = np.array([p[0] for p in prices])
         self.misclassification_costs_ = matrix
         self._model = model
+        self._budget = budget
         genome = model.icet_genome
         if genome is not None:
             prices_, w_, confidence_, fitness = genome
@@ -825,7 +866,9 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
     def _classify(self, X: Any):
         check_is_fitted(self, "classes_")
         X, categories = self._read(X)
-        codes, costs, tests, rows = self._model.classify(self._columns(X, categories))
+        codes, costs, tests, rows = self._model.classify(
+            self._columns(X, categories), **getattr(self, "_budget", {})
+        )
         proba = np.asarray(rows, dtype=float).reshape(len(codes), len(self.classes_))
         return np.asarray(codes, dtype=np.intp), np.asarray(costs, dtype=float), tests, proba
 
@@ -951,18 +994,24 @@ class _Unpruned(TestCostTreeClassifier):
         feature_discounts: Optional[Any] = None,
         misclassification_cost: Any = 100.0,
         nominal_features: Optional[Any] = None,
+        max_test_cost: Optional[float] = None,
+        max_tests: Optional[int] = None,
     ) -> None:
         self.feature_costs = feature_costs
         self.feature_groups = feature_groups
         self.feature_discounts = feature_discounts
         self.misclassification_cost = misclassification_cost
         self.nominal_features = nominal_features
+        self.max_test_cost = max_test_cost
+        self.max_tests = max_tests
 
 
 class Id3Classifier(_Unpruned):
     """ID3 as a batch tree: the test of largest information gain, blind to its price;
     no pruning. The baseline of the family (:class:`TestCostTreeClassifier` with
-    ``learner="id3-batch"``, whose documentation the parameters follow)."""
+    ``learner="id3-batch"``, whose documentation the parameters follow).
+    ``max_test_cost`` and ``max_tests`` hold every object to a budget: the tree grows
+    within it and classifies within it."""
 
     _learner = "id3-batch"
 
@@ -976,6 +1025,8 @@ class _Pruned(TestCostTreeClassifier):
         misclassification_cost: Any = 100.0,
         nominal_features: Optional[Any] = None,
         confidence: float = 0.25,
+        max_test_cost: Optional[float] = None,
+        max_tests: Optional[int] = None,
     ) -> None:
         self.feature_costs = feature_costs
         self.feature_groups = feature_groups
@@ -983,19 +1034,25 @@ class _Pruned(TestCostTreeClassifier):
         self.misclassification_cost = misclassification_cost
         self.nominal_features = nominal_features
         self.confidence = confidence
+        self.max_test_cost = max_test_cost
+        self.max_tests = max_tests
 
 
 class C45Classifier(_Pruned):
     """C4.5: the gain ratio among tests of at least average gain, blind to prices;
     pessimistic pruning at ``confidence`` (:class:`TestCostTreeClassifier` with
-    ``learner="c45"``)."""
+    ``learner="c45"``).
+    ``max_test_cost`` and ``max_tests`` hold every object to a budget: the tree grows
+    within it and classifies within it."""
 
     _learner = "c45"
 
 
 class IdxClassifier(_Pruned):
     """IDX (Norton 1989): the test of largest gain / price; pruned as C4.5
-    (:class:`TestCostTreeClassifier` with ``learner="idx"``)."""
+    (:class:`TestCostTreeClassifier` with ``learner="idx"``).
+    ``max_test_cost`` and ``max_tests`` hold every object to a budget: the tree grows
+    within it and classifies within it."""
 
     _learner = "idx"
 
@@ -1003,7 +1060,9 @@ class IdxClassifier(_Pruned):
 class CsId3BatchClassifier(_Pruned):
     """CS-ID3 (Tan 1991) as a batch tree: the test of largest gain² / price; pruned as
     C4.5 (:class:`TestCostTreeClassifier` with ``learner="cs-id3-batch"``). The
-    incremental CS-ID3 of the paper is :class:`CsId3Classifier`."""
+    incremental CS-ID3 of the paper is :class:`CsId3Classifier`.
+    ``max_test_cost`` and ``max_tests`` hold every object to a budget: the tree grows
+    within it and classifies within it."""
 
     _learner = "cs-id3-batch"
 
@@ -1011,7 +1070,9 @@ class CsId3BatchClassifier(_Pruned):
 class Eg2Classifier(TestCostTreeClassifier):
     """EG2 (Núñez 1991): the test of largest (2^gain − 1) / (price + 1)^w; pruned as
     C4.5 (:class:`TestCostTreeClassifier` with ``learner="eg2"``, whose documentation
-    the parameters follow, ``selection_prices`` included)."""
+    the parameters follow, ``selection_prices`` included).
+    ``max_test_cost`` and ``max_tests`` hold every object to a budget: the tree grows
+    within it and classifies within it."""
 
     _learner = "eg2"
 
@@ -1025,6 +1086,8 @@ class Eg2Classifier(TestCostTreeClassifier):
         confidence: float = 0.25,
         w: float = 1.0,
         selection_prices: str = "path",
+        max_test_cost: Optional[float] = None,
+        max_tests: Optional[int] = None,
     ) -> None:
         self.feature_costs = feature_costs
         self.feature_groups = feature_groups
@@ -1034,13 +1097,17 @@ class Eg2Classifier(TestCostTreeClassifier):
         self.confidence = confidence
         self.w = w
         self.selection_prices = selection_prices
+        self.max_test_cost = max_test_cost
+        self.max_tests = max_tests
 
 
 class DtmcClassifier(_Unpruned):
     """DTMC (Ling, Yang, Wang and Zhang 2004): the test that most reduces the expected
     total cost (tests plus misclassification) of a node's objects, and a leaf where none
     reduces it; no pruning. Its tree depends on ``misclassification_cost``
-    (:class:`TestCostTreeClassifier` with ``learner="dtmc"``)."""
+    (:class:`TestCostTreeClassifier` with ``learner="dtmc"``).
+    ``max_test_cost`` and ``max_tests`` hold every object to a budget: the tree grows
+    within it and classifies within it."""
 
     _learner = "dtmc"
 
@@ -1054,7 +1121,9 @@ class IcetClassifier(TestCostTreeClassifier):
     ``learner="icet"``, whose documentation the parameters follow: ``icet_pruning``,
     ``icet_search_objects`` and ``selection_prices`` reproduce the published
     benchmark's ICET with ``"costs"``, 1000 and ``"listed"``). ``icet_genome_`` is the
-    individual the tree was grown from."""
+    individual the tree was grown from.
+    ``max_test_cost`` and ``max_tests`` hold every object to a budget when it is
+    classified (the tree is grown free, and cut where an object runs out)."""
 
     _learner = "icet"
 
@@ -1071,6 +1140,8 @@ class IcetClassifier(TestCostTreeClassifier):
         selection_prices: str = "path",
         icet_pruning: str = "errors",
         icet_search_objects: int = 400,
+        max_test_cost: Optional[float] = None,
+        max_tests: Optional[int] = None,
     ) -> None:
         self.feature_costs = feature_costs
         self.feature_groups = feature_groups
@@ -1083,6 +1154,8 @@ class IcetClassifier(TestCostTreeClassifier):
         self.selection_prices = selection_prices
         self.icet_pruning = icet_pruning
         self.icet_search_objects = icet_search_objects
+        self.max_test_cost = max_test_cost
+        self.max_tests = max_tests
 
 
 class ActClassifier(TestCostTreeClassifier):
@@ -1091,7 +1164,9 @@ class ActClassifier(TestCostTreeClassifier):
     stochastic EG2 of weight ``w``, drawn from ``seed``) costs least in tests and
     pessimistic errors, or a leaf where answering costs less; pruned by total cost. Its
     tree depends on ``misclassification_cost`` (:class:`TestCostTreeClassifier` with
-    ``learner="act"``). More samples, better estimates, more time."""
+    ``learner="act"``). More samples, better estimates, more time.
+    ``max_test_cost`` and ``max_tests`` hold every object to a budget when it is
+    classified (the tree is grown free, and cut where an object runs out)."""
 
     _learner = "act"
 
@@ -1106,6 +1181,8 @@ class ActClassifier(TestCostTreeClassifier):
         seed: int = 0,
         act_samples: int = 5,
         selection_prices: str = "path",
+        max_test_cost: Optional[float] = None,
+        max_tests: Optional[int] = None,
     ) -> None:
         self.feature_costs = feature_costs
         self.feature_groups = feature_groups
@@ -1116,6 +1193,8 @@ class ActClassifier(TestCostTreeClassifier):
         self.seed = seed
         self.act_samples = act_samples
         self.selection_prices = selection_prices
+        self.max_test_cost = max_test_cost
+        self.max_tests = max_tests
 
 
 class CvtClassifier(TestCostTreeClassifier):
@@ -1127,6 +1206,8 @@ class CvtClassifier(TestCostTreeClassifier):
     and samples drawn from ``seed``, give the tree, grown on all of them. Its tree depends on ``misclassification_cost``
     (:class:`TestCostTreeClassifier` with ``learner="cvt"``). ``cvt_choice_`` says what
     it chose.
+    ``max_test_cost`` and ``max_tests`` hold every object to a budget when it is
+    classified (the tree is grown free, and cut where an object runs out).
 
     >>> import numpy as np
     >>> from csrl.sklearn import CvtClassifier
@@ -1152,6 +1233,8 @@ class CvtClassifier(TestCostTreeClassifier):
         seed: int = 0,
         cvt_folds: int = 5,
         selection_prices: str = "path",
+        max_test_cost: Optional[float] = None,
+        max_tests: Optional[int] = None,
     ) -> None:
         self.feature_costs = feature_costs
         self.feature_groups = feature_groups
@@ -1161,3 +1244,5 @@ class CvtClassifier(TestCostTreeClassifier):
         self.seed = seed
         self.cvt_folds = cvt_folds
         self.selection_prices = selection_prices
+        self.max_test_cost = max_test_cost
+        self.max_tests = max_tests
