@@ -221,7 +221,7 @@ impl TestCostTree {
     /// `max_tests` a budget per object (`Budget`), within which the greedy learners grow
     /// (`None`: no limit). The GIL is released while it grows.
     #[staticmethod]
-    #[pyo3(signature = (learner, names, columns, classes, class_names, prices, group_names, misclassification, confidence=0.25, w=1.0, seed=0, population=50, generations=20, samples=5, selection_prices="path", icet_pruning="errors", search_objects=400, folds=5, max_test_cost=None, max_tests=None))]
+    #[pyo3(signature = (learner, names, columns, classes, class_names, prices, group_names, misclassification, confidence=0.25, w=1.0, seed=0, population=50, generations=20, samples=5, selection_prices="path", icet_pruning="errors", search_objects=400, folds=5, max_test_cost=None, max_tests=None, threads=1))]
     #[expect(
         clippy::too_many_arguments,
         reason = "one argument per setting, all keywords from Python"
@@ -248,6 +248,7 @@ impl TestCostTree {
         folds: usize,
         max_test_cost: Option<f64>,
         max_tests: Option<usize>,
+        threads: usize,
     ) -> PyResult<TestCostTree> {
         let budget = budget(max_test_cost, max_tests)?;
         let method = Method::parse(learner).map_err(|e| data_error(&e))?;
@@ -275,7 +276,9 @@ impl TestCostTree {
             )));
         }
         let act = ActParams::with_samples(samples).map_err(|e| data_error(&e))?;
-        let cvt = CvtParams::with_folds(folds).map_err(|e| data_error(&e))?;
+        let cvt = CvtParams::with_folds(folds)
+            .map_err(|e| data_error(&e))?
+            .with_threads(threads);
         let prices = TestPrices::new(
             prices
                 .into_iter()

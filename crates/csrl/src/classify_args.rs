@@ -174,6 +174,11 @@ pub struct ClassifyArgs {
     /// its grower and where its tree stops (default 5; at least 2).
     #[arg(long, value_name = "K")]
     pub(crate) cvt_folds: Option<usize>,
+    /// CVT only: the most threads one fit uses (default 1; 0 for every core): its trees
+    /// on all the objects and on each fold grow at the same time, each from its own seed,
+    /// so the tree and every output are the same on any number of threads.
+    #[arg(long, value_name = "N")]
+    pub(crate) cvt_threads: Option<usize>,
     /// Family only: the most one object may pay for its tests (after group discounts; a
     /// test done once is free further down). The greedy learners (id3-batch, c45, idx,
     /// cs-id3-batch, eg2, dtmc) grow within it; every learner's tree classifies within it,

@@ -430,6 +430,17 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
         method,
         CvtParams::with_folds,
     )?;
+    // Without the flag, one thread (the library's default, not `usize`'s 0).
+    let cvt = match args.cvt_threads {
+        Some(_) => cvt.with_threads(learner_flag(
+            args.cvt_threads,
+            "--cvt-threads",
+            Method::Cvt,
+            method,
+            Ok::<usize, cslearn::Error>,
+        )?),
+        None => cvt,
+    };
     let budget = read_budget(args)?;
     let params = cslearn::testcost::FamilyParams {
         budget,

@@ -284,6 +284,25 @@ fn cvt_reports_what_its_cross_validation_chose_and_its_folds_are_a_cvt_setting()
     );
 }
 
+/// CVT on two threads, or on every core, writes what it writes on one, byte for byte.
+#[test]
+fn cvt_on_several_threads_writes_the_same_output() {
+    let one = on_heart("cvt", &["--folds", "3", "--json"]);
+    assert!(
+        one.status.success(),
+        "{}",
+        String::from_utf8_lossy(&one.stderr)
+    );
+    for threads in ["2", "0"] {
+        let many = on_heart("cvt", &["--folds", "3", "--json", "--cvt-threads", threads]);
+        assert_eq!(many.stdout, one.stdout, "--cvt-threads {threads}");
+    }
+    refused(
+        &on_heart("eg2", &["--cvt-threads", "2"]),
+        &["--cvt-threads", "--learner cvt only"],
+    );
+}
+
 #[test]
 fn icet_reports_the_genome_its_search_found() {
     let v = heart_json("icet", &["--holdout", "0.3"]);

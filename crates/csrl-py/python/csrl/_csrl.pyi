@@ -174,6 +174,7 @@ class TestCostTree:
         folds: int = 5,
         max_test_cost: Optional[float] = None,
         max_tests: Optional[int] = None,
+        threads: int = 1,
     ) -> TestCostTree: ...
     def classify(
         self,

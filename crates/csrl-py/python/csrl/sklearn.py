@@ -433,6 +433,10 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         icet_search_objects: the most training objects ICET's search uses, half to grow
             and half to score (400; at least 2); the final tree grows on all of them.
         cvt_folds: the folds of CVT's cross-validation (5; at least 2).
+        n_jobs: the threads one CVT fit uses (``None``: one; ``-1``: every core; else at
+            least 1): its trees on all the objects and on each fold grow at the same time,
+            each from its own seed, so the tree does not depend on it. Other learners
+            use one.
         max_test_cost: the most one object may pay for its tests (a number at least 0,
             after group discounts, a test done once free further down), or ``None``: no
             limit. ``predict``, ``predict_proba``, ``predict_cost`` and the rest never
@@ -493,6 +497,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         cvt_folds: int = 5,
         max_test_cost: Optional[float] = None,
         max_tests: Optional[int] = None,
+        n_jobs: Optional[int] = None,
     ) -> None:
         self.learner = learner
         self.feature_costs = feature_costs
@@ -512,6 +517,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         self.cvt_folds = cvt_folds
         self.max_test_cost = max_test_cost
         self.max_tests = max_tests
+        self.n_jobs = n_jobs
 
     # -- parameters -------------------------------------------------------------------
 
@@ -798,6 +804,16 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         icet_pruning = getattr(self, "icet_pruning", "errors")
         icet_search_objects = getattr(self, "icet_search_objects", 400)
         cvt_folds = getattr(self, "cvt_folds", 5)
+        n_jobs = getattr(self, "n_jobs", None)
+        whole = isinstance(n_jobs, (numbers.Integral, np.integer)) and not isinstance(n_jobs, bool)
+        if n_jobs is None:
+            threads = 1
+        elif whole and n_jobs == -1:
+            threads = 0
+        elif whole and 1 <= n_jobs < 2**32:
+            threads = int(n_jobs)
+        else:
+            raise ValueError(f"n_jobs must be None, -1 or an integer at least 1, found {n_jobs!r}")
         if selection_prices not in ("path", "listed"):
             raise ValueError(f"selection_prices must be 'path' or 'listed', found {selection_prices!r}")
         if icet_pruning not in ("errors", "costs"):
@@ -839,6 +855,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
             icet_pruning=str(icet_pruning),
             search_objects=int(icet_search_objects),
             folds=int(cvt_folds),
+            threads=threads,
             **budget,
         )
         self.classes_ = classes
@@ -1207,7 +1224,9 @@ class CvtClassifier(TestCostTreeClassifier):
     (:class:`TestCostTreeClassifier` with ``learner="cvt"``). ``cvt_choice_`` says what
     it chose.
     ``max_test_cost`` and ``max_tests`` hold every object to a budget when it is
-    classified (the tree is grown free, and cut where an object runs out).
+    classified (the tree is grown free, and cut where an object runs out). ``n_jobs``
+    grows its trees on all the objects and on each fold at the same time (``-1``: every
+    core), each from its own seed: the same tree on any number of threads.
 
     >>> import numpy as np
     >>> from csrl.sklearn import CvtClassifier
@@ -1235,6 +1254,7 @@ class CvtClassifier(TestCostTreeClassifier):
         selection_prices: str = "path",
         max_test_cost: Optional[float] = None,
         max_tests: Optional[int] = None,
+        n_jobs: Optional[int] = None,
     ) -> None:
         self.feature_costs = feature_costs
         self.feature_groups = feature_groups
@@ -1246,3 +1266,4 @@ class CvtClassifier(TestCostTreeClassifier):
         self.selection_prices = selection_prices
         self.max_test_cost = max_test_cost
         self.max_tests = max_tests
+        self.n_jobs = n_jobs
