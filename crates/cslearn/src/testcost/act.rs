@@ -96,13 +96,6 @@ pub(super) struct Act<'a> {
 }
 
 impl<'b> Act<'b> {
-    /// ACT's tree on the objects `rows` of `frame`: [`grown`](Act::grown), then pruned by
-    /// cost.
-    pub fn tree(&self, frame: &Frame, rows: &[usize]) -> CostTree {
-        let mut splits = self.trie(frame, rows);
-        self.tree_in(&mut splits)
-    }
-
     /// The split trie ACT grows through on the objects `rows` of `frame`: EG2's kind of
     /// statistics, which do not depend on the misclassification costs, and C4.5's least
     /// branch size.
@@ -122,8 +115,8 @@ impl<'b> Act<'b> {
         )
     }
 
-    /// [`tree`](Act::tree) through the split trie `splits` (see
-    /// [`grown_in`](Act::grown_in)).
+    /// ACT's tree through the split trie `splits`: [`grown_in`](Act::grown_in), then
+    /// pruned by cost.
     pub fn tree_in(&self, splits: &mut Splits<'_>) -> CostTree {
         let mut tree = self.grown_in(splits);
         tree.prune_by_cost(self.params.confidence, self.prices);

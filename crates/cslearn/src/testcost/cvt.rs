@@ -347,25 +347,11 @@ impl CvtChoice {
 const CONFIDENCE: f64 = 0.25;
 
 /// CVT's tree on the objects `rows` of `frame`, with its choice; the folds are drawn from
-/// `seed`.
-pub(super) fn cvt_tree(
-    frame: &Frame,
-    rows: &[usize],
-    prices: &TestPrices,
-    mc: &MisclassCosts,
-    params: &CvtParams,
-    selection: SelectionPrices,
-    seed: u64,
-) -> (CostTree, CvtChoice) {
-    let mut tries = CvtTries::default();
-    cvt_tree_in(frame, rows, prices, mc, params, selection, seed, &mut tries)
-}
-
-/// [`cvt_tree`] through `tries`, those of CVT's trees on the same objects, folds and
-/// prices at other costs (or none yet).
+/// `seed`. It grows through `tries`, those of CVT's trees on the same objects, folds and
+/// prices at other costs (empty for a first tree).
 #[expect(
     clippy::too_many_arguments,
-    reason = "cvt_tree's own arguments, and the tries"
+    reason = "the data, prices, costs, settings and seed, and the tries"
 )]
 pub(super) fn cvt_tree_in<'a>(
     frame: &'a Frame,

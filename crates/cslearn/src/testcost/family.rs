@@ -6,7 +6,7 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use super::act::{Act, ActParams};
 use super::budget::Budget;
 use super::criterion::Criterion;
-use super::cvt::{CvtChoice, CvtParams, CvtTries, cvt_tree, cvt_tree_in};
+use super::cvt::{CvtChoice, CvtParams, CvtTries, cvt_tree_in};
 use super::data::Frame;
 use super::evaluate::shuffle;
 use super::prices::{MisclassCosts, TestPrices};
@@ -301,36 +301,18 @@ pub fn fit(
     params: &FamilyParams,
     seed: u64,
 ) -> Fitted {
-    if method == Method::Act {
-        let act = Act {
-            prices,
-            mc,
-            params: &params.act,
-            w: params.eg2_w,
-            selection: params.selection_prices,
-            seed,
-        };
-        return Fitted {
-            tree: act.tree(frame, rows),
-            genome: None,
-            cvt: None,
-        };
-    }
-    if method == Method::Cvt {
-        let (tree, choice) = cvt_tree(
+    if matches!(method, Method::Act | Method::Cvt) {
+        // Their tree at one cost is fit_each's, through tries of its own.
+        let mut one = fit_each(
+            method,
             frame,
             rows,
             prices,
-            mc,
-            &params.cvt,
-            params.selection_prices,
+            std::slice::from_ref(mc),
+            params,
             seed,
         );
-        return Fitted {
-            tree,
-            genome: None,
-            cvt: Some(choice),
-        };
+        return one.remove(0);
     }
     if method == Method::Icet {
         let genome = icet_search(frame, rows, prices, mc, params, seed);
