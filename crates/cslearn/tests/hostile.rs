@@ -118,3 +118,53 @@ fn lines_are_counted_right_after_crlf_line_ends() {
         );
     }
 }
+
+/// Two values that every learner must separate: a threshold always falls between them,
+/// even where their midpoint overflows or rounds onto the larger.
+#[test]
+fn every_learner_separates_extreme_and_adjacent_values() {
+    use cslearn::testcost::{Column, FamilyParams, Frame, Method, MisclassCosts, TestPrices, fit};
+    let tiny = f64::from_bits(1);
+    let pairs = [
+        (1e308, 1.5e308),
+        (-1.5e308, -1e308),
+        (1.0 + f64::EPSILON, 1.0 + 2.0 * f64::EPSILON),
+        (tiny, f64::from_bits(2)),
+        (-f64::MAX, f64::MAX),
+    ];
+    for (low, high) in pairs {
+        let values: Vec<f64> = (0..20).map(|i| if i < 10 { low } else { high }).collect();
+        let classes: Vec<u32> = (0..20).map(|i| u32::from(i >= 10)).collect();
+        let frame = Frame::new(
+            vec!["x".into()],
+            vec![Column::Numeric(values)],
+            classes,
+            vec!["a".into(), "b".into()],
+        )
+        .unwrap();
+        let prices = TestPrices::flat(&[1.0]).unwrap();
+        let mc = MisclassCosts::uniform(2, 100.0).unwrap();
+        let rows: Vec<usize> = (0..20).collect();
+        for method in Method::ALL {
+            let fitted = fit(
+                method,
+                &frame,
+                &rows,
+                &prices,
+                &mc,
+                &FamilyParams::default(),
+                1,
+            );
+            for r in 0..20 {
+                let c = fitted.tree.classify(&frame, r, &prices).class;
+                assert_eq!(
+                    c,
+                    frame.class(r),
+                    "{} misclassifies {:e} of the pair ({low:e}, {high:e})",
+                    method.name(),
+                    if r < 10 { low } else { high }
+                );
+            }
+        }
+    }
+}

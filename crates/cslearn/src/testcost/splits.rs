@@ -654,7 +654,7 @@ impl<'a> Splits<'a> {
                     }
                     let quality = -(h_left.max(0.0) + h_right.max(0.0));
                     if best.is_none_or(|(q, _, _)| quality > q) {
-                        best = Some((quality, (value + next) / 2.0, left_total));
+                        best = Some((quality, threshold_between(value, next), left_total));
                     }
                 }
                 let (quality, at, left_total) = best?;
@@ -769,7 +769,7 @@ impl<'a> Splits<'a> {
                             + entropy_of_terms(right_terms, right_total))
                     };
                     if best.is_none_or(|(q, _, _)| quality > q) {
-                        best = Some((quality, (value + next) / 2.0, left_total));
+                        best = Some((quality, threshold_between(value, next), left_total));
                     }
                 }
                 let (quality, at, left_total) = best?;
@@ -1007,4 +1007,18 @@ impl Cell {
             children: Vec::new(),
         }
     }
+}
+
+/// A threshold that separates `low` from `high` (`low < high`): an object goes right when
+/// its value is above it, so it must be at least `low` and below `high`. Their midpoint
+/// where it is one (always, but for extreme values); otherwise, where the sum overflows,
+/// half of each; and where rounding lands on `high` (adjacent doubles), `low` itself.
+pub(crate) fn threshold_between(low: f64, high: f64) -> f64 {
+    let separates = |t: f64| low <= t && t < high;
+    let mid = (low + high) / 2.0;
+    if separates(mid) {
+        return mid;
+    }
+    let halves = low / 2.0 + high / 2.0;
+    if separates(halves) { halves } else { low }
 }

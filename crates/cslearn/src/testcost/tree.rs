@@ -247,7 +247,8 @@ pub enum Split {
     Threshold {
         /// The feature.
         feature: usize,
-        /// The threshold (a midpoint between two values seen in training).
+        /// The threshold: between two values seen in training, at least the smaller and below
+        /// the larger (their midpoint but where it would not separate them).
         at: f64,
         /// The child at or below the threshold, then the one above.
         children: [NodeIndex; 2],
