@@ -263,11 +263,15 @@ fn check_flags(args: &ClassifyArgs) -> Result<()> {
             args.costs.display()
         );
     }
+    // Turney's `.delay` file is read from beside `--costs` without a flag of its own.
+    let delays =
+        crate::testcost::is_turney(&args.costs).then(|| args.costs.with_extension("delay"));
     let inputs = [
         ("--data", Some(&args.data)),
         ("--costs", Some(&args.costs)),
         ("--groups", args.groups.as_ref()),
         ("--mc-matrix", args.mc_matrix.as_ref()),
+        ("`.delay` (read beside --costs)", delays.as_ref()),
     ];
     for (flag, output) in [("--save", &args.save), ("--dot", &args.dot)] {
         let Some(output) = output else { continue };

@@ -105,6 +105,16 @@ impl Loaded {
 
 /// Run `csrl predict`.
 pub fn run(args: &PredictArgs, out: &mut dyn Write) -> Result<()> {
+    if let Some(path) = &args.out {
+        for (input, given) in [("--model", &args.model), ("--data", &args.data)] {
+            anyhow::ensure!(
+                !crate::classify::same_file(path, given),
+                "--out {} names the {input} file: it would overwrite it; give the output a \
+                 name of its own",
+                path.display()
+            );
+        }
+    }
     let model =
         match cslearn::testcost::SavedModel::load(&args.model).context("cannot load the model")? {
             cslearn::testcost::SavedModel::Classifier(m) => Loaded::Classifier(m),

@@ -792,6 +792,40 @@ fn save_never_overwrites_an_input() {
         &["--save", "names the --data file"],
     );
     assert_eq!(std::fs::read(&data).unwrap(), before);
+    // Turney's `.delay` file, read from beside the prices without a flag, too.
+    let delays = s.file("prices.delay", "a: immediate.\nb: delayed.\n");
+    let before = std::fs::read(&delays).unwrap();
+    refused(
+        &s.classify("eg2", "prices.expense", &["--save", &delays]),
+        &["--save", "names the `.delay` (read beside --costs) file"],
+    );
+    assert_eq!(std::fs::read(&delays).unwrap(), before);
+}
+
+#[test]
+fn predict_never_overwrites_its_model_or_its_data() {
+    let s = Scratch::new();
+    let model = s.path("model.json");
+    let out = s.classify("eg2", "prices.expense", &["--save", &model]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let data = s.path("data.csv");
+    for (flag, path) in [("--model", &model), ("--data", &data)] {
+        let before = std::fs::read(path).unwrap();
+        let out = csrl(&["predict", "--model", &model, "--data", &data, "--out", path]);
+        refused(&out, &["--out", &format!("names the {flag} file")]);
+        assert_eq!(std::fs::read(path).unwrap(), before, "{flag}");
+    }
+    // A name of its own is written.
+    let out_path = s.path("out.csv");
+    let out = csrl(&[
+        "predict", "--model", &model, "--data", &data, "--out", &out_path,
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(
+        std::fs::read_to_string(&out_path)
+            .unwrap()
+            .starts_with("line,class")
+    );
 }
 
 #[test]
