@@ -456,6 +456,13 @@ fn read_table_within(reader: impl Read, path: &Path, max_cells: u64) -> Result<T
             path: path.to_path_buf(),
         });
     }
+    if let Some(reason) = unprintable_name(&header) {
+        return Err(Error::BadInput {
+            path: path.to_path_buf(),
+            at: "line 1".into(),
+            reason,
+        });
+    }
     let (mut text, mut ends, mut lines) = (String::new(), Vec::new(), Vec::new());
     // Lines counted from byte offsets, in one pass over the file.
     let (mut counted, mut line) = (0usize, 1u64);
@@ -1120,4 +1127,19 @@ mod tests {
             ]
         );
     }
+}
+
+/// Why a header cannot name columns: one of its names holds a control character (a
+/// terminal's escape sequence would be printed raw in every message that names the
+/// column); `None` when every name is printable text.
+pub(crate) fn unprintable_name<S: AsRef<str>>(header: &[S]) -> Option<String> {
+    header.iter().enumerate().find_map(|(i, name)| {
+        let bad = name.as_ref().chars().find(|c| c.is_control())?;
+        Some(format!(
+            "column {}'s name holds the control character U+{:04X}; a column name must be \
+             printable text",
+            i + 1,
+            u32::from(bad)
+        ))
+    })
 }

@@ -168,3 +168,25 @@ fn every_learner_separates_extreme_and_adjacent_values() {
         }
     }
 }
+
+/// A column name holding a terminal's escape sequence is refused, and the refusal does not
+/// print it.
+#[test]
+fn a_column_name_with_a_control_character_is_refused_without_printing_it() {
+    let err = read("a\u{1b}[2J,b,t\n1,2,x\n").unwrap_err();
+    let text = err.to_string();
+    assert!(matches!(err, Error::BadInput { .. }), "{err:?}");
+    assert!(text.contains("d.csv") && text.contains("U+001B"), "{text}");
+    assert!(!text.contains('\u{1b}'), "{text:?}");
+    use cslearn::testcost::{Frame, FrameSpec};
+    let err = Frame::from_cells(
+        "t.csv",
+        &["a\u{7}", "c"],
+        &[["1", "x"]],
+        &FrameSpec::new("c"),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("t.csv") && err.contains("U+0007"), "{err}");
+    assert!(!err.contains('\u{7}'), "{err:?}");
+}

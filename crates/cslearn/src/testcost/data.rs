@@ -219,6 +219,9 @@ impl Frame {
             reason,
         };
         let header: Vec<&str> = header.iter().map(AsRef::as_ref).collect();
+        if let Some(reason) = crate::dataset::unprintable_name(&header) {
+            return Err(bad("header".into(), reason));
+        }
         let target = header
             .iter()
             .position(|h| *h == spec.target)
