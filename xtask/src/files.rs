@@ -51,6 +51,14 @@ pub fn open_append(path: &Path) -> Result<std::fs::File> {
 /// Read `path`, which must be a regular file (`what`, for the message) of at most `max`
 /// bytes, as UTF-8 text.
 pub fn read_text(path: &Path, max: u64, what: &str) -> Result<String> {
+    let bytes = read_bytes(path, max, what)?;
+    String::from_utf8(bytes).with_context(|| format!("{}: not UTF-8 text", path.display()))
+}
+
+/// Read `path`, which must be a regular file (`what`, for the message) of at most `max`
+/// bytes: a FIFO, a device or a folder is refused unread, so nothing blocks or reads
+/// without end.
+pub fn read_bytes(path: &Path, max: u64, what: &str) -> Result<Vec<u8>> {
     use std::io::Read;
     let meta =
         std::fs::metadata(path).with_context(|| format!("cannot read {}", path.display()))?;
@@ -68,7 +76,7 @@ pub fn read_text(path: &Path, max: u64, what: &str) -> Result<String> {
         "{}: longer than the {max} bytes {what} may have here",
         path.display()
     );
-    String::from_utf8(bytes).with_context(|| format!("{}: not UTF-8 text", path.display()))
+    Ok(bytes)
 }
 
 /// Write `bytes` to `path` through a temporary file in the same folder and a rename, so

@@ -153,17 +153,24 @@ impl<T: JobLine> ReadResults<T> {
     }
 }
 
+/// The most bytes a shard's results file may have (1 GiB: millions of job lines).
+const MAX_RESULTS_BYTES: u64 = 1 << 30;
+
+/// The most bytes a shard's manifest may have (its job list: 64 MiB).
+const MAX_MANIFEST_BYTES: u64 = 64 << 20;
+
 /// Read a shard's results, line by line; nothing is changed on disk.
 pub fn read_results<T: DeserializeOwned>(path: &Path) -> Result<ReadResults<T>> {
     let mut out = ReadResults {
         results: Vec::new(),
         bad: Vec::new(),
     };
-    let text = match std::fs::read(path) {
-        Ok(t) => String::from_utf8_lossy(&t).into_owned(),
+    match std::fs::symlink_metadata(path) {
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(out),
-        Err(e) => return Err(e).with_context(|| format!("cannot read {}", path.display())),
-    };
+        _ => {}
+    }
+    let bytes = crate::files::read_bytes(path, MAX_RESULTS_BYTES, "a results file")?;
+    let text = String::from_utf8_lossy(&bytes).into_owned();
     for (i, line) in text.split_inclusive('\n').enumerate() {
         let complete = line.ends_with('\n');
         let parsed = complete
@@ -264,7 +271,9 @@ where
         job_ids: mine.clone(),
     };
     let manifest_path = dir.join("manifest.json");
-    if let Ok(text) = std::fs::read_to_string(&manifest_path) {
+    if manifest_path.exists() {
+        let text =
+            crate::files::read_text(&manifest_path, MAX_MANIFEST_BYTES, "a shard's manifest")?;
         let old: Manifest<D> = serde_json::from_str(&text).with_context(|| {
             format!(
                 "{} is not a manifest of this job list",
@@ -396,8 +405,7 @@ where
     let mut places: BTreeMap<u64, (usize, usize)> = BTreeMap::new();
     for (d, dir) in dirs.iter().enumerate() {
         let path = dir.join("manifest.json");
-        let text = std::fs::read_to_string(&path)
-            .with_context(|| format!("cannot read {}", path.display()))?;
+        let text = crate::files::read_text(&path, MAX_MANIFEST_BYTES, "a shard's manifest")?;
         let m: Manifest<D> = serde_json::from_str(&text)
             .with_context(|| format!("{} is not a manifest of this job list", path.display()))?;
         match &definition {
@@ -486,6 +494,36 @@ mod tests {
 
     fn result(id: u64) -> String {
         serde_json::to_string(&Line { id, value: 1.5 }).unwrap()
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_results_file_or_manifest_that_is_no_regular_file_is_refused_unread() {
+        // A FIFO would block the read for ever, /dev/zero would fill the memory.
+        let dir = tempfile::tempdir().unwrap();
+        let fifo = dir.path().join("results.jsonl");
+        let made = std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap();
+        assert!(made.success());
+        for path in [fifo.as_path(), Path::new("/dev/zero")] {
+            let err = read_results::<Line>(path).err().unwrap();
+            assert!(format!("{err:#}").contains("not a regular file"), "{err:#}");
+        }
+        // A missing file is no results yet.
+        let none = read_results::<Line>(&dir.path().join("none.jsonl")).unwrap();
+        assert!(none.results.is_empty() && none.bad.is_empty());
+        // A shard folder whose manifest is a FIFO.
+        let shard = dir.path().join("shard-1-of-1");
+        std::fs::create_dir(&shard).unwrap();
+        let made = std::process::Command::new("mkfifo")
+            .arg(shard.join("manifest.json"))
+            .status()
+            .unwrap();
+        assert!(made.success());
+        let err = collect::<String, Line>(&[shard]).err().unwrap();
+        assert!(format!("{err:#}").contains("no shard"), "{err:#}");
     }
 
     #[test]

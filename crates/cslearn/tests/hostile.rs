@@ -190,3 +190,10 @@ fn a_column_name_with_a_control_character_is_refused_without_printing_it() {
     assert!(err.contains("t.csv") && err.contains("U+0007"), "{err}");
     assert!(!err.contains('\u{7}'), "{err:?}");
 }
+
+#[cfg(unix)]
+#[test]
+fn a_manifest_that_is_no_regular_file_is_refused_unread() {
+    let err = cslearn::testcost::Catalogue::read("/dev/zero".as_ref()).unwrap_err();
+    assert!(matches!(err, Error::NotAFile { .. }), "{err:?}");
+}

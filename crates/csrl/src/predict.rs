@@ -106,6 +106,13 @@ impl Loaded {
 /// Run `csrl predict`.
 pub fn run(args: &PredictArgs, out: &mut dyn Write) -> Result<()> {
     if let Some(path) = &args.out {
+        // A FIFO would block the run until something reads it; a device is no file.
+        let special = std::fs::metadata(path).is_ok_and(|m| !m.is_file());
+        anyhow::ensure!(
+            !special,
+            "--out {} is not a regular file: give the name of a file to write",
+            path.display()
+        );
         for (input, given) in [("--model", &args.model), ("--data", &args.data)] {
             anyhow::ensure!(
                 !crate::classify::same_file(path, given),

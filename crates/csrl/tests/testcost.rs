@@ -815,6 +815,20 @@ fn predict_never_overwrites_its_model_or_its_data() {
         refused(&out, &["--out", &format!("names the {flag} file")]);
         assert_eq!(std::fs::read(path).unwrap(), before, "{flag}");
     }
+    // What is not a regular file (a FIFO would block for ever) is refused.
+    #[cfg(unix)]
+    {
+        let fifo = s.path("fifo");
+        let made = std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap();
+        assert!(made.success());
+        let out = csrl(&[
+            "predict", "--model", &model, "--data", &data, "--out", &fifo,
+        ]);
+        refused(&out, &["--out", "is not a regular file"]);
+    }
     // A name of its own is written.
     let out_path = s.path("out.csv");
     let out = csrl(&[

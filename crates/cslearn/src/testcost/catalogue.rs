@@ -93,9 +93,13 @@ impl Catalogue {
     /// assert!(err.to_string().contains("no/such.toml"));
     /// ```
     pub fn read(manifest: &Path) -> Result<Catalogue, Error> {
-        let text = std::fs::read_to_string(manifest).map_err(|source| Error::Io {
+        // A FIFO or a device is refused unread, and a file is read only so far.
+        let file = crate::dataset::open_regular(manifest)?;
+        let bytes = crate::dataset::read_bounded(file, manifest)?;
+        let text = String::from_utf8(bytes).map_err(|e| Error::BadInput {
             path: manifest.to_path_buf(),
-            source,
+            at: format!("byte {}", e.utf8_error().valid_up_to()),
+            reason: "not UTF-8 text".into(),
         })?;
         let file: File = toml::from_str(&text).map_err(|e| Error::BadInput {
             path: manifest.to_path_buf(),
