@@ -261,20 +261,10 @@ impl TestCostTree {
         }
         check_unit(confidence, "confidence", true, true)?;
         check_unit(w, "w", false, false)?;
-        if population < 2 || generations < 1 {
-            return Err(DataError::new_err(format!(
-                "ICET needs a population of at least 2 and at least 1 generation, found {population} and {generations}"
-            )));
-        }
         let selection_prices = SelectionPrices::parse(selection_prices)
             .map_err(|e| DataError::new_err(format!("selection_prices: {}", message(&e))))?;
         let icet_pruning = Pruning::parse(icet_pruning)
             .map_err(|e| DataError::new_err(format!("icet_pruning: {}", message(&e))))?;
-        if search_objects < 2 {
-            return Err(DataError::new_err(format!(
-                "ICET's search needs at least 2 objects (one per half), found {search_objects}"
-            )));
-        }
         let act = ActParams::with_samples(samples).map_err(|e| data_error(&e))?;
         let cvt = CvtParams::with_folds(folds)
             .map_err(|e| data_error(&e))?
@@ -317,6 +307,10 @@ impl TestCostTree {
             budget,
         };
         let rows: Vec<usize> = (0..frame.len()).collect();
+        // Counts are judged against the data before anything is allocated.
+        params
+            .check(method, rows.len())
+            .map_err(|e| data_error(&e))?;
         let fitted = py
             .detach(|| cslearn::testcost::fit(method, &frame, &rows, &prices, &mc, &params, seed));
         Ok(TestCostTree {

@@ -283,6 +283,22 @@ def test_bad_parameters_are_refused_with_a_clear_value_error(params, message):
         cs.TestCostTreeClassifier(**params).fit(X, [0, 1] * 4)
 
 
+@pytest.mark.parametrize(
+    "estimator, params, message",
+    [
+        ("IcetClassifier", {"population": 10**12}, "ICET population of 1000000000000: between 2 and 10000"),
+        ("IcetClassifier", {"generations": 10**12}, "1000000000000 ICET generations: between 1 and 10000"),
+        ("CvtClassifier", {"cvt_folds": 2**63}, "9223372036854775808 folds for CVT: between 2 and the 8 training objects"),
+        ("CvtClassifier", {"cvt_folds": 9}, "9 folds for CVT: between 2 and the 8 training objects"),
+    ],
+)
+def test_counts_beyond_what_the_data_allows_are_refused_before_anything_is_allocated(estimator, params, message):
+    # Each once aborted on an allocation of gigabytes or ran without end.
+    X = np.array([[0.0, 1.0], [1.0, 0.0]] * 4)
+    with pytest.raises(ValueError, match=message):
+        getattr(cs, estimator)(**params).fit(X, [0, 1] * 4)
+
+
 def test_the_published_benchmarks_settings_are_estimator_parameters():
     # Listed prices: a numeric test bought once costs its price again further down, so
     # IDX no longer splits on x0 alone (see the blobs test above).

@@ -453,6 +453,14 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
         act,
         ..cslearn::testcost::FamilyParams::default()
     };
+    let smallest = parts
+        .iter()
+        .map(|(train, _)| train.len())
+        .min()
+        .unwrap_or(0);
+    params
+        .check(method, smallest)
+        .map_err(|e| anyhow::anyhow!("--learner {}: {e}", method.name()))?;
     let bar = crate::progress::progress_bar(parts.len() + usize::from(args.save.is_some()));
     let mut results = Vec::with_capacity(parts.len());
     for (j, (train, test)) in parts.iter().enumerate() {

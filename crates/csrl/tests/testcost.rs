@@ -803,6 +803,24 @@ fn save_never_overwrites_an_input() {
 }
 
 #[test]
+fn counts_beyond_what_the_data_allows_are_refused_before_anything_is_allocated() {
+    // 10^10 folds once asked for 240 GB, u64::MAX overflowed a capacity.
+    let s = Scratch::new();
+    for folds in ["10000000000", "18446744073709551615", "25"] {
+        refused(
+            &s.classify("cvt", "prices.expense", &["--cvt-folds", folds]),
+            &[
+                "--learner cvt",
+                &format!("{folds} folds for CVT"),
+                "training objects",
+            ],
+        );
+    }
+    let out = s.classify("cvt", "prices.expense", &["--cvt-folds", "3"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+}
+
+#[test]
 fn predict_never_overwrites_its_model_or_its_data() {
     let s = Scratch::new();
     let model = s.path("model.json");

@@ -11,7 +11,8 @@ use super::splits::Splits;
 use super::tree::GrowParams;
 
 /// Stratified folds: the objects of each class shuffled by `seed` and dealt in turn,
-/// so every fold has each class in proportion. Returns the test objects of each fold.
+/// so every fold has each class in proportion. Returns the test objects of each fold:
+/// `k` folds, or one per object where `k` is larger (no fold is left empty).
 ///
 /// ```
 /// # use cslearn::testcost::{folds, Column, Frame};
@@ -20,6 +21,7 @@ use super::tree::GrowParams;
 /// let f = folds(&frame, 5, 7);
 /// assert_eq!(f.len(), 5);
 /// assert!(f.iter().all(|fold| fold.len() == 2));
+/// assert_eq!(folds(&frame, 1 << 40, 7).len(), 10);
 /// ```
 pub fn folds(frame: &Frame, k: usize, seed: u64) -> Vec<Vec<usize>> {
     let all: Vec<usize> = (0..frame.len()).collect();
@@ -28,7 +30,9 @@ pub fn folds(frame: &Frame, k: usize, seed: u64) -> Vec<Vec<usize>> {
 
 /// [`folds`] of the objects `rows` only.
 pub(super) fn folds_of(frame: &Frame, rows: &[usize], k: usize, seed: u64) -> Vec<Vec<usize>> {
-    let k = k.max(1);
+    // Folds beyond the objects would stay empty: they are not made (the others are the
+    // same), so a huge `k` allocates nothing.
+    let k = k.clamp(1, rows.len().max(1));
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
     let mut by_class: Vec<Vec<usize>> = vec![Vec::new(); frame.class_count()];
     for &r in rows {

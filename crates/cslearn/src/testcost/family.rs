@@ -205,6 +205,64 @@ impl Default for FamilyParams {
     }
 }
 
+impl FamilyParams {
+    /// Whether `method` can learn with these settings from `objects` training objects,
+    /// checked before anything is allocated: CVT's folds at most the objects (a fold holds
+    /// at least one), ICET's search within [`IcetParams::MAX_POPULATION`] and
+    /// [`IcetParams::MAX_GENERATIONS`] and on at least 2 objects, ACT's samples within
+    /// [`ActParams::MAX_SAMPLES`]; a learner's settings are checked only when it reads
+    /// them. The front ends call it with the smallest training part's size.
+    ///
+    /// ```
+    /// use cslearn::testcost::{CvtParams, FamilyParams, Method};
+    /// let p = FamilyParams { cvt: CvtParams::with_folds(10).unwrap(), ..FamilyParams::default() };
+    /// assert!(p.check(Method::Cvt, 10).is_ok());
+    /// let e = p.check(Method::Cvt, 9).unwrap_err().to_string();
+    /// assert!(e.contains("10 folds") && e.contains("9 training objects"), "{e}");
+    /// assert!(p.check(Method::Eg2, 9).is_ok());
+    /// ```
+    pub fn check(&self, method: Method, objects: usize) -> Result<(), Error> {
+        let invalid = |what: String, reason: String| Err(Error::Invalid { what, reason });
+        let cvt = self.cvt.folds;
+        if method == Method::Cvt && (cvt < 2 || cvt > objects) {
+            return invalid(
+                format!("{cvt} folds for CVT"),
+                format!(
+                    "between 2 and the {objects} training objects (each fold holds at least one)"
+                ),
+            );
+        }
+        let icet = &self.icet;
+        if method == Method::Icet {
+            if icet.population < 2 || icet.population > IcetParams::MAX_POPULATION {
+                return invalid(
+                    format!("an ICET population of {}", icet.population),
+                    format!("between 2 and {}", IcetParams::MAX_POPULATION),
+                );
+            }
+            if icet.generations < 1 || icet.generations > IcetParams::MAX_GENERATIONS {
+                return invalid(
+                    format!("{} ICET generations", icet.generations),
+                    format!("between 1 and {}", IcetParams::MAX_GENERATIONS),
+                );
+            }
+            if icet.search_objects < 2 {
+                return invalid(
+                    format!("an ICET search on {} objects", icet.search_objects),
+                    "at least 2 (one per half)".into(),
+                );
+            }
+        }
+        if method == Method::Act && self.act.samples > ActParams::MAX_SAMPLES {
+            return invalid(
+                format!("{} ACT samples", self.act.samples),
+                format!("at most {}", ActParams::MAX_SAMPLES),
+            );
+        }
+        Ok(())
+    }
+}
+
 /// ICET's genetic search (Turney 1995): each individual is one price bias per test, EG2's
 /// `w` and the pruning confidence; its fitness is the mean total cost (real prices plus
 /// misclassification) on one half of the training objects of the EG2 tree it grows on
@@ -233,6 +291,13 @@ pub struct IcetParams {
     /// test that does not pay for itself.
     #[serde(default)]
     pub pruning: Pruning,
+}
+
+impl IcetParams {
+    /// The largest population [`FamilyParams::check`] accepts (200 times Turney's).
+    pub const MAX_POPULATION: usize = 10_000;
+    /// The most generations [`FamilyParams::check`] accepts (500 times Turney's).
+    pub const MAX_GENERATIONS: usize = 10_000;
 }
 
 impl Default for IcetParams {
