@@ -322,6 +322,10 @@ fn _csrl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("MAX_REWARD", mdp::MAX_REWARD)?;
     m.add("MAX_PRICE", mdp::MAX_PRICE)?;
     m.add("MAX_TOTAL_COST", cslearn::MAX_TOTAL_COST)?;
+    m.add(
+        "MAX_CLASSES",
+        cslearn::testcost::FrameSpec::DEFAULT_MAX_CLASSES,
+    )?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -299,6 +299,13 @@ def test_counts_beyond_what_the_data_allows_are_refused_before_anything_is_alloc
         getattr(cs, estimator)(**params).fit(X, [0, 1] * 4)
 
 
+def test_a_continuous_target_is_refused_before_its_cost_matrix_is_made():
+    # 10,000 classes once took 4 GB.
+    X = np.arange(20000, dtype=float).reshape(-1, 1)
+    with pytest.raises(ValueError, match="y has 20000 distinct classes, more than the 1000"):
+        cs.TestCostTreeClassifier().fit(X, np.arange(20000))
+
+
 def test_the_published_benchmarks_settings_are_estimator_parameters():
     # Listed prices: a numeric test bought once costs its price again further down, so
     # IDX no longer splits on x0 alone (see the blobs test above).

@@ -248,6 +248,7 @@ fn check_flags(args: &ClassifyArgs) -> Result<()> {
             ("--cvt-threads", args.cvt_threads.is_some()),
             ("--max-test-cost", args.max_test_cost.is_some()),
             ("--max-tests", args.max_tests.is_some()),
+            ("--max-classes", args.max_classes.is_some()),
         ];
         let family = cslearn::testcost::Method::ALL.map(cslearn::testcost::Method::name);
         let family = family.join(", ");

@@ -189,4 +189,9 @@ pub struct ClassifyArgs {
     /// is (the two together: whichever binds first).
     #[arg(long, value_name = "K")]
     pub(crate) max_tests: Option<usize>,
+    /// Family only: the most distinct classes the target may have (1000 by default): a
+    /// numeric column named as the target by mistake has as many classes as rows, and a
+    /// misclassification matrix of their square.
+    #[arg(long, value_name = "N")]
+    pub(crate) max_classes: Option<usize>,
 }

@@ -383,12 +383,17 @@ fn genome_text(genome: &IcetGenome, names: &[String]) -> String {
 
 /// Run `csrl classify` with a learner of the family.
 pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> Result<()> {
-    let frame = Frame::read_csv(
-        &args.data,
-        &FrameSpec::new(args.target.as_str()),
-        args.positive_if.as_deref(),
-    )
-    .context("cannot load the data")?;
+    let mut spec = FrameSpec::new(args.target.as_str());
+    spec.max_classes = args.max_classes;
+    let frame = Frame::read_csv(&args.data, &spec, args.positive_if.as_deref())
+        .map_err(|e| {
+            if e.to_string().contains("raise the limit") {
+                anyhow::anyhow!("{e} (--max-classes N)")
+            } else {
+                e.into()
+            }
+        })
+        .context("cannot load the data")?;
     let prices = read_prices(args, &frame)?;
     let (mc, uniform) = read_mc(args, &frame, &prices)?;
     // Every total printed must be a true one: at worst an object pays every test in full

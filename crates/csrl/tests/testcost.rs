@@ -821,6 +821,37 @@ fn counts_beyond_what_the_data_allows_are_refused_before_anything_is_allocated()
 }
 
 #[test]
+fn a_target_with_more_classes_than_the_limit_is_refused_with_how_to_raise_it() {
+    // A numeric column given as the target: once a 20 GB cost matrix.
+    let s = Scratch::new();
+    let mut data = String::from("a,b,t\n");
+    for i in 0..1500 {
+        data.push_str(&format!("{},x,{i}\n", i % 7));
+    }
+    s.file("data.csv", &data);
+    refused(
+        &s.classify("eg2", "prices.expense", &[]),
+        &[
+            "class column `t`",
+            "1500 distinct values",
+            "at most 1000",
+            "--max-classes N",
+        ],
+    );
+    // Raised, or binarised, it is read.
+    let out = s.classify(
+        "eg2",
+        "prices.expense",
+        &["--max-classes", "5", "--positive-if", ">700"],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    refused(
+        &s.classify("eg2", "prices.expense", &["--max-classes", "1499"]),
+        &["1500 distinct values", "at most 1499"],
+    );
+}
+
+#[test]
 fn predict_never_overwrites_its_model_or_its_data() {
     let s = Scratch::new();
     let model = s.path("model.json");

@@ -61,6 +61,11 @@ pub struct FrameSpec {
     pub nominal: Vec<String>,
     /// Cells that mean "missing" besides the empty cell and `?`.
     pub missing: Vec<String>,
+    /// The most distinct classes [`Frame::read_csv`] accepts in the class column (`None`:
+    /// [`FrameSpec::DEFAULT_MAX_CLASSES`]; after `positive_if`, which makes two). A numeric column named as the class by mistake
+    /// has as many values as objects, and its misclassification matrix grows with their
+    /// square: it is refused before anything is learned.
+    pub max_classes: Option<usize>,
 }
 
 impl FrameSpec {
@@ -75,6 +80,28 @@ impl FrameSpec {
             target: target.into(),
             ..FrameSpec::default()
         }
+    }
+
+    /// The most classes a frame read without [`FrameSpec::max_classes`] may have.
+    pub const DEFAULT_MAX_CLASSES: usize = 1000;
+
+    /// Allow at most `classes` distinct classes.
+    ///
+    /// ```
+    /// use cslearn::testcost::{Frame, FrameSpec};
+    /// let dir = tempfile::tempdir().unwrap();
+    /// let path = dir.path().join("d.csv");
+    /// std::fs::write(&path, "x,y\n1,a\n2,b\n3,c\n").unwrap();
+    /// let spec = FrameSpec::new("y").max_classes(2);
+    /// let err = Frame::read_csv(&path, &spec, None).unwrap_err().to_string();
+    /// assert!(err.contains("3 distinct values") && err.contains("at most 2"), "{err}");
+    /// // Two classes once binarised.
+    /// std::fs::write(&path, "x,y\n1,1\n2,2\n3,3\n").unwrap();
+    /// assert_eq!(Frame::read_csv(&path, &spec, Some(">1")).unwrap().class_count(), 2);
+    /// ```
+    pub fn max_classes(mut self, classes: usize) -> FrameSpec {
+        self.max_classes = Some(classes);
+        self
     }
 
     /// Also drop these columns.
@@ -409,10 +436,24 @@ impl Frame {
             .map(|(_, record)| (0..table.header.len()).map(|c| record.get(c)).collect())
             .collect();
         let frame = Frame::from_cells(&path.display().to_string(), &table.header, &rows, spec)?;
-        match positive_if {
-            Some(expr) => frame.binarise(expr),
-            None => Ok(frame),
+        let frame = match positive_if {
+            Some(expr) => frame.binarise(expr)?,
+            None => frame,
+        };
+        let limit = spec.max_classes.unwrap_or(FrameSpec::DEFAULT_MAX_CLASSES);
+        let found = frame.class_count();
+        if found > limit {
+            return Err(Error::BadInput {
+                path: at(),
+                at: format!("class column `{}`", spec.target),
+                reason: format!(
+                    "{found} distinct values, but a class column may have at most {limit} \
+                     classes (a numeric column named as the class?); raise the limit if they \
+                     are classes"
+                ),
+            });
         }
+        Ok(frame)
     }
 
     /// The number of objects.

@@ -19,6 +19,8 @@ MAX_PRICE: float
 """The largest price a feature may have (so that a run's total cost stays finite)."""
 MAX_TOTAL_COST: float
 """The most a classifier's learning may cost in all: the summed prices times the objects."""
+MAX_CLASSES: int
+"""The most classes a test-cost tree learns (a continuous target has one per object)."""
 
 class SettingsError(ValueError):
     """Settings that cannot be used (the message names them)."""

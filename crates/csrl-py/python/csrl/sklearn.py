@@ -791,6 +791,12 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         X, y, nominal, categories = self._read(X, y, fitting=True)
         check_classification_targets(y)
         classes, y_codes = np.unique(y, return_inverse=True)
+        if len(classes) > _csrl.MAX_CLASSES:
+            # A continuous target given by mistake: its cost matrix grows with the square.
+            raise ValueError(
+                f"y has {len(classes)} distinct classes, more than the {_csrl.MAX_CLASSES} a "
+                "test-cost tree learns (a continuous target? bin it into classes first)"
+            )
         n = X.shape[1]
         prices, group_names = self._prices(n)
         matrix = self._misclassification(classes)
