@@ -1082,6 +1082,21 @@ pub(crate) fn read_costs(
     Ok(FeatureCosts::new(costs))
 }
 
+/// Why a header cannot name columns: one of its names holds a control character (a
+/// terminal's escape sequence would be printed raw in every message that names the
+/// column); `None` when every name is printable text.
+pub(crate) fn unprintable_name<S: AsRef<str>>(header: &[S]) -> Option<String> {
+    header.iter().enumerate().find_map(|(i, name)| {
+        let bad = name.as_ref().chars().find(|c| c.is_control())?;
+        Some(format!(
+            "column {}'s name holds the control character U+{:04X}; a column name must be \
+             printable text",
+            i + 1,
+            u32::from(bad)
+        ))
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1127,19 +1142,4 @@ mod tests {
             ]
         );
     }
-}
-
-/// Why a header cannot name columns: one of its names holds a control character (a
-/// terminal's escape sequence would be printed raw in every message that names the
-/// column); `None` when every name is printable text.
-pub(crate) fn unprintable_name<S: AsRef<str>>(header: &[S]) -> Option<String> {
-    header.iter().enumerate().find_map(|(i, name)| {
-        let bad = name.as_ref().chars().find(|c| c.is_control())?;
-        Some(format!(
-            "column {}'s name holds the control character U+{:04X}; a column name must be \
-             printable text",
-            i + 1,
-            u32::from(bad)
-        ))
-    })
 }
