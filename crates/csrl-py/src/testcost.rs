@@ -10,9 +10,9 @@
 //! plain Python values (`__reduce__`).
 
 use cslearn::testcost::{
-    ActParams, Budget, Column, CostTree, CvtChoice, CvtParams, FamilyParams, Frame, IcetGenome,
-    IcetParams, MISSING, Method, MisclassCosts, Pruning, SelectionPrices, Split, TestPrice,
-    TestPrices,
+    ActParams, Budget, Column, CostTree, CvtChoice, CvtParams, FamilyParams, FeatureShape, Frame,
+    IcetGenome, IcetParams, MISSING, Method, MisclassCosts, Pruning, SelectionPrices, Split,
+    TestPrice, TestPrices,
 };
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyType};
@@ -187,7 +187,25 @@ impl TestCostTree {
         if tree.kinds.len() != tree.names.len() || tree.prices.len() != tree.names.len() {
             return Err("the features, their kinds and their prices differ in number".into());
         }
-        Ok(tree)
+        // Checked as a model file is: a tampered state is refused here, never met later
+        // as an index out of range or a walk without end.
+        let prices = tree.prices.clone().checked().map_err(|e| e.to_string())?;
+        let shapes: Vec<FeatureShape<'_>> = tree
+            .names
+            .iter()
+            .zip(&tree.kinds)
+            .map(|(name, kind)| FeatureShape {
+                name,
+                values: match kind {
+                    Kind::Numeric => None,
+                    Kind::Nominal(values) => Some(values.len()),
+                },
+            })
+            .collect();
+        tree.tree
+            .check(&shapes, tree.class_names.len())
+            .map_err(|e| e.to_string())?;
+        Ok(TestCostTree { prices, ..tree })
     }
 }
 
@@ -502,7 +520,21 @@ fn to_python(py: Python<'_>, value: &Value) -> PyResult<Py<PyAny>> {
 
 /// The inverse of [`to_python`].
 fn from_python(obj: &Bound<'_, PyAny>) -> PyResult<Value> {
+    from_python_within(obj, MAX_STATE_DEPTH)
+}
+
+/// The deepest nesting a saved tree's state may have: its tree is a flat list of nodes,
+/// so a few levels; a state nested 100,000 deep would exhaust the stack.
+const MAX_STATE_DEPTH: usize = 32;
+
+fn from_python_within(obj: &Bound<'_, PyAny>, depth: usize) -> PyResult<Value> {
     let bad = || DataError::new_err("not a saved tree: a value that is not JSON");
+    if depth == 0 {
+        return Err(DataError::new_err(format!(
+            "not a saved tree: nested deeper than the {MAX_STATE_DEPTH} levels a saved tree has"
+        )));
+    }
+    let from_python = |o: &Bound<'_, PyAny>| from_python_within(o, depth - 1);
     Ok(if obj.is_none() {
         Value::Null
     } else if let Ok(b) = obj.cast::<PyBool>() {

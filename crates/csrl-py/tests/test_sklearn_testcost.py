@@ -430,6 +430,51 @@ def test_a_saved_tree_is_checked_when_loaded():
         csrl._csrl.TestCostTree.from_state({"learner": object()})
 
 
+def _tampered(state, edit):
+    import copy
+
+    state = copy.deepcopy(state)
+    edit(state)
+    return state
+
+
+def _threshold(state):
+    return next(n["split"]["Threshold"] for n in state["tree"]["nodes"] if n["split"])
+
+
+@pytest.mark.parametrize(
+    "edit, message",
+    [
+        (lambda s: _threshold(s).update(children=[1, 99]), "child 99: a child comes after its parent"),
+        (lambda s: _threshold(s).update(children=[0, 0]), "child 0: a child comes after its parent"),
+        (lambda s: _threshold(s).update(feature=7), "a test of feature 7, but there are 1 features"),
+        (lambda s: _threshold(s).update(shares=[-0.5, 1.5]), "a share that is negative"),
+        (lambda s: s["tree"]["nodes"].clear(), "no nodes"),
+        (lambda s: s["tree"]["nodes"][0].update(weights=[]), "0 weights, but there are 2 classes"),
+        (lambda s: s["tree"]["nodes"][0].update(label=5), "label 5, but there are 2 classes"),
+        (lambda s: s.update(class_names=["a", "b", "c"]), "2 classes, but the model has 3"),
+        (lambda s: s.update(kinds=[["x", "y"]]), "a threshold on nominal feature"),
+        (lambda s: s["prices"]["tests"][0].update(full=-1.0, discount=-1.0), "price"),
+    ],
+)
+def test_a_tampered_state_is_refused_when_loaded_never_panics_or_hangs(edit, message):
+    clf = cs.Id3Classifier().fit([[0.0], [1.0]] * 4, [0, 1] * 4)
+    state = _tampered(clf._model.state(), edit)
+    with pytest.raises(csrl.DataError, match=message):
+        csrl._csrl.TestCostTree.from_state(state)
+
+
+def test_a_state_nested_without_end_is_refused_not_a_crash():
+    deep: list = []
+    for _ in range(100_000):
+        deep = [deep]
+    clf = cs.Id3Classifier().fit([[0.0], [1.0]] * 4, [0, 1] * 4)
+    state = clf._model.state()  # a fresh dict at every call
+    state["genome"] = deep
+    with pytest.raises(csrl.DataError, match="nested deeper than the 32 levels"):
+        csrl._csrl.TestCostTree.from_state(state)
+
+
 def test_export_text_names_tests_prices_and_classes():
     X = pd.DataFrame({"size": [1.0, 2.0, 8.0, 9.0] * 3, "colour": ["red", "blue"] * 6})
     y = ["small", "small", "big", "big"] * 3

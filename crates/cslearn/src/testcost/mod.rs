@@ -92,6 +92,6 @@ pub use family::{
 pub use model::{SavedModel, TREE_MODEL_FORMAT, TREE_MODEL_VERSION, TreeModel};
 pub use prices::{Basket, MisclassCosts, TestPrice, TestPrices, TurneyExtra};
 pub use tree::{
-    Classification, CostTree, GrowParams, NodeIndex, Pruning, SelectionPrices, Split, TreeNode,
-    laplace,
+    Classification, CostTree, FeatureShape, GrowParams, NodeIndex, Pruning, SelectionPrices, Split,
+    TreeFault, TreeNode, laplace,
 };

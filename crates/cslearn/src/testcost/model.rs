@@ -8,8 +8,8 @@ use serde::{Deserialize, Serialize};
 use super::budget::Budget;
 use super::data::{Column, Frame};
 use super::family::{Fitted, IcetGenome, Method};
-use super::prices::{MisclassCosts, TestPrices};
-use super::tree::{CostTree, Split};
+use super::prices::TestPrices;
+use super::tree::{CostTree, FeatureShape};
 use crate::dataset::{
     MAX_TOTAL_COST, is_missing, open_regular, parse_number, read_bounded, read_table,
 };
@@ -244,9 +244,7 @@ impl TreeModel {
                 "not a key of a saved tree".into(),
             ));
         }
-        let mc: MisclassCosts = serde_json::from_value(value["tree"]["mc"].clone())
-            .map_err(|e| bad("key `tree.mc`".into(), e.to_string()))?;
-        let learner = check(&file, mc).map_err(|(at, reason)| bad(at, reason))?;
+        let learner = check(&file).map_err(|(at, reason)| bad(at, reason))?;
         Ok(TreeModel { file, learner })
     }
 
@@ -549,7 +547,7 @@ fn unknown_key(
 }
 
 /// Every number of a saved tree in range: the learner, or `Err((where, what))`.
-fn check(file: &TreeFile, mc: MisclassCosts) -> Result<Method, (String, String)> {
+fn check(file: &TreeFile) -> Result<Method, (String, String)> {
     let s = |x: &str| x.to_string();
     let learner = Method::parse(&file.learner).map_err(|e| (s("key `learner`"), e.to_string()))?;
     let classes = file.classes.len();
@@ -610,107 +608,17 @@ fn check(file: &TreeFile, mc: MisclassCosts) -> Result<Method, (String, String)>
             ),
         ));
     }
-    let mc = mc
-        .checked()
-        .map_err(|e| (s("key `tree.mc`"), e.to_string()))?;
-    if mc.classes() != classes {
-        return Err((
-            s("key `tree.mc`"),
-            format!("{} classes, but the model has {classes}", mc.classes()),
-        ));
-    }
-    let tree = &file.tree;
-    if tree.is_empty() {
-        return Err((s("key `tree.nodes`"), s("no nodes")));
-    }
-    let nodes = tree.len();
-    for i in 0..nodes {
-        let node = tree.node(i);
-        let at = || format!("tree node {i}");
-        if node.weights.len() != classes {
-            return Err((
-                at(),
-                format!(
-                    "{} weights, but there are {classes} classes",
-                    node.weights.len()
-                ),
-            ));
-        }
-        if node.weights.iter().any(|w| !(w.is_finite() && *w >= 0.0)) {
-            return Err((at(), s("a weight that is negative or not finite")));
-        }
-        if node.label as usize >= classes {
-            return Err((
-                at(),
-                format!("label {}, but there are {classes} classes", node.label),
-            ));
-        }
-        let Some(split) = &node.split else {
-            continue;
-        };
-        let feature = split.feature();
-        let Some(entry) = file.features.get(feature) else {
-            return Err((
-                at(),
-                format!(
-                    "a test of feature {feature}, but there are {} features",
-                    file.features.len()
-                ),
-            ));
-        };
-        let (children, shares): (&[u32], &[f64]) = match split {
-            Split::Nominal {
-                children, shares, ..
-            } => {
-                if entry.values.is_none() {
-                    return Err((
-                        at(),
-                        format!("a nominal test of numeric feature `{}`", entry.name),
-                    ));
-                }
-                if children.is_empty() || children.len() != shares.len() {
-                    return Err((
-                        at(),
-                        format!(
-                            "{} children and {} shares: a nominal test needs one share per child, and a child",
-                            children.len(),
-                            shares.len()
-                        ),
-                    ));
-                }
-                (children, shares)
-            }
-            Split::Threshold {
-                at: threshold,
-                children,
-                shares,
-                ..
-            } => {
-                if entry.values.is_some() {
-                    return Err((
-                        at(),
-                        format!("a threshold on nominal feature `{}`", entry.name),
-                    ));
-                }
-                if !threshold.is_finite() {
-                    return Err((at(), s("a threshold that is not finite")));
-                }
-                (children, shares)
-            }
-        };
-        if shares.iter().any(|w| !(w.is_finite() && *w >= 0.0)) {
-            return Err((at(), s("a share that is negative or not finite")));
-        }
-        if let Some(&c) = children
-            .iter()
-            .find(|&&c| c as usize <= i || c as usize >= nodes)
-        {
-            return Err((
-                at(),
-                format!("child {c}: a child comes after its parent, among the {nodes} nodes"),
-            ));
-        }
-    }
+    let shapes: Vec<FeatureShape<'_>> = file
+        .features
+        .iter()
+        .map(|f| FeatureShape {
+            name: &f.name,
+            values: f.values.as_ref().map(Vec::len),
+        })
+        .collect();
+    file.tree
+        .check(&shapes, classes)
+        .map_err(|fault| (fault.at, fault.reason))?;
     Ok(learner)
 }
 

@@ -339,8 +339,15 @@ impl TestPrices {
     }
 
     /// The same prices, checked as [`new`](TestPrices::new) checks them (for prices read
-    /// from a file by serde, which does not check).
-    pub(crate) fn checked(self) -> Result<TestPrices, Error> {
+    /// by serde, which does not check: from a file, or a pickle).
+    ///
+    /// ```
+    /// let prices: cslearn::testcost::TestPrices = serde_json::from_str(
+    ///     r#"{"tests":[{"full":-1.0,"discount":-1.0,"group":null,"delayed":false}],"group_names":[]}"#,
+    /// ).unwrap();
+    /// assert!(prices.checked().is_err());
+    /// ```
+    pub fn checked(self) -> Result<TestPrices, Error> {
         TestPrices::new(self.tests, self.group_names)
     }
 }

@@ -362,7 +362,183 @@ pub struct CostTree {
     mc: MisclassCosts,
 }
 
+/// One feature as a tree read from outside (a model file, a pickle) may test it: its name,
+/// for messages, and for a nominal feature the number of its values.
+///
+/// ```
+/// let f = cslearn::testcost::FeatureShape { name: "colour", values: Some(3) };
+/// assert_eq!(f.values, Some(3));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FeatureShape<'a> {
+    /// The feature's name.
+    pub name: &'a str,
+    /// `Some(n)` for a nominal feature of `n` values, `None` for a numeric one.
+    pub values: Option<usize>,
+}
+
+/// What is wrong with a tree read from outside ([`CostTree::check`]): where, and why.
+///
+/// ```
+/// let f = cslearn::testcost::TreeFault { at: "tree node 2".into(), reason: "no children".into() };
+/// assert_eq!(f.to_string(), "tree node 2: no children");
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TreeFault {
+    /// Where: the node, or the part of the tree.
+    pub at: String,
+    /// What is wrong there.
+    pub reason: String,
+}
+
+impl std::fmt::Display for TreeFault {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {}", self.at, self.reason)
+    }
+}
+
 impl CostTree {
+    /// Check a tree read from outside (a model file, a pickle) against the features it
+    /// may test and its number of classes: at least one node; a misclassification matrix
+    /// of that many classes, every entry finite and not negative; at every node one
+    /// finite, non-negative weight per class and a label among the classes; every test of
+    /// a feature there is, of its kind (a threshold, finite, on a numeric feature; one
+    /// child per value of a nominal one), with finite non-negative shares; and every child
+    /// after its parent, so the nodes form a tree (no cycle) and every walk ends.
+    ///
+    /// ```
+    /// # use cslearn::testcost::*;
+    /// let frame = Frame::new(vec!["x".into()], vec![Column::Numeric(vec![1.0, 2.0, 3.0, 4.0])],
+    ///     vec![0, 0, 1, 1], vec!["a".into(), "b".into()]).unwrap();
+    /// let tree = CostTree::grow(&frame, &[0, 1, 2, 3], &TestPrices::flat(&[1.0]).unwrap(),
+    ///     &MisclassCosts::uniform(2, 100.0).unwrap(), &GrowParams::new(Criterion::Id3));
+    /// let numeric = [FeatureShape { name: "x", values: None }];
+    /// assert!(tree.check(&numeric, 2).is_ok());
+    /// let nominal = [FeatureShape { name: "x", values: Some(2) }];
+    /// assert!(tree.check(&nominal, 2).unwrap_err().reason.contains("a threshold on nominal feature `x`"));
+    /// assert!(tree.check(&numeric, 3).is_err());
+    /// ```
+    pub fn check(&self, features: &[FeatureShape<'_>], classes: usize) -> Result<(), TreeFault> {
+        let fault = |at: String, reason: String| TreeFault { at, reason };
+        let mc = self
+            .mc
+            .clone()
+            .checked()
+            .map_err(|e| fault("key `tree.mc`".into(), e.to_string()))?;
+        if mc.classes() != classes {
+            return Err(fault(
+                "key `tree.mc`".into(),
+                format!("{} classes, but the model has {classes}", mc.classes()),
+            ));
+        }
+        if self.is_empty() {
+            return Err(fault("key `tree.nodes`".into(), "no nodes".into()));
+        }
+        let nodes = self.len();
+        for i in 0..nodes {
+            let node = self.node(i);
+            let at = || format!("tree node {i}");
+            if node.weights.len() != classes {
+                return Err(fault(
+                    at(),
+                    format!(
+                        "{} weights, but there are {classes} classes",
+                        node.weights.len()
+                    ),
+                ));
+            }
+            if node.weights.iter().any(|w| !(w.is_finite() && *w >= 0.0)) {
+                return Err(fault(
+                    at(),
+                    "a weight that is negative or not finite".into(),
+                ));
+            }
+            if node.label as usize >= classes {
+                return Err(fault(
+                    at(),
+                    format!("label {}, but there are {classes} classes", node.label),
+                ));
+            }
+            let Some(split) = &node.split else {
+                continue;
+            };
+            let feature = split.feature();
+            let Some(entry) = features.get(feature) else {
+                return Err(fault(
+                    at(),
+                    format!(
+                        "a test of feature {feature}, but there are {} features",
+                        features.len()
+                    ),
+                ));
+            };
+            let (children, shares): (&[u32], &[f64]) = match split {
+                Split::Nominal {
+                    children, shares, ..
+                } => {
+                    let Some(values) = entry.values else {
+                        return Err(fault(
+                            at(),
+                            format!("a nominal test of numeric feature `{}`", entry.name),
+                        ));
+                    };
+                    if children.is_empty() || children.len() != shares.len() {
+                        return Err(fault(
+                            at(),
+                            format!(
+                                "{} children and {} shares: a nominal test needs one share per child, and a child",
+                                children.len(),
+                                shares.len()
+                            ),
+                        ));
+                    }
+                    if children.len() != values {
+                        return Err(fault(
+                            at(),
+                            format!(
+                                "{} children for the {values} values of nominal feature `{}`: a \
+                             nominal test has one child per value",
+                                children.len(),
+                                entry.name
+                            ),
+                        ));
+                    }
+                    (children, shares)
+                }
+                Split::Threshold {
+                    at: threshold,
+                    children,
+                    shares,
+                    ..
+                } => {
+                    if entry.values.is_some() {
+                        return Err(fault(
+                            at(),
+                            format!("a threshold on nominal feature `{}`", entry.name),
+                        ));
+                    }
+                    if !threshold.is_finite() {
+                        return Err(fault(at(), "a threshold that is not finite".into()));
+                    }
+                    (children, shares)
+                }
+            };
+            if shares.iter().any(|w| !(w.is_finite() && *w >= 0.0)) {
+                return Err(fault(at(), "a share that is negative or not finite".into()));
+            }
+            if let Some(&c) = children
+                .iter()
+                .find(|&&c| c as usize <= i || c as usize >= nodes)
+            {
+                return Err(fault(
+                    at(),
+                    format!("child {c}: a child comes after its parent, among the {nodes} nodes"),
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// Grows a tree on the objects `rows` of `frame`, selecting tests with `prices` (the
     /// prices the learner believes: the real ones, or ICET's biased ones) and labelling
     /// nodes with `mc`, then prunes it if `params` says so.
