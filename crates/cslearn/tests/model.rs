@@ -322,3 +322,50 @@ fn a_model_whose_totals_cannot_be_represented_or_that_knows_nothing_is_refused()
         "m.json: key `library`: no examples: the model could not classify"
     );
 }
+
+/// A nominal test must keep one child per value of its feature: a tree read from outside
+/// whose test kept one child of three is refused.
+#[test]
+fn a_nominal_test_keeps_one_child_per_value() {
+    use cslearn::testcost::{
+        Column, CostTree, Criterion, FeatureShape, Frame, GrowParams, MisclassCosts, TestPrices,
+    };
+    let frame = Frame::new(
+        vec!["colour".into()],
+        vec![Column::Nominal {
+            values: vec!["red".into(), "blue".into(), "green".into()],
+            codes: (0..30).map(|i| i % 3).collect(),
+        }],
+        (0..30).map(|i| u32::from(i % 3 == 0)).collect(),
+        vec!["no".into(), "yes".into()],
+    )
+    .unwrap();
+    let rows: Vec<usize> = (0..30).collect();
+    let tree = CostTree::grow(
+        &frame,
+        &rows,
+        &TestPrices::flat(&[1.0]).unwrap(),
+        &MisclassCosts::uniform(2, 100.0).unwrap(),
+        &GrowParams::new(Criterion::Id3),
+    );
+    let three = [FeatureShape {
+        name: "colour",
+        values: Some(3),
+    }];
+    assert_eq!(tree.check(&three, 2), Ok(()));
+    let fault = tree
+        .check(
+            &[FeatureShape {
+                name: "colour",
+                values: Some(1),
+            }],
+            2,
+        )
+        .unwrap_err();
+    assert!(
+        fault
+            .reason
+            .contains("3 children for the 1 values of nominal feature `colour`"),
+        "{fault}"
+    );
+}
