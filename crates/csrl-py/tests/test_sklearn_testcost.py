@@ -288,8 +288,8 @@ def test_bad_parameters_are_refused_with_a_clear_value_error(params, message):
     [
         ("IcetClassifier", {"population": 10**12}, "ICET population of 1000000000000: between 2 and 10000"),
         ("IcetClassifier", {"generations": 10**12}, "1000000000000 ICET generations: between 1 and 10000"),
-        ("CvtClassifier", {"cvt_folds": 2**63}, "9223372036854775808 folds for CVT: between 2 and the 8 training objects"),
-        ("CvtClassifier", {"cvt_folds": 9}, "9 folds for CVT: between 2 and the 8 training objects"),
+        ("CvtClassifier", {"cvt_folds": 2**63}, "cvt_folds=9223372036854775808 needs at least 9223372036854775808 samples, found n_samples = 8"),
+        ("CvtClassifier", {"cvt_folds": 9}, "cvt_folds=9 needs at least 9 samples, found n_samples = 8"),
     ],
 )
 def test_counts_beyond_what_the_data_allows_are_refused_before_anything_is_allocated(estimator, params, message):

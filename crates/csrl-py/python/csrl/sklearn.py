@@ -841,6 +841,11 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
                 raise ValueError(f"{what} must be an integer at least {least}, found {v!r}")
         if act_samples > 1000:
             raise ValueError(f"act_samples must be at most 1000, found {act_samples!r}")
+        if learner == "cvt" and cvt_folds > X.shape[0]:
+            # Each fold holds at least one object (the library refuses it too).
+            raise ValueError(
+                f"cvt_folds={cvt_folds} needs at least {cvt_folds} samples, found n_samples = {X.shape[0]}"
+            )
         budget = self._budget_params()
         model = _csrl.TestCostTree.fit(
             learner,
