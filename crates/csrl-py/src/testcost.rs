@@ -325,6 +325,8 @@ impl TestCostTree {
             budget,
         };
         let rows: Vec<usize> = (0..frame.len()).collect();
+        mc.check_totals(&prices, rows.len())
+            .map_err(|e| data_error(&e))?;
         // Counts are judged against the data before anything is allocated.
         params
             .check(method, rows.len())

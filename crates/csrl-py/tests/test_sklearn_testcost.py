@@ -299,6 +299,15 @@ def test_counts_beyond_what_the_data_allows_are_refused_before_anything_is_alloc
         getattr(cs, estimator)(**params).fit(X, [0, 1] * 4)
 
 
+def test_prices_whose_totals_overflow_are_refused_before_learning():
+    # ICET once reported a total cost and a fitness of inf.
+    X = np.array([[0.0, 1.0], [1.0, 0.0]] * 4)
+    with pytest.raises(ValueError, match=r"sum to 2e308 per object|cannot be represented"):
+        cs.IcetClassifier(feature_costs=[1e308, 1e308], population=4, generations=1).fit(X, [0, 1] * 4)
+    with pytest.raises(ValueError, match="8 objects cannot be represented"):
+        cs.IcetClassifier(feature_costs=[1e300, 1e300], population=4, generations=1).fit(X, [0, 1] * 4)
+
+
 def test_a_continuous_target_is_refused_before_its_cost_matrix_is_made():
     # 10,000 classes once took 4 GB.
     # (scikit-learn warns first that y could be a regression target.)

@@ -399,14 +399,13 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
     // Every total printed must be a true one: at worst an object pays every test in full
     // and the dearest error.
     let n = frame.len();
-    let per_object: f64 = (0..prices.len()).map(|t| prices.test(t).full).sum::<f64>() + mc.max();
-    anyhow::ensure!(
-        (per_object * n as f64).is_finite() && per_object * n as f64 <= cslearn::MAX_TOTAL_COST,
-        "{}: the prices and the dearest error sum to {per_object:e} per object, so a total over \
-         the {n} objects cannot be represented (at most {:e})",
-        args.costs.display(),
-        cslearn::MAX_TOTAL_COST
-    );
+    if let Err(e) = mc.check_totals(&prices, n) {
+        let reason = match e {
+            cslearn::Error::Invalid { reason, .. } => reason,
+            other => other.to_string(),
+        };
+        anyhow::bail!("{}: {reason}", args.costs.display());
+    }
     let (scheme, parts) = splits(args, &frame)?;
     check_classes(args, &frame, &parts)?;
     let selection_prices = match &args.selection_prices {

@@ -859,6 +859,36 @@ impl MisclassCosts {
         best
     }
 
+    /// Whether every total over `objects` objects stays a true number: at worst an object
+    /// pays every test of `prices` in full and the dearest error, and that times the
+    /// objects must be at most [`MAX_TOTAL_COST`](crate::MAX_TOTAL_COST). Checked before
+    /// learning, so that no reported cost is infinite.
+    ///
+    /// ```
+    /// use cslearn::testcost::{MisclassCosts, TestPrices};
+    /// let prices = TestPrices::flat(&[1e300, 1e300]).unwrap();
+    /// let mc = MisclassCosts::uniform(2, 1.0).unwrap();
+    /// assert!(mc.check_totals(&TestPrices::flat(&[1.0]).unwrap(), 100).is_ok());
+    /// let e = mc.check_totals(&prices, 100).unwrap_err().to_string();
+    /// assert!(e.contains("2e300 per object") && e.contains("100 objects"), "{e}");
+    /// ```
+    pub fn check_totals(&self, prices: &TestPrices, objects: usize) -> Result<(), Error> {
+        let per_object: f64 =
+            (0..prices.len()).map(|t| prices.test(t).full).sum::<f64>() + self.max();
+        let all = per_object * objects as f64;
+        if all.is_finite() && all <= crate::MAX_TOTAL_COST {
+            return Ok(());
+        }
+        Err(Error::Invalid {
+            what: "the prices and misclassification costs".into(),
+            reason: format!(
+                "the prices and the dearest error sum to {per_object:e} per object, so a total \
+                 over the {objects} objects cannot be represented (at most {:e})",
+                crate::MAX_TOTAL_COST
+            ),
+        })
+    }
+
     /// Turney's standard cost of a data set with these class shares (summing to one) and
     /// these test prices: every test bought, then the answer of least risk, that is the
     /// price of all tests plus `min_i (1 - f_i) * max C`.
