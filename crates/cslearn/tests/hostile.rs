@@ -197,3 +197,34 @@ fn a_manifest_that_is_no_regular_file_is_refused_unread() {
     let err = cslearn::testcost::Catalogue::read("/dev/zero".as_ref()).unwrap_err();
     assert!(matches!(err, Error::NotAFile { .. }), "{err:?}");
 }
+
+/// Files trusted too far: a discount above its full price, and a cost matrix whose header
+/// names a class twice (the missing class's column once read as zeros), are refused with
+/// the file and line.
+#[test]
+fn a_dearer_discount_and_a_class_named_twice_are_refused_with_file_and_line() {
+    use cslearn::testcost::{MisclassCosts, TestPrices};
+    let dir = tempfile::tempdir().unwrap();
+    let base = dir.path().join("p");
+    std::fs::write(base.with_extension("expense"), "a: 10, 2\nb: 8, 9\n").unwrap();
+    std::fs::write(base.with_extension("group"), "G.\na: G.\nb: G.\n").unwrap();
+    let names = ["a", "b"].map(String::from).to_vec();
+    let err = TestPrices::read_turney(&base, &names, &Default::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("p.expense: line 2")
+            && err.contains("a discount price of 9 above its full price 8"),
+        "{err}"
+    );
+    let mc = dir.path().join("mc.csv");
+    std::fs::write(&mc, "actual,n,n\nn,0,1\np,5,0\n").unwrap();
+    let classes = ["n", "p"].map(String::from).to_vec();
+    let err = MisclassCosts::read_csv(&mc, &classes)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("mc.csv: line 1") && err.contains("class `n` names two columns"),
+        "{err}"
+    );
+}

@@ -625,7 +625,7 @@ fn check(file: &TreeFile) -> Result<Method, (String, String)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::testcost::{FamilyParams, fit};
+    use crate::testcost::{FamilyParams, MisclassCosts, fit};
 
     /// A model of a small tree over a numeric and a nominal feature.
     fn model() -> TreeModel {

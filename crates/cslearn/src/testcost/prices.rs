@@ -346,9 +346,34 @@ impl TestPrices {
     ///     r#"{"tests":[{"full":-1.0,"discount":-1.0,"group":null,"delayed":false}],"group_names":[]}"#,
     /// ).unwrap();
     /// assert!(prices.checked().is_err());
+    /// let dearer: cslearn::testcost::TestPrices = serde_json::from_str(
+    ///     r#"{"tests":[{"full":1.0,"discount":2.0,"group":0,"delayed":false}],"group_names":["A"]}"#,
+    /// ).unwrap();
+    /// assert!(dearer.checked().unwrap_err().to_string().contains("above its full price"));
     /// ```
     pub fn checked(self) -> Result<TestPrices, Error> {
-        TestPrices::new(self.tests, self.group_names)
+        TestPrices::new(self.tests, self.group_names)?.discounts_checked()
+    }
+
+    /// The same prices, refused where a discount is above its full price (a price read
+    /// from outside: a cost file, a model, a pickle; ICET's biased prices may round one
+    /// above, and are not read).
+    fn discounts_checked(self) -> Result<TestPrices, Error> {
+        if let Some((i, t)) = self
+            .tests
+            .iter()
+            .enumerate()
+            .find(|(_, t)| t.discount > t.full)
+        {
+            return Err(Error::Invalid {
+                what: format!("test {i}"),
+                reason: format!(
+                    "a discount price of {} above its full price {}",
+                    t.discount, t.full
+                ),
+            });
+        }
+        Ok(self)
     }
 }
 
@@ -427,6 +452,15 @@ fn turney(
                     path: path.clone(),
                     at: at(),
                     reason: format!("a second price for `{name}`"),
+                });
+            }
+            if let (f, Some(d)) = entry
+                && d > f
+            {
+                return Err(Error::BadInput {
+                    path: path.clone(),
+                    at: at(),
+                    reason: format!("`{name}`: a discount price of {d} above its full price {f}"),
                 });
             }
             full[i] = Some(entry);
@@ -752,6 +786,16 @@ impl MisclassCosts {
             .iter()
             .map(|h| index(hl, h))
             .collect::<Result<_, _>>()?;
+        // A class named twice leaves another without a column, read as zeros.
+        let mut seen = vec![false; k];
+        for (j, &c) in columns.iter().enumerate() {
+            if std::mem::replace(&mut seen[c], true) {
+                return Err(bad(
+                    hl,
+                    format!("class `{}` names two columns", header[j + 1]),
+                ));
+            }
+        }
         let mut rows: Vec<Option<Vec<f64>>> = vec![None; k];
         for (line, text) in lines {
             let cells: Vec<&str> = text.split(',').map(str::trim).collect();
