@@ -54,8 +54,9 @@ pub struct TestcostArgs {
     #[arg(long, default_value = "uniform")]
     price_draw: String,
     /// The price selection functions see: `listed` (each test's listed price whatever
-    /// the path, as the published implementations score tests) or `path` (after the
-    /// node's path, the library's default). Objects always pay after their path.
+    /// the path, as the published implementations score tests), `path` (after the
+    /// node's path, the library's default) or `listed-once` (listed, but nothing for a
+    /// test the path already did). Objects always pay after their path.
     #[arg(long, default_value = "listed")]
     selection_prices: String,
     /// How ICET prunes: `costs` (a test must pay for itself at the real prices, which

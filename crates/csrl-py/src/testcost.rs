@@ -233,7 +233,7 @@ impl TestCostTree {
     /// the cost of each answer; `confidence` C4.5's pruning confidence, `w` EG2's weight
     /// of the price; `seed`, `population` and `generations` ICET's search (`seed` also
     /// ACT's samples); `samples` ACT's trees sampled per branch; `selection_prices` the
-    /// price selection functions see ("path" or "listed"); `icet_pruning` how ICET
+    /// price selection functions see ("path", "listed" or "listed-once"); `icet_pruning` how ICET
     /// prunes ("errors" or "costs") and `search_objects` the most objects its search
     /// uses; `folds` CVT's cross-validation (`seed` also its folds); `max_test_cost` and
     /// `max_tests` a budget per object (`Budget`), within which the greedy learners grow

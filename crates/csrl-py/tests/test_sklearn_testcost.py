@@ -336,7 +336,7 @@ def test_the_published_benchmarks_settings_are_estimator_parameters():
     named = cs.IcetClassifier(icet_pruning="costs", icet_search_objects=60, **params).fit(X, y)
     assert general._model.nodes() == named._model.nodes()
     for bad, message in (
-        (dict(selection_prices="free"), "selection_prices must be 'path' or 'listed'"),
+        (dict(selection_prices="free"), "selection_prices must be 'path', 'listed' or 'listed-once'"),
         (dict(icet_pruning="leaves"), "icet_pruning must be 'errors' or 'costs'"),
         (dict(icet_search_objects=1), "icet_search_objects must be an integer at least 2"),
     ):

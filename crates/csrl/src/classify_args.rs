@@ -157,10 +157,11 @@ pub struct ClassifyArgs {
     #[arg(long, value_name = "COLUMN=NAME")]
     pub(crate) cost_name: Vec<String>,
     /// Family only: the price the selection functions see for a test: `path` (after the
-    /// node's path: a test done once is free further down; the default) or `listed`
+    /// node's path: a test done once is free further down; the default), `listed`
     /// (its listed price whatever the path, as the published implementations score
-    /// tests). An object pays after its path either way.
-    #[arg(long, value_name = "path|listed")]
+    /// tests) or `listed-once` (listed, but nothing for a test the path already did).
+    /// An object pays after its path either way.
+    #[arg(long, value_name = "path|listed|listed-once")]
     pub(crate) selection_prices: Option<String>,
     /// ICET only: how its trees are pruned: `errors` (C4.5's, Turney's; the default) or
     /// `costs` (a test must pay for itself at the real prices).

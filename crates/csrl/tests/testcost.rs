@@ -185,7 +185,11 @@ fn selection_prices_are_a_family_setting_reported_with_the_results() {
     );
     refused(
         &on_heart("eg2", &["--selection-prices", "free"]),
-        &["--selection-prices", "`free`", "`path` or `listed`"],
+        &[
+            "--selection-prices",
+            "`free`",
+            "`path`, `listed` or `listed-once`",
+        ],
     );
 }
 

@@ -188,10 +188,7 @@ impl Sampler<'_> {
                 .iter()
                 .filter(|s| s.gain > 1e-9)
                 .map(|s| {
-                    let price = match self.selection {
-                        SelectionPrices::Path => price_after(self.prices, s.feature, &path),
-                        SelectionPrices::Listed => self.prices.test(s.feature).full,
-                    };
+                    let price = self.selection.price(self.prices, s.feature, &path);
                     (*s, self.scorer.score(s, price))
                 })
                 .filter(|(_, score)| *score > 0.0),

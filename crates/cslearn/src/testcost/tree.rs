@@ -124,13 +124,21 @@ pub enum SelectionPrices {
     /// a fixed function of gain and listed cost, as in the published implementations of
     /// the family that the test-cost benchmark compares with.
     Listed,
+    /// The test's listed full price until the path has done it, nothing after: the
+    /// listed prices, without charging twice a test the object pays once (a numeric
+    /// feature split again). No group discount.
+    ListedOnce,
 }
 
 impl SelectionPrices {
     /// Every way, in the order [`SelectionPrices::name`] lists them.
-    pub const ALL: [SelectionPrices; 2] = [SelectionPrices::Path, SelectionPrices::Listed];
+    pub const ALL: [SelectionPrices; 3] = [
+        SelectionPrices::Path,
+        SelectionPrices::Listed,
+        SelectionPrices::ListedOnce,
+    ];
 
-    /// The name the command line and the benchmark use (`path`, `listed`).
+    /// The name the command line and the benchmark use (`path`, `listed`, `listed-once`).
     ///
     /// ```
     /// assert_eq!(cslearn::testcost::SelectionPrices::Listed.name(), "listed");
@@ -139,6 +147,27 @@ impl SelectionPrices {
         match self {
             SelectionPrices::Path => "path",
             SelectionPrices::Listed => "listed",
+            SelectionPrices::ListedOnce => "listed-once",
+        }
+    }
+
+    /// The price a selection function sees for `test` at a node whose path did the
+    /// tests `done`.
+    ///
+    /// ```
+    /// use cslearn::testcost::{SelectionPrices, TestPrices};
+    /// let prices = TestPrices::flat(&[4.0, 9.0]).unwrap();
+    /// assert_eq!(SelectionPrices::Path.price(&prices, 0, &[0]), 0.0);
+    /// assert_eq!(SelectionPrices::Listed.price(&prices, 0, &[0]), 4.0);
+    /// assert_eq!(SelectionPrices::ListedOnce.price(&prices, 0, &[0]), 0.0);
+    /// assert_eq!(SelectionPrices::ListedOnce.price(&prices, 1, &[0]), 9.0);
+    /// ```
+    pub fn price(self, prices: &TestPrices, test: usize, done: &[usize]) -> f64 {
+        match self {
+            SelectionPrices::Path => price_after(prices, test, done),
+            SelectionPrices::Listed => prices.test(test).full,
+            SelectionPrices::ListedOnce if done.contains(&test) => 0.0,
+            SelectionPrices::ListedOnce => prices.test(test).full,
         }
     }
 
@@ -156,7 +185,7 @@ impl SelectionPrices {
             .find(|p| p.name() == name)
             .ok_or_else(|| Error::Invalid {
                 what: format!("selection prices `{name}`"),
-                reason: "expected `path` or `listed`".into(),
+                reason: "expected `path`, `listed` or `listed-once`".into(),
             })
     }
 }
@@ -1401,10 +1430,7 @@ fn choose(
     // (value, score) of a test: the gain (DTMC: the reduction of the expected total cost)
     // and the criterion's score at the test's price on this path.
     let judge = |stat: &Stat| -> (f64, f64) {
-        let price = match params.selection_prices {
-            SelectionPrices::Path => price_after(prices, stat.feature, &path),
-            SelectionPrices::Listed => prices.test(stat.feature).full,
-        };
+        let price = params.selection_prices.price(prices, stat.feature, &path);
         if cost_based {
             let reduction = stat.gain - price * total;
             (reduction, reduction)

@@ -426,8 +426,9 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
             ``r``, 5; 0 values each branch as a leaf), at most 1000.
         selection_prices: the price a selection function sees for a test: ``"path"``
             (after the node's path: a test done once is free further down; the default)
-            or ``"listed"`` (its listed price whatever the path, as the published
-            implementations score tests). An object pays after its path either way.
+            , ``"listed"`` (its listed price whatever the path, as the published
+            implementations score tests) or ``"listed-once"`` (listed, but nothing for a
+            test the path already did). An object pays after its path either way.
         icet_pruning: how ICET prunes its trees: ``"errors"`` (C4.5's, Turney's; the
             default) or ``"costs"`` (a test must pay for itself at the real prices).
         icet_search_objects: the most training objects ICET's search uses, half to grow
@@ -820,8 +821,10 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
             threads = int(n_jobs)
         else:
             raise ValueError(f"n_jobs must be None, -1 or an integer at least 1, found {n_jobs!r}")
-        if selection_prices not in ("path", "listed"):
-            raise ValueError(f"selection_prices must be 'path' or 'listed', found {selection_prices!r}")
+        if selection_prices not in ("path", "listed", "listed-once"):
+            raise ValueError(
+                f"selection_prices must be 'path', 'listed' or 'listed-once', found {selection_prices!r}"
+            )
         if icet_pruning not in ("errors", "costs"):
             raise ValueError(f"icet_pruning must be 'errors' or 'costs', found {icet_pruning!r}")
         if not (isinstance(confidence, numbers.Real) and 0 < confidence < 1):
