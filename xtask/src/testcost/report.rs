@@ -377,6 +377,9 @@ fn markdown(table: &Table, published_names: &BTreeMap<String, String>, command: 
         match def.selection_prices {
             SelectionPrices::Listed => "each test's listed price, whatever the path",
             SelectionPrices::Path => "a test's price after the node's path",
+            SelectionPrices::ListedOnce => {
+                "each test's listed price, nothing for a test the path already did"
+            }
         },
         match def.icet_pruning {
             Pruning::Costs => "total cost (a test must pay for itself at the real prices)",
