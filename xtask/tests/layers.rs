@@ -1,13 +1,17 @@
 //! No module of any crate of the workspace (every `crates/*`, and `xtask`) uses a module
-//! that uses it back, directly or through others: one checker for every crate.
+//! that uses it back, directly or through others: one checker for every crate. And the
+//! same holds of its top-level modules, each folder with everything under it: no folder
+//! (or file beside the folders) uses one that uses it back.
 //!
-//! Each file under a crate's `src/` is a node (`classify/cache.rs` is `classify::cache`);
-//! a node
+//! Each file under a crate's `src/` is a node (`classify/cache.rs` is `classify::cache`,
+//! `testcost/mod.rs` is `testcost`); a node
 //! uses another when its code outside comments and `#[cfg(test)]` items names it by a
 //! `crate::...`, `self::...` or `super::...` path, or names an item that the crate root
 //! (`lib.rs`, `main.rs`) re-exports (`crate::Classify` uses `classify`). Declaring a child
 //! module (`mod x;`) is
-//! not a use. The layering this keeps is described in `docs/architecture.md`.
+//! not a use. For the folders, each node is collapsed to its top-level ancestor
+//! (`agent::trials` is `agent`) and a use between two of them is kept when they differ.
+//! The layering this keeps is described in `docs/architecture.md`.
 //!
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -142,6 +146,8 @@ fn sources(src: &Path, root: &str) -> BTreeMap<String, String> {
                     .with_extension("")
                     .to_string_lossy()
                     .replace(['/', '\\'], "::");
+                // A folder's `mod.rs` is the folder's module.
+                let name = name.strip_suffix("::mod").unwrap_or(&name).to_string();
                 if name != root {
                     let text = std::fs::read_to_string(&path).expect("a readable file");
                     out.insert(name, text);
@@ -154,12 +160,20 @@ fn sources(src: &Path, root: &str) -> BTreeMap<String, String> {
 
 /// The module graph of the crate whose root file is `src/<root>.rs`.
 fn graph(src: &Path, root: &str) -> BTreeMap<String, BTreeSet<String>> {
-    let files = sources(src, root);
-    let modules: BTreeSet<String> = files.keys().cloned().collect();
     let root_src = std::fs::read_to_string(src.join(format!("{root}.rs"))).expect("a root");
+    graph_of(&sources(src, root), &root_src)
+}
+
+/// The module graph of a crate whose modules are `files` (each module's source by its
+/// path, the root excluded) and whose root file is `root_src`.
+fn graph_of(
+    files: &BTreeMap<String, String>,
+    root_src: &str,
+) -> BTreeMap<String, BTreeSet<String>> {
+    let modules: BTreeSet<String> = files.keys().cloned().collect();
     let mut reexports = BTreeMap::new();
     for path in paths_after(
-        &strip(&root_src).replace("pub use ", "pub use crate::"),
+        &strip(root_src).replace("pub use ", "pub use crate::"),
         "crate::",
     ) {
         if let (Some(m), Some(item)) = (resolve(&path, &modules, &BTreeMap::new()), path.last()) {
@@ -167,7 +181,7 @@ fn graph(src: &Path, root: &str) -> BTreeMap<String, BTreeSet<String>> {
         }
     }
     let mut out = BTreeMap::new();
-    for (name, text) in &files {
+    for (name, text) in files {
         let code = strip(text);
         let here: Vec<String> = name.split("::").map(String::from).collect();
         let mut uses = BTreeSet::new();
@@ -232,6 +246,57 @@ fn show(graph: &BTreeMap<String, BTreeSet<String>>) -> String {
             )
         })
         .collect()
+}
+
+/// A module's top-level ancestor: the folder it is in (`agent::trials` is `agent`), or
+/// itself for a file beside the folders.
+fn top(module: &str) -> &str {
+    module.split("::").next().unwrap_or(module)
+}
+
+/// The graph of the top-level modules: every module collapsed to its top-level
+/// ancestor, a use kept when the two differ.
+fn folders(graph: &BTreeMap<String, BTreeSet<String>>) -> BTreeMap<String, BTreeSet<String>> {
+    let mut out: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for (module, uses) in graph {
+        let from = top(module);
+        let entry = out.entry(from.to_string()).or_default();
+        entry.extend(
+            uses.iter()
+                .map(|u| top(u))
+                .filter(|to| *to != from)
+                .map(String::from),
+        );
+    }
+    out
+}
+
+/// The first cycle among the folders of a crate whose module graph is `graph`, with
+/// the uses of modules behind each of its steps (`agent -> judging: agent::trials ->
+/// judging::judge`) and the graph of folders.
+fn folder_cycle(graph: &BTreeMap<String, BTreeSet<String>>) -> Option<String> {
+    let g = folders(graph);
+    let c = cycle(&g)?;
+    let steps: String = c
+        .windows(2)
+        .map(|w| {
+            let uses: Vec<String> = graph
+                .iter()
+                .filter(|(m, _)| top(m) == w[0])
+                .flat_map(|(m, uses)| {
+                    uses.iter()
+                        .filter(|u| top(u) == w[1])
+                        .map(move |u| format!("{m} -> {u}"))
+                })
+                .collect();
+            format!("  {} -> {}: {}\n", w[0], w[1], uses.join(", "))
+        })
+        .collect();
+    Some(format!(
+        "{}\n\nthrough:\n{steps}\nthe graph of folders:\n{}",
+        c.join(" -> "),
+        show(&g)
+    ))
 }
 
 /// The first cycle among the modules of the crate whose sources are `src` (relative to
@@ -322,6 +387,67 @@ fn the_modules_of_every_crate_use_each_other_without_cycles() {
     assert!(found.is_empty(), "{}", found.join("\n\n"));
 }
 
+/// Every crate, at the level of its folders: no folder (or file beside the folders)
+/// uses another that uses it back, directly or through others.
+#[test]
+fn the_folders_of_every_crate_use_each_other_without_cycles() {
+    let crates = every_crate();
+    assert!(crates.len() >= 7, "{crates:?}");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let found: Vec<String> = crates
+        .iter()
+        .filter_map(|(src, file)| {
+            folder_cycle(&graph(&root.join(src), file))
+                .map(|c| format!("a cycle of folders in {src}: {c}"))
+        })
+        .collect();
+    assert!(found.is_empty(), "{}", found.join("\n\n"));
+}
+
+/// A made-up crate, written under the target folder, whose files use each other without
+/// a cycle while its folders do: `a::x` uses `b::y` and `b::z` uses `a::w`. The files
+/// pass, the folders are refused with the uses behind the cycle. A folder's `mod.rs` is
+/// the folder's module, whose `self::` paths are the folder's.
+#[test]
+fn a_cycle_of_folders_is_found_where_the_files_have_none() {
+    let src = Path::new(env!("CARGO_TARGET_TMPDIR")).join("layers-made-up/src");
+    // Left over from an earlier run, or absent.
+    let _ = std::fs::remove_dir_all(&src);
+    let files = [
+        ("lib.rs", "mod a;\nmod b;\nmod c;\n"),
+        ("a.rs", "pub mod w;\npub mod x;\n"),
+        ("a/w.rs", "pub struct W;\n"),
+        ("a/x.rs", "use crate::b::y::Y;\npub fn f(_: Y) {}\n"),
+        ("b/mod.rs", "pub mod y;\npub mod z;\npub use self::y::Y;\n"),
+        ("b/y.rs", "pub struct Y;\n"),
+        ("b/z.rs", "pub fn g(_: crate::a::w::W) {}\n"),
+        ("c.rs", "pub mod v;\npub struct C(pub super::a::w::W);\n"),
+        ("c/v.rs", "use super::C;\n"),
+    ];
+    for (path, text) in files {
+        let path = src.join(path);
+        std::fs::create_dir_all(path.parent().expect("a folder")).expect("a writable folder");
+        std::fs::write(&path, text).expect("a writable file");
+    }
+    let g = graph(&src, "lib");
+    assert_eq!(
+        show(&g),
+        "a -> \na::w -> \na::x -> b::y\nb -> b::y\nb::y -> \nb::z -> a::w\nc -> a::w\nc::v -> c\n"
+    );
+    assert_eq!(cycle(&g), None);
+    assert_eq!(show(&folders(&g)), "a -> b\nb -> a\nc -> a\n");
+    let found = folder_cycle(&g).expect("the folders' cycle");
+    assert!(found.starts_with("a -> b -> a"), "{found}");
+    assert!(found.contains("a -> b: a::x -> b::y"), "{found}");
+    assert!(found.contains("b -> a: b::z -> a::w"), "{found}");
+    // Without `b::z`'s use of `a`, the folders are layers: a, then b and c.
+    let mut layered = sources(&src, "lib");
+    layered.insert("b::z".into(), "pub fn g() {}\n".into());
+    let g = graph_of(&layered, files[0].1);
+    assert_eq!(folder_cycle(&g), None, "{}", show(&folders(&g)));
+    assert_eq!(show(&folders(&g)), "a -> b\nb -> \nc -> a\n");
+}
+
 /// The checker sees uses through every kind of path, and finds a cycle when there is one.
 #[test]
 fn the_checker_finds_uses_and_cycles() {
@@ -374,17 +500,16 @@ fn layer_table(doc: &str, heading: &str) -> Vec<(String, BTreeSet<String>)> {
         .collect()
 }
 
-/// The layer table of `docs/architecture.md` is the code: one row per module of `csql`,
-/// bottom up, each listing exactly the modules it uses, all of them in rows above it.
-#[test]
-fn the_layer_table_of_csql_is_the_code() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    let doc = std::fs::read_to_string(root.join("docs/architecture.md")).expect("the doc");
-    let table = layer_table(&doc, "#### Layers of `csql`");
-    let g = graph(&root.join("crates/csql/src"), "lib");
+/// How a table of `docs/architecture.md` (rows bottom up, each a module and the modules
+/// it uses) differs from the graph `g`: a row's uses that are not exactly the code's,
+/// uses not listed above the row, rows that are not modules and modules without a row.
+fn table_problems(
+    table: &[(String, BTreeSet<String>)],
+    g: &BTreeMap<String, BTreeSet<String>>,
+) -> Vec<String> {
     let mut problems = Vec::new();
     let mut above = BTreeSet::new();
-    for (module, uses) in &table {
+    for (module, uses) in table {
         match g.get(module) {
             None => problems.push(format!("`{module}` is in the table, not in the code")),
             Some(real) if real != uses => problems.push(format!(
@@ -400,7 +525,7 @@ fn the_layer_table_of_csql_is_the_code() {
         }
         above.insert(module.clone());
     }
-    for (module, uses) in &g {
+    for (module, uses) in g {
         if !table.iter().any(|(m, _)| m == module) {
             problems.push(format!(
                 "`{module}` is missing from the table; it uses {}",
@@ -408,9 +533,39 @@ fn the_layer_table_of_csql_is_the_code() {
             ));
         }
     }
+    problems
+}
+
+/// The module table of `docs/architecture.md` is the code: one row per module of `csql`,
+/// bottom up, each listing exactly the modules it uses, all of them in rows above it.
+#[test]
+fn the_module_table_of_csql_is_the_code() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let doc = std::fs::read_to_string(root.join("docs/architecture.md")).expect("the doc");
+    let table = layer_table(&doc, "#### Modules of `csql`");
+    let g = graph(&root.join("crates/csql/src"), "lib");
+    let problems = table_problems(&table, &g);
     assert!(
         problems.is_empty(),
-        "docs/architecture.md's layer table of csql differs from the code:\n{}",
+        "docs/architecture.md's module table of csql differs from the code:\n{}",
+        problems.join("\n")
+    );
+}
+
+/// The layers of `csql` stated in `docs/architecture.md` are the code: one row per
+/// top-level module (a folder with everything under it, or a file beside the folders),
+/// bottom up, each listing exactly the layers it uses, all of them in rows above it.
+#[test]
+fn the_layers_of_csql_are_the_code() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let doc = std::fs::read_to_string(root.join("docs/architecture.md")).expect("the doc");
+    let table = layer_table(&doc, "#### Layers of `csql`");
+    assert!(table.len() >= 8, "{table:?}");
+    let g = folders(&graph(&root.join("crates/csql/src"), "lib"));
+    let problems = table_problems(&table, &g);
+    assert!(
+        problems.is_empty(),
+        "docs/architecture.md's layers of csql differ from the code:\n{}",
         problems.join("\n")
     );
 }

@@ -1,13 +1,15 @@
-//! What measures a run from outside the learner: the oracle's verdicts ([`judge`]), the
-//! policy quality ([`quality`]), navigation after learning ([`navigate`]), the audit of
-//! predictions ([`audit`]), the report and its Table 1 ([`report`]), why a run did not
-//! learn ([`diagnosis`]), the figures ([`figure`]) and the paper's reference points
+//! What measures a run from outside the learner: learning over trials with the oracle
+//! watching ([`trials`]), the oracle's verdicts ([`judge`]), the policy quality
+//! ([`quality`]), navigation after learning ([`navigate`]), the audit of predictions
+//! ([`audit`]), the report and its Table 1 ([`report`]), why a run did not learn
+//! ([`diagnosis`]), the figures ([`figure`]) and the paper's reference points
 //! ([`reference`](self::reference)).
 //!
-//! What these modules may use: the read-only views of a perception (`perception::view`)
-//! and whatever a run has produced; a learner never uses them, so no learner can ask
-//! the oracle. The layer table in `docs/architecture.md` lists each module's uses, and a
-//! test holds it to the code.
+//! What these modules may use: every folder below (the learners, the agent, the
+//! settings, the perceptions), measuring a perception through its read-only views
+//! (`perception::view`); a learner never uses them, so no learner can ask the oracle.
+//! `docs/architecture.md` states the layers and lists each module's uses, and a test
+//! holds both to the code.
 
 pub(crate) mod audit;
 pub(crate) mod diagnosis;
@@ -38,3 +40,4 @@ pub(crate) mod reference;
     )
 )]
 pub(crate) mod report;
+pub(crate) mod trials;

@@ -3,17 +3,17 @@
 //! play episodes of their own, and the costed episodes that any of them plays when a
 //! run is scored by its costed return ([`costly`]).
 //!
-//! What these modules may use: AMRL-Q and sensing by belief stand on their own (the
-//! errors and the observer only), so the settings can name their parameters; U-Tree
-//! uses the perceptions; the costed episodes use the agent, the perceptions, the
-//! settings and the policy quality. The layer table in `docs/architecture.md` lists each
-//! module's uses, and a test holds it to the code.
+//! What these modules may use: the layers below (the agent, the perceptions, the
+//! settings, with their own parameters in `settings::costed`, the errors and the
+//! observer); never the measures, so no learner can ask the oracle.
+//! `docs/architecture.md` states the layers and lists each module's uses, and a test
+//! holds both to the code.
 
 #[cfg_attr(
     not(test),
     expect(
         clippy::expect_used,
-        reason = "constants: the published parameters and a learning rate of 1 are valid by their types' checks (the defaults' doc test builds them); a world has an action"
+        reason = "constants: a learning rate of 1 is valid by its type's check; a world has an action"
     )
 )]
 pub(crate) mod amrl;

@@ -161,21 +161,15 @@ mod perception;
 mod run;
 mod settings;
 
-pub use agent::detector::{
-    ActionDrop, AnyDrop, Detector, DetectorKind, RateParams, RateTest, RunDetector,
-};
-pub use agent::main_loop::{Agent, LoopParams, RefineFrom, TrialRecord};
+pub use agent::detector::{ActionDrop, AnyDrop, Detector, RateTest, RunDetector};
+pub use agent::main_loop::{Agent, LoopParams, RefineFrom, TrialRecord, value_floor};
 pub use agent::stepper::{Moment, Sense, StepError, Stepper};
-pub use agent::strategy::{
-    Eager, Lazy, Never, RandomMoves, Reaction, Resetting, Strategy, StrategyKind, UnknownStrategy,
-};
-pub use agent::trials::{Judging, Scene};
+pub use agent::strategy::{Eager, Lazy, Never, RandomMoves, Reaction, Resetting, Strategy};
 pub use error::{Error, SettingsProblem};
 pub use judging::diagnosis::NotLearned;
 pub use judging::figure::{descriptions_svg, descriptions_table, policy_svg};
 pub use judging::judge::{Judge, Verdict};
 pub use judging::navigate::{Navigation, navigate};
-pub use judging::quality::value_floor;
 pub use judging::quality::{
     MC_MAX_MOVES, MC_MAX_ROUNDS, MC_MIN_ROUNDS, POLICY_BATCHES, POLICY_SAMPLES, QualityEstimate,
     QualityMethod,
@@ -188,16 +182,15 @@ pub use judging::report::{
     DescriptionReport, FeatureReport, PaperValue, QualityReport, RunReport, StateReport, Table1,
     Table1Row,
 };
-pub use learners::amrl::{
-    AmrlParams, CostlySummary, Episode, MAX_BIAS, MAX_EPISODES, Measuring, amrl_q,
-};
-pub use learners::belief::{BeliefParams, MAX_BELIEF_UNCERTAIN, MAX_BLIND_PLANS, belief_planning};
+pub use judging::trials::{Judging, Scene};
+pub use learners::amrl::{CostlySummary, Episode, amrl_q};
+pub use learners::belief::belief_planning;
 pub use learners::costly::{
     CostedReport, CostedRun, costed_episodes, costed_report, costed_report_in,
 };
 pub use learners::utree::{UTree, ks_p_value};
 pub use observe::{Flow, KeepTrace, Observer, STOP_CHECK_MOVES, TracePoint};
-pub use perception::classify::{CACHE_MAX_READINGS, Classification, Classify};
+pub use perception::classify::{CACHE_MAX_READINGS, Classification, Classify, Matching};
 pub use perception::memory::Remembering;
 pub use perception::representation::{Description, DescriptionId, Representation};
 pub use perception::rows::{FULL_VIEW_LIMIT, FullView, Identified, Perception};
@@ -211,13 +204,19 @@ pub use perception::wraps::Wraps;
 pub use run::{
     Report, run, run_in, run_observed, run_on, run_on_with, run_resolved, run_with_representation,
 };
+pub use settings::costed::{
+    AmrlParams, BeliefParams, MAX_BELIEF_UNCERTAIN, MAX_BIAS, MAX_BLIND_PLANS, MAX_EPISODES,
+    Measuring,
+};
 pub use settings::defaults::WorldDefaults;
 pub use settings::draft::{
     CostlyTable, DEFAULT_MAP, ExtensionsTable, NOT_READ_BY_A_STEPPER, SETTING_KEYS, SettingKey,
     SettingsDraft, setting_key, setting_tables, settings_keys_help,
 };
-pub use settings::extensions::{Extensions, Matching, WorldExtras};
-pub use settings::learner::{CsQlSettings, LearnerKind, LearnerSettings, UTreeParams};
+pub use settings::extensions::{DetectorKind, Extensions, RateParams, WorldExtras};
+pub use settings::learner::{
+    CsQlSettings, LearnerKind, LearnerSettings, StrategyKind, UTreeParams, UnknownStrategy,
+};
 pub use settings::resolve::{Resolved, is_world_name};
 pub use settings::setup::Setup;
 pub use settings::values::{

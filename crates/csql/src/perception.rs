@@ -6,10 +6,11 @@
 //! ([`sense_less`]); the tree over the final descriptions ([`tree`]); the read-only views
 //! that measuring takes ([`view`]); a perception built on another ([`wraps`]).
 //!
-//! What these modules may use: each other and the settings of their own options
-//! (`settings::extensions`, `error`); never the agent, the learners or the measures.
-//! The layer table in `docs/architecture.md` lists each module's uses, and a test holds
-//! it to the code.
+//! What these modules may use: each other and the errors; this is the lowest folder.
+//! Their options are plain values (CLASSIFY's `Matching`, the levels of sensing less in
+//! `sense_less::level`) that the settings name; they never use the settings, the agent,
+//! the learners or the measures. `docs/architecture.md` states the layers and lists each
+//! module's uses, and a test holds both to the code.
 
 #[cfg_attr(
     not(test),

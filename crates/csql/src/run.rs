@@ -7,11 +7,11 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 
 use crate::agent::main_loop::Agent;
 use crate::agent::strategy::{Never, Strategy};
-use crate::agent::trials::{Scene, learn};
 use crate::error::Error;
 use crate::judging::audit::Audited;
 use crate::judging::navigate::navigate;
 use crate::judging::report::{RunReport, report};
+use crate::judging::trials::{Scene, learn};
 use crate::learners::costly::CostedReport;
 use crate::learners::utree::UTree;
 use crate::observe::{KeepTrace, Observer};
@@ -209,7 +209,7 @@ pub fn run_in<W: World + ?Sized>(
     }
     crate::settings::resolve::check_with_world(
         settings,
-        crate::judging::quality::is_deterministic(scene.world),
+        crate::settings::resolve::is_deterministic(scene.world),
         scene.world.grid().is_some(),
     )?;
     crate::settings::resolve::check_size(settings, scene.world)?;
@@ -463,12 +463,12 @@ fn new_agent<W: World + ?Sized, P, S>(
     perception: P,
     strategy: S,
 ) -> Agent<P, S> {
-    crate::agent::trials::agent_of(
+    crate::agent::main_loop::agent_of(
         perception,
         strategy,
         QTable::new(world.num_actions())
             .and_then(|t| {
-                t.starting_at(crate::judging::quality::value_floor(
+                t.starting_at(crate::agent::main_loop::value_floor(
                     world,
                     settings.gamma.get(),
                 ))

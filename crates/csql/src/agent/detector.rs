@@ -42,7 +42,8 @@
 //! of the way to each target) from counting.
 
 use qlearn::{RowId, VChange};
-use serde::{Deserialize, Serialize};
+
+use crate::settings::extensions::{DetectorKind, RateParams};
 
 /// What the main loop asks after every update of a description's V.
 ///
@@ -84,33 +85,6 @@ impl Detector for AnyDrop {
     }
     fn refined(&mut self, _row: RowId) {}
     fn reset(&mut self) {}
-}
-
-/// The parameters of the [`RateTest`] (see the module docs for its error rates).
-///
-/// ```
-/// let p = csql::RateParams::default();
-/// assert_eq!((p.window, p.rate, p.relative_drop), (20, 0.2, 0.005));
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct RateParams {
-    /// Updates per description in the window.
-    pub window: u32,
-    /// Inconsistent when more than this share of the window were falls.
-    pub rate: f64,
-    /// A fall is a drop of V by more than this share of its value before.
-    pub relative_drop: f64,
-}
-
-impl Default for RateParams {
-    fn default() -> RateParams {
-        RateParams {
-            window: 20,
-            rate: 0.2,
-            relative_drop: 0.005,
-        }
-    }
 }
 
 /// The statistical detector: a description is inconsistent when V fell noticeably in
@@ -220,39 +194,6 @@ impl Detector for ActionDrop {
     fn refined(&mut self, _row: RowId) {}
     fn reset(&mut self) {
         self.tried.clear();
-    }
-}
-
-/// Which detector a run uses (a setting; `"decrease"` is the paper's rule).
-///
-/// ```
-/// let d: csql::DetectorKind = serde_json::from_str("\"statistical\"").unwrap();
-/// assert_eq!(d, csql::DetectorKind::Statistical);
-/// ```
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum DetectorKind {
-    /// [`AnyDrop`].
-    #[default]
-    Decrease,
-    /// [`RateTest`].
-    Statistical,
-    /// [`ActionDrop`].
-    Action,
-}
-
-impl DetectorKind {
-    /// The setting's value: `decrease`, `statistical` or `action`.
-    ///
-    /// ```
-    /// assert_eq!(csql::DetectorKind::Statistical.name(), "statistical");
-    /// ```
-    pub fn name(self) -> &'static str {
-        match self {
-            DetectorKind::Decrease => "decrease",
-            DetectorKind::Statistical => "statistical",
-            DetectorKind::Action => "action",
-        }
     }
 }
 

@@ -3,7 +3,8 @@
 //! The loop is generic over how states become table rows ([`Perception`]) and over how a
 //! decrease is handled ([`Strategy`]). CS-QL is the loop with [`crate::Classify`] and one
 //! of the four strategies; the reference points of the paper's discussion are the same
-//! loop with a fixed perception and a strategy that never refines.
+//! loop with a fixed perception and a strategy that never refines. A run's agent is made
+//! here from its settings, with its table started at [`value_floor`].
 //!
 //! # The loop, step by step (the paper's Figure 3, MAIN LOOP)
 //!
@@ -44,6 +45,7 @@ use crate::agent::detector::{Detector, RunDetector};
 use crate::agent::strategy::{Reaction, Strategy};
 use crate::observe::{KeepTrace, Observer, told_to_stop};
 use crate::perception::rows::Perception;
+use crate::settings::values::RunSettings;
 
 /// The loop's parameters (a validated subset of [`crate::RunSettings`]).
 ///
@@ -64,6 +66,79 @@ pub struct LoopParams {
     pub max_moves: u32,
     /// V must drop by more than this to count as a decrease.
     pub decrease_threshold: f64,
+}
+
+impl From<&RunSettings> for LoopParams {
+    fn from(settings: &RunSettings) -> LoopParams {
+        LoopParams {
+            beta: settings.beta,
+            gamma: settings.gamma,
+            temperature: settings.temperature,
+            max_moves: settings.max_moves.get(),
+            decrease_threshold: settings.decrease_threshold.get(),
+        }
+    }
+}
+
+/// The agent of a run: `perception`, `strategy` and `table` with the run's loop
+/// parameters and CS-QL's detector (the paper's for a baseline).
+pub(crate) fn agent_of<P, S>(
+    perception: P,
+    strategy: S,
+    table: qlearn::QTable,
+    settings: &RunSettings,
+) -> Agent<P, S> {
+    let extensions = settings.extensions();
+    Agent::new(perception, strategy, table, LoopParams::from(settings))
+        .with_detector(RunDetector::new(extensions.detector, extensions.rate))
+}
+
+/// Where every run starts Q and V: `min(0, r*) / (1 - gamma)`, with `r*` the least, over
+/// the states a trial may visit, of the best reward an action can surely get there (the
+/// largest over actions of the smallest reward among the action's outcomes): the value of
+/// earning the worst state's best reward forever. Rounded down until
+/// `r* + gamma * floor >= floor` holds in floating point too. 0 in worlds without
+/// negative rewards, and on every grid map (docs/specification.md, 1.11).
+///
+/// From there, in a deterministic world whose descriptions are homomorphic, V never
+/// decreases: an action not yet tried keeps its row at the floor, and once the best one
+/// of a state is tried its target `r + gamma V` is at least the floor. Actions that pay
+/// the step penalty keep the floor exactly (`-1 + 0.9 * -10 = -10`), as untried ones do,
+/// so Boltzmann selection still explores them evenly, as it does in the paper's world.
+///
+/// ```
+/// let taxi = mdp::builtin_world("taxi", &Default::default()).unwrap();
+/// let f = csql::value_floor(&taxi, 0.9);
+/// assert!(f <= -10.0 && f > -10.0 - 1e-9); // -1 per step, forever
+/// assert!(-1.0 + 0.9 * f >= f);
+/// let lake = mdp::builtin_world("frozenlake4x4", &Default::default()).unwrap();
+/// assert_eq!(csql::value_floor(&lake, 0.9), 0.0);
+/// ```
+pub fn value_floor<W: World + ?Sized>(world: &W, gamma: f64) -> f64 {
+    let mut out = Vec::new();
+    let r_star = world
+        .states()
+        .into_iter()
+        .map(|s| {
+            (0..world.num_actions() as u32)
+                .map(|a| {
+                    world.outcomes(s, ActionId(a), &mut out);
+                    out.iter().map(|o| o.1.reward).fold(f64::INFINITY, f64::min)
+                })
+                .fold(f64::NEG_INFINITY, f64::max)
+        })
+        .fold(0.0, f64::min);
+    if r_star >= 0.0 {
+        return 0.0;
+    }
+    let mut floor = r_star / (1.0 - gamma);
+    // Rounding can leave `r* + gamma * floor` a unit in the last place below `floor`,
+    // which would read as a decrease: step down until the floor holds in floating point
+    // too (rounding is monotone, so every target of a state's best action then holds it).
+    while r_star + gamma * floor < floor {
+        floor = floor.next_down();
+    }
+    floor
 }
 
 /// What happened in one trial (see [`Agent::run_trial`]).

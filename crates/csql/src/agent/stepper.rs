@@ -388,7 +388,7 @@ impl Stepper {
         let mut nothing = |_: Moment, _: Feature| Reading(0);
         let probe = live(&features, StateId(0), &mut nothing);
         let classify = Classify::new(&probe).with_extensions(&q.extensions);
-        let agent = crate::agent::trials::agent_of(
+        let agent = crate::agent::main_loop::agent_of(
             classify,
             q.strategy.build(q.random_moves),
             table,

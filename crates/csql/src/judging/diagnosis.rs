@@ -13,11 +13,10 @@
 use mdp::{ActionId, World};
 use serde::Serialize;
 
-use crate::agent::detector::DetectorKind;
-use crate::agent::strategy::StrategyKind;
-use crate::agent::trials::Judging;
+use crate::judging::trials::Judging;
 use crate::settings::defaults::WorldDefaults;
-use crate::settings::learner::{LearnerSettings, UTreeParams};
+use crate::settings::extensions::DetectorKind;
+use crate::settings::learner::{LearnerSettings, StrategyKind, UTreeParams};
 use crate::settings::values::RunSettings;
 
 /// Why a run ended without learning (neither converged nor at policy quality 0.95 kept
@@ -210,7 +209,7 @@ pub(crate) fn diagnose<W: World + ?Sized>(
     let never_refined = settings.cs_ql().is_some() && end.decreases == 0 && end.descriptions <= 1;
     match &settings.learner {
         LearnerSettings::CsQl(q) if never_refined => {
-            let floor = crate::judging::quality::value_floor(world, settings.gamma.get());
+            let floor = crate::agent::main_loop::value_floor(world, settings.gamma.get());
             let mut text = "No utility ever decreased, so the detector never fired and nothing was sensed: one description stands for every state.".to_string();
             let penalties = rewards.deterministic && floor < 0.0;
             if penalties && q.extensions.detector != DetectorKind::Action {

@@ -22,12 +22,14 @@
 //! [`MC_MIN_ROUNDS`] rounds, at most [`MC_MAX_ROUNDS`]). The
 //! measure is never charged and the learner never sees it.
 
-use mdp::{ActionId, Oracle, SensorNoise, StateId, StochasticMdp, World};
+use mdp::{ActionId, Oracle, SensorNoise, StateId, World};
 use qlearn::{QTable, RowId};
 use rand::Rng;
 use serde::Serialize;
 
+use crate::agent::main_loop::value_floor;
 use crate::perception::view::Sees;
+use crate::settings::resolve::is_deterministic;
 
 /// Moves an episode of the Monte Carlo estimate may make (gamma^200 is below 1e-9 at the
 /// paper's gamma).
@@ -369,66 +371,4 @@ fn ratio_mean(
             (sum + (value(s) - floor) / (truth.v_star(s) - floor), n + 1)
         });
     if n == 0 { 1.0 } else { sum / n as f64 }
-}
-
-/// Where every run starts Q and V: `min(0, r*) / (1 - gamma)`, with `r*` the least, over
-/// the states a trial may visit, of the best reward an action can surely get there (the
-/// largest over actions of the smallest reward among the action's outcomes): the value of
-/// earning the worst state's best reward forever. Rounded down until
-/// `r* + gamma * floor >= floor` holds in floating point too. 0 in worlds without
-/// negative rewards, and on every grid map (docs/specification.md, 1.11).
-///
-/// From there, in a deterministic world whose descriptions are homomorphic, V never
-/// decreases: an action not yet tried keeps its row at the floor, and once the best one
-/// of a state is tried its target `r + gamma V` is at least the floor. Actions that pay
-/// the step penalty keep the floor exactly (`-1 + 0.9 * -10 = -10`), as untried ones do,
-/// so Boltzmann selection still explores them evenly, as it does in the paper's world.
-///
-/// ```
-/// let taxi = mdp::builtin_world("taxi", &Default::default()).unwrap();
-/// let f = csql::value_floor(&taxi, 0.9);
-/// assert!(f <= -10.0 && f > -10.0 - 1e-9); // -1 per step, forever
-/// assert!(-1.0 + 0.9 * f >= f);
-/// let lake = mdp::builtin_world("frozenlake4x4", &Default::default()).unwrap();
-/// assert_eq!(csql::value_floor(&lake, 0.9), 0.0);
-/// ```
-pub fn value_floor<W: World + ?Sized>(world: &W, gamma: f64) -> f64 {
-    let mut out = Vec::new();
-    let r_star = world
-        .states()
-        .into_iter()
-        .map(|s| {
-            (0..world.num_actions() as u32)
-                .map(|a| {
-                    world.outcomes(s, ActionId(a), &mut out);
-                    out.iter().map(|o| o.1.reward).fold(f64::INFINITY, f64::min)
-                })
-                .fold(f64::NEG_INFINITY, f64::max)
-        })
-        .fold(0.0, f64::min);
-    if r_star >= 0.0 {
-        return 0.0;
-    }
-    let mut floor = r_star / (1.0 - gamma);
-    // Rounding can leave `r* + gamma * floor` a unit in the last place below `floor`,
-    // which would read as a decrease: step down until the floor holds in floating point
-    // too (rounding is monotone, so every target of a state's best action then holds it).
-    while r_star + gamma * floor < floor {
-        floor = floor.next_down();
-    }
-    floor
-}
-
-/// Whether every action of every non-terminal state has a single outcome.
-pub(crate) fn is_deterministic<W: StochasticMdp + ?Sized>(world: &W) -> bool {
-    let mut out = Vec::new();
-    (0..world.num_states() as u32)
-        .map(StateId)
-        .filter(|&s| !world.is_terminal(s))
-        .all(|s| {
-            (0..world.num_actions() as u32).map(ActionId).all(|a| {
-                world.outcomes(s, a, &mut out);
-                out.len() == 1
-            })
-        })
 }

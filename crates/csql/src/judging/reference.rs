@@ -12,7 +12,7 @@ use serde::Serialize;
 
 use crate::agent::main_loop::{Agent, LoopParams};
 use crate::agent::strategy::Never;
-use crate::agent::trials::{Scene, learn};
+use crate::judging::trials::{Scene, learn};
 use crate::observe::KeepTrace;
 use crate::perception::classify::Classify;
 use crate::perception::grid::bordered_features;

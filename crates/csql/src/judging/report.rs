@@ -8,13 +8,13 @@ use mdp::World;
 use qlearn::QTable;
 use serde::Serialize;
 
-use crate::agent::strategy::StrategyKind;
-use crate::agent::trials::{Judging, Learned, Scene};
 use crate::judging::judge::Verdict;
 use crate::judging::quality::QualityMethod;
+use crate::judging::trials::{Judging, Learned, Scene};
 use crate::observe::TracePoint;
 use crate::perception::rows::Perception;
 use crate::perception::view::Describes;
+use crate::settings::learner::StrategyKind;
 use crate::settings::values::RunSettings;
 
 /// The eight measures of the paper's Table 1 for one run. A figure the run did not reach

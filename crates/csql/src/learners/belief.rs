@@ -43,176 +43,14 @@ use mdp::{
     PlanOptions, ReferenceError, ReferenceOptions, SensingMenu, SensingRule, StateId, World,
 };
 use rand::Rng;
-use serde::{Deserialize, Serialize};
 
 use crate::learners::amrl::{Episode, Episodes};
 use crate::observe::{KeepTrace, Observer};
+use crate::settings::costed::{BeliefParams, MAX_EPISODES};
 
 /// Value iteration of a plan stops when a step changes no value by more than this (reward
 /// units): far below any price, and far fewer steps on lakes where the values creep.
 const PLAN_TOLERANCE: f64 = 1e-9;
-
-/// The settings of [`belief_planning`], and of the learner `belief` (the settings file's
-/// table `[belief]`). The price of sensing is not one of them: a run's is `[costly]
-/// price`, given to [`belief_planning`] beside these.
-///
-/// ```
-/// let p = csql::BeliefParams::default();
-/// assert_eq!((p.max_uncertain, p.trust, p.prior, p.optimism), (7, 4, 3.0, 1.0));
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct BeliefParams {
-    /// `K`: the most steps in a row after which the agent may be uncertain of its state (7).
-    pub max_uncertain: u32,
-    /// Tries of a pair after which it may be taken without measuring what follows, if it
-    /// has shown two outcomes; twice as many if it has shown one (4).
-    pub trust: u32,
-    /// The weight of the optimistic outcome against a pair's tries (3).
-    pub prior: f64,
-    /// The reward of the optimistic outcome, in reward units (1, FrozenLake's goal; at
-    /// most [`crate::MAX_BIAS`] in size).
-    pub optimism: f64,
-    /// Measure the whole state at once (the sum of the prices) rather than features apart.
-    pub whole_state: bool,
-    /// The most beliefs a plan may have; a plan that would have more is built with a
-    /// lower `K`, kept for the rest of the run (5,000).
-    pub max_beliefs: usize,
-    /// A price per move in the plan, in reward units, so that it does not wander between
-    /// choices of equal value (1e-6).
-    pub move_cost: f64,
-    /// With more than 0, the plan may stop measuring for the rest of the episode at any
-    /// belief where the agent is to move, and follow the best open-loop plan over its
-    /// model from that belief, at most this many plans kept a step
-    /// ([`mdp::PlanOptions::blind_plans`]); 0 (the default): no such choice, and the key
-    /// is left out of the settings' echo.
-    #[serde(skip_serializing_if = "is_zero")]
-    pub blind_plans: usize,
-}
-
-impl Default for BeliefParams {
-    fn default() -> BeliefParams {
-        BeliefParams {
-            max_uncertain: 7,
-            trust: 4,
-            prior: 3.0,
-            optimism: 1.0,
-            whole_state: false,
-            max_beliefs: 5_000,
-            move_cost: 1e-6,
-            blind_plans: 0,
-        }
-    }
-}
-
-/// Whether `[belief] blind_plans` is off, so that the echo of the settings is as before.
-fn is_zero(n: &usize) -> bool {
-    *n == 0
-}
-
-/// The largest `max_uncertain` a run's settings take ([`BeliefParams::validate`]): a plan
-/// over more beliefs than `max_beliefs` is rebuilt with `K` one lower, so a larger bound
-/// would only be lowered again, plan after plan.
-///
-/// ```
-/// let p = csql::BeliefParams { max_uncertain: csql::MAX_BELIEF_UNCERTAIN + 1, ..Default::default() };
-/// assert!(p.validate().unwrap_err().to_string().contains("belief.max_uncertain = 65"));
-/// ```
-pub const MAX_BELIEF_UNCERTAIN: u32 = 64;
-
-/// The most open-loop plans a step `[belief] blind_plans` takes
-/// ([`BeliefParams::validate`]): each plan is rebuilt with them, and their work grows
-/// with the square of their number.
-///
-/// ```
-/// let p = csql::BeliefParams { blind_plans: csql::MAX_BLIND_PLANS + 1, ..Default::default() };
-/// assert!(p.validate().unwrap_err().to_string().contains("belief.blind_plans = 4097"));
-/// ```
-pub const MAX_BLIND_PLANS: usize = 4096;
-
-impl BeliefParams {
-    /// Whether every setting of `[belief]` is at its default: for the settings echo,
-    /// which leaves the table out then.
-    ///
-    /// ```
-    /// let p = csql::BeliefParams::default();
-    /// assert!(p.is_default());
-    /// assert!(!csql::BeliefParams { trust: 2, ..p }.is_default());
-    /// ```
-    pub fn is_default(&self) -> bool {
-        *self == BeliefParams::default()
-    }
-
-    /// Check the settings as a run's settings take them, each refused with its key in
-    /// `[belief]` and what is accepted: what [`belief_planning`] refuses, and the bounds
-    /// that keep a plan's size and its rebuilding finite (`max_uncertain` at most
-    /// [`MAX_BELIEF_UNCERTAIN`], `max_beliefs` at most [`mdp::DEFAULT_MAX_BELIEFS`]).
-    ///
-    /// # Errors
-    /// [`crate::Error::InvalidSetting`], naming the key.
-    ///
-    /// ```
-    /// assert!(csql::BeliefParams::default().validate().is_ok());
-    /// let p = csql::BeliefParams { trust: 0, ..Default::default() };
-    /// assert!(p.validate().unwrap_err().to_string().contains("belief.trust = 0"));
-    /// ```
-    pub fn validate(&self) -> Result<(), crate::Error> {
-        let bad = |key: &str, value: String, expected: &'static str| {
-            Err(crate::Error::InvalidSetting {
-                value: format!("belief.{key} = {value}"),
-                expected,
-            })
-        };
-        if self.max_uncertain > MAX_BELIEF_UNCERTAIN {
-            return bad(
-                "max_uncertain",
-                self.max_uncertain.to_string(),
-                "at most 64 uncertain steps in a row (csql::MAX_BELIEF_UNCERTAIN)",
-            );
-        }
-        if self.trust == 0 {
-            return bad("trust", "0".into(), "at least 1 try");
-        }
-        if !(self.prior.is_finite() && self.prior > 0.0) {
-            return bad(
-                "prior",
-                self.prior.to_string(),
-                "a finite weight greater than 0",
-            );
-        }
-        if !(-crate::learners::amrl::MAX_BIAS..=crate::learners::amrl::MAX_BIAS)
-            .contains(&self.optimism)
-        {
-            return bad(
-                "optimism",
-                format!("{:?}", self.optimism),
-                "a reward of at most 1e9 in size (csql::MAX_BIAS): a larger one drowns the world's rewards in the plan's rounding",
-            );
-        }
-        if !(self.move_cost.is_finite() && self.move_cost >= 0.0) {
-            return bad(
-                "move_cost",
-                self.move_cost.to_string(),
-                "a finite price of at least 0 reward units",
-            );
-        }
-        if self.blind_plans > MAX_BLIND_PLANS {
-            return bad(
-                "blind_plans",
-                self.blind_plans.to_string(),
-                "at most 4096 open-loop plans a step (csql::MAX_BLIND_PLANS)",
-            );
-        }
-        if !(1..=mdp::DEFAULT_MAX_BELIEFS).contains(&self.max_beliefs) {
-            return bad(
-                "max_beliefs",
-                self.max_beliefs.to_string(),
-                "1 to 1000000 beliefs (mdp::DEFAULT_MAX_BELIEFS)",
-            );
-        }
-        Ok(())
-    }
-}
 
 /// What the agent has counted of one pair (a state and an action).
 #[derive(Clone, Debug, Default)]
@@ -362,7 +200,7 @@ fn belief_planning_bounded<W: World + ?Sized, R: Rng + ?Sized>(
     for (_, s) in world.start_distribution() {
         l.known[s.index()] = true;
     }
-    let mut out = Vec::with_capacity(episodes.min(crate::learners::amrl::MAX_EPISODES) as usize);
+    let mut out = Vec::with_capacity(episodes.min(MAX_EPISODES) as usize);
     for _ in 0..episodes {
         if !observer.keep_going() {
             break;

@@ -145,7 +145,7 @@ pub fn costed_episodes<W: World + ?Sized>(
         });
     }
     settings.validate()?;
-    if episodes > crate::learners::amrl::MAX_EPISODES {
+    if episodes > crate::settings::costed::MAX_EPISODES {
         return Err(Error::InvalidSetting {
             value: format!("episodes = {episodes}"),
             expected: "at most 1000000 episodes (csql::MAX_EPISODES): every episode is returned",
@@ -153,7 +153,7 @@ pub fn costed_episodes<W: World + ?Sized>(
     }
     crate::settings::resolve::check_with_world(
         settings,
-        crate::judging::quality::is_deterministic(world),
+        crate::settings::resolve::is_deterministic(world),
         world.grid().is_some(),
     )?;
     crate::settings::resolve::check_size(settings, world)?;
@@ -163,7 +163,7 @@ pub fn costed_episodes<W: World + ?Sized>(
         why,
     };
     // Q and V start at the floor of the world's returns, as in `csql::run`.
-    let floor = crate::judging::quality::value_floor(world, settings.gamma.get());
+    let floor = crate::agent::main_loop::value_floor(world, settings.gamma.get());
     let table = QTable::new(world.num_actions())
         .and_then(|t| t.starting_at(floor))
         .map_err(|_| Error::InvalidSetting {
@@ -443,7 +443,7 @@ impl<W: World + ?Sized> Play<'_, W> {
     ) -> Vec<Episode> {
         let world = self.world;
         let mut agent: Agent<P, S> =
-            crate::agent::trials::agent_of(perception, strategy, table, self.settings);
+            crate::agent::main_loop::agent_of(perception, strategy, table, self.settings);
         // The run's generator, drawn from as `csql::run` draws: a start, then the trial.
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(self.settings.seed);
         let mut out = Vec::with_capacity(self.episodes as usize);
@@ -497,7 +497,7 @@ impl<W: World + ?Sized> Play<'_, W> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::agent::strategy::StrategyKind;
+    use crate::settings::learner::StrategyKind;
     use crate::{LearnerKind, RunSettings};
 
     fn lake(name: &str, slide: f64) -> mdp::FiniteWorld {

@@ -40,6 +40,7 @@ use mdp::{Feature, Reading, SensorNoise, Sensors, StateId};
 use qlearn::{QTable, RowId};
 use rand::Rng;
 use rand_xoshiro::Xoshiro256PlusPlus;
+use serde::{Deserialize, Serialize};
 
 use self::cache::{Cache, Step};
 use crate::perception::representation::{DescriptionId, Representation, feature_id, value_of};
@@ -47,7 +48,23 @@ use crate::perception::rows::Perception;
 use crate::perception::sensor::SensorModel;
 use crate::perception::tree::StateTree;
 use crate::perception::view::{Describes, Sees};
-use crate::settings::extensions::Matching;
+
+/// How a description is matched to a state.
+///
+/// ```
+/// let m: csql::Matching = serde_json::from_str("\"nearest\"").unwrap();
+/// assert_eq!(m, csql::Matching::Nearest);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Matching {
+    /// CLASSIFY as the paper defines it: every feature of a description must match.
+    #[default]
+    Exact,
+    /// When no description matches, take the one that differs from the state on exactly
+    /// one feature (see [`crate::Classify::with_matching`]) instead of creating one.
+    Nearest,
+}
 
 /// The result of one classification.
 ///
@@ -301,14 +318,6 @@ impl Classify {
     pub fn with_reads(mut self, reads: u32) -> Classify {
         self.sensor = self.sensor.with_reads(reads);
         self
-    }
-
-    /// CLASSIFY as CS-QL's extensions of a run set it: their matching, confirmation and
-    /// repeated reads.
-    pub(crate) fn with_extensions(self, e: &crate::settings::extensions::Extensions) -> Classify {
-        self.with_matching(e.matching)
-            .with_confirmation(e.confirm_new)
-            .with_reads(e.reads)
     }
 
     /// The description that agrees best with a measurement: the most features with the

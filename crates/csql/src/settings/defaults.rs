@@ -9,9 +9,8 @@
 
 use qlearn::Temperature;
 
-use crate::agent::detector::DetectorKind;
-use crate::agent::strategy::StrategyKind;
-use crate::settings::extensions::WorldExtras;
+use crate::settings::extensions::{DetectorKind, WorldExtras};
+use crate::settings::learner::StrategyKind;
 use crate::settings::values::{MapSource, RunSettings, TrialCap};
 
 /// What a run in a world defaults to, where the settings do not say: the paper's values

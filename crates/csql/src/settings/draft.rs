@@ -15,14 +15,13 @@ use std::path::Path;
 use qlearn::{Discount, LearningRate, MoveCap, Temperature};
 use serde::{Deserialize, Serialize};
 
-use crate::agent::detector::{DetectorKind, RateParams};
-use crate::agent::strategy::StrategyKind;
 use crate::error::{Error, SettingsProblem};
+use crate::perception::classify::Matching;
 use crate::perception::sense_less::level::{PredictSensing, PredictionParams};
 use crate::settings::defaults::WorldDefaults;
-use crate::settings::extensions::{Extensions, Matching, WorldExtras};
+use crate::settings::extensions::{DetectorKind, Extensions, RateParams, WorldExtras};
 use crate::settings::learner::{
-    CsQlSettings, LearnerKind, LearnerSettings, PAPER_RANDOM_MOVES, UTreeParams,
+    CsQlSettings, LearnerKind, LearnerSettings, PAPER_RANDOM_MOVES, StrategyKind, UTreeParams,
 };
 use crate::settings::values::{
     CostlySettings, JudgeSettings, MAX_ROWS, MAX_SETTINGS_BYTES, MapSource, NonNegative,

@@ -2,13 +2,16 @@
 //! departures from the paper's assumptions ([`WorldExtras`], for every learner) and
 //! CS-QL's remedies ([`Extensions`], part of [`crate::CsQlSettings`]). At their defaults
 //! neither is written into a run's JSON, so every default run is byte-identical to the
-//! paper's procedure.
+//! paper's procedure. The detector a run uses is one of CS-QL's remedies: its kind and
+//! the rate test's parameters ([`DetectorKind`], [`RateParams`]) are settings here, the
+//! detectors themselves the agent's; CLASSIFY is set from the remedies here too
+//! (`Classify::with_extensions`).
 
 use mdp::{SensorNoise, Slip};
 use serde::{Deserialize, Serialize};
 
-use crate::agent::detector::{DetectorKind, RateParams};
 use crate::error::Error;
+use crate::perception::classify::{Classify, Matching};
 
 /// How the world departs from the paper's assumptions (specification §6): slippery moves, noisy
 /// sensors, a sensing range; what a built-in world senses and its prices. All absent by
@@ -135,23 +138,6 @@ impl WorldExtras {
     }
 }
 
-/// How a description is matched to a state.
-///
-/// ```
-/// let m: csql::Matching = serde_json::from_str("\"nearest\"").unwrap();
-/// assert_eq!(m, csql::Matching::Nearest);
-/// ```
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Matching {
-    /// CLASSIFY as the paper defines it: every feature of a description must match.
-    #[default]
-    Exact,
-    /// When no description matches, take the one that differs from the state on exactly
-    /// one feature (see [`crate::Classify::with_matching`]) instead of creating one.
-    Nearest,
-}
-
 /// CS-QL's remedies beyond the paper (specification §6), the keys of the TOML table
 /// `[extensions]` (CS-QL only). All off by default.
 ///
@@ -245,5 +231,75 @@ impl Extensions {
             );
         }
         Ok(())
+    }
+}
+
+/// Which detector a run uses (a setting; `"decrease"` is the paper's rule).
+///
+/// ```
+/// let d: csql::DetectorKind = serde_json::from_str("\"statistical\"").unwrap();
+/// assert_eq!(d, csql::DetectorKind::Statistical);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum DetectorKind {
+    /// [`crate::AnyDrop`].
+    #[default]
+    Decrease,
+    /// [`crate::RateTest`].
+    Statistical,
+    /// [`crate::ActionDrop`].
+    Action,
+}
+
+impl DetectorKind {
+    /// The setting's value: `decrease`, `statistical` or `action`.
+    ///
+    /// ```
+    /// assert_eq!(csql::DetectorKind::Statistical.name(), "statistical");
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            DetectorKind::Decrease => "decrease",
+            DetectorKind::Statistical => "statistical",
+            DetectorKind::Action => "action",
+        }
+    }
+}
+
+/// The parameters of the [`crate::RateTest`] (`agent/detector.rs` gives its error rates).
+///
+/// ```
+/// let p = csql::RateParams::default();
+/// assert_eq!((p.window, p.rate, p.relative_drop), (20, 0.2, 0.005));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RateParams {
+    /// Updates per description in the window.
+    pub window: u32,
+    /// Inconsistent when more than this share of the window were falls.
+    pub rate: f64,
+    /// A fall is a drop of V by more than this share of its value before.
+    pub relative_drop: f64,
+}
+
+impl Default for RateParams {
+    fn default() -> RateParams {
+        RateParams {
+            window: 20,
+            rate: 0.2,
+            relative_drop: 0.005,
+        }
+    }
+}
+
+impl Classify {
+    /// CLASSIFY as CS-QL's extensions of a run set it: their matching, confirmation and
+    /// repeated reads.
+    pub(crate) fn with_extensions(self, e: &Extensions) -> Classify {
+        self.with_matching(e.matching)
+            .with_confirmation(e.confirm_new)
+            .with_reads(e.reads)
     }
 }

@@ -15,10 +15,15 @@
 //! rows may depend on the last move, over every state and way of arriving there), by the
 //! policy quality otherwise (specification §6); every run also reports the cost and trials
 //! until the quality reached 0.95 and stayed there.
+//!
+//! CS-QL's strategy is a setting by name ([`StrategyKind`]); the strategy it builds
+//! ([`StrategyKind::build`]) is the agent's.
+
+use std::fmt;
+use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
 
-use crate::agent::strategy::StrategyKind;
 use crate::error::Error;
 use crate::perception::sense_less::level::{PredictSensing, PredictionParams};
 use crate::settings::extensions::Extensions;
@@ -339,5 +344,81 @@ impl UTreeParams {
             return bad("patience", "0".into(), "at least 1");
         }
         Ok(())
+    }
+}
+
+/// The four strategies of the paper by name, as read from settings and the command line.
+///
+/// ```
+/// use csql::StrategyKind;
+/// let k: StrategyKind = "lazy".parse().unwrap();
+/// assert_eq!(k, StrategyKind::Lazy);
+/// assert_eq!(k.to_string(), "lazy");
+/// assert!("greedy".parse::<StrategyKind>().is_err());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum StrategyKind {
+    /// [`crate::Resetting`].
+    Resetting,
+    /// [`crate::Lazy`].
+    Lazy,
+    /// [`crate::RandomMoves`].
+    Random,
+    /// [`crate::Eager`].
+    Eager,
+}
+
+impl StrategyKind {
+    /// All four, in the paper's column order.
+    ///
+    /// ```
+    /// assert_eq!(csql::StrategyKind::ALL.len(), 4);
+    /// ```
+    pub const ALL: [StrategyKind; 4] = [
+        StrategyKind::Resetting,
+        StrategyKind::Lazy,
+        StrategyKind::Random,
+        StrategyKind::Eager,
+    ];
+
+    /// The name used in settings, on the command line and in reports.
+    ///
+    /// ```
+    /// assert_eq!(csql::StrategyKind::Random.name(), "random");
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            StrategyKind::Resetting => "resetting",
+            StrategyKind::Lazy => "lazy",
+            StrategyKind::Random => "random",
+            StrategyKind::Eager => "eager",
+        }
+    }
+}
+
+impl fmt::Display for StrategyKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A strategy name that is not one of the four.
+///
+/// ```
+/// let err = "x".parse::<csql::StrategyKind>().unwrap_err();
+/// assert!(err.to_string().contains("resetting"));
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("unknown strategy `{0}` (expected resetting, lazy, random or eager)")]
+pub struct UnknownStrategy(pub String);
+
+impl FromStr for StrategyKind {
+    type Err = UnknownStrategy;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        StrategyKind::ALL
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| UnknownStrategy(s.to_string()))
     }
 }

@@ -9,7 +9,7 @@
 
 use std::path::Path;
 
-use mdp::{FiniteWorld, Oracle};
+use mdp::{ActionId, FiniteWorld, Oracle, StateId, StochasticMdp};
 
 use crate::error::Error;
 use crate::settings::setup::Setup;
@@ -125,11 +125,7 @@ impl Resolved {
                 what: "[world] sensing_radius (offsets around a robot on a grid)",
             });
         }
-        check_with_world(
-            settings,
-            crate::judging::quality::is_deterministic(&world),
-            false,
-        )?;
+        check_with_world(settings, is_deterministic(&world), false)?;
         check_size(settings, &world)?;
         let oracle = Oracle::solve_stochastic(&world, settings.gamma.get())?;
         Ok(Resolved::Finite { world, oracle })
@@ -274,4 +270,19 @@ pub(crate) fn check_size<W: mdp::World + ?Sized>(
         }
     }
     Ok(())
+}
+
+/// Whether every action of every non-terminal state has a single outcome: who judges a
+/// run ([`crate::Judging`]), and which settings it refuses, depend on it.
+pub(crate) fn is_deterministic<W: StochasticMdp + ?Sized>(world: &W) -> bool {
+    let mut out = Vec::new();
+    (0..world.num_states() as u32)
+        .map(StateId)
+        .filter(|&s| !world.is_terminal(s))
+        .all(|s| {
+            (0..world.num_actions() as u32).map(ActionId).all(|a| {
+                world.outcomes(s, a, &mut out);
+                out.len() == 1
+            })
+        })
 }

@@ -12,11 +12,12 @@ use std::fmt;
 use qlearn::{Discount, LearningRate, MoveCap, Temperature};
 use serde::{Deserialize, Serialize};
 
-use crate::agent::strategy::StrategyKind;
 use crate::error::Error;
 use crate::perception::sense_less::level::{PredictSensing, PredictionParams};
 use crate::settings::extensions::{Extensions, WorldExtras};
-use crate::settings::learner::{CsQlSettings, LearnerKind, LearnerSettings, PAPER_RANDOM_MOVES};
+use crate::settings::learner::{
+    CsQlSettings, LearnerKind, LearnerSettings, PAPER_RANDOM_MOVES, StrategyKind,
+};
 
 /// The map of a run: a name (a built-in, a map file or a map spec such as
 /// `random:8x8:0.2:7`, resolved by [`mdp::resolve`]) or a map value. Reports show its
@@ -572,7 +573,7 @@ impl RunSettings {
         }
         self.validate_costly()?;
         if self.learner.kind().on_episodes()
-            && self.max_trials.get() > crate::learners::amrl::MAX_EPISODES
+            && self.max_trials.get() > crate::settings::costed::MAX_EPISODES
         {
             return refuse(
                 format!("episodes = {}", self.max_trials.get()),

@@ -7,13 +7,14 @@ use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 use serde::Serialize;
 
-use crate::agent::main_loop::{Agent, LoopParams};
+use crate::agent::main_loop::Agent;
 use crate::agent::strategy::Strategy;
 use crate::judging::judge::{Judge, Verdict, situations};
 use crate::judging::quality::{QualityEstimate, QualityMeter};
 use crate::observe::{Flow, Observer, TracePoint};
 use crate::perception::rows::Perception;
 use crate::perception::view::Sees;
+use crate::settings::resolve::is_deterministic;
 use crate::settings::values::RunSettings;
 
 /// A world a run learns in, with the oracle's truth about it: what the judge, the policy
@@ -60,32 +61,6 @@ impl<'a, W: World + ?Sized> Scene<'a, W> {
     }
 }
 
-impl From<&RunSettings> for LoopParams {
-    fn from(settings: &RunSettings) -> LoopParams {
-        LoopParams {
-            beta: settings.beta,
-            gamma: settings.gamma,
-            temperature: settings.temperature,
-            max_moves: settings.max_moves.get(),
-            decrease_threshold: settings.decrease_threshold.get(),
-        }
-    }
-}
-
-/// The agent of a run: `perception`, `strategy` and `table` with the run's loop
-/// parameters and CS-QL's detector (the paper's for a baseline).
-pub(crate) fn agent_of<P, S>(
-    perception: P,
-    strategy: S,
-    table: qlearn::QTable,
-    settings: &RunSettings,
-) -> Agent<P, S> {
-    let extensions = settings.extensions();
-    Agent::new(perception, strategy, table, LoopParams::from(settings)).with_detector(
-        crate::agent::detector::RunDetector::new(extensions.detector, extensions.rate),
-    )
-}
-
 /// Who decides when a run has learned.
 ///
 /// ```
@@ -119,7 +94,7 @@ impl Judging {
     /// assert_eq!(Judging::of(&s, &lake), Judging::Quality);
     /// ```
     pub fn of<W: World + ?Sized>(settings: &RunSettings, world: &W) -> Judging {
-        if settings.judged_by_quality(crate::judging::quality::is_deterministic(world)) {
+        if settings.judged_by_quality(is_deterministic(world)) {
             Judging::Quality
         } else {
             Judging::Oracle
