@@ -206,3 +206,38 @@ fn the_choice_to_stop_measuring_ends_the_corridors_measurements() {
         run(&w, &BeliefParams::default(), SensingRule::WithMove, 3)
     );
 }
+
+/// A move cap the open-loop plans cannot hold (one level of plans per move; 4294967295
+/// once asked for 103 GB) is refused by name before any plan is made; without
+/// `blind_plans` the same cap is no allocation and runs.
+#[test]
+fn a_move_cap_beyond_what_open_loop_plans_hold_is_refused_by_name() {
+    let w = corridor();
+    let blind = BeliefParams {
+        blind_plans: 16,
+        ..BeliefParams::default()
+    };
+    for cap in [u32::MAX, 100_000_000, mdp::MAX_BLIND_HORIZON + 1] {
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
+        let err = belief_planning(&w, &blind, 1.0, SensingRule::WithMove, 2, cap, &mut rng)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("max_moves")
+                && err.contains("blind_plans = 16")
+                && err.contains("at most 10000"),
+            "{err}"
+        );
+    }
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
+    let open = belief_planning(
+        &w,
+        &BeliefParams::default(),
+        1.0,
+        SensingRule::WithMove,
+        2,
+        u32::MAX,
+        &mut rng,
+    );
+    assert!(open.is_ok(), "{open:?}");
+}

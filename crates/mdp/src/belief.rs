@@ -562,6 +562,17 @@ pub(crate) fn solve_counted(
     } = *plan;
     check_horizon(options)?;
     check_menu(menu)?;
+    if blind_plans > 0 && options.horizon > MAX_BLIND_HORIZON {
+        // The open-loop plans keep one level per move: judged before any is made.
+        return Err(bad(
+            "horizon",
+            format!(
+                "{} moves with open-loop plans; at most {MAX_BLIND_HORIZON} (one level of \
+                 plans is kept per move)",
+                options.horizon
+            ),
+        ));
+    }
     for (what, v) in [("move_cost", move_cost), ("tolerance", tolerance)] {
         if !(v.is_finite() && v >= 0.0) {
             return Err(bad(what, format!("{v}; it must be finite and >= 0")));
@@ -1051,6 +1062,20 @@ pub struct PlanOptions {
     /// from the belief. 0: no such choice (the plans of before).
     pub blind_plans: usize,
 }
+
+/// The longest horizon [`PlanOptions::blind_plans`] may plan over: its open-loop plans
+/// keep one level per move (up to 4096 plans each), so a horizon of 4294967295 moves once
+/// asked for 103 GB.
+///
+/// ```
+/// let lake = mdp::builtin_world("frozenlake4x4", &mdp::WorldOptions { sensing: Some(mdp::SensingModel::Factors), ..Default::default() }).unwrap();
+/// let model = mdp::CostlyModel::of(&lake).unwrap();
+/// let mut options = mdp::PlanOptions { blind_plans: 4, ..Default::default() };
+/// options.search.horizon = mdp::MAX_BLIND_HORIZON + 1;
+/// let Err(err) = mdp::BeliefPlan::build(&model, &options, &[mdp::StateId(0)]) else { panic!() };
+/// assert!(err.to_string().contains("at most 10000"), "{err}");
+/// ```
+pub const MAX_BLIND_HORIZON: u32 = 10_000;
 
 impl Default for PlanOptions {
     fn default() -> PlanOptions {

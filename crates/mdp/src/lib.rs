@@ -112,8 +112,8 @@ mod world;
 mod worlds;
 
 pub use belief::{
-    BeliefPlan, CostlyModel, Decision, EVERY_PROBE, ModelParts, NodeId, PlanOptions,
-    STOP_CHECK_BELIEFS,
+    BeliefPlan, CostlyModel, Decision, EVERY_PROBE, MAX_BLIND_HORIZON, ModelParts, NodeId,
+    PlanOptions, STOP_CHECK_BELIEFS,
 };
 pub use builtin::{builtin, builtin_names};
 pub use costly::{

@@ -221,6 +221,17 @@ fn check(p: &BeliefParams, price: f64, max_moves: u32) -> Result<(), ReferenceEr
     if max_moves == 0 {
         return Err(bad("max_moves", "0; an episode needs a move".into()));
     }
+    if p.blind_plans > 0 && max_moves > mdp::MAX_BLIND_HORIZON {
+        return Err(bad(
+            "max_moves",
+            format!(
+                "{max_moves} with [belief] blind_plans = {}: the open-loop plans keep one \
+                 level per move, so at most {} moves (mdp::MAX_BLIND_HORIZON)",
+                p.blind_plans,
+                mdp::MAX_BLIND_HORIZON
+            ),
+        ));
+    }
     if p.trust == 0 {
         return Err(bad(
             "trust",
