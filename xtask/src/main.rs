@@ -30,6 +30,7 @@ mod figures;
 mod files;
 mod fit;
 mod pytest;
+mod python;
 
 mod render;
 mod reproduce;
