@@ -46,7 +46,7 @@ import os
 import sys
 import time
 from dataclasses import asdict, dataclass
-from typing import IO, Any, Optional, Sequence, Union
+from typing import IO, Any, Optional, Sequence
 
 import lightgbm as lgb
 import numpy as np
