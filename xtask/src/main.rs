@@ -30,6 +30,7 @@ mod figures;
 mod files;
 mod fit;
 mod pytest;
+mod python;
 
 mod render;
 mod reproduce;
@@ -83,7 +84,7 @@ enum Command {
     Costly(costly::CostlyArgs),
     /// The test-cost tree family on the UCI benchmark of Esmeir's thesis, beside the
     /// published figures.
-    Testcost(testcost::TestcostArgs),
+    Testcost(Box<testcost::TestcostArgs>),
     /// ACT's cost against its time as its samples per branch grow, on the benchmark's
     /// folds and prices.
     Anytime(testcost::anytime::AnytimeArgs),

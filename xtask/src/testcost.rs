@@ -24,6 +24,7 @@ use serde::{Deserialize, Serialize};
 use crate::shard::JobLine;
 
 pub mod anytime;
+mod cegb;
 mod published;
 mod report;
 
@@ -33,9 +34,11 @@ pub struct TestcostArgs {
     /// Data sets, comma-separated, as `data/uci/datasets.toml` names them (default: all).
     #[arg(long, value_delimiter = ',')]
     datasets: Vec<String>,
-    /// Learners, comma-separated (`c45,id3-batch,idx,cs-id3-batch,eg2,dtmc,icet,act,cvt`;
-    /// default: the seven of the committed table, all but `act` and `cvt`, which are run
-    /// by naming them: ACT costs about three times ICET's time, CVT about five times ACT's).
+    /// Learners, comma-separated (`c45,id3-batch,idx,cs-id3-batch,eg2,dtmc,icet,act,cvt`,
+    /// and `cegb`, LightGBM's cost-efficient gradient boosting run through Python;
+    /// default: the seven of the committed table, all but `act`, `cvt` and `cegb`, which
+    /// are run by naming them: ACT costs about three times ICET's time, CVT about five
+    /// times ACT's).
     #[arg(long, value_delimiter = ',')]
     learners: Vec<String>,
     /// Uniform misclassification costs, comma-separated.
@@ -119,6 +122,12 @@ pub struct TestcostArgs {
     /// and 1000 (`docs/testcost.md`).
     #[arg(long, value_delimiter = ',')]
     with: Vec<PathBuf>,
+    /// The Python interpreter of CEGB's worker (`--learners ...,cegb`), which must have
+    /// numpy and lightgbm. Default: the project's virtual environment under the target
+    /// folder (`py-venv`), made or brought up to date with the pinned packages of
+    /// `crates/csrl-py/requirements-test.txt`.
+    #[arg(long, value_name = "PATH")]
+    python: Option<PathBuf>,
     /// Only write the report from the results already in `--out`.
     #[arg(long)]
     report: bool,
@@ -127,11 +136,87 @@ pub struct TestcostArgs {
     bless: bool,
 }
 
+/// A learner of the benchmark: one of the test-cost family (`cslearn::testcost`), or CEGB,
+/// LightGBM's cost-efficient gradient boosting, run beside them as their peer through
+/// the Python worker of `crates/csrl-py/python/csrl/cegb.py` ([`cegb`]).
+///
+/// It is written to results and manifests as the family's learners always were (their
+/// variant names: `"Eg2"`, `"CsId3Batch"`, ...), and CEGB as `"cegb"`, so that results
+/// written before CEGB existed read and write back byte for byte.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub(crate) enum Learner {
+    /// A learner of the test-cost family.
+    Family(Method),
+    /// LightGBM's CEGB.
+    Cegb,
+}
+
+impl Learner {
+    /// The name `--learners` takes and the tables show.
+    pub fn name(self) -> &'static str {
+        match self {
+            Learner::Family(m) => m.name(),
+            Learner::Cegb => "cegb",
+        }
+    }
+
+    /// The learner called `name` on the command line.
+    pub fn parse(name: &str) -> Result<Learner> {
+        if name == "cegb" {
+            return Ok(Learner::Cegb);
+        }
+        Method::parse(name)
+            .map(Learner::Family)
+            .map_err(|e| anyhow::anyhow!("--learners: {e}, or `cegb` (LightGBM's CEGB)"))
+    }
+
+    /// The family's learner, if it is one.
+    pub fn method(self) -> Option<Method> {
+        match self {
+            Learner::Family(m) => Some(m),
+            Learner::Cegb => None,
+        }
+    }
+
+    /// Whether its model depends on the misclassification cost (CEGB's does: its
+    /// tradeoff is chosen at each cost).
+    pub fn depends_on_mc(self) -> bool {
+        match self {
+            Learner::Family(m) => m.depends_on_mc(),
+            Learner::Cegb => true,
+        }
+    }
+}
+
+impl Serialize for Learner {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Learner::Family(m) => m.serialize(serializer),
+            Learner::Cegb => serializer.serialize_str("cegb"),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Learner {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Learner, D::Error> {
+        use serde::de::{Error as _, IntoDeserializer as _};
+        let name = String::deserialize(deserializer)?;
+        if name == "cegb" {
+            return Ok(Learner::Cegb);
+        }
+        let family: Result<Method, serde::de::value::Error> =
+            Method::deserialize(name.as_str().into_deserializer());
+        family
+            .map(Learner::Family)
+            .map_err(|e| D::Error::custom(format!("{e}, nor `cegb`")))
+    }
+}
+
 /// What a benchmark is: shards must agree on it.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub(crate) struct Definition {
     pub datasets: Vec<String>,
-    pub learners: Vec<Method>,
+    pub learners: Vec<Learner>,
     pub mc: Vec<f64>,
     pub costs: Vec<PriceSet>,
     pub assignments: u64,
@@ -216,7 +301,7 @@ pub(crate) struct JobResult {
     pub costs: PriceSet,
     pub assignment: u64,
     pub run: u64,
-    pub learner: Method,
+    pub learner: Learner,
     /// One per `mc` of the definition, in its order.
     pub by_mc: Vec<Score>,
     /// Mean nodes per tree.
@@ -225,6 +310,15 @@ pub(crate) struct JobResult {
     pub learn_seconds: f64,
     /// CPU seconds to classify every object.
     pub classify_seconds: f64,
+    /// For a learner run through another library (CEGB), that library's version and the
+    /// settings it ran with, one line; absent for the family's learners (and so in
+    /// results written before CEGB existed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub library: Option<String>,
+    /// CEGB's tradeoff chosen by its cross-validation, per mc (in the definition's
+    /// order), one per fold; absent for the family's learners.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tradeoffs: Option<Vec<Vec<f64>>>,
 }
 
 /// Scores of one job at one misclassification cost.
@@ -385,6 +479,8 @@ pub(crate) fn job_prices(
 }
 
 /// Runs one job: `runs`-th cross-validation of one learner under one price assignment.
+/// CEGB's jobs run through `peer`'s workers (which must be there when the benchmark has
+/// CEGB).
 fn run_job(
     def: &Definition,
     id: u64,
@@ -392,8 +488,65 @@ fn run_job(
     name: &str,
     frame: &Frame,
     turney: Option<&TestPrices>,
+    peer: Option<&cegb::Peer>,
 ) -> Result<JobResult> {
-    let method = def.learners[job.learner];
+    match def.learners[job.learner] {
+        Learner::Family(method) => run_family_job(def, id, job, method, name, frame, turney),
+        Learner::Cegb => {
+            let peer = peer.context("CEGB's job has no worker to run it")?;
+            cegb::run_job(def, id, job, name, frame, turney, peer)
+        }
+    }
+}
+
+/// The learner's seed for fold `f` of a job (ICET's search, ACT's and CVT's draws,
+/// CEGB's inner folds and LightGBM's seed).
+fn learner_seed(def: &Definition, name: &str, job: Job, f: usize) -> u64 {
+    mix(
+        def.seed,
+        name,
+        &[3, job.costs as u64, job.assignment, job.run, f as u64],
+    )
+}
+
+/// The scores of a job at each mc from the sums over its held-out objects: per mc, the
+/// total cost, the test cost and the errors, and each object's class probabilities (in
+/// the order of `actual_classes`).
+fn scores(
+    def: &Definition,
+    frame: &Frame,
+    prices: &TestPrices,
+    mcs: &[MisclassCosts],
+    sums: &[(f64, f64, usize)],
+    probabilities: &[Vec<Vec<f64>>],
+    actual_classes: &[usize],
+) -> Vec<Score> {
+    let n = frame.len() as f64;
+    mcs.iter()
+        .zip(sums)
+        .zip(&def.mc)
+        .zip(probabilities)
+        .map(|(((mc, &(total, tests, errors)), &m), scores)| Score {
+            mc: m,
+            total: total / n,
+            tests: tests / n,
+            error_rate: errors as f64 / n,
+            standard: standard_cost(frame, prices, mc),
+            auroc: auroc(scores, actual_classes),
+        })
+        .collect()
+}
+
+/// A job of one of the family's learners.
+fn run_family_job(
+    def: &Definition,
+    id: u64,
+    job: Job,
+    method: Method,
+    name: &str,
+    frame: &Frame,
+    turney: Option<&TestPrices>,
+) -> Result<JobResult> {
     let prices = job_prices(def, name, frame, turney, job.costs, job.assignment)?;
     let params = FamilyParams {
         selection_prices: def.selection_prices,
@@ -433,11 +586,7 @@ fn run_job(
         let train: Vec<usize> = (0..frame.len())
             .filter(|r| test.binary_search(r).is_err())
             .collect();
-        let icet_seed = mix(
-            def.seed,
-            name,
-            &[3, job.costs as u64, job.assignment, job.run, f as u64],
-        );
+        let icet_seed = learner_seed(def, name, job, f);
         // Learners whose tree does not depend on mc grow once and are relabelled; ACT and
         // CVT grow their trees at every mc through the same split tries (the same trees).
         let start = Instant::now();
@@ -464,32 +613,28 @@ fn run_job(
             classify += start.elapsed().as_secs_f64();
         }
     }
-    let n = frame.len() as f64;
-    let by_mc = mcs
-        .iter()
-        .zip(&sums)
-        .zip(&def.mc)
-        .zip(&probabilities)
-        .map(|(((mc, &(total, tests, errors)), &m), scores)| Score {
-            mc: m,
-            total: total / n,
-            tests: tests / n,
-            error_rate: errors as f64 / n,
-            standard: standard_cost(frame, &prices, mc),
-            auroc: auroc(scores, &actual_classes),
-        })
-        .collect();
+    let by_mc = scores(
+        def,
+        frame,
+        &prices,
+        &mcs,
+        &sums,
+        &probabilities,
+        &actual_classes,
+    );
     Ok(JobResult {
         id,
         dataset: name.to_string(),
         costs: job.costs,
         assignment: job.assignment,
         run: job.run,
-        learner: method,
+        learner: Learner::Family(method),
         by_mc,
         nodes: nodes as f64 / trees.max(1) as f64,
         learn_seconds: learn,
         classify_seconds: classify,
+        library: None,
+        tradeoffs: None,
     })
 }
 
@@ -502,16 +647,17 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
         args.datasets.clone()
     };
     crate::files::distinct("--datasets", &datasets)?;
-    let learners: Vec<Method> = if args.learners.is_empty() {
+    let learners: Vec<Learner> = if args.learners.is_empty() {
         Method::ALL
             .into_iter()
             .filter(|m| !matches!(m, Method::Act | Method::Cvt))
+            .map(Learner::Family)
             .collect()
     } else {
         args.learners
             .iter()
-            .map(|l| Method::parse(l))
-            .collect::<Result<_, _>>()?
+            .map(|l| Learner::parse(l))
+            .collect::<Result<_>>()?
     };
     crate::files::distinct(
         "--learners",
@@ -553,6 +699,18 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
         }
         b => Budget::new(b, args.max_tests).map_err(|e| anyhow::anyhow!("--max-test-cost: {e}"))?,
     };
+    if learners.contains(&Learner::Cegb)
+        && (args.max_tests.is_some() || args.max_test_cost.is_some())
+    {
+        bail!(
+            "--learners cegb cannot run with a budget per object (--max-tests, --max-test-cost): \
+             LightGBM's trees cannot be cut where an object's budget ends, so CEGB would be \
+             scored without it; run CEGB without a budget"
+        );
+    }
+    if args.python.is_some() && !learners.contains(&Learner::Cegb) {
+        bail!("--python is the interpreter of CEGB's worker: it needs --learners with cegb");
+    }
     if args.icet_search_objects < 2 {
         bail!("--icet-search-objects: ICET's search needs at least 2 objects (one per half)");
     }
@@ -591,6 +749,12 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
     if !args.report {
         let turney: Vec<bool> = loaded.iter().map(|l| l.turney.is_some()).collect();
         let list = Jobs::new(&def, &turney);
+        // CEGB's workers: one Python per worker thread that runs its jobs, started once.
+        let peer = if def.learners.contains(&Learner::Cegb) {
+            Some(cegb::Peer::start(args.python.as_deref())?)
+        } else {
+            None
+        };
         crate::shard::run_shard(
             &args.out,
             &args.shard,
@@ -616,6 +780,7 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
                     &datasets[job.dataset],
                     &l.frame,
                     l.turney.as_ref(),
+                    peer.as_ref(),
                 )
             },
         )?;
@@ -703,13 +868,15 @@ fn check_joinable(def: &Definition, other: &Definition) -> Result<()> {
 /// A rough estimate of a job's work, to hand out the heaviest jobs first: objects times
 /// tests, times a factor for the learners that grow many trees per tree kept (ICET's
 /// search, ACT's sampling, CVT's cross-validation). It orders jobs only; it changes no result.
-fn work(method: Method, objects: usize, tests: usize) -> f64 {
-    let trees_per_tree = match method {
-        Method::Icet => 300.0,
-        Method::Act => 1000.0,
+fn work(learner: Learner, objects: usize, tests: usize) -> f64 {
+    let trees_per_tree = match learner {
+        Learner::Family(Method::Icet) => 300.0,
+        Learner::Family(Method::Act) => 1000.0,
         // Six trees of ACT's lookahead per fit (one per fold and one on every object).
-        Method::Cvt => 5000.0,
-        _ => 1.0,
+        Learner::Family(Method::Cvt) => 5000.0,
+        // About a hundred boosted models per fit (its tradeoff's cross-validation).
+        Learner::Cegb => 1000.0,
+        Learner::Family(_) => 1.0,
     };
     trees_per_tree * objects as f64 * tests as f64
 }
@@ -808,6 +975,7 @@ mod tests {
             threads: Some(threads),
             shard: "1/1".into(),
             with: Vec::new(),
+            python: None,
             report: false,
             bless: false,
         }
@@ -897,7 +1065,7 @@ mod tests {
         // The definition without a budget is written as before, and read back so.
         let budgetless = Definition {
             datasets: vec!["iris".into()],
-            learners: vec![Method::Eg2],
+            learners: vec![Learner::Family(Method::Eg2)],
             mc: vec![100.0],
             costs: vec![PriceSet::Random],
             assignments: 1,
@@ -980,15 +1148,17 @@ mod tests {
             costs: PriceSet::Random,
             assignment: 0,
             run: 0,
-            learner: Method::Eg2,
+            learner: Learner::Family(Method::Eg2),
             by_mc: vec![score],
             nodes: 3.0,
             learn_seconds: 0.0,
             classify_seconds: 0.0,
+            library: None,
+            tradeoffs: None,
         };
         let def = Definition {
             datasets: vec!["iris".into()],
-            learners: vec![Method::Eg2],
+            learners: vec![Learner::Family(Method::Eg2)],
             mc: vec![100.0],
             costs: vec![PriceSet::Random],
             assignments: 1,
@@ -1114,6 +1284,74 @@ mod tests {
         with.with = vec![third.path().to_path_buf()];
         let err = format!("{:#}", testcost(&with).unwrap_err());
         assert!(err.contains("mc 1000"), "{err}");
+    }
+
+    /// A definition and a result line as written before CEGB existed (every learner of
+    /// the family), read and written back byte for byte; CEGB's name is `cegb`.
+    #[test]
+    fn the_learners_are_written_as_before_and_cegb_as_its_name() {
+        let definition = r#"{"datasets":["iris"],"learners":["C45","Id3","Idx","CsId3Batch","Eg2","Dtmc","Icet","Act","Cvt"],"mc":[500.0],"costs":["random"],"assignments":1,"price_range":[1.0,100.0],"price_draw":"uniform","selection_prices":"listed","icet_pruning":"costs","icet_search_objects":1000,"cvt_folds":5,"act_samples":5,"runs":1,"folds":3,"seed":1}"#;
+        let def: Definition = serde_json::from_str(definition).unwrap();
+        assert_eq!(
+            def.learners,
+            Method::ALL.map(Learner::Family),
+            "in the order written"
+        );
+        assert_eq!(serde_json::to_string(&def).unwrap(), definition);
+        let result = r#"{"id":0,"dataset":"iris","costs":"random","assignment":0,"run":0,"learner":"Eg2","by_mc":[{"mc":500.0,"total":60.95974067846856,"tests":37.62640734513521,"error_rate":0.04666666666666667,"standard":591.7064893819861,"auroc":0.9758}],"nodes":5.666666666666667,"learn_seconds":0.000412743,"classify_seconds":0.000017947}"#;
+        let read: JobResult = serde_json::from_str(result).unwrap();
+        assert_eq!(read.learner, Learner::Family(Method::Eg2));
+        assert_eq!(
+            (read.library.as_deref(), read.tradeoffs.as_ref()),
+            (None, None)
+        );
+        assert_eq!(serde_json::to_string(&read).unwrap(), result);
+
+        // CEGB beside them.
+        let with = Definition {
+            learners: vec![Learner::Family(Method::Eg2), Learner::Cegb],
+            ..def
+        };
+        let text = serde_json::to_string(&with).unwrap();
+        assert!(text.contains(r#""learners":["Eg2","cegb"]"#), "{text}");
+        assert_eq!(serde_json::from_str::<Definition>(&text).unwrap(), with);
+        // A name that is neither is refused, saying so.
+        let err = serde_json::from_str::<Learner>(r#""Cegb""#)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("Cegb") && err.contains("cegb"), "{err}");
+        // On the command line, the names the tables show.
+        for l in Method::ALL
+            .map(Learner::Family)
+            .into_iter()
+            .chain([Learner::Cegb])
+        {
+            assert_eq!(Learner::parse(l.name()).unwrap(), l);
+        }
+        let err = Learner::parse("lightgbm").unwrap_err().to_string();
+        assert!(err.contains("lightgbm") && err.contains("cegb"), "{err}");
+        assert!(Learner::Cegb.depends_on_mc());
+        assert_eq!(Learner::Cegb.method(), None);
+    }
+
+    /// CEGB cannot be held to a budget per object, and `--python` is its worker's: both
+    /// are refused before anything runs (no Python is needed to say so).
+    #[test]
+    fn cegb_refuses_a_budget_and_python_needs_cegb() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut budget = args(dir.path(), 1);
+        budget.learners = vec!["eg2".into(), "cegb".into()];
+        budget.max_tests = Some(2);
+        let err = testcost(&budget).unwrap_err().to_string();
+        assert!(err.contains("cegb") && err.contains("--max-tests"), "{err}");
+        let mut python = args(dir.path(), 1);
+        python.python = Some(PathBuf::from("/no/such/python"));
+        let err = testcost(&python).unwrap_err().to_string();
+        assert!(err.contains("--python") && err.contains("cegb"), "{err}");
+        assert!(
+            std::fs::read_dir(dir.path()).unwrap().next().is_none(),
+            "nothing written"
+        );
     }
 
     #[test]

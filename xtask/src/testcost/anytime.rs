@@ -91,6 +91,7 @@ fn testcost_args(args: &AnytimeArgs, samples: usize, out: PathBuf) -> TestcostAr
         threads: args.threads,
         shard: "1/1".into(),
         with: Vec::new(),
+        python: None,
         report: false,
         bless: false,
     }

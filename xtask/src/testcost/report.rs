@@ -9,7 +9,7 @@ use cslearn::testcost::{Method, Pruning, SelectionPrices};
 use plotters::prelude::*;
 
 use super::published;
-use super::{Definition, JobResult, PriceSet};
+use super::{Definition, JobResult, Learner, PriceSet};
 use crate::figures::{PALETTE, marker};
 
 /// One row of `testcost.csv`.
@@ -18,7 +18,7 @@ pub(crate) struct Row {
     pub dataset: String,
     pub costs: PriceSet,
     pub mc: f64,
-    pub learner: Method,
+    pub learner: Learner,
     /// Mean total cost as a percentage of the standard cost.
     pub normalised: f64,
     /// Half-width of the 95% interval of that mean (normal approximation).
@@ -52,7 +52,7 @@ pub(crate) struct Table {
 
 /// Learners another benchmark added to a [`Table`], with the runs and mc it measured them at.
 pub(crate) struct Added {
-    pub learners: Vec<Method>,
+    pub learners: Vec<Learner>,
     pub runs: u64,
     pub mc: Vec<f64>,
 }
@@ -61,7 +61,7 @@ impl Table {
     /// Adds the rows of `other`'s learners that the table lacks (`other` must be joinable:
     /// the same data sets, price sets, folds, seed and settings).
     pub(crate) fn join(&mut self, other: &Definition, rows: Vec<Row>, results: Vec<JobResult>) {
-        let new: Vec<Method> = other
+        let new: Vec<Learner> = other
             .learners
             .iter()
             .copied()
@@ -94,7 +94,7 @@ impl Table {
     }
 }
 
-type Key = (String, PriceSet, u64, Method);
+type Key = (String, PriceSet, u64, Learner);
 
 /// The rows, in the definition's order of data sets, price sets, mc and learners.
 pub(crate) fn aggregate(def: &Definition, results: &[JobResult]) -> Vec<Row> {
@@ -117,9 +117,9 @@ pub(crate) fn aggregate(def: &Definition, results: &[JobResult]) -> Vec<Row> {
     for d in &def.datasets {
         for &costs in &def.costs {
             for &mc in &def.mc {
-                let key = |m: Method| (d.clone(), costs, mc.to_bits(), m);
+                let key = |m: Learner| (d.clone(), costs, mc.to_bits(), m);
                 let base = cells
-                    .get(&key(Method::CsId3Batch))
+                    .get(&key(Learner::Family(Method::CsId3Batch)))
                     .map(|v| mean(&v.iter().map(|x| x.0).collect::<Vec<_>>()));
                 for &learner in &def.learners {
                     let Some(v) = cells.get(&key(learner)) else {
@@ -157,7 +157,7 @@ pub(crate) fn aggregate(def: &Definition, results: &[JobResult]) -> Vec<Row> {
     rows
 }
 
-fn find<'a>(rows: &'a [Row], d: &str, costs: PriceSet, mc: f64, m: Method) -> Option<&'a Row> {
+fn find<'a>(rows: &'a [Row], d: &str, costs: PriceSet, mc: f64, m: Learner) -> Option<&'a Row> {
     rows.iter()
         .find(|r| r.dataset == d && r.costs == costs && r.mc == mc && r.learner == m)
 }
@@ -221,10 +221,10 @@ pub(crate) fn mean_ratios(
     rows: &[Row],
     published_names: &BTreeMap<String, String>,
     mc: f64,
-) -> Vec<(Method, f64, f64, usize)> {
+) -> Vec<(Learner, f64, f64, usize)> {
     let mut out = Vec::new();
     for &m in &def.learners {
-        let Some(col) = published::column(m) else {
+        let Some(col) = m.method().and_then(published::column) else {
             continue;
         };
         let (mut ours, mut theirs, mut n) = (0.0, 0.0, 0);
@@ -301,7 +301,7 @@ fn timing_csv(
         /// Times each object of the data set was classified (once per mc of a job).
         classified: usize,
     }
-    let mut cells: BTreeMap<(String, Method), Sums> = BTreeMap::new();
+    let mut cells: BTreeMap<(String, Learner), Sums> = BTreeMap::new();
     for r in results {
         let e = cells.entry((r.dataset.clone(), r.learner)).or_default();
         let trees = if r.learner.depends_on_mc() {
@@ -357,7 +357,7 @@ fn markdown(table: &Table, published_names: &BTreeMap<String, String>, command: 
          cross-validation per data set and price assignment; random prices: {} assignments \
          per data set, each test {} [{}, {}]. Learners: {}. Selection functions see {}; \
          an object always pays after its path (a test done once is free further down). \
-         ICET prunes by {}.{} \
+         ICET prunes by {}.{}{} \
          `docs/testcost.md` reads the results.\n",
         def.runs,
         def.folds,
@@ -386,6 +386,7 @@ fn markdown(table: &Table, published_names: &BTreeMap<String, String>, command: 
             Pruning::Errors => "errors, as C4.5",
         },
         added_sentence(&table.added),
+        library_sentence(&table.results),
     );
     for &mc in &def.mc {
         if !def.costs.contains(&PriceSet::Random) {
@@ -402,7 +403,7 @@ fn markdown(table: &Table, published_names: &BTreeMap<String, String>, command: 
             }
         );
         // The learners measured at this mc (an added one may have other mc only).
-        let here: Vec<Method> = def
+        let here: Vec<Learner> = def
             .learners
             .iter()
             .copied()
@@ -424,7 +425,7 @@ fn markdown(table: &Table, published_names: &BTreeMap<String, String>, command: 
                 let ours = find(rows, d, PriceSet::Random, mc, m).map_or("".to_string(), |r| {
                     format!("{:.1} ± {:.1}", r.normalised, r.ci95)
                 });
-                let theirs = match (p, published::column(m)) {
+                let theirs = match (p, m.method().and_then(published::column)) {
                     (Some(p), Some(c)) => format!(" ({:.1})", p[c]),
                     _ => String::new(),
                 };
@@ -488,6 +489,23 @@ fn markdown(table: &Table, published_names: &BTreeMap<String, String>, command: 
     md
 }
 
+/// What the report's header says of the learners run through another library (CEGB):
+/// the library's version and settings as its results recorded them, one sentence per
+/// learner and distinct line (nothing when no result has one).
+fn library_sentence(results: &[JobResult]) -> String {
+    let mut lines: Vec<(Learner, &str)> = results
+        .iter()
+        .filter_map(|r| r.library.as_deref().map(|l| (r.learner, l)))
+        .collect();
+    lines.sort();
+    lines.dedup();
+    let mut out = String::new();
+    for (learner, line) in lines {
+        let _ = write!(out, " {}: {line}.", learner.name());
+    }
+    out
+}
+
 /// What the report's header says of the learners another benchmark added: their runs
 /// (the first ones, on the same folds and prices) and their mc.
 fn added_sentence(added: &[Added]) -> String {
@@ -519,7 +537,7 @@ fn added_sentence(added: &[Added]) -> String {
 fn figure(path: &Path, def: &Definition, rows: &[Row]) -> Result<()> {
     crate::figures::register_font();
     let plot_err = |e: &dyn std::fmt::Display| anyhow!("drawing {}: {e}", path.display());
-    let series: Vec<(Method, Vec<(f64, f64)>)> = def
+    let series: Vec<(Learner, Vec<(f64, f64)>)> = def
         .learners
         .iter()
         .map(|&m| {
