@@ -1249,6 +1249,12 @@ mod tests {
             md.contains("c45: the first 2 runs only (the same folds and prices), at mc 500 only"),
             "{md}"
         );
+        // Each of its cells says it measured other runs than the table's.
+        let mc500 = md.split("mc = 500").nth(1).unwrap();
+        let iris = mc500.lines().find(|l| l.starts_with("| iris |")).unwrap();
+        let last = iris.trim_end().trim_end_matches('|').rsplit('|').next().unwrap();
+        assert!(last.contains("± ") && last.contains(" [2 runs]"), "{iris}");
+        assert_eq!(iris.matches("[2 runs]").count(), 1, "{iris}");
         let mc100 = md
             .split("mc = 100")
             .nth(1)

@@ -423,7 +423,7 @@ fn markdown(table: &Table, published_names: &BTreeMap<String, String>, command: 
             let _ = write!(md, "| {d} |");
             for &m in &here {
                 let ours = find(rows, d, PriceSet::Random, mc, m).map_or("".to_string(), |r| {
-                    format!("{:.1} ± {:.1}", r.normalised, r.ci95)
+                    format!("{:.1} ± {:.1}{}", r.normalised, r.ci95, runs_mark(r, def))
                 });
                 let theirs = match (p, m.method().and_then(published::column)) {
                     (Some(p), Some(c)) => format!(" ({:.1})", p[c]),
@@ -468,7 +468,7 @@ fn markdown(table: &Table, published_names: &BTreeMap<String, String>, command: 
         for r in rows.iter().filter(|r| r.costs == PriceSet::Turney) {
             let _ = writeln!(
                 md,
-                "| {} | {} | {} | {:.2} | {:.2} | {:.3} | {:.1} ± {:.1} |",
+                "| {} | {} | {} | {:.2} | {:.2} | {:.3} | {:.1} ± {:.1}{} |",
                 r.dataset,
                 r.mc,
                 r.learner.name(),
@@ -476,7 +476,8 @@ fn markdown(table: &Table, published_names: &BTreeMap<String, String>, command: 
                 r.test_cost,
                 r.error_rate,
                 r.normalised,
-                r.ci95
+                r.ci95,
+                runs_mark(r, def)
             );
         }
         let _ = writeln!(md);
@@ -506,6 +507,17 @@ fn library_sentence(results: &[JobResult]) -> String {
     out
 }
 
+/// What a cell of a row measured over other runs than the table's says of them
+/// (` [1 run]`), so that no cell passes for the table's protocol; nothing for the table's
+/// own runs.
+fn runs_mark(row: &Row, def: &Definition) -> String {
+    match row.runs {
+        r if r == def.runs => String::new(),
+        1 => " [1 run]".into(),
+        r => format!(" [{r} runs]"),
+    }
+}
+
 /// What the report's header says of the learners another benchmark added: their runs
 /// (the first ones, on the same folds and prices) and their mc.
 fn added_sentence(added: &[Added]) -> String {
@@ -525,7 +537,8 @@ fn added_sentence(added: &[Added]) -> String {
         let _ = write!(
             out,
             " {}: the first {runs} only (the same folds and prices), at mc {mc} only, \
-             each ratio to CS-ID3 on those runs.",
+             each ratio to CS-ID3 on those runs; their cells say so, and their ± is over \
+             those runs' (run, price draw) pairs.",
             names.join(", "),
         );
     }
