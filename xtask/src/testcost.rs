@@ -736,19 +736,32 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
         folds: args.folds,
         seed: args.seed,
     };
+    if price_range.1 == 0.0 && def.mc.contains(&0.0) {
+        bail!(
+            "--mc 0 with every price 0 (--price-range {},0): Turney's standard cost is 0, so no \
+             cost can be normalised by it",
+            price_range.0
+        );
+    }
     let loaded: Vec<_> = datasets
         .iter()
         .map(|d| catalogue.load(d).with_context(|| format!("data set `{d}`")))
         .collect::<Result<_>>()?;
     for (d, l) in datasets.iter().zip(&loaded) {
-        let smallest = l.frame.class_totals().into_iter().min().unwrap_or(0);
-        if smallest == 0 {
-            bail!("data set `{d}`: a class with no objects");
-        }
+        check_dataset(&def, d, l)?;
     }
+    let turney: Vec<bool> = loaded.iter().map(|l| l.turney.is_some()).collect();
+    if def.costs == [PriceSet::Turney] && !turney.contains(&true) {
+        bail!(
+            "--costs turney: none of the data sets ({}) has Turney's prices; name one that has \
+             (heart, hepatitis, pima, thyroid) or add --costs random",
+            datasets.join(", ")
+        );
+    }
+    let jobs = job_count(&def, &turney)?;
     if !args.report {
-        let turney: Vec<bool> = loaded.iter().map(|l| l.turney.is_some()).collect();
         let list = Jobs::new(&def, &turney);
+        debug_assert_eq!(list.jobs.len() as u64, jobs);
         // CEGB's workers: one Python per worker thread that runs its jobs, started once.
         let peer = if def.learners.contains(&Learner::Cegb) {
             Some(cegb::Peer::start(args.python.as_deref())?)
@@ -799,6 +812,7 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
             args.out.display()
         );
     }
+    check_results(&def, &turney, &by_id, &args.out)?;
     let results: Vec<JobResult> = by_id.into_values().collect();
     let rows = report::aggregate(&def, &results);
     let mut table = report::Table {
@@ -816,6 +830,7 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
                 dir.display()
             )
         })?;
+        check_results(&other, &turney, &by_id, dir)?;
         let results: Vec<JobResult> = by_id.into_values().collect();
         let rows = report::aggregate(&other, &results);
         table.join(&other, rows, results);
@@ -839,6 +854,155 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
             Path::new("docs/testcost"),
             &args_line(args),
         )?;
+    }
+    Ok(())
+}
+
+/// The most jobs one benchmark may have: each keeps a line of results, and the job list
+/// is made whole before the first runs.
+const MAX_JOBS: u64 = 10_000_000;
+
+/// The number of jobs of `def`, judged before any is made: at most [`MAX_JOBS`].
+fn job_count(def: &Definition, turney: &[bool]) -> Result<u64> {
+    let mut sets: u64 = 0;
+    for &has_turney in turney {
+        for &costs in &def.costs {
+            sets = sets.saturating_add(match costs {
+                PriceSet::Random => def.assignments,
+                PriceSet::Turney => u64::from(has_turney),
+            });
+        }
+    }
+    let jobs = sets
+        .saturating_mul(def.runs)
+        .saturating_mul(def.learners.len() as u64);
+    if jobs > MAX_JOBS {
+        bail!(
+            "{} price sets (data sets times --assignments, and Turney's) times --runs {} times \
+             {} learners make more than the {MAX_JOBS} jobs a benchmark may have",
+            sets,
+            def.runs,
+            def.learners.len()
+        );
+    }
+    Ok(jobs)
+}
+
+/// What a data set must allow before a job is made: a class with objects, a fold per
+/// `--folds` (and per `--cvt-folds` inside a training part, with CVT), and every total
+/// cost a true number at the dearest price and mc.
+fn check_dataset(def: &Definition, name: &str, loaded: &cslearn::testcost::Loaded) -> Result<()> {
+    let frame = &loaded.frame;
+    let smallest = frame.class_totals().into_iter().min().unwrap_or(0);
+    if smallest == 0 {
+        bail!("data set `{name}`: a class with no objects");
+    }
+    let n = frame.len();
+    if def.folds > n {
+        bail!(
+            "--folds {}: more folds than the {n} objects of data set `{name}`",
+            def.folds
+        );
+    }
+    let training = n - n.div_ceil(def.folds);
+    if def.learners.contains(&Learner::Family(Method::Cvt)) && def.cvt_folds > training {
+        bail!(
+            "--cvt-folds {}: more folds than the {training} objects of a training part of data \
+             set `{name}`",
+            def.cvt_folds
+        );
+    }
+    let dearest = match &loaded.turney {
+        Some(t) if def.costs.contains(&PriceSet::Turney) => (0..t.len())
+            .map(|i| t.test(i).full)
+            .fold(def.price_range.1, f64::max),
+        _ => def.price_range.1,
+    };
+    let prices = TestPrices::flat(&vec![dearest; frame.feature_count()])
+        .map_err(|e| anyhow::anyhow!("--price-range: {e}"))?;
+    for &mc in &def.mc {
+        let shown = if mc >= 1e9 {
+            format!("{mc:e}")
+        } else {
+            mc.to_string()
+        };
+        MisclassCosts::uniform(frame.class_count(), mc)
+            .and_then(|m| m.check_totals(&prices, n))
+            .map_err(|e| {
+                anyhow::anyhow!("--mc {shown} and --price-range on data set `{name}`: {e}")
+            })?;
+    }
+    Ok(())
+}
+
+/// Every result line is what its job number says and holds true numbers: its data set,
+/// price set, draw, run and learner those of its job in `def`'s list, one score per mc
+/// in order, totals and test costs finite and not negative, error rates and areas
+/// between 0 and 1, standard costs above 0. A line edited by hand (labels swapped, a
+/// total made negative) is refused by name rather than put in another learner's row.
+fn check_results(
+    def: &Definition,
+    turney: &[bool],
+    results: &BTreeMap<u64, JobResult>,
+    dir: &Path,
+) -> Result<()> {
+    let list = Jobs::new(def, turney);
+    for (&id, r) in results {
+        let bad = |why: String| {
+            anyhow::anyhow!(
+                "{}: the result of job {id} {why}; the line was changed after it was written \
+                 (run its job again: delete the line and rerun the same command)",
+                dir.display()
+            )
+        };
+        let Some(job) = list.jobs.get(id as usize) else {
+            return Err(bad(format!(
+                "is not a job of this benchmark's {} jobs",
+                list.jobs.len()
+            )));
+        };
+        let expected = (
+            def.datasets[job.dataset].as_str(),
+            job.costs,
+            job.assignment,
+            job.run,
+            def.learners[job.learner],
+        );
+        if (r.dataset.as_str(), r.costs, r.assignment, r.run, r.learner) != expected {
+            return Err(bad(format!(
+                "says {} on `{}` ({} prices, draw {}, run {}), but job {id} is {} on `{}` ({} \
+                 prices, draw {}, run {})",
+                r.learner.name(),
+                r.dataset,
+                r.costs.name(),
+                r.assignment,
+                r.run,
+                expected.4.name(),
+                expected.0,
+                expected.1.name(),
+                expected.2,
+                expected.3
+            )));
+        }
+        if r.by_mc.len() != def.mc.len() || r.by_mc.iter().zip(&def.mc).any(|(s, &m)| s.mc != m) {
+            return Err(bad(
+                "has other misclassification costs than the benchmark".into()
+            ));
+        }
+        for s in &r.by_mc {
+            let cost = |x: f64| x.is_finite() && x >= 0.0;
+            let share = |x: f64| (0.0..=1.0).contains(&x);
+            if !(cost(s.total) && cost(s.tests) && share(s.error_rate))
+                || !(s.standard.is_finite() && s.standard > 0.0)
+                || s.auroc.is_some_and(|a| !share(a))
+            {
+                return Err(bad(format!(
+                    "holds a score that is not a true one at mc {} (total {}, tests {}, error \
+                     rate {}, standard cost {})",
+                    s.mc, s.total, s.tests, s.error_rate, s.standard
+                )));
+            }
+        }
     }
     Ok(())
 }
@@ -979,6 +1143,97 @@ mod tests {
             report: false,
             bless: false,
         }
+    }
+
+    /// Counts beyond what the data allow, totals that cannot be true numbers, and price
+    /// sets that hold nothing are refused by flag before a job is made (each once aborted
+    /// on gigabytes, ran without end, or wrote NaN or an empty table).
+    #[test]
+    fn hostile_counts_and_degenerate_benchmarks_are_refused_by_flag() {
+        let dir = tempfile::tempdir().unwrap();
+        let refused = |edit: &dyn Fn(&mut TestcostArgs), expected: &[&str]| {
+            let mut a = args(dir.path(), 1);
+            edit(&mut a);
+            let err = format!("{:#}", testcost(&a).unwrap_err());
+            for e in expected {
+                assert!(err.contains(e), "{e}: {err}");
+            }
+        };
+        refused(
+            &|a| a.folds = 1_000_000_000,
+            &["--folds 1000000000: more folds than the 150 objects of data set `iris`"],
+        );
+        refused(
+            &|a| a.runs = 1_000_000_000,
+            &["--runs 1000000000", "jobs a benchmark"],
+        );
+        refused(
+            &|a| a.assignments = 1_000_000_000_000,
+            &["more than the 10000000 jobs"],
+        );
+        refused(
+            &|a| {
+                a.learners = vec!["cvt".into()];
+                a.cvt_folds = 1_000_000_000_000;
+            },
+            &["--cvt-folds 1000000000000: more folds than the 100 objects of a training part"],
+        );
+        refused(
+            &|a| a.mc = vec![1e308],
+            &["--mc 1e308", "cannot be represented"],
+        );
+        refused(
+            &|a| a.price_range = vec![1e307, 1e307],
+            &["--price-range on data set `iris`", "cannot be represented"],
+        );
+        refused(
+            &|a| {
+                a.mc = vec![0.0];
+                a.price_range = vec![0.0, 0.0];
+            },
+            &["standard cost is 0"],
+        );
+        refused(
+            &|a| {
+                a.datasets = vec!["iris".into()];
+                a.costs = vec!["turney".into()];
+            },
+            &["--costs turney: none of the data sets (iris) has Turney's prices"],
+        );
+        assert!(
+            std::fs::read_dir(dir.path()).unwrap().next().is_none(),
+            "nothing was written"
+        );
+    }
+
+    /// A results line edited by hand is refused by name, never put in another row: labels
+    /// swapped between two learners' lines, a negative total.
+    #[test]
+    fn tampered_result_lines_are_refused_not_joined() {
+        let dir = tempfile::tempdir().unwrap();
+        let a = args(dir.path(), 1);
+        testcost(&a).unwrap();
+        let path = dir.path().join("shard-1-of-1/results.jsonl");
+        let original = std::fs::read_to_string(&path).unwrap();
+        let report = TestcostArgs {
+            report: true,
+            ..a.clone()
+        };
+        let tampered = |text: String, expected: &str| {
+            std::fs::write(&path, text).unwrap();
+            let err = format!("{:#}", testcost(&report).unwrap_err());
+            assert!(err.contains(expected), "{expected}: {err}");
+        };
+        let swapped = original
+            .replacen("\"learner\":\"Eg2\"", "\"learner\":\"X\"", 1)
+            .replacen("\"learner\":\"CsId3Batch\"", "\"learner\":\"Eg2\"", 1)
+            .replacen("\"learner\":\"X\"", "\"learner\":\"CsId3Batch\"", 1);
+        assert_ne!(swapped, original, "the lines name their learners so");
+        tampered(swapped, "says cs-id3-batch on `");
+        let negative = original.replacen("\"total\":", "\"total\":-", 1);
+        tampered(negative, "holds a score that is not a true one");
+        std::fs::write(&path, &original).unwrap();
+        testcost(&report).unwrap();
     }
 
     #[test]
@@ -1252,7 +1507,12 @@ mod tests {
         // Each of its cells says it measured other runs than the table's.
         let mc500 = md.split("mc = 500").nth(1).unwrap();
         let iris = mc500.lines().find(|l| l.starts_with("| iris |")).unwrap();
-        let last = iris.trim_end().trim_end_matches('|').rsplit('|').next().unwrap();
+        let last = iris
+            .trim_end()
+            .trim_end_matches('|')
+            .rsplit('|')
+            .next()
+            .unwrap();
         assert!(last.contains("± ") && last.contains(" [2 runs]"), "{iris}");
         assert_eq!(iris.matches("[2 runs]").count(), 1, "{iris}");
         let mc100 = md
