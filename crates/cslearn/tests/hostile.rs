@@ -228,3 +228,22 @@ fn a_dearer_discount_and_a_class_named_twice_are_refused_with_file_and_line() {
         "{err}"
     );
 }
+
+/// A manifest naming a data set with no file is refused by name (it once panicked).
+#[test]
+fn a_manifest_data_set_without_files_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let manifest = dir.path().join("datasets.toml");
+    std::fs::write(
+        &manifest,
+        "[[dataset]]\nname = \"x\"\nfiles = []\ncolumns = [\"a\", \"t\"]\ntarget = \"t\"\nmissing = []\n",
+    )
+    .unwrap();
+    let err = cslearn::testcost::Catalogue::read(&manifest)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("data set `x`") && err.contains("`files` is empty"),
+        "{err}"
+    );
+}

@@ -117,6 +117,13 @@ impl Catalogue {
                     reason: "a second data set of this name".into(),
                 });
             }
+            if s.files.is_empty() {
+                return Err(Error::BadInput {
+                    path: manifest.to_path_buf(),
+                    at: format!("data set `{}`", s.name),
+                    reason: "`files` is empty: a data set needs at least one file".into(),
+                });
+            }
         }
         Ok(Catalogue {
             root: manifest.parent().unwrap_or(Path::new(".")).to_path_buf(),
