@@ -181,7 +181,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let catalogue = catalogue();
     let names: Vec<String> = match args.first() {
         Some(list) if list != "all" => list.split(',').map(String::from).collect(),
-        _ => catalogue.sources().iter().map(|s| s.name.clone()).collect(),
+        _ => catalogue.benchmark().map(|s| s.name.clone()).collect(),
     };
     let learners: Vec<Method> = match args.get(1) {
         Some(list) => list
