@@ -10,6 +10,8 @@
 //! * `cargo xtask testcost`: the test-cost tree family on the UCI benchmark (see
 //!   `docs/testcost.md`).
 //! * `cargo xtask anytime`: ACT's cost against its time as its samples per branch grow.
+//! * `cargo xtask budget`: accuracy against test cost, each learner swept over its cost
+//!   knob (mc or a budget per object), and the area under each curve.
 //! * `cargo xtask bench scale` and `cargo xtask bench throughput`: how CS-QL's cost grows
 //!   with the world, and its moves per second against a plain Q-learning loop.
 //! * `cargo xtask test`: every test, Rust and Python (the README's test command).
@@ -88,6 +90,10 @@ enum Command {
     /// ACT's cost against its time as its samples per branch grow, on the benchmark's
     /// folds and prices.
     Anytime(testcost::anytime::AnytimeArgs),
+    /// Accuracy against test cost: each learner swept over mc or a budget per object on
+    /// the benchmark's folds and prices, the area under each curve, and a figure per data
+    /// set.
+    Budget(testcost::curves::BudgetArgs),
     /// Benchmarks: CS-QL's growth with the world's size, and its moves per second.
     Bench(bench::BenchArgs),
     /// Every test: `cargo test --workspace`, then the Python package's tests in a virtual
@@ -118,6 +124,7 @@ fn main() -> ExitCode {
         Command::Costly(args) => costly::costly(args),
         Command::Testcost(args) => testcost::testcost(args),
         Command::Anytime(args) => testcost::anytime::anytime(args),
+        Command::Budget(args) => testcost::curves::budget(args),
         Command::Bench(args) => bench::run(args),
         Command::Test(args) => pytest::test(args),
     };

@@ -15,7 +15,7 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use cslearn::testcost::{
-    ActParams, Budget, Catalogue, CvtParams, FamilyParams, Frame, IcetParams, Method,
+    ActParams, Budget, Catalogue, CvtParams, FamilyParams, Frame, IcetParams, Loaded, Method,
     MisclassCosts, Pruning, SelectionPrices, TestPrices, fit_each, folds, gain_prices,
     random_prices, standard_cost,
 };
@@ -25,13 +25,15 @@ use crate::shard::JobLine;
 
 pub mod anytime;
 mod cegb;
+pub mod curves;
 mod published;
 mod report;
 
 /// Arguments of `cargo xtask testcost`.
 #[derive(Args, Clone, Debug)]
 pub struct TestcostArgs {
-    /// Data sets, comma-separated, as `data/uci/datasets.toml` names them (default: all).
+    /// Data sets, comma-separated, as `data/uci/datasets.toml` names them (default: the
+    /// benchmark's, every data set the manifest does not mark `benchmark = false`).
     #[arg(long, value_delimiter = ',')]
     datasets: Vec<String>,
     /// Learners, comma-separated (`c45,id3-batch,idx,cs-id3-batch,eg2,dtmc,icet,act,cvt`,
@@ -390,12 +392,12 @@ impl JobLine for JobResult {
 
 /// One job, from its number.
 #[derive(Clone, Copy, Debug)]
-struct Job {
-    dataset: usize,
-    costs: PriceSet,
-    assignment: u64,
-    run: u64,
-    learner: usize,
+pub(crate) struct Job {
+    pub dataset: usize,
+    pub costs: PriceSet,
+    pub assignment: u64,
+    pub run: u64,
+    pub learner: usize,
 }
 
 /// The job list in its fixed order: data set, price set, assignment, run, learner.
@@ -404,15 +406,12 @@ struct Jobs {
 }
 
 impl Jobs {
-    fn new(def: &Definition, turney: &[bool]) -> Jobs {
+    /// `priced`: per data set of the definition, how it is priced.
+    fn new(def: &Definition, priced: &[Priced]) -> Jobs {
         let mut jobs = Vec::new();
-        for (d, &has_turney) in turney.iter().enumerate() {
+        for (d, priced) in priced.iter().enumerate() {
             for &costs in &def.costs {
-                let assignments = match costs {
-                    PriceSet::Random => def.assignments,
-                    PriceSet::Turney if has_turney => 1,
-                    PriceSet::Turney => 0,
-                };
+                let assignments = priced.assignments(def, costs);
                 for assignment in 0..assignments {
                     for run in 0..def.runs {
                         for learner in 0..def.learners.len() {
@@ -429,6 +428,46 @@ impl Jobs {
             }
         }
         Jobs { jobs }
+    }
+}
+
+/// How a data set is priced, besides the definition's price sets: whether it has
+/// Turney's prices, and whether every test costs 1 where random prices would be drawn
+/// (the manifest's `unit_prices`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Priced {
+    /// Whether the data set has Turney's prices.
+    pub turney: bool,
+    /// Whether its random prices are every test at 1 (the manifest's `unit_prices`).
+    pub unit: bool,
+}
+
+impl Priced {
+    /// How the manifest prices each of `datasets` (each one of its sources).
+    pub(crate) fn of(catalogue: &Catalogue, datasets: &[String], loaded: &[Loaded]) -> Vec<Priced> {
+        datasets
+            .iter()
+            .zip(loaded)
+            .map(|(d, l)| Priced {
+                turney: l.turney.is_some(),
+                unit: catalogue
+                    .sources()
+                    .iter()
+                    .any(|s| &s.name == d && s.unit_prices),
+            })
+            .collect()
+    }
+
+    /// The price assignments a data set has under a price set: the definition's random
+    /// draws (one when every test costs 1: every draw would be the same), and Turney's
+    /// one where the data set has it.
+    pub(crate) fn assignments(self, def: &Definition, costs: PriceSet) -> u64 {
+        match costs {
+            PriceSet::Random if self.unit => 1,
+            PriceSet::Random => def.assignments,
+            PriceSet::Turney if self.turney => 1,
+            PriceSet::Turney => 0,
+        }
     }
 }
 
@@ -454,16 +493,19 @@ fn splitmix(mut z: u64) -> u64 {
     z ^ (z >> 31)
 }
 
-/// The prices of one job.
+/// The prices of one job: for random prices, the draw `assignment`, or every test at 1
+/// where the data set is `unit` priced.
 pub(crate) fn job_prices(
     def: &Definition,
     name: &str,
     frame: &Frame,
     turney: Option<&TestPrices>,
+    unit: bool,
     costs: PriceSet,
     assignment: u64,
 ) -> Result<TestPrices> {
     match costs {
+        PriceSet::Random if unit => Ok(TestPrices::unit(frame.feature_count())),
         PriceSet::Random => {
             let seed = mix(def.seed, name, &[1, assignment]);
             let (low, high) = def.price_range;
@@ -486,17 +528,43 @@ fn run_job(
     id: u64,
     job: Job,
     name: &str,
-    frame: &Frame,
-    turney: Option<&TestPrices>,
+    (loaded, priced): (&Loaded, Priced),
     peer: Option<&cegb::Peer>,
 ) -> Result<JobResult> {
-    match def.learners[job.learner] {
-        Learner::Family(method) => run_family_job(def, id, job, method, name, frame, turney),
+    let frame = &loaded.frame;
+    let turney = loaded.turney.as_ref();
+    let prices = job_prices(
+        def,
+        name,
+        frame,
+        turney,
+        priced.unit,
+        job.costs,
+        job.assignment,
+    )?;
+    let method = match def.learners[job.learner] {
+        Learner::Family(method) => method,
         Learner::Cegb => {
             let peer = peer.context("CEGB's job has no worker to run it")?;
-            cegb::run_job(def, id, job, name, frame, turney, peer)
+            return cegb::run_job(def, id, job, name, frame, &prices, peer);
         }
-    }
+    };
+    let budget = Budget::new(def.max_test_cost, def.max_tests)?;
+    let mut measured = cross_validate(def, job, name, frame, &prices, &def.mc, &[budget])?;
+    Ok(JobResult {
+        id,
+        dataset: name.to_string(),
+        costs: job.costs,
+        assignment: job.assignment,
+        run: job.run,
+        learner: Learner::Family(method),
+        by_mc: measured.by_budget.remove(0),
+        nodes: measured.nodes,
+        learn_seconds: measured.learn_seconds,
+        classify_seconds: measured.classify_seconds,
+        library: None,
+        tradeoffs: None,
+    })
 }
 
 /// The learner's seed for fold `f` of a job (ICET's search, ACT's and CVT's draws,
@@ -509,11 +577,11 @@ fn learner_seed(def: &Definition, name: &str, job: Job, f: usize) -> u64 {
     )
 }
 
-/// The scores of a job at each mc from the sums over its held-out objects: per mc, the
-/// total cost, the test cost and the errors, and each object's class probabilities (in
-/// the order of `actual_classes`).
+/// The scores at each mc from the sums over a job's held-out objects: per mc, the total
+/// cost, the test cost and the errors, and each object's class probabilities (in the
+/// order of `actual_classes`).
 fn scores(
-    def: &Definition,
+    mc: &[f64],
     frame: &Frame,
     prices: &TestPrices,
     mcs: &[MisclassCosts],
@@ -524,31 +592,55 @@ fn scores(
     let n = frame.len() as f64;
     mcs.iter()
         .zip(sums)
-        .zip(&def.mc)
+        .zip(mc)
         .zip(probabilities)
-        .map(|(((mc, &(total, tests, errors)), &m), scores)| Score {
+        .map(|(((costs, &(total, tests, errors)), &m), scores)| Score {
             mc: m,
             total: total / n,
             tests: tests / n,
             error_rate: errors as f64 / n,
-            standard: standard_cost(frame, prices, mc),
+            standard: standard_cost(frame, prices, costs),
             auroc: auroc(scores, actual_classes),
         })
         .collect()
 }
 
-/// A job of one of the family's learners.
-fn run_family_job(
+/// What one cross-validation of a learner measured.
+pub(crate) struct Measured {
+    /// Per budget, one score per misclassification cost, in the orders given.
+    pub by_budget: Vec<Vec<Score>>,
+    /// Mean nodes per tree grown.
+    pub nodes: f64,
+    /// CPU seconds to learn every fold's trees.
+    pub learn_seconds: f64,
+    /// CPU seconds to classify every object.
+    pub classify_seconds: f64,
+}
+
+/// The job's run of `K`-fold cross-validation of its learner under `prices`, scored at
+/// each misclassification cost of `mc` and each budget of `budgets`: the folds and the
+/// learners' seeds come from the definition's seed, the data set's name, the price set,
+/// the assignment, the run and the fold, as in every job of the benchmark. A learner that
+/// grows within a budget ([`Method::grows_within_budget`]) grows its trees once per
+/// budget; the others grow them once, and each budget only cuts their classification.
+/// With one budget this is the benchmark's job, to the bit. The job's learner is one of
+/// the family's.
+pub(crate) fn cross_validate(
     def: &Definition,
-    id: u64,
     job: Job,
-    method: Method,
     name: &str,
     frame: &Frame,
-    turney: Option<&TestPrices>,
-) -> Result<JobResult> {
-    let prices = job_prices(def, name, frame, turney, job.costs, job.assignment)?;
-    let params = FamilyParams {
+    prices: &TestPrices,
+    mc: &[f64],
+    budgets: &[Budget],
+) -> Result<Measured> {
+    let Learner::Family(method) = def.learners[job.learner] else {
+        bail!(
+            "{} is not a learner of the family",
+            def.learners[job.learner].name()
+        );
+    };
+    let mut params = FamilyParams {
         selection_prices: def.selection_prices,
         icet: IcetParams {
             pruning: def.icet_pruning,
@@ -563,18 +655,17 @@ fn run_family_job(
             samples: def.act_samples,
             ..ActParams::default()
         },
-        budget: Budget::new(def.max_test_cost, def.max_tests)?,
         ..FamilyParams::default()
     };
     let k = frame.class_count();
-    let mcs: Vec<MisclassCosts> = def
-        .mc
+    let mcs: Vec<MisclassCosts> = mc
         .iter()
         .map(|&m| MisclassCosts::uniform(k, m))
         .collect::<Result<_, _>>()?;
-    let mut sums = vec![(0.0, 0.0, 0usize); mcs.len()];
-    // Each held-out object's class probabilities, per mc, with its class.
-    let mut probabilities: Vec<Vec<Vec<f64>>> = vec![Vec::new(); mcs.len()];
+    let mut sums = vec![vec![(0.0, 0.0, 0usize); mcs.len()]; budgets.len()];
+    // Each held-out object's class probabilities, per budget and mc, with its class.
+    let mut probabilities: Vec<Vec<Vec<Vec<f64>>>> =
+        vec![vec![Vec::new(); mcs.len()]; budgets.len()];
     let mut actual_classes = Vec::new();
     let (mut nodes, mut trees) = (0usize, 0usize);
     let (mut learn, mut classify) = (0.0, 0.0);
@@ -587,65 +678,200 @@ fn run_family_job(
             .filter(|r| test.binary_search(r).is_err())
             .collect();
         let icet_seed = learner_seed(def, name, job, f);
-        // Learners whose tree does not depend on mc grow once and are relabelled; ACT and
-        // CVT grow their trees at every mc through the same split tries (the same trees).
-        let start = Instant::now();
-        let fitted = fit_each(method, frame, &train, &prices, &mcs, &params, icet_seed);
-        learn += start.elapsed().as_secs_f64();
-        for (m, (mc, fitted)) in mcs.iter().zip(&fitted).enumerate() {
-            let tree = &fitted.tree;
-            if method.depends_on_mc() || m == 0 {
-                nodes += tree.len();
-                trees += 1;
+        let mut fitted = Vec::new();
+        for (b, budget) in budgets.iter().enumerate() {
+            // Learners whose tree does not depend on mc grow once and are relabelled; ACT
+            // and CVT grow their trees at every mc through the same split tries (the same
+            // trees). A budget changes the trees of the learners that grow within it only.
+            let grown = b == 0 || method.grows_within_budget();
+            if grown {
+                params.budget = *budget;
+                let start = Instant::now();
+                fitted = fit_each(method, frame, &train, prices, &mcs, &params, icet_seed);
+                learn += start.elapsed().as_secs_f64();
             }
-            let start = Instant::now();
-            for &r in test {
-                let c = tree.classify_within(frame, r, &prices, &params.budget);
-                let actual = frame.class(r) as usize;
-                sums[m].0 += c.test_cost + mc.cost(c.class as usize, actual);
-                sums[m].1 += c.test_cost;
-                sums[m].2 += usize::from(c.class as usize != actual);
-                probabilities[m].push(c.probabilities);
-                if m == 0 {
-                    actual_classes.push(actual);
+            for (m, (mc, fitted)) in mcs.iter().zip(&fitted).enumerate() {
+                let tree = &fitted.tree;
+                if grown && (method.depends_on_mc() || m == 0) {
+                    nodes += tree.len();
+                    trees += 1;
                 }
+                let start = Instant::now();
+                for &r in test {
+                    let c = tree.classify_within(frame, r, prices, budget);
+                    let actual = frame.class(r) as usize;
+                    let sum = &mut sums[b][m];
+                    sum.0 += c.test_cost + mc.cost(c.class as usize, actual);
+                    sum.1 += c.test_cost;
+                    sum.2 += usize::from(c.class as usize != actual);
+                    probabilities[b][m].push(c.probabilities);
+                    if b == 0 && m == 0 {
+                        actual_classes.push(actual);
+                    }
+                }
+                classify += start.elapsed().as_secs_f64();
             }
-            classify += start.elapsed().as_secs_f64();
         }
     }
-    let by_mc = scores(
-        def,
-        frame,
-        &prices,
-        &mcs,
-        &sums,
-        &probabilities,
-        &actual_classes,
-    );
-    Ok(JobResult {
-        id,
-        dataset: name.to_string(),
-        costs: job.costs,
-        assignment: job.assignment,
-        run: job.run,
-        learner: Learner::Family(method),
-        by_mc,
+    let by_budget = sums
+        .iter()
+        .zip(&probabilities)
+        .map(|(sums, probabilities)| {
+            scores(
+                mc,
+                frame,
+                prices,
+                &mcs,
+                sums,
+                probabilities,
+                &actual_classes,
+            )
+        })
+        .collect();
+    Ok(Measured {
+        by_budget,
         nodes: nodes as f64 / trees.max(1) as f64,
         learn_seconds: learn,
         classify_seconds: classify,
-        library: None,
-        tradeoffs: None,
     })
+}
+
+/// A benchmark made ready from its arguments: its manifest, data sets (read, and how
+/// each is priced) and definition.
+pub(crate) struct Prepared {
+    /// The manifest.
+    pub catalogue: Catalogue,
+    /// The data sets, in the definition's order.
+    pub datasets: Vec<String>,
+    /// The benchmark.
+    pub def: Definition,
+    /// Each data set, read.
+    pub loaded: Vec<Loaded>,
+    /// How each data set is priced.
+    pub priced: Vec<Priced>,
 }
 
 /// `cargo xtask testcost`.
 pub fn testcost(args: &TestcostArgs) -> Result<()> {
-    let catalogue = Catalogue::read(&args.manifest)?;
-    let datasets: Vec<String> = if args.datasets.is_empty() {
-        catalogue.sources().iter().map(|s| s.name.clone()).collect()
-    } else {
-        args.datasets.clone()
+    let Prepared {
+        catalogue,
+        datasets,
+        def,
+        loaded,
+        priced,
+    } = prepare(args)?;
+    if !args.report {
+        let list = Jobs::new(&def, &priced);
+        // CEGB's workers: one Python per worker thread that runs its jobs, started once.
+        let peer = if def.learners.contains(&Learner::Cegb) {
+            Some(cegb::Peer::start(args.python.as_deref())?)
+        } else {
+            None
+        };
+        crate::shard::run_shard(
+            &args.out,
+            &args.shard,
+            def.clone(),
+            list.jobs.len() as u64,
+            args.threads,
+            |id| {
+                let job = list.jobs[id as usize];
+                let frame = &loaded[job.dataset].frame;
+                work(
+                    def.learners[job.learner],
+                    frame.len(),
+                    frame.feature_count(),
+                )
+            },
+            |id| {
+                let job = list.jobs[id as usize];
+                let l = &loaded[job.dataset];
+                run_job(
+                    &def,
+                    id,
+                    job,
+                    &datasets[job.dataset],
+                    (l, priced[job.dataset]),
+                    peer.as_ref(),
+                )
+            },
+        )?;
+        if crate::shard::parse_shard(&args.shard)?.1 > 1 {
+            crate::note(
+                "run `cargo xtask testcost --report` with the same arguments once every shard is done",
+            );
+            return Ok(());
+        }
+    }
+    let (found, by_id): (Definition, BTreeMap<u64, JobResult>) =
+        crate::shard::collect(std::slice::from_ref(&args.out))?;
+    if found != def {
+        bail!(
+            "{} holds another benchmark ({found:?}); give its arguments, or another --out",
+            args.out.display()
+        );
+    }
+    check_results(&def, &priced, &by_id, &args.out)?;
+    let results: Vec<JobResult> = by_id.into_values().collect();
+    let rows = report::aggregate(&def, &results);
+    let mut table = report::Table {
+        def: def.clone(),
+        rows,
+        results,
+        added: Vec::new(),
     };
+    for dir in &args.with {
+        let (other, by_id): (Definition, BTreeMap<u64, JobResult>) =
+            crate::shard::collect(std::slice::from_ref(dir))?;
+        check_joinable(&def, &other).with_context(|| {
+            format!(
+                "--with {}: its results cannot join this table",
+                dir.display()
+            )
+        })?;
+        check_results(&other, &priced, &by_id, dir)?;
+        let results: Vec<JobResult> = by_id.into_values().collect();
+        let rows = report::aggregate(&other, &results);
+        table.join(&other, rows, results);
+    }
+    let published: BTreeMap<String, String> = catalogue
+        .sources()
+        .iter()
+        .filter_map(|s| s.published.clone().map(|p| (s.name.clone(), p)))
+        .collect();
+    let objects: BTreeMap<String, usize> = datasets
+        .iter()
+        .zip(&loaded)
+        .map(|(d, l)| (d.clone(), l.frame.len()))
+        .collect();
+    report::write(&table, &published, &objects, &args.out, &args_line(args))?;
+    if args.bless {
+        report::write(
+            &table,
+            &published,
+            &objects,
+            Path::new("docs/testcost"),
+            &args_line(args),
+        )?;
+    }
+    Ok(())
+}
+
+/// The data sets a benchmark runs: those named, or the benchmark's (every data set of the
+/// manifest but those it marks `benchmark = false`).
+pub(crate) fn benchmark_datasets(catalogue: &Catalogue, named: &[String]) -> Vec<String> {
+    if named.is_empty() {
+        catalogue.benchmark().map(|s| s.name.clone()).collect()
+    } else {
+        named.to_vec()
+    }
+}
+
+/// Reads the manifest and the data sets and checks the arguments: the benchmark they ask
+/// for, or an error naming the flag at fault.
+pub(crate) fn prepare(args: &TestcostArgs) -> Result<Prepared> {
+    let catalogue = Catalogue::read(&args.manifest)?;
+    let datasets = benchmark_datasets(&catalogue, &args.datasets);
     crate::files::distinct("--datasets", &datasets)?;
     let learners: Vec<Learner> = if args.learners.is_empty() {
         Method::ALL
@@ -750,112 +976,22 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
     for (d, l) in datasets.iter().zip(&loaded) {
         check_dataset(&def, d, l)?;
     }
-    let turney: Vec<bool> = loaded.iter().map(|l| l.turney.is_some()).collect();
-    if def.costs == [PriceSet::Turney] && !turney.contains(&true) {
+    let priced = Priced::of(&catalogue, &datasets, &loaded);
+    if def.costs == [PriceSet::Turney] && !priced.iter().any(|p| p.turney) {
         bail!(
             "--costs turney: none of the data sets ({}) has Turney's prices; name one that has \
              (heart, hepatitis, pima, thyroid) or add --costs random",
             datasets.join(", ")
         );
     }
-    let jobs = job_count(&def, &turney)?;
-    if !args.report {
-        let list = Jobs::new(&def, &turney);
-        debug_assert_eq!(list.jobs.len() as u64, jobs);
-        // CEGB's workers: one Python per worker thread that runs its jobs, started once.
-        let peer = if def.learners.contains(&Learner::Cegb) {
-            Some(cegb::Peer::start(args.python.as_deref())?)
-        } else {
-            None
-        };
-        crate::shard::run_shard(
-            &args.out,
-            &args.shard,
-            def.clone(),
-            list.jobs.len() as u64,
-            args.threads,
-            |id| {
-                let job = list.jobs[id as usize];
-                let frame = &loaded[job.dataset].frame;
-                work(
-                    def.learners[job.learner],
-                    frame.len(),
-                    frame.feature_count(),
-                )
-            },
-            |id| {
-                let job = list.jobs[id as usize];
-                let l = &loaded[job.dataset];
-                run_job(
-                    &def,
-                    id,
-                    job,
-                    &datasets[job.dataset],
-                    &l.frame,
-                    l.turney.as_ref(),
-                    peer.as_ref(),
-                )
-            },
-        )?;
-        if crate::shard::parse_shard(&args.shard)?.1 > 1 {
-            crate::note(
-                "run `cargo xtask testcost --report` with the same arguments once every shard is done",
-            );
-            return Ok(());
-        }
-    }
-    let (found, by_id): (Definition, BTreeMap<u64, JobResult>) =
-        crate::shard::collect(std::slice::from_ref(&args.out))?;
-    if found != def {
-        bail!(
-            "{} holds another benchmark ({found:?}); give its arguments, or another --out",
-            args.out.display()
-        );
-    }
-    check_results(&def, &turney, &by_id, &args.out)?;
-    let results: Vec<JobResult> = by_id.into_values().collect();
-    let rows = report::aggregate(&def, &results);
-    let mut table = report::Table {
-        def: def.clone(),
-        rows,
-        results,
-        added: Vec::new(),
-    };
-    for dir in &args.with {
-        let (other, by_id): (Definition, BTreeMap<u64, JobResult>) =
-            crate::shard::collect(std::slice::from_ref(dir))?;
-        check_joinable(&def, &other).with_context(|| {
-            format!(
-                "--with {}: its results cannot join this table",
-                dir.display()
-            )
-        })?;
-        check_results(&other, &turney, &by_id, dir)?;
-        let results: Vec<JobResult> = by_id.into_values().collect();
-        let rows = report::aggregate(&other, &results);
-        table.join(&other, rows, results);
-    }
-    let published: BTreeMap<String, String> = catalogue
-        .sources()
-        .iter()
-        .filter_map(|s| s.published.clone().map(|p| (s.name.clone(), p)))
-        .collect();
-    let objects: BTreeMap<String, usize> = datasets
-        .iter()
-        .zip(&loaded)
-        .map(|(d, l)| (d.clone(), l.frame.len()))
-        .collect();
-    report::write(&table, &published, &objects, &args.out, &args_line(args))?;
-    if args.bless {
-        report::write(
-            &table,
-            &published,
-            &objects,
-            Path::new("docs/testcost"),
-            &args_line(args),
-        )?;
-    }
-    Ok(())
+    job_count(&def, &priced)?;
+    Ok(Prepared {
+        catalogue,
+        datasets,
+        def,
+        loaded,
+        priced,
+    })
 }
 
 /// The most jobs one benchmark may have: each keeps a line of results, and the job list
@@ -863,14 +999,11 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
 const MAX_JOBS: u64 = 10_000_000;
 
 /// The number of jobs of `def`, judged before any is made: at most [`MAX_JOBS`].
-fn job_count(def: &Definition, turney: &[bool]) -> Result<u64> {
+fn job_count(def: &Definition, priced: &[Priced]) -> Result<u64> {
     let mut sets: u64 = 0;
-    for &has_turney in turney {
+    for p in priced {
         for &costs in &def.costs {
-            sets = sets.saturating_add(match costs {
-                PriceSet::Random => def.assignments,
-                PriceSet::Turney => u64::from(has_turney),
-            });
+            sets = sets.saturating_add(p.assignments(def, costs));
         }
     }
     let jobs = sets
@@ -942,11 +1075,11 @@ fn check_dataset(def: &Definition, name: &str, loaded: &cslearn::testcost::Loade
 /// total made negative) is refused by name rather than put in another learner's row.
 fn check_results(
     def: &Definition,
-    turney: &[bool],
+    priced: &[Priced],
     results: &BTreeMap<u64, JobResult>,
     dir: &Path,
 ) -> Result<()> {
-    let list = Jobs::new(def, turney);
+    let list = Jobs::new(def, priced);
     for (&id, r) in results {
         let bad = |why: String| {
             anyhow::anyhow!(
@@ -992,10 +1125,13 @@ fn check_results(
         for s in &r.by_mc {
             let cost = |x: f64| x.is_finite() && x >= 0.0;
             let share = |x: f64| (0.0..=1.0).contains(&x);
-            if !(cost(s.total) && cost(s.tests) && share(s.error_rate))
-                || !(s.standard.is_finite() && s.standard > 0.0)
-                || s.auroc.is_some_and(|a| !share(a))
-            {
+            let true_score = cost(s.total)
+                && cost(s.tests)
+                && share(s.error_rate)
+                && s.standard.is_finite()
+                && s.standard > 0.0
+                && s.auroc.is_none_or(share);
+            if !true_score {
                 return Err(bad(format!(
                     "holds a score that is not a true one at mc {} (total {}, tests {}, error \
                      rate {}, standard cost {})",
@@ -1032,7 +1168,7 @@ fn check_joinable(def: &Definition, other: &Definition) -> Result<()> {
 /// A rough estimate of a job's work, to hand out the heaviest jobs first: objects times
 /// tests, times a factor for the learners that grow many trees per tree kept (ICET's
 /// search, ACT's sampling, CVT's cross-validation). It orders jobs only; it changes no result.
-fn work(learner: Learner, objects: usize, tests: usize) -> f64 {
+pub(crate) fn work(learner: Learner, objects: usize, tests: usize) -> f64 {
     let trees_per_tree = match learner {
         Learner::Family(Method::Icet) => 300.0,
         Learner::Family(Method::Act) => 1000.0,
@@ -1112,10 +1248,12 @@ fn args_line(args: &TestcostArgs) -> String {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    fn args(out: &Path, threads: usize) -> TestcostArgs {
+    /// A small benchmark: iris and heart, three learners, two mc, two draws, one run of
+    /// three folds.
+    pub(crate) fn args(out: &Path, threads: usize) -> TestcostArgs {
         TestcostArgs {
             datasets: vec!["iris".into(), "heart".into()],
             learners: vec!["eg2".into(), "cs-id3-batch".into(), "dtmc".into()],

@@ -16,7 +16,7 @@
 //!
 //! `--file CSV TARGET [LEARNER,...]` grows one tree per learner on every object of a CSV
 //! file, every test priced 1, mc 100 (the Spambase measurement of `docs/testcost.md`:
-//! `-- --file ../shared/data/uci/spambase/spambase.csv Outcome`).
+//! `-- --file data/uci/spambase/spambase.csv Outcome`).
 //!
 //! `--each` grows each learner's trees at the benchmark's four costs (mc 100, 500, 1000
 //! and 5000) one by one with `fit`, then all at once with `fit_each`, checks that they are
@@ -181,7 +181,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let catalogue = catalogue();
     let names: Vec<String> = match args.first() {
         Some(list) if list != "all" => list.split(',').map(String::from).collect(),
-        _ => catalogue.sources().iter().map(|s| s.name.clone()).collect(),
+        _ => catalogue.benchmark().map(|s| s.name.clone()).collect(),
     };
     let learners: Vec<Method> = match args.get(1) {
         Some(list) => list

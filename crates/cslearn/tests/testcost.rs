@@ -380,6 +380,7 @@ fn every_shipped_data_set_loads_with_its_documented_classes() {
         ("thyroid", 7200, 3),
         ("tic-tac-toe", 958, 2),
         ("titanic", 2201, 2),
+        ("spambase", 4601, 2),
     ];
     assert_eq!(catalogue.sources().len(), expected.len());
     for &(name, objects, classes) in expected {
@@ -406,6 +407,61 @@ fn every_shipped_data_set_loads_with_its_documented_classes() {
         &MisclassCosts::uniform(2, 500.0).unwrap(),
     );
     assert!((standard - (323.97 + 139.0 / 303.0 * 500.0)).abs() < 1e-9);
+    // Spambase: the header line skipped, 57 numeric tests named as UCI names them, its
+    // classes as UCI counts them; kept out of the benchmark, every test priced 1.
+    let spambase = catalogue.load("spambase").unwrap();
+    assert_eq!(spambase.frame.feature_count(), 57);
+    assert_eq!(spambase.frame.class_totals(), vec![2788, 1813]);
+    assert_eq!(spambase.frame.feature("capital_run_length_total"), Some(56));
+    assert!(spambase.turney.is_none());
+    let source = |name: &str| catalogue.sources().iter().find(|s| s.name == name).unwrap();
+    assert!(!source("spambase").benchmark && source("spambase").unit_prices);
+    assert!(source("heart").benchmark && !source("heart").unit_prices);
+    let benchmark: Vec<&str> = catalogue.benchmark().map(|s| s.name.as_str()).collect();
+    assert_eq!(benchmark.len(), expected.len() - 1);
+    assert!(!benchmark.contains(&"spambase"));
+}
+
+/// The manifest's `benchmark` and `unit_prices` keys: absent, a data set is the
+/// benchmark's and has no unit prices; `benchmark = false` leaves it out of
+/// [`Catalogue::benchmark`] but not out of [`Catalogue::sources`]; a misspelt key or a
+/// value of the wrong kind is refused, naming the manifest and its line.
+#[test]
+fn the_benchmark_key_keeps_a_data_set_out_of_the_benchmark_only() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/uci");
+    let dir = tempfile::tempdir().unwrap();
+    let iris = std::fs::read_to_string(root.join("iris/iris.data")).unwrap();
+    std::fs::write(dir.path().join("iris.data"), iris).unwrap();
+    let entry = |name: &str, extra: &str| {
+        format!(
+            "[[dataset]]\nname = \"{name}\"\nfiles = [\"iris.data\"]\n\
+             columns = [\"a\", \"b\", \"c\", \"d\", \"class\"]\ntarget = \"class\"\n{extra}\n"
+        )
+    };
+    let manifest = dir.path().join("datasets.toml");
+    std::fs::write(
+        &manifest,
+        entry("one", "")
+            + &entry("two", "benchmark = false\nunit_prices = true")
+            + &entry("three", "benchmark = true"),
+    )
+    .unwrap();
+    let catalogue = Catalogue::read(&manifest).unwrap();
+    let names: Vec<&str> = catalogue.benchmark().map(|s| s.name.as_str()).collect();
+    assert_eq!(names, ["one", "three"]);
+    assert_eq!(catalogue.sources().len(), 3);
+    let units: Vec<bool> = catalogue.sources().iter().map(|s| s.unit_prices).collect();
+    assert_eq!(units, [false, true, false]);
+    // A set left out of the benchmark still loads by name.
+    assert_eq!(catalogue.load("two").unwrap().frame.len(), 150);
+    for bad in ["benchmark = \"no\"", "unit_price = true"] {
+        std::fs::write(&manifest, entry("one", bad)).unwrap();
+        let err = Catalogue::read(&manifest).unwrap_err().to_string();
+        assert!(
+            err.contains("datasets.toml") && err.contains("line"),
+            "{bad}: {err}"
+        );
+    }
 }
 
 fn turney_dir(files: &[(&str, &str)]) -> tempfile::TempDir {

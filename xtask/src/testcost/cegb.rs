@@ -20,7 +20,7 @@ use anyhow::{Context, Result, bail, ensure};
 use cslearn::testcost::{Basket, Column, Frame, MISSING, MisclassCosts, TestPrices, folds};
 use serde::{Deserialize, Serialize};
 
-use super::{Definition, Job, JobResult, Learner, job_prices, learner_seed, mix, scores};
+use super::{Definition, Job, JobResult, Learner, learner_seed, mix, scores};
 
 /// The worker's script, relative to the workspace root.
 pub const SCRIPT: &str = "crates/csrl-py/python/csrl/cegb.py";
@@ -341,10 +341,9 @@ pub(crate) fn run_job(
     job: Job,
     name: &str,
     frame: &Frame,
-    turney: Option<&TestPrices>,
+    prices: &TestPrices,
     peer: &Peer,
 ) -> Result<JobResult> {
-    let prices = job_prices(def, name, frame, turney, job.costs, job.assignment)?;
     let k = frame.class_count();
     let mcs: Vec<(f64, MisclassCosts)> = def
         .mc
@@ -390,7 +389,7 @@ pub(crate) fn run_job(
         };
         let response: FitResponse = peer.ask(&request).with_context(place)?;
         tally
-            .add(frame, &prices, &mcs, test, &response)
+            .add(frame, prices, &mcs, test, &response)
             .with_context(place)?;
         learn += response.learn_seconds;
         classify += response.classify_seconds;
@@ -404,9 +403,9 @@ pub(crate) fn run_job(
         run: job.run,
         learner: Learner::Cegb,
         by_mc: scores(
-            def,
+            &def.mc,
             frame,
-            &prices,
+            prices,
             &costs,
             &tally.sums,
             &tally.probabilities,

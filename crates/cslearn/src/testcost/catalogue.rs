@@ -53,6 +53,19 @@ pub struct Source {
     /// More `.group` lines.
     #[serde(default)]
     pub extra_groups: String,
+    /// Whether the data set is one of the benchmark's ([`Catalogue::benchmark`]); true when
+    /// the manifest does not say.
+    #[serde(default = "in_the_benchmark")]
+    pub benchmark: bool,
+    /// Every test costs 1: a caller that would draw random prices takes
+    /// [`TestPrices::unit`] instead (one assignment, since every draw would be the same).
+    #[serde(default)]
+    pub unit_prices: bool,
+}
+
+/// A data set of the manifest is one of the benchmark's unless it says `benchmark = false`.
+fn in_the_benchmark() -> bool {
+    true
 }
 
 /// The data sets of a manifest.
@@ -140,6 +153,21 @@ impl Catalogue {
     /// ```
     pub fn sources(&self) -> &[Source] {
         &self.sources
+    }
+
+    /// The benchmark's data sets, in the manifest's order: every one but those the manifest
+    /// marks `benchmark = false` (kept for budgets and curves, such as `spambase`). What
+    /// `cargo xtask testcost` runs when no data set is named.
+    ///
+    /// ```
+    /// let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/uci");
+    /// let catalogue = cslearn::testcost::Catalogue::read(&root.join("datasets.toml")).unwrap();
+    /// let benchmark: Vec<&str> = catalogue.benchmark().map(|s| s.name.as_str()).collect();
+    /// assert_eq!(benchmark.len(), 18);
+    /// assert!(benchmark.contains(&"iris") && !benchmark.contains(&"spambase"));
+    /// ```
+    pub fn benchmark(&self) -> impl Iterator<Item = &Source> {
+        self.sources.iter().filter(|s| s.benchmark)
     }
 
     /// The data set called `name`, read.

@@ -76,6 +76,17 @@ impl TestPrices {
         )
     }
 
+    /// Every one of `tests` tests priced 1, no groups: the costly-feature literature's
+    /// prices, where a budget of `k` in price is a budget of `k` tests.
+    ///
+    /// ```
+    /// let prices = cslearn::testcost::TestPrices::unit(3);
+    /// assert_eq!((prices.len(), prices.total()), (3, 3.0));
+    /// ```
+    pub fn unit(tests: usize) -> TestPrices {
+        TestPrices::flat_checked_by_caller(&vec![1.0; tests])
+    }
+
     /// Flat prices the caller knows to be finite and not negative.
     pub(crate) fn flat_checked_by_caller(prices: &[f64]) -> TestPrices {
         TestPrices {
