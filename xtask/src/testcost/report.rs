@@ -353,13 +353,17 @@ fn markdown(table: &Table, published_names: &BTreeMap<String, String>, command: 
     let _ = writeln!(
         md,
         "Written by `{command}`. Average total cost (tests plus misclassification) as a \
-         percentage of Turney's standard cost, lower is better; {} runs of {}-fold stratified \
+         percentage of Turney's standard cost, lower is better; {} of {}-fold stratified \
          cross-validation per data set and price assignment; random prices: {} assignments \
          per data set, each test {} [{}, {}]. Learners: {}. Selection functions see {}; \
          an object always pays after its path (a test done once is free further down). \
          ICET prunes by {}.{}{} \
          `docs/testcost.md` reads the results.\n",
-        def.runs,
+        if def.runs == 1 {
+            "1 run".to_string()
+        } else {
+            format!("{} runs", def.runs)
+        },
         def.folds,
         def.assignments,
         match def.price_draw {
