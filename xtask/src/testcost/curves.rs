@@ -49,7 +49,8 @@ pub struct BudgetArgs {
     #[arg(long, value_delimiter = ',', default_value = "c45,eg2,dtmc,icet")]
     learners: Vec<String>,
     /// The learners swept over the budgets, comma-separated, among `--learners` (default:
-    /// those of `--learners` whose tree does not depend on mc, whose only knob a budget is).
+    /// those of `--learners` whose tree does not depend on mc, whose only knob a budget is,
+    /// and those that grow within a budget: with the default learners C4.5, EG2 and DTMC).
     #[arg(long, value_delimiter = ',')]
     budget_learners: Vec<String>,
     /// The mc curves' uniform misclassification costs, in the prices' units, comma-separated.
@@ -555,7 +556,7 @@ pub fn budget(args: &BudgetArgs) -> Result<()> {
         learners
             .iter()
             .copied()
-            .filter(|m| !m.depends_on_mc())
+            .filter(|m| !m.depends_on_mc() || m.grows_within_budget())
             .collect()
     } else {
         args.budget_learners
