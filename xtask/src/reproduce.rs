@@ -331,7 +331,10 @@ impl Results {
             }
             Some(means)
         })?;
-        Some(crate::fit::score(&means, &crate::fit::Target::paper()))
+        Some(crate::fit::score(
+            &means,
+            &crate::fit::published::Target::paper(),
+        ))
     }
 
     /// ` (the paper: TEXT)` on the paper's map; nothing elsewhere, where the paper's
