@@ -33,9 +33,7 @@ mod pytest;
 
 mod render;
 mod reproduce;
-mod results;
 mod robustness;
-mod sense;
 mod shard;
 mod stats;
 mod sweep;
