@@ -35,6 +35,12 @@
 //! The search is deterministic, so a search that is stopped and started again with the
 //! same arguments replays its choices, reads the runs it already made from that file, and
 //! continues where it stopped.
+//!
+//! # The files
+//!
+//! This file holds the arguments, the score's definition, the runs (kept in the
+//! evaluations file) and the search; `fit/report.rs` writes the report and the chosen
+//! map, and `fit/published.rs` holds the table fitted to (the paper's, or a target CSV).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
@@ -52,7 +58,99 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::stats::Summary;
+use published::Target;
+
+pub mod published;
+mod report;
+
+/// Arguments of `cargo xtask fit-map`.
+#[derive(Args, Clone, Debug)]
+pub struct FitArgs {
+    /// Seed of the search (layouts and moves).
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Interior width of the layouts.
+    #[arg(long, default_value_t = 8)]
+    pub width: usize,
+    /// Interior height of the layouts.
+    #[arg(long, default_value_t = 8)]
+    pub height: usize,
+    /// Obstacles in a layout (every free cell must be reachable from the goal).
+    #[arg(long, default_value_t = 13)]
+    pub obstacles: usize,
+    /// Target table: a CSV with the header `row,resetting,lazy,random,eager` and one line
+    /// for each of rows 1, 2, 3, 4, 6 and 7 (other rows are ignored). Default: the paper's.
+    #[arg(long)]
+    pub target: Option<PathBuf>,
+    /// Random layouts scored in phase 1 (also the score distribution reported).
+    #[arg(long, default_value_t = 300)]
+    pub random: usize,
+    /// Local searches, started from the best random layouts.
+    #[arg(long, default_value_t = 6)]
+    pub restarts: usize,
+    /// Rounds of local moves per restart.
+    #[arg(long, default_value_t = 20)]
+    pub rounds: usize,
+    /// Moves proposed per restart and round.
+    #[arg(long, default_value_t = 6)]
+    pub neighbours: usize,
+    /// Candidates (best on the search seeds) re-scored on the selection seeds.
+    #[arg(long, default_value_t = 12)]
+    pub candidates: usize,
+    /// Search seeds per strategy (seeds 100, 101, ...).
+    #[arg(long, default_value_t = 12)]
+    pub search_seeds: u64,
+    /// Selection seeds per strategy (seeds 200, 201, ...).
+    #[arg(long, default_value_t = 20)]
+    pub select_seeds: u64,
+    /// Report seeds per strategy (seeds 300, 301, ...), never used to choose.
+    #[arg(long, default_value_t = 20)]
+    pub report_seeds: u64,
+    /// Trial cap of each run; a layout with a run that does not converge has no score.
+    #[arg(long, default_value_t = 6000)]
+    pub max_trials: u32,
+    /// Worker threads (default: every core). Results do not depend on it.
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Output folder: evaluations (for resuming), the report and the chosen map.
+    #[arg(long, default_value = "results/fit-map")]
+    pub out: PathBuf,
+}
+
+impl FitArgs {
+    fn validate(&self) -> Result<()> {
+        ensure!(
+            (1..=30).contains(&self.width) && (1..=30).contains(&self.height),
+            "--width and --height must be in 1..=30"
+        );
+        let n = self.width * self.height;
+        ensure!(
+            self.obstacles + 2 <= n,
+            "{} obstacles leave no room for a goal and a state in {n} cells",
+            self.obstacles
+        );
+        ensure!(self.random >= 1, "--random must be at least 1");
+        ensure!(
+            self.restarts <= self.random,
+            "--restarts ({}) cannot exceed --random ({})",
+            self.restarts,
+            self.random
+        );
+        ensure!(self.candidates >= 1, "--candidates must be at least 1");
+        for (name, k) in [
+            ("--search-seeds", self.search_seeds),
+            ("--select-seeds", self.select_seeds),
+            ("--report-seeds", self.report_seeds),
+        ] {
+            ensure!(
+                (1..=100).contains(&k),
+                "{name} must be in 1..=100 (the seed sets are 100 apart)"
+            );
+        }
+        ensure!(self.max_trials >= 1, "--max-trials must be at least 1");
+        Ok(())
+    }
+}
 
 /// The Table 1 rows the score compares (the paper's rows 1 to 4, 6 and 7), in the order
 /// of a [`Fitted`] table.
@@ -111,6 +209,21 @@ fn fitted_row(number: &str) -> Option<Table1Row> {
     FIT_ROWS.into_iter().find(|r| r.number() == number)
 }
 
+/// The fit score (`docs/specification.md`, section 6.1) of a table of means against a target.
+///
+/// ```text
+/// score = sqrt(mean over the 24 cells of ln(ours / target)^2)
+/// ```
+pub fn score(means: &Fitted<[f64; 4]>, target: &Target) -> f64 {
+    let mut sum = 0.0;
+    for ((_, ours), (_, theirs)) in means.iter().zip(target.0.iter()) {
+        for (a, b) in ours.iter().zip(theirs) {
+            sum += (a / b).ln().powi(2);
+        }
+    }
+    (sum / 24.0).sqrt()
+}
+
 /// First seed of each seed set. Disjoint from each other and from the seeds 1 to 99
 /// that `cargo xtask reproduce` uses.
 const SEARCH_BASE: u64 = 100;
@@ -119,129 +232,6 @@ const REPORT_BASE: u64 = 300;
 
 /// Runs made between two appends to the evaluations file.
 const CHUNK: usize = 256;
-
-/// Arguments of `cargo xtask fit-map`.
-#[derive(Args, Clone, Debug)]
-pub struct FitArgs {
-    /// Seed of the search (layouts and moves).
-    #[arg(long, default_value_t = 1)]
-    pub seed: u64,
-    /// Interior width of the layouts.
-    #[arg(long, default_value_t = 8)]
-    pub width: usize,
-    /// Interior height of the layouts.
-    #[arg(long, default_value_t = 8)]
-    pub height: usize,
-    /// Obstacles in a layout (every free cell must be reachable from the goal).
-    #[arg(long, default_value_t = 13)]
-    pub obstacles: usize,
-    /// Target table: a CSV with the header `row,resetting,lazy,random,eager` and one line
-    /// for each of rows 1, 2, 3, 4, 6 and 7 (other rows are ignored). Default: the paper's.
-    #[arg(long)]
-    pub target: Option<PathBuf>,
-    /// Random layouts scored in phase 1 (also the score distribution reported).
-    #[arg(long, default_value_t = 300)]
-    pub random: usize,
-    /// Local searches, started from the best random layouts.
-    #[arg(long, default_value_t = 6)]
-    pub restarts: usize,
-    /// Rounds of local moves per restart.
-    #[arg(long, default_value_t = 20)]
-    pub rounds: usize,
-    /// Moves proposed per restart and round.
-    #[arg(long, default_value_t = 6)]
-    pub neighbours: usize,
-    /// Candidates (best on the search seeds) re-scored on the selection seeds.
-    #[arg(long, default_value_t = 12)]
-    pub candidates: usize,
-    /// Search seeds per strategy (seeds 100, 101, ...).
-    #[arg(long, default_value_t = 12)]
-    pub search_seeds: u64,
-    /// Selection seeds per strategy (seeds 200, 201, ...).
-    #[arg(long, default_value_t = 20)]
-    pub select_seeds: u64,
-    /// Report seeds per strategy (seeds 300, 301, ...), never used to choose.
-    #[arg(long, default_value_t = 20)]
-    pub report_seeds: u64,
-    /// Trial cap of each run; a layout with a run that does not converge has no score.
-    #[arg(long, default_value_t = 6000)]
-    pub max_trials: u32,
-    /// Worker threads (default: every core). Results do not depend on it.
-    #[arg(long)]
-    pub threads: Option<usize>,
-    /// Output folder: evaluations (for resuming), the report and the chosen map.
-    #[arg(long, default_value = "results/fit-map")]
-    pub out: PathBuf,
-}
-
-/// A target table: per fitted row, one value per strategy (resetting, lazy, random,
-/// eager).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Target(pub Fitted<[f64; 4]>);
-
-impl Target {
-    /// The paper's Table 1.
-    pub fn paper() -> Target {
-        Target(Fitted::from_fn(|row| {
-            StrategyKind::ALL.map(|k| row.paper(k).map_or(f64::NAN, |p| p.value()))
-        }))
-    }
-
-    /// Parse a target CSV (see [`FitArgs::target`]).
-    pub fn parse_csv(text: &str, source: &str) -> Result<Target> {
-        let mut lines = text
-            .lines()
-            .enumerate()
-            .filter(|(_, l)| !l.trim().is_empty());
-        let (_, header) = lines
-            .next()
-            .with_context(|| format!("{source}: empty file"))?;
-        let header: Vec<&str> = header.split(',').map(str::trim).collect();
-        ensure!(
-            header == ["row", "resetting", "lazy", "random", "eager"],
-            "{source}:1: the header must be `row,resetting,lazy,random,eager`"
-        );
-        let mut rows: Fitted<Option<[f64; 4]>> = Fitted::from_fn(|_| None);
-        for (i, line) in lines {
-            let cells: Vec<&str> = line.split(',').map(str::trim).collect();
-            ensure!(
-                cells.len() == 5,
-                "{source}:{}: expected 5 fields, found {}",
-                i + 1,
-                cells.len()
-            );
-            let row: usize = cells[0].parse().with_context(|| {
-                format!("{source}:{}: `{}` is not a row number", i + 1, cells[0])
-            })?;
-            let Some(slot) = fitted_row(&row.to_string()).and_then(|r| rows.get_mut(r)) else {
-                continue;
-            };
-            let mut values = [0.0; 4];
-            for (j, cell) in cells[1..].iter().enumerate() {
-                let v: f64 = cell
-                    .parse()
-                    .with_context(|| format!("{source}:{}: `{cell}` is not a number", i + 1))?;
-                ensure!(
-                    v.is_finite() && v > 0.0,
-                    "{source}:{}: target values must be positive, found {v}",
-                    i + 1
-                );
-                values[j] = v;
-            }
-            ensure!(
-                slot.is_none(),
-                "{source}:{}: row {row} appears twice",
-                i + 1
-            );
-            *slot = Some(values);
-        }
-        for (row, values) in rows.iter() {
-            values.with_context(|| format!("{source}: row {} is missing", row.number()))?;
-        }
-        let t = Fitted::try_from_fn(|row| rows.get(row).copied().flatten());
-        Ok(Target(t.context("every fitted row is there")?))
-    }
-}
 
 /// The fitted rows of one run, `None` where the run did not reach the figure.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
@@ -331,41 +321,6 @@ impl Layout {
                 return next;
             }
         }
-    }
-}
-
-impl FitArgs {
-    fn validate(&self) -> Result<()> {
-        ensure!(
-            (1..=30).contains(&self.width) && (1..=30).contains(&self.height),
-            "--width and --height must be in 1..=30"
-        );
-        let n = self.width * self.height;
-        ensure!(
-            self.obstacles + 2 <= n,
-            "{} obstacles leave no room for a goal and a state in {n} cells",
-            self.obstacles
-        );
-        ensure!(self.random >= 1, "--random must be at least 1");
-        ensure!(
-            self.restarts <= self.random,
-            "--restarts ({}) cannot exceed --random ({})",
-            self.restarts,
-            self.random
-        );
-        ensure!(self.candidates >= 1, "--candidates must be at least 1");
-        for (name, k) in [
-            ("--search-seeds", self.search_seeds),
-            ("--select-seeds", self.select_seeds),
-            ("--report-seeds", self.report_seeds),
-        ] {
-            ensure!(
-                (1..=100).contains(&k),
-                "{name} must be in 1..=100 (the seed sets are 100 apart)"
-            );
-        }
-        ensure!(self.max_trials >= 1, "--max-trials must be at least 1");
-        Ok(())
     }
 }
 
@@ -474,21 +429,6 @@ impl Cache {
     }
 }
 
-/// The fit score (`docs/specification.md`, section 6.1) of a table of means against a target.
-///
-/// ```text
-/// score = sqrt(mean over the 24 cells of ln(ours / target)^2)
-/// ```
-pub fn score(means: &Fitted<[f64; 4]>, target: &Target) -> f64 {
-    let mut sum = 0.0;
-    for ((_, ours), (_, theirs)) in means.iter().zip(target.0.iter()) {
-        for (a, b) in ours.iter().zip(theirs) {
-            sum += (a / b).ln().powi(2);
-        }
-    }
-    (sum / 24.0).sqrt()
-}
-
 /// One run of the paper's settings on a layout.
 fn evaluate(l: &Layout, strategy: StrategyKind, seed: u64, max_trials: u32) -> Result<Evaluation> {
     let mut settings = RunSettings::tan1991(l.map("fit")?, strategy, seed);
@@ -511,26 +451,6 @@ fn stream(seed: u64, id: u64) -> Xoshiro256PlusPlus {
 
 fn seeds(base: u64, n: u64) -> Vec<u64> {
     (base..base + n).collect()
-}
-
-fn show(x: Option<f64>) -> String {
-    x.map_or("no score".into(), |x| format!("{x:.3}"))
-}
-
-/// The quantiles of some values: min, 10%, 25%, median, 75%, 90%, max (nearest rank).
-fn quantiles(values: &[f64]) -> Vec<(&'static str, f64)> {
-    let mut v = values.to_vec();
-    v.sort_by(f64::total_cmp);
-    let at = |q: f64| v[((q * (v.len() - 1) as f64).round()) as usize];
-    vec![
-        ("min", at(0.0)),
-        ("10%", at(0.1)),
-        ("25%", at(0.25)),
-        ("median", at(0.5)),
-        ("75%", at(0.75)),
-        ("90%", at(0.9)),
-        ("max", at(1.0)),
-    ]
 }
 
 /// `cargo xtask fit-map`.
@@ -637,132 +557,49 @@ pub fn run(args: &FitArgs) -> Result<()> {
 
     // Phase 4: report on seeds that took no part in any choice.
     pool.install(|| cache.ensure(std::slice::from_ref(&best), &report, "report"))?;
-    let report_score = cache.score(&best, &report, &target);
     let elapsed = started.elapsed().as_secs_f64();
-
-    // The report.
-    let mut s = String::new();
-    let _ = writeln!(s, "# fit-map\n");
-    let _ = writeln!(s, "Command: `cargo xtask fit-map {}`\n", command_line(args));
-    let _ = writeln!(
-        s,
-        "Search seeds {:?}, selection seeds {:?}, report seeds {:?}; {} runs in the evaluations file; {elapsed:.0} s for this invocation (runs already in the file are not made again).\n",
-        span(&search),
-        span(&select),
-        span(&report),
-        cache.runs.len()
-    );
-    let _ = writeln!(s, "## Chosen layout\n\n```text\n{}\n```\n", best.text());
-    let _ = writeln!(
-        s,
-        "| seeds | score |\n|---|---|\n| search ({} per strategy) | {} |\n| selection ({} per strategy) | {} |\n| report, unseen ({} per strategy) | {} |\n",
-        search.len(),
-        show(cache.score(&best, &search, &target)),
-        select.len(),
-        show(Some(select_score)),
-        report.len(),
-        show(report_score)
-    );
-    if let Some(m) = cache.means(&best, &report) {
-        let _ = writeln!(
-            s,
-            "Means on the report seeds against the target:\n\n| row | resetting | lazy | random | eager |\n|---|---|---|---|---|"
-        );
-        for ((row, ours), (_, theirs)) in m.iter().zip(target.0.iter()) {
-            let cells: Vec<String> = (0..4)
-                .map(|j| format!("{:.1} ({})", ours[j], theirs[j]))
-                .collect();
-            let _ = writeln!(s, "| {} | {} |", row.number(), cells.join(" | "));
-        }
-        s.push('\n');
-    }
-    let ok: Vec<f64> = random_scores.iter().flatten().copied().collect();
-    let _ = writeln!(
-        s,
-        "## Random layouts\n\n{} uniformly random layouts, scored on the search seeds; {} had a run that did not converge within {} trials.\n",
-        randoms.len(),
-        randoms.len() - ok.len(),
-        args.max_trials
-    );
-    if !ok.is_empty() {
-        let q = quantiles(&ok);
-        let _ = writeln!(
-            s,
-            "| {} |\n|{}\n| {} |\n",
-            q.iter().map(|x| x.0).collect::<Vec<_>>().join(" | "),
-            "---|".repeat(q.len()),
-            q.iter()
-                .map(|x| format!("{:.3}", x.1))
-                .collect::<Vec<_>>()
-                .join(" | ")
-        );
-        if let Some(m) = Summary::of(&ok) {
-            let _ = writeln!(s, "Mean {:.3}, standard deviation {:.3}.\n", m.mean, m.sd);
-        }
-    }
-    let _ = writeln!(
-        s,
-        "## Local search\n\nBest score on the search seeds per restart after each round:\n\n| round | {} |\n|---|{}",
-        (1..=current.len())
-            .map(|i| format!("restart {i}"))
-            .collect::<Vec<_>>()
-            .join(" | "),
-        "---|".repeat(current.len())
-    );
-    s.push_str(&trail);
-    let _ = writeln!(
-        s,
-        "\n## Candidates\n\n| # | search score | selection score | layout |\n|---|---|---|---|"
-    );
-    for (i, (sc, l)) in candidates.iter().enumerate() {
-        let _ = writeln!(
-            s,
-            "| {} | {sc:.3} | {} | `{}` |",
-            i + 1,
-            show(cache.score(l, &select, &target)),
-            l.key()
-        );
-    }
-    let report_path = args.out.join("report.md");
-    crate::files::write_atomic(&report_path, &s)?;
-    let map_path = args.out.join("fitted.toml");
-    let map = best.map("fitted")?;
-    crate::files::write_atomic(&map_path, map.to_toml())?;
-    crate::emit(&format!(
-        "{s}\nWrote:\n  {}\n  {}\n  {}\n",
-        report_path.display(),
-        map_path.display(),
-        args.out.join("evaluations.jsonl").display()
-    ))?;
-    Ok(())
+    report::write(
+        args,
+        &target,
+        &cache,
+        Found {
+            search,
+            select,
+            report,
+            random_scores,
+            restarts: current.len(),
+            trail,
+            candidates,
+            best,
+            select_score,
+            elapsed,
+        },
+    )
 }
 
-fn span(seeds: &[u64]) -> std::ops::RangeInclusive<u64> {
-    seeds[0]..=seeds[seeds.len() - 1]
-}
-
-/// The arguments as they would be typed (for the report).
-fn command_line(a: &FitArgs) -> String {
-    let mut s = format!(
-        "--seed {} --width {} --height {} --obstacles {} --random {} --restarts {} --rounds {} --neighbours {} --candidates {} --search-seeds {} --select-seeds {} --report-seeds {} --max-trials {}",
-        a.seed,
-        a.width,
-        a.height,
-        a.obstacles,
-        a.random,
-        a.restarts,
-        a.rounds,
-        a.neighbours,
-        a.candidates,
-        a.search_seeds,
-        a.select_seeds,
-        a.report_seeds,
-        a.max_trials
-    );
-    if let Some(t) = &a.target {
-        let _ = write!(s, " --target {}", t.display());
-    }
-    s
+/// What a search found, for its report.
+struct Found {
+    /// The search seeds.
+    search: Vec<u64>,
+    /// The selection seeds.
+    select: Vec<u64>,
+    /// The report seeds.
+    report: Vec<u64>,
+    /// The score of each random layout on the search seeds, `None` where a run did not
+    /// converge.
+    random_scores: Vec<Option<f64>>,
+    /// The local searches made.
+    restarts: usize,
+    /// The best score of each local search after each round: the rows of a table.
+    trail: String,
+    /// The best layouts on the search seeds, with their scores there, best first.
+    candidates: Vec<(f64, Layout)>,
+    /// The chosen layout: the best candidate on the selection seeds.
+    best: Layout,
+    /// The chosen layout's score on the selection seeds.
+    select_score: f64,
+    /// The seconds this invocation took.
+    elapsed: f64,
 }
 
 #[cfg(test)]
@@ -787,20 +624,6 @@ mod tests {
         );
         assert_eq!(paper(Table1Row::MaxFeatures), Some([9.2, 10.6, 12.3, 16.8]));
         assert_eq!(paper(Table1Row::Descriptions), None);
-    }
-
-    #[test]
-    fn target_csv_round_trip_and_errors() {
-        let csv = "row,resetting,lazy,random,eager\n1,1,2,3,4\n2,1,2,3,4\n3,1,2,3,4\n4,1,2,3,4\n5,50,50,50,50\n6,1,2,3,4\n7,1,2,3,5\n";
-        let t = Target::parse_csv(csv, "t.csv").unwrap();
-        assert_eq!(t.0.get(Table1Row::MaxFeatures), Some(&[1.0, 2.0, 3.0, 5.0]));
-        let missing = csv.replace("7,1,2,3,5\n", "");
-        let e = Target::parse_csv(&missing, "t.csv").unwrap_err();
-        assert!(e.to_string().contains("row 7 is missing"), "{e}");
-        let bad = csv.replace("2,1,2,3,4", "2,1,x,3,4");
-        let e = Target::parse_csv(&bad, "t.csv").unwrap_err();
-        assert!(e.to_string().contains("t.csv:3"), "{e}");
-        assert!(Target::parse_csv("row,a\n", "t.csv").is_err());
     }
 
     #[test]

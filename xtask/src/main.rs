@@ -36,9 +36,7 @@ mod python;
 
 mod render;
 mod reproduce;
-mod results;
 mod robustness;
-mod sense;
 mod shard;
 mod stats;
 mod sweep;

@@ -11,8 +11,8 @@ use anyhow::{Context, Result};
 use csql::{PredictSensing, RunReport, StrategyKind};
 use rayon::prelude::*;
 
+use super::Results;
 use crate::figures;
-use crate::results::Results;
 use crate::stats::{Summary, rows, summary};
 
 /// The levels beyond the paper, in order.
