@@ -1384,7 +1384,8 @@ mod tests {
         let csv = read(one.path(), "budget.csv");
         assert_eq!(csv, read(two.path(), "budget.csv"));
         assert_eq!(read(one.path(), "budget.md"), read(two.path(), "budget.md"));
-        // eg2 (its tree does not depend on mc): 2 budgets and 3 k; dtmc: 2 mc.
+        // eg2 (its tree does not depend on mc): 2 budgets and 3 k; dtmc (it grows within
+        // a budget): 2 mc, 2 budgets and 3 k.
         let rows: Vec<Vec<&str>> = csv
             .lines()
             .skip(1)
@@ -1405,8 +1406,16 @@ mod tests {
             ] {
                 expected.push(format!("{d} eg2 {knob}"));
             }
-            for mc in ["100", "1000"] {
-                expected.push(format!("{d} dtmc mc {mc}"));
+            for knob in [
+                "mc 100",
+                "mc 1000",
+                "budget 0.05",
+                "budget 1",
+                "max-tests 0",
+                "max-tests 1",
+                "max-tests 10",
+            ] {
+                expected.push(format!("{d} dtmc {knob}"));
             }
         }
         assert_eq!(keys, expected);
