@@ -1123,13 +1123,15 @@ fn check_results(
             ));
         }
         for s in &r.by_mc {
-            let cost = |x: f64| x.is_finite() && x >= 0.0;
+            // A total beyond the bound every front end holds (cslearn::MAX_TOTAL_COST)
+            // was not written by a job.
+            let cost = |x: f64| (0.0..=cslearn::MAX_TOTAL_COST).contains(&x);
             let share = |x: f64| (0.0..=1.0).contains(&x);
             let true_score = cost(s.total)
                 && cost(s.tests)
                 && share(s.error_rate)
-                && s.standard.is_finite()
                 && s.standard > 0.0
+                && s.standard <= cslearn::MAX_TOTAL_COST
                 && s.auroc.is_none_or(share);
             if !true_score {
                 return Err(bad(format!(
@@ -1370,6 +1372,8 @@ pub(crate) mod tests {
         tampered(swapped, "says cs-id3-batch on `");
         let negative = original.replacen("\"total\":", "\"total\":-", 1);
         tampered(negative, "holds a score that is not a true one");
+        let huge = original.replacen("\"total\":", "\"total\":1e308,\"x\":", 1);
+        tampered(huge, "holds a score that is not a true one");
         std::fs::write(&path, &original).unwrap();
         testcost(&report).unwrap();
     }
