@@ -11,7 +11,7 @@
 //!   `docs/testcost.md`).
 //! * `cargo xtask anytime`: ACT's cost against its time as its samples per branch grow.
 //! * `cargo xtask budget`: accuracy against test cost, each learner swept over its cost
-//!   knob (mc or a budget per object), and the area under each curve.
+//!   knob (mc, a budget per object, or CEGB's tradeoff), and the area under each curve.
 //! * `cargo xtask bench scale` and `cargo xtask bench throughput`: how CS-QL's cost grows
 //!   with the world, and its moves per second against a plain Q-learning loop.
 //! * `cargo xtask test`: every test, Rust and Python (the README's test command).
@@ -88,9 +88,9 @@ enum Command {
     /// ACT's cost against its time as its samples per branch grow, on the benchmark's
     /// folds and prices.
     Anytime(testcost::anytime::AnytimeArgs),
-    /// Accuracy against test cost: each learner swept over mc or a budget per object on
-    /// the benchmark's folds and prices, the area under each curve, and a figure per data
-    /// set.
+    /// Accuracy against test cost: each learner swept over mc, a budget per object or
+    /// (CEGB) its tradeoff on the benchmark's folds and prices, the area under each curve,
+    /// and a figure per data set.
     Budget(testcost::curves::BudgetArgs),
     /// Benchmarks: CS-QL's growth with the world's size, and its moves per second.
     Bench(bench::BenchArgs),

@@ -290,3 +290,104 @@ def test_the_worker_runs_without_the_compiled_package():
     )
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == "[]"
+
+
+# --- The sweep: CEGB's curve over its tradeoff ------------------------------------------
+
+
+def sweep_request(X, y, test, classes, tradeoffs, **extra):
+    r = request(X, y, test, classes, op="sweep", tradeoffs=list(tradeoffs), **extra)
+    del r["mc"]
+    return r
+
+
+def test_the_sweep_gives_the_same_bytes_for_the_same_request():
+    X, y = data(n=120, seed=7)
+    line = json.dumps(sweep_request(X[:90], y[:90], X[90:], 3, [0.0, 0.01, 1.0]))
+    first = worker([line, line])
+    assert len(first) == 2 and first[0] == first[1]
+    assert worker([line]) == first[:1]
+    response = json.loads(first[0])
+    assert "error" not in response and "learn_seconds" not in response
+    assert [a["tradeoff"] for a in response["by_tradeoff"]] == [0.0, 0.01, 1.0]
+    for a in response["by_tradeoff"]:
+        assert len(a["predicted"]) == len(a["probabilities"]) == len(a["features"]) == 30
+        assert a["nodes"] >= 1 and a["leaves"] >= 1
+    # Timed, it says how long it took, and answers the same otherwise.
+    timed = json.loads(worker([json.dumps(sweep_request(X[:90], y[:90], X[90:], 3, [0.0, 0.01, 1.0], timing=True))])[0])
+    assert timed.pop("learn_seconds") > 0 and timed.pop("classify_seconds") > 0
+    assert timed == response
+
+
+@pytest.mark.parametrize("classes", [2, 3])
+def test_a_sweeps_point_is_the_fit_at_that_tradeoff(classes):
+    """At each tradeoff, the sweep's answers are those of the model `fit` trains on all
+    the objects once it has that tradeoff: held to a grid of that one value, and where its
+    cross-validation chose it from the whole grid."""
+    X, y = data(n=200, seed=8, classes=classes)
+    train, test = slice(0, 150), slice(150, 200)
+    prices = [5.0, 2.0, 20.0, 1.0]
+    grid = list(cegb.TRADEOFFS)
+    r = sweep_request(X[train], y[train], X[test], classes, grid)
+    response = json.loads(worker([json.dumps(r)])[0])
+    assert "error" not in response, response
+    points = {a["tradeoff"]: a for a in response["by_tradeoff"]}
+    assert list(points) == grid
+
+    def same(point, model):
+        assert point["features"] == model.features_used(X[test])
+        assert point["probabilities"] == model.predict_proba(X[test]).tolist()
+        assert point["predicted"] == model.predict(X[test]).tolist()
+        assert (point["nodes"], point["leaves"]) == (model.nodes, model.leaves)
+
+    bought = []
+    for t in grid[::3] + [grid[-1]]:
+        held = cegb.fit(
+            X[train], y[train], prices, [100.0], classes=classes, nominal=[1], seed=r["seed"],
+            settings=cegb.Settings(tradeoffs=(t,)),
+        )[0]
+        assert held.tradeoff == t
+        same(points[t], held.model)
+        bought.append(sum(len(f) for f in points[t]["features"]))
+    # The penalty buys less as it grows, down to nothing.
+    assert bought[0] > 0 and bought[-1] == 0
+    assert all(a >= b for a, b in zip(bought, bought[1:])), bought
+    # The benchmark's fit chooses among the same grid: its model is the sweep's point.
+    for choice in cegb.fit(X[train], y[train], prices, [10.0, 1000.0], classes=classes, nominal=[1], seed=r["seed"]):
+        same(points[choice.tradeoff], choice.model)
+
+
+def test_a_huge_tradeoff_buys_nothing():
+    X, y = data(n=150, seed=9, classes=2)
+    response = json.loads(worker([json.dumps(sweep_request(X[:100], y[:100], X[100:], 2, [0.0, 1e9]))])[0])
+    free, huge = response["by_tradeoff"]
+    assert any(free["features"]) and len({c for c in free["predicted"]}) == 2
+    assert huge["features"] == [[]] * 50
+    # No tree: every object gets the training data's class shares, the larger class.
+    majority = int(np.bincount(y[:100]).argmax())
+    assert huge["predicted"] == [majority] * 50
+    assert len({tuple(p) for p in huge["probabilities"]}) == 1
+    # In Python: the same models.
+    models = cegb.sweep(X[:100], y[:100], [5.0, 2.0, 20.0, 1.0], [0.0, 1e9], nominal=[1], seed=12345678901234567890)
+    assert models[1].features_used(X[100:]) == huge["features"]
+    assert models[0].features_used(X[100:]) == free["features"]
+
+
+def test_a_bad_sweep_request_is_answered_with_an_error_line():
+    X, y = data(n=60, seed=10, classes=2)
+    good = sweep_request(X[:40], y[:40], X[40:], 2, [0.0, 1.0], settings={"trees": 2})
+    lines = worker(
+        [
+            json.dumps({k: v for k, v in good.items() if k != "tradeoffs"}),
+            json.dumps(dict(good, tradeoffs=0.5)),
+            json.dumps(dict(good, tradeoffs=[0.1, -1.0])),
+            json.dumps(dict(good, tradeoffs=[])),
+            json.dumps(dict(good, op="sweeps")),
+            json.dumps(good),
+        ]
+    )
+    assert len(lines) == 6
+    errors = [json.loads(line).get("error", "") for line in lines[:5]]
+    for error, said in zip(errors, ["'tradeoffs'", "tradeoffs: expected a list", "not negative", "at least one", "'sweep'"]):
+        assert said in error, error
+    assert len(json.loads(lines[5])["by_tradeoff"]) == 2

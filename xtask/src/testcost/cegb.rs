@@ -10,6 +10,11 @@
 //! order first met. What the object pays for them is counted here, with the family's
 //! [`Basket`] (Turney's group discounts as for the trees); its misclassification cost
 //! follows from its class, its AUROC from its probabilities.
+//!
+//! `cargo xtask budget` asks the same workers for CEGB's curve ([`sweep_job`]): per fold,
+//! one sweep request trains CEGB at each tradeoff of a list on the other folds (no
+//! cross-validation: the curve is the sweep) and answers the held-out objects as above,
+//! once per tradeoff.
 
 use std::io::{BufRead as _, BufReader, Write as _};
 use std::path::{Path, PathBuf};
@@ -20,10 +25,19 @@ use anyhow::{Context, Result, bail, ensure};
 use cslearn::testcost::{Basket, Column, Frame, MISSING, MisclassCosts, TestPrices, folds};
 use serde::{Deserialize, Serialize};
 
-use super::{Definition, Job, JobResult, Learner, learner_seed, mix, scores};
+use super::{Definition, Job, JobResult, Learner, Score, learner_seed, mix, scores};
 
 /// The worker's script, relative to the workspace root.
 pub const SCRIPT: &str = "crates/csrl-py/python/csrl/cegb.py";
+
+/// The worker's grid of `cegb_tradeoff` (its `TRADEOFFS`): 0, then `10^(-4 + k/4)` for
+/// k = 0..20, from 10^-4 to 10 in quarter decades. `cargo xtask budget` sweeps CEGB over
+/// it by default.
+pub(crate) fn tradeoff_grid() -> Vec<f64> {
+    std::iter::once(0.0)
+        .chain((0..=20).map(|k| 10f64.powf(-4.0 + f64::from(k) / 4.0)))
+        .collect()
+}
 
 /// One worker process.
 struct Worker {
@@ -118,6 +132,15 @@ struct Described {
     description: String,
 }
 
+/// The worker's description (`describe` in `cegb.py`: LightGBM's version, the boosting's
+/// settings, then `; cegb_tradeoff chosen by ...`) without what it says of the
+/// cross-validation.
+fn sweep_description(description: &str) -> &str {
+    description
+        .split_once("; cegb_tradeoff chosen")
+        .map_or(description, |(boosting, _)| boosting)
+}
+
 /// CEGB's workers, one per worker thread that runs its jobs: a job takes an idle worker
 /// (or starts one), and gives it back when it ends well. Dropping the pool ends them.
 pub(crate) struct Peer {
@@ -158,6 +181,17 @@ impl Peer {
         })
     }
 
+    /// LightGBM's version and the boosting's settings, one line, for a sweep: the worker's
+    /// description without its cross-validation, which a sweep does not run.
+    pub fn sweep_description(&self) -> &str {
+        sweep_description(&self.description)
+    }
+
+    /// The worker's grid of tradeoffs, as it described its settings.
+    pub fn grid(&self) -> Option<Vec<f64>> {
+        serde_json::from_value(self.settings.get("tradeoffs")?.clone()).ok()
+    }
+
     /// Answer one request on an idle worker (or a new one). A worker that failed is ended,
     /// not reused.
     fn ask<T: for<'de> Deserialize<'de>>(&self, request: &impl Serialize) -> Result<T> {
@@ -181,20 +215,24 @@ impl Peer {
     }
 }
 
-/// One fit request: the training rows of a fold and its held-out rows.
+/// One fit or sweep request: the training rows of a fold and its held-out rows, and
+/// either the misclassification costs (`"op": "fit"`) or the tradeoffs (`"op": "sweep"`).
 #[derive(Serialize)]
-struct FitRequest<'a> {
-    op: &'static str,
-    train: Vec<&'a [Option<f64>]>,
-    classes: Vec<u32>,
-    class_count: usize,
-    nominal: &'a [usize],
-    prices: &'a [f64],
-    test: Vec<&'a [Option<f64>]>,
-    mc: &'a [f64],
-    seed: u64,
-    settings: &'a serde_json::Value,
-    timing: bool,
+pub(crate) struct FitRequest<'a> {
+    pub op: &'static str,
+    pub train: Vec<&'a [Option<f64>]>,
+    pub classes: Vec<u32>,
+    pub class_count: usize,
+    pub nominal: &'a [usize],
+    pub prices: &'a [f64],
+    pub test: Vec<&'a [Option<f64>]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mc: Option<&'a [f64]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tradeoffs: Option<&'a [f64]>,
+    pub seed: u64,
+    pub settings: &'a serde_json::Value,
+    pub timing: bool,
 }
 
 /// The worker's answer to a fit request.
@@ -218,6 +256,60 @@ pub(crate) struct Answer {
     pub probabilities: Vec<Vec<f64>>,
     /// The features each object uses, in the order first met.
     pub features: Vec<Vec<usize>>,
+}
+
+/// The worker's answer to a sweep request.
+#[derive(Debug, Deserialize)]
+pub(crate) struct SweepResponse {
+    /// One per tradeoff of the request, in its order.
+    pub by_tradeoff: Vec<Swept>,
+    pub learn_seconds: f64,
+    pub classify_seconds: f64,
+}
+
+/// CEGB trained at one tradeoff: the model's size and its answer for each held-out
+/// object.
+#[derive(Debug, Deserialize)]
+pub(crate) struct Swept {
+    pub tradeoff: f64,
+    /// Nodes over all the model's trees (splits and leaves).
+    pub nodes: usize,
+    pub predicted: Vec<usize>,
+    pub probabilities: Vec<Vec<f64>>,
+    /// The features each object uses, in the order first met.
+    pub features: Vec<Vec<usize>>,
+}
+
+/// One model's answers, whatever the request: its size, and per held-out object its
+/// class, its class probabilities and its ordered features.
+#[derive(Clone, Copy)]
+struct Answered<'a> {
+    nodes: usize,
+    predicted: &'a [usize],
+    probabilities: &'a [Vec<f64>],
+    features: &'a [Vec<usize>],
+}
+
+impl Answer {
+    fn view(&self) -> Answered<'_> {
+        Answered {
+            nodes: self.nodes,
+            predicted: &self.predicted,
+            probabilities: &self.probabilities,
+            features: &self.features,
+        }
+    }
+}
+
+impl Swept {
+    fn view(&self) -> Answered<'_> {
+        Answered {
+            nodes: self.nodes,
+            predicted: &self.predicted,
+            probabilities: &self.probabilities,
+            features: &self.features,
+        }
+    }
 }
 
 /// Each object's cells as the worker reads them: a nominal value's code, a number, or
@@ -288,7 +380,6 @@ impl Tally {
         test: &[usize],
         response: &FitResponse,
     ) -> Result<()> {
-        let k = frame.class_count();
         ensure!(
             response.by_mc.len() == mcs.len(),
             "{} answers for {} misclassification costs",
@@ -301,33 +392,84 @@ impl Tally {
                 "an answer for mc {} where mc {value} was asked",
                 answer.mc
             );
-            ensure!(
-                answer.predicted.len() == test.len()
-                    && answer.probabilities.len() == test.len()
-                    && answer.features.len() == test.len(),
-                "answers for other than the {} held-out objects",
-                test.len()
-            );
-            self.nodes += answer.nodes;
-            self.models += 1;
             self.tradeoffs[m].push(answer.tradeoff);
-            for (i, &r) in test.iter().enumerate() {
-                let class = answer.predicted[i];
-                let p = &answer.probabilities[i];
-                ensure!(class < k, "class {class} of a data set of {k} classes");
-                ensure!(
-                    p.len() == k && p.iter().all(|x| x.is_finite() && *x >= 0.0),
-                    "probabilities {p:?}: expected {k}, finite and not negative"
-                );
-                let tests = ordered_test_cost(prices, &answer.features[i])?;
-                let actual = frame.class(r) as usize;
-                self.sums[m].0 += tests + mc.cost(class, actual);
-                self.sums[m].1 += tests;
-                self.sums[m].2 += usize::from(class != actual);
-                self.probabilities[m].push(p.clone());
-                if m == 0 {
-                    self.actual.push(actual);
-                }
+            self.add_model(m, frame, prices, mc, test, answer.view())?;
+        }
+        Ok(())
+    }
+
+    /// Add one fold's answers of a sweep for its held-out objects `test`, point `m` of the
+    /// sweep being tradeoff `tradeoffs[m]`, every point scored at `mc` (checked against
+    /// the request as [`Tally::add`] checks, each answer's tradeoff the one asked for, to
+    /// the bit).
+    pub fn add_sweep(
+        &mut self,
+        frame: &Frame,
+        prices: &TestPrices,
+        mc: &MisclassCosts,
+        tradeoffs: &[f64],
+        test: &[usize],
+        response: &SweepResponse,
+    ) -> Result<()> {
+        ensure!(
+            response.by_tradeoff.len() == tradeoffs.len(),
+            "{} answers for {} tradeoffs",
+            response.by_tradeoff.len(),
+            tradeoffs.len()
+        );
+        for (m, (&t, answer)) in tradeoffs.iter().zip(&response.by_tradeoff).enumerate() {
+            ensure!(
+                answer.tradeoff.to_bits() == t.to_bits(),
+                "an answer for tradeoff {} where tradeoff {t} was asked",
+                answer.tradeoff
+            );
+            self.add_model(m, frame, prices, mc, test, answer.view())?;
+        }
+        Ok(())
+    }
+
+    /// Add one model's answers for the held-out objects of `test` to the sums of point
+    /// `m`, each object scored at `mc`.
+    fn add_model(
+        &mut self,
+        m: usize,
+        frame: &Frame,
+        prices: &TestPrices,
+        mc: &MisclassCosts,
+        test: &[usize],
+        Answered {
+            nodes,
+            predicted,
+            probabilities,
+            features,
+        }: Answered<'_>,
+    ) -> Result<()> {
+        let k = frame.class_count();
+        ensure!(
+            predicted.len() == test.len()
+                && probabilities.len() == test.len()
+                && features.len() == test.len(),
+            "answers for other than the {} held-out objects",
+            test.len()
+        );
+        self.nodes += nodes;
+        self.models += 1;
+        for (i, &r) in test.iter().enumerate() {
+            let class = predicted[i];
+            let p = &probabilities[i];
+            ensure!(class < k, "class {class} of a data set of {k} classes");
+            ensure!(
+                p.len() == k && p.iter().all(|x| x.is_finite() && *x >= 0.0),
+                "probabilities {p:?}: expected {k}, finite and not negative"
+            );
+            let tests = ordered_test_cost(prices, &features[i])?;
+            let actual = frame.class(r) as usize;
+            self.sums[m].0 += tests + mc.cost(class, actual);
+            self.sums[m].1 += tests;
+            self.sums[m].2 += usize::from(class != actual);
+            self.probabilities[m].push(p.clone());
+            if m == 0 {
+                self.actual.push(actual);
             }
         }
         Ok(())
@@ -374,7 +516,8 @@ pub(crate) fn run_job(
             nominal: &nominal,
             prices: &listed,
             test: test.iter().map(|&r| cells[r].as_slice()).collect(),
-            mc: &def.mc,
+            mc: Some(&def.mc),
+            tradeoffs: None,
             seed: learner_seed(def, name, job, f),
             settings: &peer.settings,
             timing: true,
@@ -416,6 +559,117 @@ pub(crate) fn run_job(
         classify_seconds: classify,
         library: Some(peer.description.clone()),
         tradeoffs: Some(tally.tradeoffs),
+    })
+}
+
+/// What one run of CEGB's curve measured.
+#[derive(Debug)]
+pub(crate) struct Sweep {
+    /// One score per tradeoff, in the order asked, each at the one misclassification cost
+    /// asked for.
+    pub points: Vec<Score>,
+    /// Mean nodes per model (one per fold and tradeoff).
+    pub nodes: f64,
+    /// The worker's wall time to train every fold's models.
+    pub learn_seconds: f64,
+    /// The worker's wall time to answer every held-out object.
+    pub classify_seconds: f64,
+}
+
+/// One job of CEGB's curve on `frame` under `prices`: the run's folds, each trained at
+/// every tradeoff of `tradeoffs` by a worker (one sweep request per fold), every point
+/// scored at the misclassification cost `mc`.
+pub(crate) fn sweep_job(
+    def: &Definition,
+    job: Job,
+    name: &str,
+    (frame, prices): (&Frame, &TestPrices),
+    (tradeoffs, mc): (&[f64], f64),
+    peer: &Peer,
+) -> Result<Sweep> {
+    sweep_folds(
+        def,
+        job,
+        name,
+        (frame, prices),
+        (tradeoffs, mc),
+        &peer.settings,
+        |request| peer.ask(request),
+    )
+}
+
+/// [`sweep_job`] with the worker given as `ask`, which answers one fold's request: the
+/// folds and seeds of the job, the answers priced with [`Basket`] and scored.
+pub(crate) fn sweep_folds(
+    def: &Definition,
+    job: Job,
+    name: &str,
+    (frame, prices): (&Frame, &TestPrices),
+    (tradeoffs, mc): (&[f64], f64),
+    settings: &serde_json::Value,
+    mut ask: impl FnMut(&FitRequest<'_>) -> Result<SweepResponse>,
+) -> Result<Sweep> {
+    let k = frame.class_count();
+    let costs = MisclassCosts::uniform(k, mc)?;
+    // LightGBM's lazy penalty: each feature's listed (full) price.
+    let listed: Vec<f64> = (0..prices.len()).map(|t| prices.test(t).full).collect();
+    let nominal: Vec<usize> = (0..frame.feature_count())
+        .filter(|&f| !frame.column(f).is_numeric())
+        .collect();
+    let cells = rows(frame);
+    let mut tally = Tally::new(tradeoffs.len());
+    let (mut learn, mut classify) = (0.0, 0.0);
+    let fold_rows = folds(frame, def.folds, mix(def.seed, name, &[2, job.run]));
+    for (f, test) in fold_rows.iter().enumerate() {
+        if test.is_empty() {
+            continue;
+        }
+        let train: Vec<usize> = (0..frame.len())
+            .filter(|r| test.binary_search(r).is_err())
+            .collect();
+        let request = FitRequest {
+            op: "sweep",
+            train: train.iter().map(|&r| cells[r].as_slice()).collect(),
+            classes: train.iter().map(|&r| frame.class(r)).collect(),
+            class_count: k,
+            nominal: &nominal,
+            prices: &listed,
+            test: test.iter().map(|&r| cells[r].as_slice()).collect(),
+            mc: None,
+            tradeoffs: Some(tradeoffs),
+            seed: learner_seed(def, name, job, f),
+            settings,
+            timing: true,
+        };
+        let place = || {
+            format!(
+                "CEGB's sweep on `{name}`, {} prices {}, run {}, fold {f}",
+                job.costs.name(),
+                job.assignment,
+                job.run
+            )
+        };
+        let response = ask(&request).with_context(place)?;
+        tally
+            .add_sweep(frame, prices, &costs, tradeoffs, test, &response)
+            .with_context(place)?;
+        learn += response.learn_seconds;
+        classify += response.classify_seconds;
+    }
+    let mcs = vec![costs; tradeoffs.len()];
+    Ok(Sweep {
+        points: scores(
+            &vec![mc; tradeoffs.len()],
+            frame,
+            prices,
+            &mcs,
+            &tally.sums,
+            &tally.probabilities,
+            &tally.actual,
+        ),
+        nodes: tally.nodes as f64 / tally.models.max(1) as f64,
+        learn_seconds: learn,
+        classify_seconds: classify,
     })
 }
 

@@ -5,13 +5,14 @@
 //! misclassification cost `mc` (for the learners whose tree depends on it), or a hard
 //! budget per object, either a share of the price of every test or at most `k` tests
 //! (held at a fixed large mc; the greedy learners grow within it, the others are cut at
-//! classification). One job is one data set, one price assignment, one run of `K`-fold
-//! cross-validation and one curve: every value of its knob comes out of one job, so a
-//! learner grows its trees at every mc at once (`fit_each`), and a learner that does not
-//! grow within a budget grows them once for every budget. The jobs run through the
-//! benchmark's machinery ([`super::cross_validate`], its folds, prices and seeds, shards
-//! and resumption), so a point of a curve is the benchmark's job at that setting, to the
-//! bit.
+//! classification), or, for CEGB, its `cegb_tradeoff` (a model trained at each value on
+//! each training part, through CEGB's Python workers: [`super::cegb::sweep_job`]). One
+//! job is one data set, one price assignment, one run of `K`-fold cross-validation and
+//! one curve: every value of its knob comes out of one job, so a learner grows its trees
+//! at every mc at once (`fit_each`), and a learner that does not grow within a budget
+//! grows them once for every budget. The jobs run through the benchmark's machinery
+//! ([`super::cross_validate`], its folds, prices and seeds, shards and resumption), so a
+//! point of a curve is the benchmark's job at that setting, to the bit.
 //!
 //! Per data set, price set, curve and knob value the report gives the mean over runs and
 //! draws of the accuracy, the AUROC, the test cost per object (also over the price of
@@ -24,15 +25,15 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Result, anyhow, bail};
+use anyhow::{Context as _, Result, anyhow, bail};
 use clap::Args;
 use cslearn::testcost::{Budget, Frame, Loaded, Method, folds};
 use plotters::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::{
-    Definition, Job, Learner, Prepared, PriceSet, Priced, Score, TestcostArgs, cross_validate,
-    job_prices, mix, prepare, work,
+    Definition, Job, Learner, Prepared, PriceSet, Priced, Score, TestcostArgs, cegb,
+    cross_validate, job_prices, mix, prepare, work,
 };
 use crate::figures::{PALETTE, marker};
 use crate::shard::JobLine;
@@ -45,7 +46,9 @@ pub struct BudgetArgs {
     #[arg(long, value_delimiter = ',')]
     datasets: Vec<String>,
     /// Learners, comma-separated. Each whose tree depends on mc (`dtmc`, `icet`, `act`,
-    /// `cvt`) gets an mc curve; each of `--budget-learners` gets the budget curves.
+    /// `cvt`) gets an mc curve; each of `--budget-learners` gets the budget curves;
+    /// `cegb` (LightGBM's CEGB, through Python; not a default: it is slow) gets a curve
+    /// over its tradeoff.
     #[arg(long, value_delimiter = ',', default_value = "c45,eg2,dtmc,icet")]
     learners: Vec<String>,
     /// The learners swept over the budgets, comma-separated, among `--learners` (default:
@@ -73,7 +76,14 @@ pub struct BudgetArgs {
     /// the flag alone for none.
     #[arg(long, value_delimiter = ',', num_args = 0.., default_value = "1,2,3,5,10")]
     max_tests: Vec<usize>,
-    /// The uniform misclassification cost the budget curves are run at.
+    /// CEGB's `cegb_tradeoff` values, comma-separated: its curve has a point per value,
+    /// a model trained at it on each training part (default: the grid of its
+    /// cross-validation in `cargo xtask testcost`, 0 and 21 values from 10^-4 to 10 in
+    /// quarter decades). Needs `cegb` among `--learners`.
+    #[arg(long, value_delimiter = ',')]
+    tradeoffs: Vec<f64>,
+    /// The uniform misclassification cost the budget curves are run at, and at which
+    /// CEGB's tradeoff curve counts its total cost.
     #[arg(long, default_value_t = 100_000.0)]
     budget_mc: f64,
     /// Price sets, comma-separated: `random` and `turney`, as `cargo xtask testcost`'s.
@@ -105,6 +115,10 @@ pub struct BudgetArgs {
     /// This machine's shard, `K/N`.
     #[arg(long, default_value = "1/1")]
     shard: String,
+    /// The Python interpreter of CEGB's worker (`--learners ...,cegb`), as `cargo xtask
+    /// testcost --python` (default: the project's virtual environment).
+    #[arg(long, value_name = "PATH")]
+    python: Option<PathBuf>,
     /// Only write the report from the results already in `--out`.
     #[arg(long)]
     report: bool,
@@ -113,9 +127,8 @@ pub struct BudgetArgs {
     bless: bool,
 }
 
-/// What a curve sweeps. Adding a learner with a knob of another kind (a trade-off of
-/// its own) is one variant here, its values in [`CurvesDefinition`], and one arm in
-/// [`run_curve`].
+/// What a curve sweeps. Adding a learner with a knob of another kind is one variant
+/// here, its values in [`CurvesDefinition`], and one arm in [`run_curve`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub(crate) enum Knob {
@@ -125,6 +138,9 @@ pub(crate) enum Knob {
     Budget,
     /// A budget per object of at most `k` distinct tests.
     MaxTests,
+    /// CEGB's `cegb_tradeoff`: its penalty per object newly paying for a feature, per
+    /// unit of the feature's price.
+    Tradeoff,
 }
 
 impl Knob {
@@ -134,6 +150,7 @@ impl Knob {
             Knob::Mc => "mc",
             Knob::Budget => "budget",
             Knob::MaxTests => "max-tests",
+            Knob::Tradeoff => "tradeoff",
         }
     }
 
@@ -143,6 +160,7 @@ impl Knob {
             Knob::Mc => "mc",
             Knob::Budget => "price budget",
             Knob::MaxTests => "k tests",
+            Knob::Tradeoff => "tradeoff",
         }
     }
 
@@ -152,14 +170,17 @@ impl Knob {
             Knob::Mc => "over mc",
             Knob::Budget => "within a price budget",
             Knob::MaxTests => "within k tests",
+            Knob::Tradeoff => "over its tradeoff",
         }
     }
 }
 
-/// One learner swept over one knob.
+/// One learner swept over one knob. Its learner is written as the benchmark writes its
+/// learners (the family's as they always were, CEGB as `"cegb"`), so results written
+/// before CEGB had a curve read and write back byte for byte.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
 pub(crate) struct Curve {
-    pub learner: Method,
+    pub learner: Learner,
     pub knob: Knob,
 }
 
@@ -171,8 +192,13 @@ impl Curve {
 }
 
 /// The knobs a learner is swept over: mc where its tree depends on it, the budgets where
-/// it is a budget learner.
-fn knobs_of(learner: Method, budget_learner: bool, def: &CurvesDefinition) -> Vec<Knob> {
+/// it is a budget learner; CEGB's tradeoff for CEGB.
+fn knobs_of(learner: Learner, budget_learner: bool, def: &CurvesDefinition) -> Vec<Knob> {
+    let learner = match learner {
+        Learner::Cegb if def.tradeoffs.is_empty() => return Vec::new(),
+        Learner::Cegb => return vec![Knob::Tradeoff],
+        Learner::Family(m) => m,
+    };
     let mut knobs = Vec::new();
     if learner.depends_on_mc() && !def.benchmark.mc.is_empty() {
         knobs.push(Knob::Mc);
@@ -198,8 +224,12 @@ pub(crate) struct CurvesDefinition {
     pub budgets: Vec<f64>,
     /// The k-tests curves' budgets.
     pub max_tests: Vec<usize>,
-    /// The mc of the budget curves.
+    /// The mc of the budget curves (and of the tradeoff curve's total cost).
     pub budget_mc: f64,
+    /// CEGB's tradeoffs, where it has a curve; results written before it existed have
+    /// none (and a definition without them is written as before).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub tradeoffs: Vec<f64>,
 }
 
 impl CurvesDefinition {
@@ -209,6 +239,7 @@ impl CurvesDefinition {
             Knob::Mc => self.benchmark.mc.clone(),
             Knob::Budget => self.budgets.clone(),
             Knob::MaxTests => self.max_tests.iter().map(|&k| k as f64).collect(),
+            Knob::Tradeoff => self.tradeoffs.clone(),
         }
     }
 }
@@ -233,6 +264,11 @@ pub(crate) struct CurveResult {
     pub learn_seconds: f64,
     /// CPU seconds to classify every object.
     pub classify_seconds: f64,
+    /// For a learner run through another library (CEGB), that library's version and
+    /// settings, one line; absent for the family's learners (and so in results written
+    /// before CEGB had a curve).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub library: Option<String>,
 }
 
 impl JobLine for CurveResult {
@@ -260,7 +296,7 @@ fn jobs(def: &CurvesDefinition, priced: &[Priced]) -> Vec<CurveJob> {
                         let learner = base
                             .learners
                             .iter()
-                            .position(|&m| m == Learner::Family(curve.learner))
+                            .position(|&m| m == curve.learner)
                             .unwrap_or(0);
                         out.push(CurveJob {
                             job: Job {
@@ -287,14 +323,15 @@ fn share_budget(share: f64, all: f64) -> Result<Budget> {
     Budget::new(max, None).map_err(|e| anyhow!("--budgets {share}: {e}"))
 }
 
-/// Runs one job: the curve's every point on one run of cross-validation.
+/// Runs one job: the curve's every point on one run of cross-validation. CEGB's curve
+/// runs through `peer`'s workers (which must be there when the sweep has it).
 fn run_curve(
     def: &CurvesDefinition,
     id: u64,
     cj: CurveJob,
     name: &str,
-    loaded: &Loaded,
-    unit: bool,
+    (loaded, unit): (&Loaded, bool),
+    peer: Option<&cegb::Peer>,
 ) -> Result<CurveResult> {
     let base = &def.benchmark;
     let job = cj.job;
@@ -310,7 +347,39 @@ fn run_curve(
         job.assignment,
     )?;
     let all_tests = prices.total();
+    let result = |points, nodes, learn_seconds, classify_seconds, library| CurveResult {
+        id,
+        dataset: name.to_string(),
+        costs: job.costs,
+        assignment: job.assignment,
+        run: job.run,
+        curve,
+        all_tests,
+        points,
+        nodes,
+        learn_seconds,
+        classify_seconds,
+        library,
+    };
     let (mc, budgets) = match curve.knob {
+        Knob::Tradeoff => {
+            let peer = peer.context("CEGB's curve has no worker to run it")?;
+            let swept = cegb::sweep_job(
+                base,
+                job,
+                name,
+                (frame, &prices),
+                (&def.tradeoffs, def.budget_mc),
+                peer,
+            )?;
+            return Ok(result(
+                swept.points,
+                swept.nodes,
+                swept.learn_seconds,
+                swept.classify_seconds,
+                Some(peer.sweep_description().to_string()),
+            ));
+        }
         Knob::Mc => (base.mc.clone(), vec![Budget::UNLIMITED]),
         Knob::Budget => (
             vec![def.budget_mc],
@@ -332,25 +401,19 @@ fn run_curve(
         // One budget, a score per mc.
         Knob::Mc => measured.by_budget.into_iter().flatten().collect(),
         // One mc, a score per budget.
-        Knob::Budget | Knob::MaxTests => measured
+        Knob::Budget | Knob::MaxTests | Knob::Tradeoff => measured
             .by_budget
             .into_iter()
             .filter_map(|scores| scores.into_iter().next())
             .collect(),
     };
-    Ok(CurveResult {
-        id,
-        dataset: name.to_string(),
-        costs: job.costs,
-        assignment: job.assignment,
-        run: job.run,
-        curve,
-        all_tests,
+    Ok(result(
         points,
-        nodes: measured.nodes,
-        learn_seconds: measured.learn_seconds,
-        classify_seconds: measured.classify_seconds,
-    })
+        measured.nodes,
+        measured.learn_seconds,
+        measured.classify_seconds,
+        None,
+    ))
 }
 
 /// The area under accuracy against normalised test cost on [0, 1], step-interpolated:
@@ -546,23 +609,38 @@ fn datasets_of(catalogue: &cslearn::testcost::Catalogue, named: &[String]) -> Ve
 pub fn budget(args: &BudgetArgs) -> Result<()> {
     let catalogue = cslearn::testcost::Catalogue::read(&args.manifest)?;
     let datasets = datasets_of(&catalogue, &args.datasets);
-    let learners: Vec<Method> = args
+    let learners: Vec<Learner> = args
         .learners
         .iter()
-        .map(|l| Method::parse(l))
-        .collect::<Result<_, _>>()?;
+        .map(|l| Learner::parse(l))
+        .collect::<Result<_>>()?;
     crate::files::distinct("--learners", &args.learners)?;
-    let budget_learners: Vec<Method> = if args.budget_learners.is_empty() {
+    let budget_learners: Vec<Learner> = if args.budget_learners.is_empty() {
         learners
             .iter()
             .copied()
-            .filter(|m| !m.depends_on_mc() || m.grows_within_budget())
+            .filter(|l| {
+                l.method()
+                    .is_some_and(|m| !m.depends_on_mc() || m.grows_within_budget())
+            })
             .collect()
     } else {
         args.budget_learners
             .iter()
-            .map(|l| Method::parse(l))
-            .collect::<Result<_, _>>()?
+            .map(|l| {
+                Method::parse(l).map(Learner::Family).map_err(|e| {
+                    if l == "cegb" {
+                        anyhow!(
+                            "--budget-learners cegb: LightGBM's trees cannot be cut where an \
+                             object's budget ends; CEGB's curve is over its tradeoff \
+                             (--tradeoffs)"
+                        )
+                    } else {
+                        anyhow!("--budget-learners: {e}")
+                    }
+                })
+            })
+            .collect::<Result<_>>()?
     };
     crate::files::distinct("--budget-learners", &args.budget_learners)?;
     if let Some(m) = budget_learners.iter().find(|m| !learners.contains(m)) {
@@ -571,6 +649,23 @@ pub fn budget(args: &BudgetArgs) -> Result<()> {
             m.name()
         );
     }
+    let with_cegb = learners.contains(&Learner::Cegb);
+    if !args.tradeoffs.is_empty() && !with_cegb {
+        bail!("--tradeoffs are CEGB's: they need `cegb` among --learners");
+    }
+    if let Some(t) = args
+        .tradeoffs
+        .iter()
+        .find(|t| !(t.is_finite() && **t >= 0.0))
+    {
+        bail!("--tradeoffs {t}: a tradeoff is a finite number of at least 0");
+    }
+    crate::files::distinct("--tradeoffs", &args.tradeoffs)?;
+    let tradeoffs = match (with_cegb, args.tradeoffs.is_empty()) {
+        (false, _) => Vec::new(),
+        (true, true) => cegb::tradeoff_grid(),
+        (true, false) => args.tradeoffs.clone(),
+    };
     if args.mc.is_empty() || args.mc.iter().any(|m| !m.is_finite() || *m < 0.0) {
         bail!("--mc: every misclassification cost must be a finite number of at least 0");
     }
@@ -615,7 +710,7 @@ pub fn budget(args: &BudgetArgs) -> Result<()> {
         threads: args.threads,
         shard: args.shard.clone(),
         with: Vec::new(),
-        python: None,
+        python: args.python.clone(),
         report: args.report,
         bless: false,
     })?;
@@ -625,6 +720,7 @@ pub fn budget(args: &BudgetArgs) -> Result<()> {
         budgets: args.budgets.clone(),
         max_tests: args.max_tests.clone(),
         budget_mc: args.budget_mc,
+        tradeoffs,
     };
     for &learner in &learners {
         let knobs = knobs_of(learner, budget_learners.contains(&learner), &def);
@@ -640,6 +736,21 @@ pub fn budget(args: &BudgetArgs) -> Result<()> {
     }
     if !args.report {
         let list = jobs(&def, &priced);
+        // CEGB's workers: one Python per worker thread that runs its curves, started once.
+        let peer = if with_cegb {
+            let peer = cegb::Peer::start(args.python.as_deref())?;
+            if args.tradeoffs.is_empty() && peer.grid().as_ref() != Some(&def.tradeoffs) {
+                bail!(
+                    "CEGB's worker chooses its tradeoff among {:?}, not the grid this sweep \
+                     takes by default ({:?}); give --tradeoffs",
+                    peer.grid(),
+                    def.tradeoffs
+                );
+            }
+            Some(peer)
+        } else {
+            None
+        };
         crate::shard::run_shard(
             &args.out,
             &args.shard,
@@ -650,22 +761,34 @@ pub fn budget(args: &BudgetArgs) -> Result<()> {
                 let cj = list[id as usize];
                 let frame = &loaded[cj.job.dataset].frame;
                 let curve = def.curves[cj.curve];
-                // The trees a job grows: one set per mc or per budget where they differ.
+                // The trees a job grows: one set per mc or per budget where they differ;
+                // CEGB's sweep, one model per tradeoff against the 110 of its
+                // cross-validation per mc that the benchmark's estimate counts.
                 let fits = match curve.knob {
-                    Knob::Mc => def.benchmark.mc.len(),
-                    _ if curve.learner.grows_within_budget() => def.values(curve.knob).len(),
-                    _ => 1,
+                    Knob::Mc => def.benchmark.mc.len() as f64,
+                    Knob::Tradeoff => def.tradeoffs.len() as f64 / 110.0,
+                    _ if curve
+                        .learner
+                        .method()
+                        .is_some_and(Method::grows_within_budget) =>
+                    {
+                        def.values(curve.knob).len() as f64
+                    }
+                    _ => 1.0,
                 };
-                work(
-                    Learner::Family(curve.learner),
-                    frame.len(),
-                    frame.feature_count(),
-                ) * fits as f64
+                work(curve.learner, frame.len(), frame.feature_count()) * fits
             },
             |id| {
                 let cj = list[id as usize];
                 let d = cj.job.dataset;
-                run_curve(&def, id, cj, &datasets[d], &loaded[d], priced[d].unit)
+                run_curve(
+                    &def,
+                    id,
+                    cj,
+                    &datasets[d],
+                    (&loaded[d], priced[d].unit),
+                    peer.as_ref(),
+                )
             },
         )?;
         if crate::shard::parse_shard(&args.shard)?.1 > 1 {
@@ -711,6 +834,7 @@ pub fn budget(args: &BudgetArgs) -> Result<()> {
         majority: &majority,
         shapes: &shapes,
         command: args_line(args),
+        library: results.iter().find_map(|r| r.library.clone()),
     };
     report.write(&args.out)?;
     if args.bless {
@@ -729,6 +853,8 @@ struct Report<'a> {
     /// Per data set, its size and whether every test costs 1.
     shapes: &'a BTreeMap<String, Shape>,
     command: String,
+    /// The library CEGB's curve ran on (its version and settings), as its results say.
+    library: Option<String>,
 }
 
 /// A data set's size, and whether its random prices are every test at 1.
@@ -822,7 +948,7 @@ impl Report<'_> {
              listed selection prices, ICET pruned by costs). Curves: each learner whose \
              tree depends on mc over mc in {{{}}}; the budget learners over a budget of a \
              share {{{}}} of the price of every test, and of at most k in {{{}}} tests, at \
-             mc {}. The **area** is that under accuracy against the test cost per object \
+             mc {}.{} The **area** is that under accuracy against the test cost per object \
              over the price of every test, on [0, 1]: at each cost the best accuracy of the \
              curve's points that cost no more, the majority class's with no test below its \
              cheapest (`docs/specification.md`, 2.8). Accuracy and area in %; `budget.csv` \
@@ -844,6 +970,7 @@ impl Report<'_> {
                 .collect::<Vec<_>>()
                 .join(", "),
             def.budget_mc,
+            self.tradeoff_sentence(),
         );
         let _ = writeln!(md, "## The area under each curve\n");
         let _ = write!(md, "| data set | prices | majority, no test |");
@@ -932,6 +1059,31 @@ impl Report<'_> {
             let _ = writeln!(md, "![{d}: accuracy against test cost]({})\n", svg_name(d));
         }
         md
+    }
+
+    /// What CEGB's curve is, for the header (with a space before it), where the sweep has
+    /// it; nothing otherwise, so that a report without it reads as before.
+    fn tradeoff_sentence(&self) -> String {
+        let def = self.def;
+        if !def.curves.iter().any(|c| c.knob == Knob::Tradeoff) {
+            return String::new();
+        }
+        let values = if def.tradeoffs == cegb::tradeoff_grid() {
+            "0 and 21 values from 0.0001 to 10 in quarter decades, the grid its \
+             cross-validation chooses from in `cargo xtask testcost`"
+                .to_string()
+        } else {
+            format!("{{{}}}", join(&def.tradeoffs))
+        };
+        format!(
+            " CEGB over its `cegb_tradeoff` ({values}): at each value a model trained on \
+             each training part, with no cross-validation inside it, its total cost counted \
+             at mc {}{}.",
+            def.budget_mc,
+            self.library
+                .as_ref()
+                .map_or(String::new(), |l| format!(" ({l})"))
+        )
     }
 
     /// Spambase within k tests beside GDFS's published figures, for every k of the run
@@ -1181,7 +1333,7 @@ fn figure(path: &Path, report: &Report<'_>, dataset: &str) -> Result<()> {
                     .benchmark
                     .learners
                     .iter()
-                    .position(|&m| m == Learner::Family(curve.learner))
+                    .position(|&m| m == curve.learner)
                     .unwrap_or(0);
                 let color = PALETTE[learner % PALETTE.len()];
                 let style = color.stroke_width(2);
@@ -1279,6 +1431,9 @@ fn args_line(args: &BudgetArgs) -> String {
     if k.join(",") != "1,2,3,5,10" {
         let _ = write!(line, " --max-tests {}", k.join(","));
     }
+    if !args.tradeoffs.is_empty() {
+        let _ = write!(line, " --tradeoffs {}", list(&args.tradeoffs));
+    }
     if args.budget_mc != 100_000.0 {
         let _ = write!(line, " --budget-mc {}", args.budget_mc);
     }
@@ -1346,6 +1501,7 @@ mod tests {
             budgets: vec![0.05, 1.0],
             max_tests: vec![0, 1, 10],
             budget_mc: 1000.0,
+            tradeoffs: Vec::new(),
             costs: vec!["random".into()],
             assignments: 1,
             runs: 1,
@@ -1355,6 +1511,7 @@ mod tests {
             out: out.to_path_buf(),
             threads: Some(threads),
             shard: "1/1".into(),
+            python: None,
             report: false,
             bless: false,
         }
@@ -1452,7 +1609,14 @@ mod tests {
         let curve = |d: &str, learner, knob| {
             curves
                 .iter()
-                .find(|r| r.dataset == d && r.curve == Curve { learner, knob })
+                .find(|r| {
+                    r.dataset == d
+                        && r.curve
+                            == Curve {
+                                learner: Learner::Family(learner),
+                                knob,
+                            }
+                })
                 .unwrap()
         };
         let mut majorities = Vec::new();
@@ -1636,5 +1800,369 @@ mod tests {
         let cli = Cli::parse_from(["budget"]);
         assert_eq!(cli.args.max_tests, [1, 2, 3, 5, 10]);
         assert_eq!(cli.args.learners, ["c45", "eg2", "dtmc", "icet"]);
+    }
+
+    /// The tradeoff knob: its names, how it is written, its default grid (the worker's
+    /// `TRADEOFFS`: 0, then 10^-4 to 10 in quarter decades), and the flags that give it.
+    #[test]
+    fn the_tradeoff_knob_is_cegbs_and_parses() {
+        use clap::Parser;
+        #[derive(Parser)]
+        struct Cli {
+            #[command(flatten)]
+            args: BudgetArgs,
+        }
+        assert_eq!(Knob::Tradeoff.name(), "tradeoff");
+        assert_eq!(
+            serde_json::to_string(&Knob::Tradeoff).unwrap(),
+            r#""tradeoff""#
+        );
+        let curve = Curve {
+            learner: Learner::Cegb,
+            knob: Knob::Tradeoff,
+        };
+        let text = serde_json::to_string(&curve).unwrap();
+        assert_eq!(text, r#"{"learner":"cegb","knob":"tradeoff"}"#);
+        assert_eq!(serde_json::from_str::<Curve>(&text).unwrap(), curve);
+        assert_eq!(curve.label(), "cegb, tradeoff");
+        let grid = cegb::tradeoff_grid();
+        assert_eq!(grid.len(), 22);
+        assert_eq!((grid[0], grid[1], grid[21]), (0.0, 1e-4, 10.0));
+        assert!(grid[1..].windows(2).all(|w| {
+            let ratio = w[1] / w[0];
+            (ratio - 10f64.powf(0.25)).abs() < 1e-12
+        }));
+        let cli = Cli::parse_from(["budget", "--learners", "eg2,cegb", "--tradeoffs", "0,0.01"]);
+        assert_eq!(cli.args.learners, ["eg2", "cegb"]);
+        assert_eq!(cli.args.tradeoffs, [0.0, 0.01]);
+        assert!(Cli::parse_from(["budget"]).args.tradeoffs.is_empty());
+        // A definition whose sweep has CEGB takes the grid unless told otherwise; the
+        // tradeoff curve is CEGB's only one.
+        let dir = tempfile::tempdir().unwrap();
+        let base = prepare(&TestcostArgs {
+            datasets: vec!["iris".into()],
+            learners: vec!["cegb".into()],
+            ..crate::testcost::tests::args(dir.path(), 1)
+        })
+        .unwrap()
+        .def;
+        let def = CurvesDefinition {
+            benchmark: base,
+            curves: Vec::new(),
+            budgets: vec![0.5],
+            max_tests: vec![1],
+            budget_mc: 1000.0,
+            tradeoffs: vec![0.0, 0.01],
+        };
+        assert_eq!(knobs_of(Learner::Cegb, false, &def), [Knob::Tradeoff]);
+        assert_eq!(def.values(Knob::Tradeoff), [0.0, 0.01]);
+        let none = CurvesDefinition {
+            tradeoffs: Vec::new(),
+            ..def.clone()
+        };
+        assert!(knobs_of(Learner::Cegb, false, &none).is_empty());
+        assert_eq!(
+            knobs_of(Learner::Family(Method::Eg2), true, &def),
+            [Knob::Budget, Knob::MaxTests]
+        );
+    }
+
+    /// Results written before CEGB had a curve: a definition without tradeoffs and a
+    /// result line of the family read, and write back byte for byte.
+    #[test]
+    fn results_written_before_the_tradeoff_knob_read_and_write_back_alike() {
+        let line = r#"{"id":3,"dataset":"iris","costs":"random","assignment":0,"run":0,"curve":{"learner":"Eg2","knob":"max-tests"},"all_tests":258.3731560486528,"points":[{"mc":100000.0,"total":4696.2118489351415,"tests":29.545182268458696,"error_rate":0.04666666666666667,"standard":66925.03982271532,"auroc":0.9656666666666668}],"nodes":7.64,"learn_seconds":0.006158953000000001,"classify_seconds":0.00004676699999999999}"#;
+        let read: CurveResult = serde_json::from_str(line).unwrap();
+        assert_eq!(
+            read.curve,
+            Curve {
+                learner: Learner::Family(Method::Eg2),
+                knob: Knob::MaxTests
+            }
+        );
+        assert_eq!(read.library, None);
+        assert_eq!(serde_json::to_string(&read).unwrap(), line);
+        let dir = tempfile::tempdir().unwrap();
+        let base = prepare(&TestcostArgs {
+            datasets: vec!["iris".into()],
+            ..crate::testcost::tests::args(dir.path(), 1)
+        })
+        .unwrap()
+        .def;
+        let old = format!(
+            r#"{{"benchmark":{},"curves":[{{"learner":"Dtmc","knob":"mc"}}],"budgets":[0.5],"max_tests":[1],"budget_mc":1000.0}}"#,
+            serde_json::to_string(&base).unwrap()
+        );
+        let def: CurvesDefinition = serde_json::from_str(&old).unwrap();
+        assert!(def.tradeoffs.is_empty());
+        assert_eq!(serde_json::to_string(&def).unwrap(), old);
+    }
+
+    /// CEGB's flags are refused where they cannot hold, by flag, before any worker starts.
+    #[test]
+    fn cegbs_flags_are_refused_where_they_cannot_hold() {
+        let dir = tempfile::tempdir().unwrap();
+        let refused = |edit: &dyn Fn(&mut BudgetArgs), expected: &[&str]| {
+            let mut a = args(dir.path(), 1);
+            edit(&mut a);
+            let err = format!("{:#}", budget(&a).unwrap_err());
+            for e in expected {
+                assert!(err.contains(e), "{e}: {err}");
+            }
+        };
+        refused(
+            &|a| a.tradeoffs = vec![0.1],
+            &["--tradeoffs", "need `cegb` among --learners"],
+        );
+        refused(
+            &|a| {
+                a.learners = vec!["eg2".into(), "cegb".into()];
+                a.budget_learners = vec!["cegb".into()];
+            },
+            &["--budget-learners cegb", "--tradeoffs"],
+        );
+        refused(
+            &|a| {
+                a.learners = vec!["cegb".into()];
+                a.tradeoffs = vec![0.0, -1.0];
+            },
+            &["--tradeoffs -1"],
+        );
+        refused(
+            &|a| {
+                a.learners = vec!["cegb".into()];
+                a.tradeoffs = vec![f64::NAN];
+            },
+            &["--tradeoffs NaN"],
+        );
+        refused(
+            &|a| {
+                a.learners = vec!["cegb".into()];
+                a.tradeoffs = vec![0.1, 0.1];
+            },
+            &["--tradeoffs", "twice"],
+        );
+        refused(
+            &|a| a.python = Some("/usr/bin/python3".into()),
+            &["--python", "cegb"],
+        );
+        assert!(std::fs::read_dir(dir.path()).unwrap().next().is_none());
+    }
+
+    /// CEGB's curve from canned worker answers, with no Python: one sweep request per fold
+    /// with the fold's rows, the tradeoffs and the benchmark's learner seed; each answer
+    /// matched to its held-out object, priced and scored at the curve's mc; the CSV row
+    /// per tradeoff; answers that do not fit the request refused by place.
+    #[test]
+    fn cegbs_curve_is_scored_and_written_from_the_workers_answers() {
+        use crate::testcost::cegb::{SweepResponse, Swept, sweep_folds};
+        use cslearn::testcost::Column;
+        let dir = tempfile::tempdir().unwrap();
+        let prepared = prepare(&TestcostArgs {
+            datasets: vec!["iris".into()],
+            learners: vec!["eg2".into(), "cegb".into()],
+            costs: vec!["random".into()],
+            assignments: 1,
+            ..crate::testcost::tests::args(dir.path(), 1)
+        })
+        .unwrap();
+        let base = prepared.def;
+        let frame = &prepared.loaded[0].frame;
+        let job = Job {
+            dataset: 0,
+            costs: PriceSet::Random,
+            assignment: 0,
+            run: 0,
+            learner: 1,
+        };
+        let prices = job_prices(&base, "iris", frame, None, false, PriceSet::Random, 0).unwrap();
+        let (tradeoffs, mc) = ([0.0, 0.5], 1000.0);
+        let settings = serde_json::json!({"trees": 50});
+        // The canned worker: at tradeoff 0, petal length (feature 2) below 2.5 answers
+        // setosa for that test alone, else versicolor after petal width (3) too; at 0.5,
+        // setosa for everyone, no test.
+        let canned = |request: &crate::testcost::cegb::FitRequest<'_>, asked: &[f64]| {
+            let small: Vec<bool> = request
+                .test
+                .iter()
+                .map(|row| row[2].is_some_and(|x| x < 2.5))
+                .collect();
+            let one_hot = |c: usize| (0..3).map(|k| f64::from(u8::from(k == c))).collect();
+            let at_zero = Swept {
+                tradeoff: asked[0],
+                nodes: 9,
+                predicted: small.iter().map(|&s| if s { 0 } else { 1 }).collect(),
+                probabilities: small.iter().map(|&s| one_hot(usize::from(!s))).collect(),
+                features: small
+                    .iter()
+                    .map(|&s| if s { vec![2] } else { vec![2, 3, 2] })
+                    .collect(),
+            };
+            let at_half = Swept {
+                tradeoff: asked[1],
+                nodes: 3,
+                predicted: vec![0; small.len()],
+                probabilities: vec![vec![1.0 / 3.0; 3]; small.len()],
+                features: vec![Vec::new(); small.len()],
+            };
+            SweepResponse {
+                by_tradeoff: vec![at_zero, at_half],
+                learn_seconds: 0.25,
+                classify_seconds: 0.5,
+            }
+        };
+        let mut seeds = Vec::new();
+        let mut held_out = 0;
+        let swept = sweep_folds(
+            &base,
+            job,
+            "iris",
+            (frame, &prices),
+            (&tradeoffs, mc),
+            &settings,
+            |request| {
+                assert_eq!(request.op, "sweep");
+                assert_eq!(request.tradeoffs, Some(&tradeoffs[..]));
+                assert!(request.mc.is_none());
+                assert_eq!(request.train.len() + request.test.len(), 150);
+                assert_eq!(request.classes.len(), request.train.len());
+                assert_eq!(request.settings, &settings);
+                seeds.push(request.seed);
+                held_out += request.test.len();
+                Ok(canned(request, &tradeoffs))
+            },
+        )
+        .unwrap();
+        // One request per fold, each with the fold's learner seed, as the benchmark's CEGB.
+        let expected: Vec<u64> = (0..3)
+            .map(|f| crate::testcost::learner_seed(&base, "iris", job, f))
+            .collect();
+        assert_eq!(seeds, expected);
+        assert_eq!(held_out, 150);
+        // By hand: every setosa has petal length below 2.5, no other iris does.
+        let Column::Numeric(petal) = frame.column(2) else {
+            panic!("iris's petal length is numeric")
+        };
+        let setosa = petal.iter().filter(|&&x| x < 2.5).count();
+        assert_eq!(setosa, 50);
+        let (p2, p3) = (prices.test(2).full, prices.test(3).full);
+        let tests = (50.0 * p2 + 100.0 * (p2 + p3)) / 150.0;
+        let zero = &swept.points[0];
+        assert_eq!(zero.mc, mc);
+        assert!((zero.error_rate - 50.0 / 150.0).abs() < 1e-12);
+        assert!((zero.tests - tests).abs() < 1e-9);
+        assert!((zero.total - (tests + mc * 50.0 / 150.0)).abs() < 1e-9);
+        let half = &swept.points[1];
+        assert_eq!(half.tests, 0.0);
+        assert!((half.error_rate - 100.0 / 150.0).abs() < 1e-12);
+        assert_eq!(half.auroc, Some(0.5));
+        assert_eq!((swept.nodes, swept.learn_seconds), (6.0, 0.75));
+
+        // The CSV: a row per tradeoff, at the curve's mc.
+        let all_tests = prices.total();
+        let def = CurvesDefinition {
+            benchmark: base.clone(),
+            curves: vec![Curve {
+                learner: Learner::Cegb,
+                knob: Knob::Tradeoff,
+            }],
+            budgets: Vec::new(),
+            max_tests: Vec::new(),
+            budget_mc: mc,
+            tradeoffs: tradeoffs.to_vec(),
+        };
+        let result = CurveResult {
+            id: 0,
+            dataset: "iris".into(),
+            costs: PriceSet::Random,
+            assignment: 0,
+            run: 0,
+            curve: def.curves[0],
+            all_tests,
+            points: swept.points,
+            nodes: swept.nodes,
+            learn_seconds: swept.learn_seconds,
+            classify_seconds: swept.classify_seconds,
+            library: Some("LightGBM 4.7.0, 50 rounds".into()),
+        };
+        let points = aggregate(&def, std::slice::from_ref(&result));
+        let majority = BTreeMap::from([("iris".to_string(), 1.0 / 3.0)]);
+        let summaries = summarise(&points, &majority);
+        let report = Report {
+            def: &def,
+            points: &points,
+            summaries: &summaries,
+            majority: &majority,
+            shapes: &BTreeMap::new(),
+            command: "cargo xtask budget".into(),
+            library: result.library.clone(),
+        };
+        let csv = report.csv();
+        let rows: Vec<&str> = csv.lines().skip(1).collect();
+        let auroc = |row: &str| row.split(',').nth(10).unwrap().parse::<f64>().unwrap();
+        assert_eq!(rows.len(), 2, "{csv}");
+        let cells = |row: &str| {
+            let c: Vec<&str> = row.split(',').collect();
+            [&c[..8], &c[8..10], &c[12..18]].concat().join(",")
+        };
+        assert_eq!(
+            cells(rows[0]),
+            format!(
+                "iris,random,cegb,tradeoff,0,1000,1,3,0.6667,,{tests:.4},,{:.5},,{:.3},",
+                tests / all_tests,
+                tests + mc / 3.0
+            )
+        );
+        assert!(auroc(rows[0]) > 0.5 && auroc(rows[0]) <= 1.0, "{csv}");
+        assert_eq!(
+            cells(rows[1]),
+            "iris,random,cegb,tradeoff,0.5,1000,1,3,0.3333,,0.0000,,0.00000,,666.667,"
+        );
+        assert_eq!(auroc(rows[1]), 0.5);
+        // Its area: a third with no test, two thirds from the first point's cost on.
+        let x = tests / all_tests;
+        assert!((summaries[0].area - (x / 3.0 + (1.0 - x) * 2.0 / 3.0)).abs() < 1e-9);
+        let md = report.markdown();
+        assert!(
+            md.contains("CEGB over its `cegb_tradeoff` ({0, 0.5})")
+                && md.contains("counted at mc 1000 (LightGBM 4.7.0, 50 rounds)."),
+            "{md}"
+        );
+        assert!(md.contains("| cegb, tradeoff |"), "{md}");
+
+        // Answers that do not fit the request are refused, naming the fold.
+        let refuse = |edit: &dyn Fn(&mut SweepResponse)| {
+            let err = sweep_folds(
+                &base,
+                job,
+                "iris",
+                (frame, &prices),
+                (&tradeoffs, mc),
+                &settings,
+                |request| {
+                    let mut answer = canned(request, &tradeoffs);
+                    edit(&mut answer);
+                    Ok(answer)
+                },
+            )
+            .unwrap_err();
+            format!("{err:#}")
+        };
+        let err = refuse(&|a| a.by_tradeoff[1].tradeoff = 0.25);
+        assert!(
+            err.contains("CEGB's sweep on `iris`, random prices 0, run 0, fold 0")
+                && err.contains("tradeoff 0.25 where tradeoff 0.5 was asked"),
+            "{err}"
+        );
+        let err = refuse(&|a| {
+            a.by_tradeoff.pop();
+        });
+        assert!(err.contains("1 answers for 2 tradeoffs"), "{err}");
+        let err = refuse(&|a| a.by_tradeoff[0].features[0] = vec![4]);
+        assert!(err.contains("feature 4"), "{err}");
+        let err = refuse(&|a| {
+            a.by_tradeoff[1].predicted.pop();
+        });
+        assert!(err.contains("held-out objects"), "{err}");
     }
 }

@@ -18,6 +18,10 @@ the same two things the benchmark uses:
   times the error) on the held-out folds; the answer is the class of largest probability
   (least expected cost under a uniform ``mc``).
 
+* :func:`sweep` -- CEGB trained at each tradeoff of a list, with no cross-validation: the
+  points of its curve of accuracy against test cost (``cargo xtask budget --learners
+  ...,cegb``).
+
 Run as a script (``python cegb.py --worker``) it is the benchmark's worker: one JSON
 request per line on stdin, one JSON response per line on stdout (:func:`serve`). It needs
 numpy and lightgbm only (never the package's compiled extension), so it runs by path.
@@ -62,6 +66,7 @@ __all__ = [
     "fit",
     "handle",
     "serve",
+    "sweep",
 ]
 
 #: The tradeoffs cross-validation chooses among: no penalty, then 10^-4 to 10 in quarter
@@ -360,6 +365,33 @@ def _prices(prices: Sequence[float], features: int) -> np.ndarray:
     return p
 
 
+def _training(
+    X: Any, y: Any, prices: Sequence[float], classes: Optional[int], nominal: Sequence[int]
+) -> tuple[np.ndarray, np.ndarray, int, np.ndarray]:
+    """Training objects checked: the matrix, the class indices, the number of classes and
+    the prices; ``ValueError`` naming the first argument at fault."""
+    X = _matrix(X, "X")
+    y = np.asarray(y)
+    if y.shape != (X.shape[0],):
+        raise ValueError(f"y: expected one class per object ({X.shape[0]}), got shape {y.shape}")
+    if X.shape[0] == 0:
+        raise ValueError("X: no training object")
+    if not np.issubdtype(y.dtype, np.integer):
+        if not np.all(np.equal(np.mod(y, 1), 0)):
+            raise ValueError("y: classes must be integer indices")
+        y = y.astype(int)
+    if y.min() < 0:
+        raise ValueError("y: classes must be indices from 0")
+    k = int(y.max()) + 1 if classes is None else int(classes)
+    if y.max() >= k:
+        raise ValueError(f"y: class {int(y.max())} is not below classes = {k}")
+    p = _prices(prices, X.shape[1])
+    for f in nominal:
+        if not (0 <= int(f) < X.shape[1]):
+            raise ValueError(f"nominal: column {f} is not a column of X ({X.shape[1]})")
+    return X, y, k, p
+
+
 def _stratified_folds(y: np.ndarray, k: int, rng: np.random.Generator) -> list[np.ndarray]:
     """``k`` stratified folds of the objects: each class's objects shuffled and dealt in
     turn, the dealing going on from class to class, so that fold sizes differ by one."""
@@ -455,25 +487,7 @@ def fit(
     the training data (or a fold of it) lacks is never answered there. ``nominal`` names
     the columns LightGBM splits as categories (non-negative integer codes).
     """
-    X = _matrix(X, "X")
-    y = np.asarray(y)
-    if y.shape != (X.shape[0],):
-        raise ValueError(f"y: expected one class per object ({X.shape[0]}), got shape {y.shape}")
-    if X.shape[0] == 0:
-        raise ValueError("X: no training object")
-    if not np.issubdtype(y.dtype, np.integer):
-        if not np.all(np.equal(np.mod(y, 1), 0)):
-            raise ValueError("y: classes must be integer indices")
-        y = y.astype(int)
-    if y.min() < 0:
-        raise ValueError("y: classes must be indices from 0")
-    k = int(y.max()) + 1 if classes is None else int(classes)
-    if y.max() >= k:
-        raise ValueError(f"y: class {int(y.max())} is not below classes = {k}")
-    p = _prices(prices, X.shape[1])
-    for f in nominal:
-        if not (0 <= int(f) < X.shape[1]):
-            raise ValueError(f"nominal: column {f} is not a column of X ({X.shape[1]})")
+    X, y, k, p = _training(X, y, prices, classes, nominal)
     costs = [float(m) for m in mc]
     if not costs or any(not (math.isfinite(m) and m >= 0) for m in costs):
         raise ValueError("mc: at least one, each finite and not negative")
@@ -512,6 +526,40 @@ def fit(
     return choices
 
 
+def sweep(
+    X: Any,
+    y: Any,
+    prices: Sequence[float],
+    tradeoffs: Sequence[float],
+    *,
+    classes: Optional[int] = None,
+    nominal: Sequence[int] = (),
+    seed: int = 0,
+    settings: Settings = Settings(),
+) -> list[CegbModel]:
+    """CEGB trained on ``X`` and ``y`` at each tradeoff of ``tradeoffs``, in order: one
+    model per tradeoff, every one on all the objects, no cross-validation (the sweep is
+    the curve). Each model is the one :func:`fit` trains on all the objects once it has
+    chosen that tradeoff (the same LightGBM seed, ``seed`` modulo 2^31 - 1), so a sweep
+    over :func:`fit`'s grid holds its every possible final model. ``settings.tradeoffs``
+    and ``settings.inner_folds`` play no part.
+
+    >>> import numpy as np
+    >>> rng = np.random.default_rng(0)
+    >>> X = rng.normal(size=(200, 2))
+    >>> y = (X[:, 0] > 0).astype(int)
+    >>> free, dear = sweep(X, y, [1.0, 1.0], [0.0, 100.0], seed=1)
+    >>> bool(free.cost_of_tests(X).mean() > 0), float(dear.cost_of_tests(X).max())
+    (True, 0.0)
+    """
+    X, y, k, p = _training(X, y, prices, classes, nominal)
+    grid = [float(t) for t in tradeoffs]
+    if not grid or any(not (math.isfinite(t) and t >= 0) for t in grid):
+        raise ValueError("tradeoffs: at least one, each finite and not negative")
+    settings.check()
+    return _train(X, y, k, p, nominal, grid, settings, _seed(seed))
+
+
 # --- The worker ------------------------------------------------------------------------
 
 
@@ -542,34 +590,12 @@ def _rows(value: Any, what: str, features: Optional[int]) -> np.ndarray:
     return a
 
 
-def handle(request: Any) -> dict[str, Any]:
-    """The response to one worker request (a parsed JSON object).
-
-    ``{"op": "describe"}`` (or ``"settings": {...}`` beside it) answers LightGBM's
-    version, the settings (the defaults where not given) and :func:`describe`'s line. A
-    fit request carries ``train`` (rows of numbers, ``null`` for missing), ``classes``
-    (one class index per training row), ``class_count``, ``nominal`` (column indices),
-    ``prices`` (one per feature), ``test`` (rows), ``mc`` (a list), ``seed`` and
-    optionally ``settings`` and ``timing``; the answer has, per ``mc``, the ``tradeoff``
-    chosen, its ``cv_costs`` over the grid, the model's ``leaves`` and ``nodes``, and per
-    held-out row its ``predicted`` class, its class ``probabilities`` and the ordered
-    ``features`` it uses; with ``"timing": true``, also ``learn_seconds`` and
-    ``classify_seconds`` (measured, so not reproducible). A request it cannot serve
-    raises ``ValueError`` (the worker answers ``{"error": ...}``).
-    """
-    if not isinstance(request, dict):
-        raise ValueError("request: expected a JSON object")
-    settings = Settings.from_json(request.get("settings"))
-    op = request.get("op", "fit")
-    if op == "describe":
-        return {
-            "lightgbm": lgb.__version__,
-            "numpy": np.__version__,
-            "settings": {**asdict(settings), "tradeoffs": list(settings.tradeoffs)},
-            "description": describe(settings),
-        }
-    if op != "fit":
-        raise ValueError(f"request: unknown op {op!r} (known: 'describe', 'fit')")
+def _fold_request(
+    request: dict[str, Any], knob: str
+) -> tuple[np.ndarray, np.ndarray, list[int], int, list[int], Any, list[Any], int]:
+    """The fields of a fit or sweep request, checked in order: the training rows, the
+    held-out rows, the classes and their count, the nominal columns, the prices, the list
+    ``knob`` names (``mc`` or ``tradeoffs``) and the seed."""
     train = _rows(_field(request, "train"), "train", None)
     if train.shape[0] == 0:
         raise ValueError("train: no training row")
@@ -599,42 +625,105 @@ def handle(request: Any) -> dict[str, Any]:
             if np.any(known < 0) or np.any(known != np.floor(known)):
                 raise ValueError(f"{what}: nominal column {f} holds a value that is not a code")
     prices = _field(request, "prices")
-    mc = _field(request, "mc")
-    if not isinstance(mc, list):
-        raise ValueError("mc: expected a list")
+    values = _field(request, knob)
+    if not isinstance(values, list):
+        raise ValueError(f"{knob}: expected a list")
     seed = _field(request, "seed")
     if not isinstance(seed, int) or seed < 0:
         raise ValueError("seed: expected a non-negative integer")
+    return train, test, classes, class_count, nominal, prices, values, seed
+
+
+def _answer(model: CegbModel, test: np.ndarray) -> dict[str, Any]:
+    """A model's answer for the held-out rows: each row's class, class probabilities and
+    ordered features, and the model's size."""
+    proba = model.predict_proba(test)
+    return {
+        "predicted": [int(v) for v in np.argmax(proba, axis=1)] if len(test) else [],
+        "probabilities": [[float(v) for v in row] for row in proba],
+        "features": model.features_used(test),
+        "leaves": model.leaves,
+        "nodes": model.nodes,
+    }
+
+
+def handle(request: Any) -> dict[str, Any]:
+    """The response to one worker request (a parsed JSON object).
+
+    ``{"op": "describe"}`` (or ``"settings": {...}`` beside it) answers LightGBM's
+    version, the settings (the defaults where not given) and :func:`describe`'s line. A
+    fit request (``"op": "fit"``, the default) carries ``train`` (rows of numbers,
+    ``null`` for missing), ``classes`` (one class index per training row),
+    ``class_count``, ``nominal`` (column indices), ``prices`` (one per feature), ``test``
+    (rows), ``mc`` (a list), ``seed`` and optionally ``settings`` and ``timing``; the
+    answer has, per ``mc``, the ``tradeoff`` chosen, its ``cv_costs`` over the grid, the
+    model's ``leaves`` and ``nodes``, and per held-out row its ``predicted`` class, its
+    class ``probabilities`` and the ordered ``features`` it uses. A sweep request
+    (``"op": "sweep"``) carries ``tradeoffs`` (a list) in place of ``mc``; the answer has,
+    per tradeoff in order (:func:`sweep`), the ``tradeoff``, the model's ``leaves`` and
+    ``nodes`` and the same three lists per held-out row. With ``"timing": true`` either
+    answer also has ``learn_seconds`` and ``classify_seconds`` (measured, so not
+    reproducible). A request it cannot serve raises ``ValueError`` (the worker answers
+    ``{"error": ...}``).
+    """
+    if not isinstance(request, dict):
+        raise ValueError("request: expected a JSON object")
+    settings = Settings.from_json(request.get("settings"))
+    op = request.get("op", "fit")
+    if op == "describe":
+        return {
+            "lightgbm": lgb.__version__,
+            "numpy": np.__version__,
+            "settings": {**asdict(settings), "tradeoffs": list(settings.tradeoffs)},
+            "description": describe(settings),
+        }
+    if op not in ("fit", "sweep"):
+        raise ValueError(f"request: unknown op {op!r} (known: 'describe', 'fit', 'sweep')")
+    knob = "mc" if op == "fit" else "tradeoffs"
+    train, test, classes, class_count, nominal, prices, values, seed = _fold_request(request, knob)
     timing = bool(request.get("timing", False))
-    start = time.perf_counter()
-    choices = fit(
-        train,
-        np.asarray(classes, dtype=int),
-        prices,
-        mc,
-        classes=class_count,
-        nominal=nominal,
-        seed=seed,
-        settings=settings,
-    )
-    learn = time.perf_counter() - start
-    start = time.perf_counter()
-    by_mc = []
-    answered: dict[int, dict[str, Any]] = {}
-    for c in choices:
-        key = id(c.model)
-        if key not in answered:
-            proba = c.model.predict_proba(test)
-            answered[key] = {
-                "predicted": [int(v) for v in np.argmax(proba, axis=1)] if len(test) else [],
-                "probabilities": [[float(v) for v in row] for row in proba],
-                "features": c.model.features_used(test),
-                "leaves": c.model.leaves,
-                "nodes": c.model.nodes,
-            }
-        by_mc.append({"mc": c.mc, "tradeoff": c.tradeoff, "cv_costs": c.cv_costs, **answered[key]})
-    classify = time.perf_counter() - start
-    out: dict[str, Any] = {"by_mc": by_mc}
+    out: dict[str, Any]
+    if op == "sweep":
+        start = time.perf_counter()
+        models = sweep(
+            train,
+            np.asarray(classes, dtype=int),
+            prices,
+            values,
+            classes=class_count,
+            nominal=nominal,
+            seed=seed,
+            settings=settings,
+        )
+        learn = time.perf_counter() - start
+        start = time.perf_counter()
+        out = {"by_tradeoff": [{"tradeoff": m.tradeoff, **_answer(m, test)} for m in models]}
+        classify = time.perf_counter() - start
+    else:
+        start = time.perf_counter()
+        choices = fit(
+            train,
+            np.asarray(classes, dtype=int),
+            prices,
+            values,
+            classes=class_count,
+            nominal=nominal,
+            seed=seed,
+            settings=settings,
+        )
+        learn = time.perf_counter() - start
+        start = time.perf_counter()
+        by_mc = []
+        answered: dict[int, dict[str, Any]] = {}
+        for c in choices:
+            key = id(c.model)
+            if key not in answered:
+                answered[key] = _answer(c.model, test)
+            by_mc.append(
+                {"mc": c.mc, "tradeoff": c.tradeoff, "cv_costs": c.cv_costs, **answered[key]}
+            )
+        classify = time.perf_counter() - start
+        out = {"by_mc": by_mc}
     if timing:
         out["learn_seconds"] = learn
         out["classify_seconds"] = classify
