@@ -567,6 +567,28 @@ fn run_job(
     })
 }
 
+/// The job's run of cross-validation as (fold, training objects, held-out objects), the
+/// folds dealt from the definition's seed, the data set's name and the run, every empty
+/// fold left out: the parts every learner of the benchmark, tree or peer, is fitted on.
+pub(crate) fn job_parts(
+    def: &Definition,
+    name: &str,
+    job: Job,
+    frame: &Frame,
+) -> Vec<(usize, Vec<usize>, Vec<usize>)> {
+    folds(frame, def.folds, mix(def.seed, name, &[2, job.run]))
+        .into_iter()
+        .enumerate()
+        .filter(|(_, test)| !test.is_empty())
+        .map(|(f, test)| {
+            let train = (0..frame.len())
+                .filter(|r| test.binary_search(r).is_err())
+                .collect();
+            (f, train, test)
+        })
+        .collect()
+}
+
 /// The learner's seed for fold `f` of a job (ICET's search, ACT's and CVT's draws,
 /// CEGB's inner folds and LightGBM's seed).
 fn learner_seed(def: &Definition, name: &str, job: Job, f: usize) -> u64 {
@@ -669,14 +691,7 @@ pub(crate) fn cross_validate(
     let mut actual_classes = Vec::new();
     let (mut nodes, mut trees) = (0usize, 0usize);
     let (mut learn, mut classify) = (0.0, 0.0);
-    let fold_rows = folds(frame, def.folds, mix(def.seed, name, &[2, job.run]));
-    for (f, test) in fold_rows.iter().enumerate() {
-        if test.is_empty() {
-            continue;
-        }
-        let train: Vec<usize> = (0..frame.len())
-            .filter(|r| test.binary_search(r).is_err())
-            .collect();
+    for (f, train, test) in job_parts(def, name, job, frame) {
         let icet_seed = learner_seed(def, name, job, f);
         let mut fitted = Vec::new();
         for (b, budget) in budgets.iter().enumerate() {
@@ -697,7 +712,7 @@ pub(crate) fn cross_validate(
                     trees += 1;
                 }
                 let start = Instant::now();
-                for &r in test {
+                for &r in &test {
                     let c = tree.classify_within(frame, r, prices, budget);
                     let actual = frame.class(r) as usize;
                     let sum = &mut sums[b][m];

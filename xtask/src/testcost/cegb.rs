@@ -22,10 +22,10 @@ use std::process::{Child, ChildStdin, ChildStdout, Command, Stdio};
 use std::sync::Mutex;
 
 use anyhow::{Context, Result, bail, ensure};
-use cslearn::testcost::{Basket, Column, Frame, MISSING, MisclassCosts, TestPrices, folds};
+use cslearn::testcost::{Basket, Column, Frame, MISSING, MisclassCosts, TestPrices};
 use serde::{Deserialize, Serialize};
 
-use super::{Definition, Job, JobResult, Learner, Score, learner_seed, mix, scores};
+use super::{Definition, Job, JobResult, Learner, Score, job_parts, learner_seed, scores};
 
 /// The worker's script, relative to the workspace root.
 pub const SCRIPT: &str = "crates/csrl-py/python/csrl/cegb.py";
@@ -500,14 +500,7 @@ pub(crate) fn run_job(
     let cells = rows(frame);
     let mut tally = Tally::new(mcs.len());
     let (mut learn, mut classify) = (0.0, 0.0);
-    let fold_rows = folds(frame, def.folds, mix(def.seed, name, &[2, job.run]));
-    for (f, test) in fold_rows.iter().enumerate() {
-        if test.is_empty() {
-            continue;
-        }
-        let train: Vec<usize> = (0..frame.len())
-            .filter(|r| test.binary_search(r).is_err())
-            .collect();
+    for (f, train, test) in job_parts(def, name, job, frame) {
         let request = FitRequest {
             op: "fit",
             train: train.iter().map(|&r| cells[r].as_slice()).collect(),
@@ -532,7 +525,7 @@ pub(crate) fn run_job(
         };
         let response: FitResponse = peer.ask(&request).with_context(place)?;
         tally
-            .add(frame, prices, &mcs, test, &response)
+            .add(frame, prices, &mcs, &test, &response)
             .with_context(place)?;
         learn += response.learn_seconds;
         classify += response.classify_seconds;
@@ -619,14 +612,7 @@ pub(crate) fn sweep_folds(
     let cells = rows(frame);
     let mut tally = Tally::new(tradeoffs.len());
     let (mut learn, mut classify) = (0.0, 0.0);
-    let fold_rows = folds(frame, def.folds, mix(def.seed, name, &[2, job.run]));
-    for (f, test) in fold_rows.iter().enumerate() {
-        if test.is_empty() {
-            continue;
-        }
-        let train: Vec<usize> = (0..frame.len())
-            .filter(|r| test.binary_search(r).is_err())
-            .collect();
+    for (f, train, test) in job_parts(def, name, job, frame) {
         let request = FitRequest {
             op: "sweep",
             train: train.iter().map(|&r| cells[r].as_slice()).collect(),
@@ -651,7 +637,7 @@ pub(crate) fn sweep_folds(
         };
         let response = ask(&request).with_context(place)?;
         tally
-            .add_sweep(frame, prices, &costs, tradeoffs, test, &response)
+            .add_sweep(frame, prices, &costs, tradeoffs, &test, &response)
             .with_context(place)?;
         learn += response.learn_seconds;
         classify += response.classify_seconds;
