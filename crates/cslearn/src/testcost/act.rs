@@ -12,6 +12,14 @@
 //! priced at the leaf's dearest error ([`Pruning::Costs`](super::Pruning)); a sampled
 //! subtree is cut back wherever a leaf is cheaper, and the final tree is pruned the same
 //! way. More samples give a better estimate for more time: ACT is anytime in `r`.
+//!
+//! Each sample's draws are seeded by what its nodes hold (their objects, the tests on
+//! their path, their depth) and its number, not taken in turn from one generator: a
+//! sampled subtree met again is the same one and is read back, and a candidate or a
+//! sample can stop being valued once it is sure to lose, without moving any later draw.
+//! The choice is the one valuing everything whole gives, to the bit.
+
+use std::collections::BTreeMap;
 
 use rand::{RngExt, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -135,8 +143,21 @@ impl<'b> Act<'b> {
     /// statistics and C4.5's least branch size), which other EG2 trees on the same
     /// objects may share.
     pub fn grown_in(&self, splits: &mut Splits<'_>) -> CostTree {
+        self.grown_by(splits, false)
+    }
+
+    /// [`grown`](Act::grown) with every candidate valued whole, in the order of its
+    /// feature, and every sampled subtree grown whole and never read back: what the
+    /// bounds and the remembered values of [`grown_in`](Act::grown_in) must not change.
+    #[cfg(test)]
+    fn grown_thorough(&self, frame: &Frame, rows: &[usize]) -> CostTree {
+        let mut splits = self.trie(frame, rows);
+        self.grown_by(&mut splits, true)
+    }
+
+    fn grown_by(&self, splits: &mut Splits<'_>, thorough: bool) -> CostTree {
         let grow = GrowParams::new(Criterion::Eg2 { w: self.w }).selecting_at(self.selection);
-        let sampler = Sampler {
+        let mut sampler = Sampler {
             scorer: Scorer::new(self.prices, grow.criterion),
             prices: self.prices,
             mc: self.mc,
@@ -145,13 +166,73 @@ impl<'b> Act<'b> {
             coeff: deviation(self.params.confidence).powi(2),
             max_depth: grow.max_depth,
             samples: self.params.samples,
+            seed: self.seed,
+            values: Values::default(),
+            candidates: Vec::new(),
+            thorough,
         };
-        let mut rng = Xoshiro256PlusPlus::seed_from_u64(self.seed);
         let nodes = grow_nodes_by(splits, self.mc, grow.max_depth, |splits, c| {
-            sampler.choose(splits, c, &mut rng)
+            sampler.choose(splits, c)
         });
         CostTree::from_nodes(nodes, self.mc)
     }
+}
+
+/// A seed of its own for the `k`-th of something grown from `seed` (SplitMix64's mix of
+/// the two).
+pub(super) fn sub_seed(seed: u64, k: u64) -> u64 {
+    let mut z = seed
+        ^ k.wrapping_mul(0x9E37_79B9_7F4A_7C15)
+            .wrapping_add(0x6A09_E667_F3BC_C909);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// What a sampled subtree is worth, as far as it was grown: its exact value, or (cut
+/// short once it reached a cap) a value it is at least.
+#[derive(Clone, Copy)]
+enum Value {
+    Exact(f64),
+    AtLeast(f64),
+}
+
+impl Value {
+    /// The value, exact or not.
+    fn get(self) -> f64 {
+        match self {
+            Value::Exact(v) | Value::AtLeast(v) => v,
+        }
+    }
+}
+
+/// The sampled subtrees valued so far. Sample `s` from a cell is a function of what the
+/// cell holds: its objects and weights (the split trie's memo entry), the set of tests
+/// on its path (which sets every price below it), its depth, and `s`, which seed its
+/// draws. So a subtree met again, under another candidate or at a later node, is read
+/// back instead of grown again, exactly.
+#[derive(Default)]
+struct Values {
+    /// Each set of path tests met, sorted, by its number.
+    paths: BTreeMap<Box<[u32]>, u32>,
+    /// By (memo entry, path set, depth, sample).
+    values: BTreeMap<(u32, u32, u32, u32), Value>,
+    /// The path being looked up.
+    path: Vec<u32>,
+}
+
+impl Values {
+    /// The most values remembered per tree (about 40 bytes each); past it, subtrees are
+    /// grown again when met again, which costs time, never a different value.
+    const MAX: usize = 1 << 20;
+}
+
+/// Where a sampled subtree grows from: its key among the [`Values`] (none when the
+/// trie's memo was full) and the seed of its draws.
+#[derive(Clone, Copy)]
+struct Origin {
+    key: Option<(u32, u32, u32)>,
+    seed: u64,
 }
 
 /// What ACT values trees with.
@@ -164,6 +245,13 @@ struct Sampler<'a> {
     coeff: f64,
     max_depth: usize,
     samples: usize,
+    seed: u64,
+    values: Values,
+    /// One buffer for the candidates of every sampled node (each node is done with it
+    /// before it goes down a branch).
+    candidates: Vec<(Stat, f64)>,
+    /// Value everything whole (the reference the bounds are tested against).
+    thorough: bool,
 }
 
 impl Sampler<'_> {
@@ -178,18 +266,19 @@ impl Sampler<'_> {
     }
 
     /// The tests that can split cell `c` (a positive gain and EG2 score), with their
-    /// EG2 scores at the selection prices, into `out` (emptied first).
-    fn candidates(&self, splits: &mut Splits<'_>, c: u32, out: &mut Vec<(Stat, f64)>) {
-        out.clear();
+    /// EG2 scores at the selection prices, into the buffer.
+    fn candidates(&mut self, splits: &mut Splits<'_>, c: u32) {
+        self.candidates.clear();
         let path = std::mem::take(&mut splits.cell_mut(c).path);
-        out.extend(
+        let (selection, prices, scorer) = (self.selection, self.prices, &self.scorer);
+        self.candidates.extend(
             splits
                 .stats(c)
                 .iter()
                 .filter(|s| s.gain > 1e-9)
                 .map(|s| {
-                    let price = self.selection.price(self.prices, s.feature, &path);
-                    (*s, self.scorer.score(s, price))
+                    let price = selection.price(prices, s.feature, &path);
+                    (*s, scorer.score(s, price))
                 })
                 .filter(|(_, score)| *score > 0.0),
         );
@@ -197,44 +286,113 @@ impl Sampler<'_> {
     }
 
     /// The test ACT splits cell `c` on: the candidate whose price plus cheapest sampled
-    /// subtree per branch is least, if that is below the leaf's cost.
-    fn choose(
-        &self,
-        splits: &mut Splits<'_>,
-        c: u32,
-        rng: &mut Xoshiro256PlusPlus,
-    ) -> Option<Stat> {
+    /// subtree per branch is least (ties: the lower feature index), if that is below the
+    /// leaf's cost.
+    ///
+    /// The same choice, bit for bit, as valuing every candidate whole, for less: the
+    /// candidates are valued first with one sample per branch (an estimate, to order
+    /// them), then cheapest first, each only until it is sure not to be chosen, and each
+    /// subtree grown only as far as it could still matter.
+    fn choose(&mut self, splits: &mut Splits<'_>, c: u32) -> Option<Stat> {
         let leaf = self.leaf(splits, c);
-        let mut best: Option<(Stat, f64)> = None;
-        let mut candidates = Vec::new();
-        self.candidates(splits, c, &mut candidates);
-        // One buffer for the candidates of every sampled node below (each node is done
-        // with it before it goes down a branch).
-        let mut below = Vec::new();
-        for (stat, _) in candidates {
-            let mut cost = self.test_price(splits, c, &stat);
-            let list = splits.made_children(c, &stat);
-            // The sampled trees are thrown away once valued: the trie keeps only the
-            // candidates' children, so its memory follows the tree grown, not the samples.
-            let mark = splits.mark();
-            for b in 0..splits.branches(c, list) {
-                let Some(child) = splits.child(c, list, b) else {
-                    continue;
-                };
-                cost += if self.samples == 0 {
-                    self.leaf(splits, child)
-                } else {
-                    (0..self.samples)
-                        .map(|_| self.sample(splits, child, rng, &mut below))
-                        .fold(f64::INFINITY, f64::min)
-                };
+        self.candidates(splits, c);
+        let candidates = std::mem::take(&mut self.candidates);
+        if self.thorough {
+            let mut best: Option<(Stat, f64)> = None;
+            for &(stat, _) in &candidates {
+                let cost = self.value(splits, c, &stat, f64::INFINITY, false, self.samples);
+                if best.is_none_or(|(_, b)| cost < b) {
+                    best = Some((stat, cost));
+                }
             }
-            splits.forget_since(mark);
-            if best.is_none_or(|(_, b)| cost < b) {
-                best = Some((stat, cost));
+            self.candidates = candidates;
+            return best.filter(|(_, cost)| *cost < leaf).map(|(stat, _)| stat);
+        }
+        let mut order: Vec<(f64, usize)> = Vec::with_capacity(candidates.len());
+        let mut guess = leaf;
+        for (i, (stat, _)) in candidates.iter().enumerate() {
+            let estimate = self.value(splits, c, stat, guess, false, 1);
+            guess = guess.min(estimate);
+            order.push((estimate, i));
+        }
+        order.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        // The leaf wins a tie with any candidate; a candidate one of a higher index.
+        let mut best = leaf;
+        let mut chosen: Option<usize> = None;
+        for &(_, i) in &order {
+            let lower = chosen.is_some_and(|j| i < j);
+            let cost = self.value(splits, c, &candidates[i].0, best, lower, self.samples);
+            if cost < best || (lower && cost == best) {
+                best = cost;
+                chosen = Some(i);
             }
         }
-        best.filter(|(_, cost)| *cost < leaf).map(|(stat, _)| stat)
+        let stat = chosen.map(|i| candidates[i].0);
+        self.candidates = candidates;
+        stat
+    }
+
+    /// `stat`'s price at cell `c` plus, for each branch, the cheapest of `samples`
+    /// sampled subtrees: exact where it is below `best` (or equal to it, where `ties`),
+    /// otherwise a value at least `best`.
+    fn value(
+        &mut self,
+        splits: &mut Splits<'_>,
+        c: u32,
+        stat: &Stat,
+        best: f64,
+        ties: bool,
+        samples: usize,
+    ) -> f64 {
+        let out = |cost: f64| cost > best || (cost >= best && !ties);
+        let mut cost = self.test_price(splits, c, stat);
+        let list = splits.made_children(c, stat);
+        // The sampled trees are thrown away once valued: the trie keeps only the
+        // candidates' children, so its memory follows the tree grown, not the samples.
+        let mark = splits.mark();
+        for b in 0..splits.branches(c, list) {
+            if out(cost) {
+                break;
+            }
+            let Some(child) = splits.child(c, list, b) else {
+                continue;
+            };
+            cost += if samples == 0 {
+                self.leaf(splits, child)
+            } else {
+                match self.cheapest(splits, child, cap_after(best, cost), samples) {
+                    Value::Exact(v) => v,
+                    // The candidate is sure to be out.
+                    Value::AtLeast(v) if out(cost + v) => v,
+                    Value::AtLeast(_) => self.cheapest(splits, child, f64::INFINITY, samples).get(),
+                }
+            };
+        }
+        splits.forget_since(mark);
+        cost
+    }
+
+    /// The cheapest of the first `samples` subtrees sampled from cell `c` where it is below
+    /// `cap`; otherwise a value it is at least.
+    fn cheapest(&mut self, splits: &mut Splits<'_>, c: u32, cap: f64, samples: usize) -> Value {
+        let mut least = cap;
+        let mut found = false;
+        for s in 0..samples as u32 {
+            let v = match self.sample(splits, c, s, least) {
+                Value::Exact(v) => v,
+                Value::AtLeast(v) if v >= least => continue,
+                Value::AtLeast(_) => self.sample(splits, c, s, f64::INFINITY).get(),
+            };
+            if v < least || (!found && v == least) {
+                least = v;
+                found = true;
+            }
+        }
+        if found {
+            Value::Exact(least)
+        } else {
+            Value::AtLeast(least)
+        }
     }
 
     /// What `stat`'s test costs every object of cell `c`, priced after the cell's path.
@@ -242,46 +400,164 @@ impl Sampler<'_> {
         price_after(self.prices, stat.feature, &splits.cell(c).path) * splits.total(c)
     }
 
-    /// The expected total cost of a tree grown from cell `c` by stochastic EG2, cut back
-    /// wherever a leaf is cheaper.
-    fn sample(
-        &self,
-        splits: &mut Splits<'_>,
-        c: u32,
-        rng: &mut Xoshiro256PlusPlus,
-        candidates: &mut Vec<(Stat, f64)>,
-    ) -> f64 {
+    /// Where sample `s` from cell `c` grows from (its statistics computed).
+    fn origin(&mut self, splits: &Splits<'_>, c: u32, s: u32) -> Origin {
+        let cell = splits.cell(c);
+        let content = splits.content(c);
+        let path = &mut self.values.path;
+        path.clear();
+        path.extend(cell.path.iter().map(|&f| f as u32));
+        path.sort_unstable();
+        path.dedup();
+        let mut seed = sub_seed(self.seed, content.map_or(0, |k| k.hash));
+        for &f in path.iter() {
+            seed = sub_seed(seed, u64::from(f));
+        }
+        seed = sub_seed(seed, cell.path.len() as u64);
+        seed = sub_seed(seed, u64::from(s));
+        let key = content.and_then(|k| k.entry).map(|entry| {
+            let next = self.values.paths.len() as u32;
+            let id = match self.values.paths.get(&self.values.path[..]) {
+                Some(&id) => id,
+                None => {
+                    self.values
+                        .paths
+                        .insert(self.values.path.clone().into_boxed_slice(), next);
+                    next
+                }
+            };
+            (entry, id, cell.path.len() as u32)
+        });
+        Origin { key, seed }
+    }
+
+    /// Sample `s` from cell `c`: the expected total cost of a tree grown from it by
+    /// stochastic EG2 (its draws seeded by where it grows from and `s`), cut back
+    /// wherever a leaf is cheaper; grown only until it is sure to be at least `cap`.
+    fn sample(&mut self, splits: &mut Splits<'_>, c: u32, s: u32, cap: f64) -> Value {
         let leaf = self.leaf(splits, c);
         let cell = splits.cell(c);
         if is_pure(&cell.class_weights) || cell.path.len() >= self.max_depth {
-            return leaf;
+            return Value::Exact(leaf);
         }
-        self.candidates(splits, c, candidates);
-        let sum: f64 = candidates.iter().map(|(_, score)| score).sum();
-        if candidates.is_empty() || !(sum > 0.0 && sum.is_finite()) {
-            return leaf;
+        self.candidates(splits, c);
+        let sum: f64 = self.candidates.iter().map(|(_, score)| score).sum();
+        if self.candidates.is_empty() || !(sum > 0.0 && sum.is_finite()) {
+            return Value::Exact(leaf);
         }
+        let origin = self.origin(splits, c, s);
+        let key = origin
+            .key
+            .filter(|_| !self.thorough)
+            .map(|(e, p, d)| (e, p, d, s));
+        match key.and_then(|k| self.values.values.get(&k)) {
+            Some(&Value::Exact(v)) => return Value::Exact(v),
+            Some(&Value::AtLeast(v)) if v >= cap => return Value::AtLeast(v),
+            _ => {}
+        }
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(origin.seed);
         let mut draw = rng.random_range(0.0..sum);
-        let drawn = candidates
+        let drawn = self
+            .candidates
             .iter()
             .position(|(_, score)| {
                 draw -= score;
                 draw < 0.0
             })
-            .unwrap_or(candidates.len() - 1);
-        let stat = candidates[drawn].0;
+            .unwrap_or(self.candidates.len() - 1);
+        let stat = self.candidates[drawn].0;
+        let bound = cap.min(leaf);
         let mut cost = self.test_price(splits, c, &stat);
+        let mut short = false;
         let list = splits.made_children(c, &stat);
         for b in 0..splits.branches(c, list) {
+            if cost >= bound {
+                short = true;
+                break;
+            }
             let Some(child) = splits.child(c, list, b) else {
                 continue;
             };
-            if cost >= leaf {
-                // The subtree is already dearer than the leaf it would be cut back to.
-                return leaf;
-            }
-            cost += self.sample(splits, child, rng, candidates);
+            cost += match self.sample(splits, child, s, cap_after(bound, cost)) {
+                Value::Exact(v) => v,
+                Value::AtLeast(v) => {
+                    short = true;
+                    v
+                }
+            };
         }
-        cost.min(leaf)
+        // Each part of `cost` is at most what the whole subtree would have paid there.
+        let value = if cost >= leaf {
+            // No cheaper than the leaf it is cut back to.
+            Value::Exact(leaf)
+        } else if short {
+            Value::AtLeast(cost)
+        } else {
+            Value::Exact(cost)
+        };
+        if let Some(k) = key
+            && self.values.values.len() < Values::MAX
+        {
+            self.values.values.insert(k, value);
+        }
+        value
+    }
+}
+
+/// The cap for what is left once `cost` of `bound` is spent: a subtree at least this is
+/// sure to take `cost` to `bound` or past it, the sums' rounding included.
+fn cap_after(bound: f64, cost: f64) -> f64 {
+    bound - cost + bound.abs() * 1e-12
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testcost::Catalogue;
+
+    /// The bounds (candidates valued cheapest first, each until it is out; subtrees
+    /// grown until they are sure to be too dear) and the values read back choose what
+    /// valuing everything whole chooses, bit for bit: nominal and numeric features,
+    /// missing values, group discounts, two to six classes, every selection prices, at
+    /// cheap and dear errors, with one sample and with five.
+    #[test]
+    fn bounds_and_remembered_values_choose_what_valuing_everything_whole_chooses() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/uci");
+        let catalogue = Catalogue::read(&root.join("datasets.toml")).unwrap();
+        let mut compared = 0;
+        for name in ["heart", "hepatitis", "glass", "monks1", "tae", "iris"] {
+            let loaded = catalogue.load(name).unwrap();
+            let frame = &loaded.frame;
+            let rows: Vec<usize> = (0..frame.len()).step_by(2).collect();
+            let random = crate::testcost::random_prices(frame.feature_count(), 1.0, 100.0, 3);
+            let mut all_prices = vec![random];
+            all_prices.extend(loaded.turney.clone());
+            for prices in &all_prices {
+                for mc in [50.0, 500.0, 5000.0] {
+                    let mc = MisclassCosts::uniform(frame.class_count(), mc).unwrap();
+                    for (selection, samples) in [
+                        (SelectionPrices::Listed, 5),
+                        (SelectionPrices::Path, 1),
+                        (SelectionPrices::ListedOnce, 3),
+                    ] {
+                        let params = ActParams::with_samples(samples).unwrap();
+                        let act = Act {
+                            prices,
+                            mc: &mc,
+                            params: &params,
+                            w: 1.0,
+                            selection,
+                            seed: 11,
+                        };
+                        let fast = act.grown(frame, &rows);
+                        let whole = act.grown_thorough(frame, &rows);
+                        assert_eq!(fast, whole, "{name} {selection:?} {samples}");
+                        compared += usize::from(fast.len() > 1);
+                    }
+                }
+            }
+        }
+        // Most of the comparisons are of trees that split.
+        assert!(compared > 40, "{compared}");
     }
 }

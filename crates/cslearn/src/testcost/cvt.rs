@@ -24,7 +24,7 @@
 //! it guesses well; where ICET scores each of its trees on one half of the objects, CVT
 //! scores on every object once.
 
-use super::act::{Act, ActParams};
+use super::act::{Act, ActParams, sub_seed};
 use super::criterion::Criterion;
 use super::data::Frame;
 use super::evaluate::folds_of;
@@ -288,16 +288,6 @@ fn grow_roots<'a>(
     });
     trees.sort_by_key(|(k, _)| *k);
     trees.into_iter().map(|(_, t)| t).collect()
-}
-
-/// A seed of its own for the `k`-th tree a grower grows (SplitMix64's mix of the two).
-fn sub_seed(seed: u64, k: u64) -> u64 {
-    let mut z = seed
-        ^ k.wrapping_mul(0x9E37_79B9_7F4A_7C15)
-            .wrapping_add(0x6A09_E667_F3BC_C909);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
 }
 
 /// The most points of a cost-complexity path measured (evenly spaced along it when the

@@ -76,7 +76,19 @@ pub(crate) struct Cell {
     /// The held-out objects' weight per class.
     pub held_classes: Vec<f64>,
     stats: Option<Arc<[Stat]>>,
+    /// What identifies its objects and weights, once its statistics are computed
+    /// ([`Splits::content`]).
+    content: Option<Content>,
     children: Vec<Children>,
+}
+
+/// What identifies a cell's objects and weights: their hash, and the entry remembering
+/// them (none when the memo was full), the same for every cell with the same objects
+/// and weights.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Content {
+    pub hash: u64,
+    pub entry: Option<u32>,
 }
 
 /// The statistics computed so far, by the objects and weights they were computed for: a
@@ -117,10 +129,17 @@ impl Memo {
         h ^ (h >> 29)
     }
 
-    /// The statistics remembered for `objects` with `weights` (all 1 where `unit`).
-    fn get(&self, hash: u64, objects: &[u32], weights: &[f64], unit: bool) -> Option<Arc<[Stat]>> {
-        self.by_hash.get(&hash)?.iter().find_map(|&e| {
-            let e = &self.entries[e];
+    /// The entry and statistics remembered for `objects` with `weights` (all 1 where
+    /// `unit`).
+    fn get(
+        &self,
+        hash: u64,
+        objects: &[u32],
+        weights: &[f64],
+        unit: bool,
+    ) -> Option<(u32, Arc<[Stat]>)> {
+        self.by_hash.get(&hash)?.iter().find_map(|&i| {
+            let e = &self.entries[i];
             let same_weights = match &e.weights {
                 None => unit,
                 Some(bits) => {
@@ -129,7 +148,7 @@ impl Memo {
                         && bits.iter().zip(weights).all(|(a, b)| *a == b.to_bits())
                 }
             };
-            (same_weights && *e.objects == *objects).then(|| Arc::clone(&e.stats))
+            (same_weights && *e.objects == *objects).then(|| (i as u32, Arc::clone(&e.stats)))
         })
     }
 
@@ -140,14 +159,14 @@ impl Memo {
         weights: &[f64],
         unit: bool,
         stats: &Arc<[Stat]>,
-    ) {
+    ) -> Option<u32> {
         // The objects, the weights unless all are 1, the statistics, and about 96 bytes
         // of boxes, entry and map.
         let bytes = objects.len() * if unit { 4 } else { 12 }
             + stats.len() * std::mem::size_of::<Stat>()
             + 96;
         if self.bytes + bytes > Memo::MAX_BYTES {
-            return;
+            return None;
         }
         self.bytes += bytes;
         self.by_hash
@@ -159,6 +178,7 @@ impl Memo {
             weights: (!unit).then(|| weights.iter().map(|w| w.to_bits()).collect()),
             stats: Arc::clone(stats),
         });
+        Some(self.entries.len() as u32 - 1)
     }
 }
 
@@ -390,6 +410,7 @@ impl<'a> Splits<'a> {
             held_weights: Vec::new(),
             held_classes: Vec::new(),
             stats: None,
+            content: None,
             children: Vec::new(),
         });
         splits
@@ -458,8 +479,9 @@ impl<'a> Splits<'a> {
         } else {
             let cell = std::mem::replace(&mut self.cells[c as usize], Cell::placeholder());
             let hash = Memo::hash(&cell.objects, &cell.weights);
-            let stats = match self.memo.get(hash, &cell.objects, &cell.weights, cell.unit) {
-                Some(stats) => stats,
+            let (entry, stats) = match self.memo.get(hash, &cell.objects, &cell.weights, cell.unit)
+            {
+                Some((entry, stats)) => (Some(entry), stats),
                 None => {
                     let large = self.reads_root_order(cell.objects.len());
                     if large {
@@ -477,15 +499,23 @@ impl<'a> Splits<'a> {
                             self.scratch.slot[o as usize] = NO_RANK;
                         }
                     }
-                    self.memo
-                        .insert(hash, &cell.objects, &cell.weights, cell.unit, &stats);
-                    stats
+                    let entry =
+                        self.memo
+                            .insert(hash, &cell.objects, &cell.weights, cell.unit, &stats);
+                    (entry, stats)
                 }
             };
             self.cells[c as usize] = cell;
             self.cells[c as usize].stats = Some(stats);
+            self.cells[c as usize].content = Some(Content { hash, entry });
         }
         self.cells[c as usize].stats.as_deref().unwrap_or(&[])
+    }
+
+    /// What identifies cell `c`'s objects and weights, once [`stats`](Splits::stats) has
+    /// been asked for a cell large enough to split (none before, or for a smaller one).
+    pub fn content(&self, c: u32) -> Option<Content> {
+        self.cells[c as usize].content
     }
 
     /// Whether a node of `m` objects reads each numeric feature's order off the root's (one
@@ -972,6 +1002,7 @@ impl<'a> Splits<'a> {
                 held_rows,
                 held_weights,
                 stats: None,
+                content: None,
                 children: Vec::new(),
             });
             made.push(Some(self.cells.len() as u32 - 1));
@@ -1004,6 +1035,7 @@ impl Cell {
             held_weights: Vec::new(),
             held_classes: Vec::new(),
             stats: None,
+            content: None,
             children: Vec::new(),
         }
     }
