@@ -2,6 +2,8 @@
 misclassification costs, nominal columns, ICET's seed and pickling."""
 
 import pickle
+import subprocess
+import sys
 import warnings
 
 import numpy as np
@@ -495,3 +497,66 @@ def test_export_text_names_tests_prices_and_classes():
         "|--- size > 5.00 (price 1.5)",
         "|   |--- class: big",
     ]
+
+
+# A child interpreter fits a test-cost tree that would grow for hours, while a helper
+# thread waits, in Python, until the main thread is inside the compiled fit (its innermost
+# Python frame is `fit`, at the line that calls `_csrl.TestCostTree.fit`), then sends the
+# process SIGINT. No clock and no fixed wait: with the GIL held by the fit the helper
+# could not run at all, and a fit deaf to Ctrl-C would run for hours; its ending proves
+# both. The child first takes Python's own Ctrl-C handler: a process started in the
+# background by a shell inherits SIGINT ignored, and Python then leaves it ignored.
+FIT_STOPPED = """
+import inspect, os, signal, sys, threading
+signal.signal(signal.SIGINT, signal.default_int_handler)
+import numpy as np
+from csrl import sklearn as cs
+source, first = inspect.getsourcelines(cs.TestCostTreeClassifier.fit)
+line = first + next(i for i, text in enumerate(source) if "_csrl.TestCostTree.fit(" in text)
+main = threading.main_thread().ident
+def growing():
+    frame = sys._current_frames().get(main)
+    return frame is not None and frame.f_code.co_name == "fit" and frame.f_lineno == line
+def helper():
+    while not growing():
+        os.sched_yield()
+    print("growing", flush=True)
+    os.kill(os.getpid(), signal.SIGINT)
+threading.Thread(target=helper, daemon=True).start()
+rng = np.random.default_rng(1)
+X = rng.random((OBJECTS, FEATURES))
+y = (X[:, 0] + X[:, 1] + rng.random(OBJECTS) > 1.5).astype(int)
+clf = ESTIMATOR
+try:
+    clf.fit(X, y)
+    print("finished", flush=True)
+except KeyboardInterrupt:
+    print("fitted" if hasattr(clf, "classes_") else "unfitted", flush=True)
+    raise
+"""
+
+# Fits of hours: ACT sampling 1000 trees under every branch of every candidate; ICET's
+# largest search (10,000 individuals for 10,000 generations: 10^8 trees); CVT, whose
+# lookahead grower grows on six sets of objects, on 300 features.
+LONG_FITS = {
+    "act": ("cs.ActClassifier(act_samples=1000)", 3000, 10),
+    "icet": ("cs.IcetClassifier(population=10000, generations=10000)", 1000, 10),
+    "cvt": ("cs.CvtClassifier()", 2000, 300),
+}
+
+
+@pytest.mark.parametrize("learner", LONG_FITS)
+def test_ctrl_c_stops_a_long_fit_and_leaves_the_estimator_unfitted(learner):
+    estimator, objects, features = LONG_FITS[learner]
+    child = (
+        FIT_STOPPED.replace("ESTIMATOR", estimator)
+        .replace("OBJECTS", str(objects))
+        .replace("FEATURES", str(features))
+    )
+    # The timeout guards against a hang only: a fit deaf to Ctrl-C runs past it and fails.
+    proc = subprocess.run([sys.executable, "-c", child], capture_output=True, text=True, timeout=300)
+    assert "growing" in proc.stdout, (proc.stdout, proc.stderr)
+    assert "unfitted" in proc.stdout, (proc.stdout, proc.stderr)
+    assert "KeyboardInterrupt" in proc.stderr, proc.stderr
+    assert "finished" not in proc.stdout
+    assert proc.returncode != 0

@@ -11,6 +11,7 @@ use super::data::Frame;
 use super::evaluate::shuffle;
 use super::prices::{MisclassCosts, TestPrices};
 use super::splits::Splits;
+use super::stop::Stop;
 use super::tree::{CostTree, GrowParams, Pruning, SelectionPrices};
 use crate::Error;
 
@@ -366,9 +367,73 @@ pub fn fit(
     params: &FamilyParams,
     seed: u64,
 ) -> Fitted {
+    fit_watching(
+        method,
+        frame,
+        rows,
+        prices,
+        mc,
+        params,
+        seed,
+        &Stop::default(),
+    )
+}
+
+/// [`fit`], unless `stop` is requested before it ends: then it ends at once (every trie it
+/// grows through offers no more tests, ICET's search takes no more individuals) with
+/// [`Error::Stopped`], and what it grew is dropped. A stop never requested gives
+/// [`fit`]'s tree, to the bit.
+///
+/// # Errors
+/// [`Error::Stopped`] when `stop` was requested.
+///
+/// ```
+/// use cslearn::testcost::{fit, fit_until, Column, FamilyParams, Frame, Method, MisclassCosts, Stop, TestPrices};
+/// let frame = Frame::new(vec!["x".into()], vec![Column::Numeric((0..20).map(f64::from).collect())],
+///     (0..20).map(|i| u32::from(i >= 10)).collect(), vec!["a".into(), "b".into()]).unwrap();
+/// let (prices, mc) = (TestPrices::flat(&[5.0]).unwrap(), MisclassCosts::uniform(2, 100.0).unwrap());
+/// let rows: Vec<usize> = (0..20).collect();
+/// let params = FamilyParams::default();
+/// let stop = Stop::default();
+/// let fitted = fit_until(Method::Act, &frame, &rows, &prices, &mc, &params, 1, &stop).unwrap();
+/// assert_eq!(fitted, fit(Method::Act, &frame, &rows, &prices, &mc, &params, 1));
+/// stop.request();
+/// let stopped = fit_until(Method::Act, &frame, &rows, &prices, &mc, &params, 1, &stop);
+/// assert!(matches!(stopped, Err(cslearn::Error::Stopped)));
+/// ```
+#[expect(clippy::too_many_arguments, reason = "fit's arguments and the stop")]
+pub fn fit_until(
+    method: Method,
+    frame: &Frame,
+    rows: &[usize],
+    prices: &TestPrices,
+    mc: &MisclassCosts,
+    params: &FamilyParams,
+    seed: u64,
+    stop: &Stop,
+) -> Result<Fitted, Error> {
+    let fitted = fit_watching(method, frame, rows, prices, mc, params, seed, stop);
+    if stop.is_requested() {
+        return Err(Error::Stopped);
+    }
+    Ok(fitted)
+}
+
+/// [`fit`] through split tries that watch `stop`.
+#[expect(clippy::too_many_arguments, reason = "fit's arguments and the stop")]
+fn fit_watching(
+    method: Method,
+    frame: &Frame,
+    rows: &[usize],
+    prices: &TestPrices,
+    mc: &MisclassCosts,
+    params: &FamilyParams,
+    seed: u64,
+    stop: &Stop,
+) -> Fitted {
     if matches!(method, Method::Act | Method::Cvt) {
         // Their tree at one cost is fit_each's, through tries of its own.
-        let mut one = fit_each(
+        let mut one = fit_each_watching(
             method,
             frame,
             rows,
@@ -376,11 +441,12 @@ pub fn fit(
             std::slice::from_ref(mc),
             params,
             seed,
+            stop,
         );
         return one.remove(0);
     }
     if method == Method::Icet {
-        let genome = icet_search(frame, rows, prices, mc, params, seed);
+        let genome = icet_search(frame, rows, prices, mc, params, seed, stop);
         let biased = prices
             .repriced(&genome.prices)
             .unwrap_or_else(|_| prices.clone());
@@ -389,16 +455,31 @@ pub fn fit(
             .selecting_at(params.selection_prices);
         let grow = grow.pruning_by(params.icet.pruning);
         return Fitted {
-            tree: icet_tree(frame, rows, &biased, prices, mc, &grow),
+            tree: icet_tree(frame, rows, &biased, prices, mc, &grow, stop),
             genome: Some(genome),
             cvt: None,
         };
     }
     Fitted {
-        tree: CostTree::grow(frame, rows, prices, mc, &method.grow_params(params)),
+        tree: grow_watching(frame, rows, prices, mc, &method.grow_params(params), stop),
         genome: None,
         cvt: None,
     }
+}
+
+/// [`CostTree::grow`] through a split trie that watches `stop`.
+fn grow_watching(
+    frame: &Frame,
+    rows: &[usize],
+    prices: &TestPrices,
+    mc: &MisclassCosts,
+    params: &GrowParams,
+    stop: &Stop,
+) -> CostTree {
+    let ones = vec![1.0; rows.len()];
+    let mut splits = Splits::new(frame, rows, &ones, mc, params.criterion, params.min_objects);
+    splits.watch(stop);
+    CostTree::grow_in(&mut splits, prices, mc, params)
 }
 
 /// The tree `method` learns on the objects `rows` of `frame` at each misclassification
@@ -435,6 +516,33 @@ pub fn fit_each(
     params: &FamilyParams,
     seed: u64,
 ) -> Vec<Fitted> {
+    fit_each_watching(
+        method,
+        frame,
+        rows,
+        prices,
+        mcs,
+        params,
+        seed,
+        &Stop::default(),
+    )
+}
+
+/// [`fit_each`] through split tries that watch `stop`.
+#[expect(
+    clippy::too_many_arguments,
+    reason = "fit_each's arguments and the stop"
+)]
+fn fit_each_watching(
+    method: Method,
+    frame: &Frame,
+    rows: &[usize],
+    prices: &TestPrices,
+    mcs: &[MisclassCosts],
+    params: &FamilyParams,
+    seed: u64,
+    stop: &Stop,
+) -> Vec<Fitted> {
     let Some(first) = mcs.first() else {
         return Vec::new();
     };
@@ -449,6 +557,7 @@ pub fn fit_each(
                 seed,
             };
             let mut splits = act(first).trie(frame, rows);
+            splits.watch(stop);
             mcs.iter()
                 .map(|mc| Fitted {
                     tree: act(mc).tree_in(&mut splits),
@@ -470,6 +579,7 @@ pub fn fit_each(
                         params.selection_prices,
                         seed,
                         &mut tries,
+                        stop,
                     );
                     Fitted {
                         tree,
@@ -481,10 +591,10 @@ pub fn fit_each(
         }
         _ if method.depends_on_mc() => mcs
             .iter()
-            .map(|mc| fit(method, frame, rows, prices, mc, params, seed))
+            .map(|mc| fit_watching(method, frame, rows, prices, mc, params, seed, stop))
             .collect(),
         _ => {
-            let fitted = fit(method, frame, rows, prices, first, params, seed);
+            let fitted = fit_watching(method, frame, rows, prices, first, params, seed, stop);
             mcs.iter()
                 .map(|mc| {
                     let mut each = fitted.clone();
@@ -498,7 +608,8 @@ pub fn fit_each(
 
 /// ICET's tree: grown by `grow` at the `biased` prices; pruned by errors, or by total
 /// cost at the `real` prices (tests are chosen at the biased prices and must pay for
-/// themselves at the real ones), as its search's fitness prunes it.
+/// themselves at the real ones), as its search's fitness prunes it; grown through a split
+/// trie that watches `stop`.
 fn icet_tree(
     frame: &Frame,
     rows: &[usize],
@@ -506,6 +617,7 @@ fn icet_tree(
     real: &TestPrices,
     mc: &MisclassCosts,
     grow: &GrowParams,
+    stop: &Stop,
 ) -> CostTree {
     match (grow.pruning, grow.confidence) {
         (Pruning::Costs, Some(confidence)) => {
@@ -513,11 +625,11 @@ fn icet_tree(
                 confidence: None,
                 ..*grow
             };
-            let mut tree = CostTree::grow(frame, rows, biased, mc, &unpruned);
+            let mut tree = grow_watching(frame, rows, biased, mc, &unpruned, stop);
             tree.prune_by_cost(confidence, real);
             tree
         }
-        _ => CostTree::grow(frame, rows, biased, mc, grow),
+        _ => grow_watching(frame, rows, biased, mc, grow, stop),
     }
 }
 
@@ -573,6 +685,8 @@ fn random_genes<R: rand::Rng>(n: usize, rng: &mut R) -> Genes {
     genes
 }
 
+/// ICET's genetic search, its trees grown through a split trie that watches `stop`; it
+/// takes no more individuals once `stop` is requested.
 fn icet_search(
     frame: &Frame,
     rows: &[usize],
@@ -580,6 +694,7 @@ fn icet_search(
     mc: &MisclassCosts,
     params: &FamilyParams,
     seed: u64,
+    stop: &Stop,
 ) -> IcetGenome {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
     let n = prices.len();
@@ -623,6 +738,7 @@ fn icet_search(
         min_objects,
     );
     splits.hold_out(&score_half);
+    splits.watch(stop);
     let mut fitness = |genes: &Genes| -> f64 {
         let (biased, w, confidence) = decode(genes, prices);
         let biased = prices.repriced(&biased).unwrap_or_else(|_| prices.clone());
@@ -641,19 +757,22 @@ fn icet_search(
     start.push(params.confidence);
     let mut population: Vec<(Genes, f64)> = Vec::with_capacity(size);
     population.push((start.clone(), fitness(&start)));
-    while population.len() < size {
+    while population.len() < size && !stop.is_requested() {
         let genes = random_genes(n, &mut rng);
         let f = fitness(&genes);
         population.push((genes, f));
     }
     for _ in 1..icet.generations.max(1) {
+        if stop.is_requested() {
+            break;
+        }
         let best = population
             .iter()
             .min_by(|a, b| a.1.total_cmp(&b.1))
             .cloned()
             .unwrap_or_else(|| (start.clone(), f64::INFINITY));
         let mut next = vec![best];
-        while next.len() < size {
+        while next.len() < size && !stop.is_requested() {
             let pick = |rng: &mut Xoshiro256PlusPlus| {
                 let a = &population[rng.random_range(0..population.len())];
                 let b = &population[rng.random_range(0..population.len())];
@@ -724,7 +843,15 @@ mod tests {
                     .selecting_at(SelectionPrices::ALL[i % 2])
                     .pruning_by(Pruning::ALL[(i / 2) % 2]);
                 let walked = CostTree::held_out_cost(&mut splits, &biased, &prices, &mc, &params);
-                let tree = icet_tree(&frame, &grow, &biased, &prices, &mc, &params);
+                let tree = icet_tree(
+                    &frame,
+                    &grow,
+                    &biased,
+                    &prices,
+                    &mc,
+                    &params,
+                    &Stop::default(),
+                );
                 let direct = mean_total_cost(&tree, &frame, &score, &prices, &mc);
                 assert!(
                     (walked - direct).abs() < 1e-9 * direct.max(1.0),
