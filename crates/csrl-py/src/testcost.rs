@@ -375,7 +375,7 @@ impl TestCostTree {
             .map_err(|e| data_error(&e))?;
         // Counts are judged against the data before anything is allocated.
         params
-            .check(method, rows.len())
+            .check(method, &frame, rows.len())
             .map_err(|e| data_error(&e))?;
         let fitted = until_interrupted(py, |stop| {
             cslearn::testcost::fit_until(method, &frame, &rows, &prices, &mc, &params, seed, stop)

@@ -318,6 +318,16 @@ def test_a_continuous_target_is_refused_before_its_cost_matrix_is_made():
         cs.TestCostTreeClassifier().fit(X, np.arange(20000))
 
 
+def test_classes_times_objects_past_what_a_fit_may_hold_are_refused_before_learning():
+    # 1000 classes of three objects: CVT's ten trees and tries on each of its six sets of
+    # objects would keep 1000 weights at every node; EG2's one tree may.
+    X = np.arange(3000, dtype=float).reshape(-1, 1)
+    y = np.arange(3000) % 1000
+    with pytest.raises(ValueError, match="1000 classes over 3000 training objects"):
+        cs.CvtClassifier().fit(X, y)
+    assert cs.Eg2Classifier().fit(X, y).score(X, y) > 0
+
+
 def test_the_published_benchmarks_settings_are_estimator_parameters():
     # Listed prices: a numeric test bought once costs its price again further down, so
     # IDX no longer splits on x0 alone (see the blobs test above).

@@ -191,8 +191,9 @@ pub struct ClassifyArgs {
     #[arg(long, value_name = "K")]
     pub(crate) max_tests: Option<usize>,
     /// Family only: the most distinct classes the target may have (1000 by default): a
-    /// numeric column named as the target by mistake has as many classes as rows, and a
-    /// misclassification matrix of their square.
+    /// numeric column named as the target by mistake has as many classes as rows, and
+    /// every node of a tree keeps a weight for each. Raised, a fit is still refused when
+    /// its classes times its training objects would hold too many weights.
     #[arg(long, value_name = "N")]
     pub(crate) max_classes: Option<usize>,
 }

@@ -463,7 +463,7 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
         .min()
         .unwrap_or(0);
     params
-        .check(method, smallest)
+        .check(method, &frame, smallest)
         .map_err(|e| anyhow::anyhow!("--learner {}: {e}", method.name()))?;
     let bar = crate::progress::progress_bar(parts.len() + usize::from(args.save.is_some()));
     let mut results = Vec::with_capacity(parts.len());

@@ -856,6 +856,45 @@ fn a_target_with_more_classes_than_the_limit_is_refused_with_how_to_raise_it() {
 }
 
 #[test]
+fn a_target_of_100000_values_with_the_limit_raised_is_refused_before_anything_is_learned() {
+    // A numeric column given as the target, --max-classes raised to take it: its uniform
+    // cost matrix, once 80 GB, is one number, and what cannot be learned is refused.
+    let s = Scratch::new();
+    let target = |modulus: usize| {
+        let mut data = String::from("a,b,t\n");
+        for i in 0..100_000 {
+            data.push_str(&format!("{},x,{}\n", i % 7, i % modulus));
+        }
+        s.file("data.csv", &data);
+    };
+    // Every value once: no class can be learned and held out.
+    target(100_000);
+    refused(
+        &s.classify("eg2", "prices.expense", &["--max-classes", "100000"]),
+        &[
+            "data.csv",
+            "class `0` (1 in the data)",
+            "a class of one object",
+        ],
+    );
+    // Every value twice, one of each held out: a tree would keep a weight per class at
+    // each of up to 50,000 nodes.
+    target(50_000);
+    refused(
+        &s.classify(
+            "eg2",
+            "prices.expense",
+            &["--max-classes", "100000", "--holdout", "0.5"],
+        ),
+        &[
+            "--learner eg2",
+            "50000 classes over 50000 training objects",
+            "more than the 134217728 a fit may hold",
+        ],
+    );
+}
+
+#[test]
 fn predict_never_overwrites_its_model_or_its_data() {
     let s = Scratch::new();
     let model = s.path("model.json");

@@ -207,22 +207,42 @@ impl Default for FamilyParams {
 }
 
 impl FamilyParams {
-    /// Whether `method` can learn with these settings from `objects` training objects,
-    /// checked before anything is allocated: CVT's folds at most the objects (a fold holds
-    /// at least one), ICET's search within [`IcetParams::MAX_POPULATION`] and
+    /// The most class weights a fit may hold ([`check`](FamilyParams::check)): 2^27, a
+    /// GiB of them.
+    pub const MAX_CLASS_WEIGHTS: usize = 1 << 27;
+
+    /// Whether `method` can learn with these settings from `objects` training objects of
+    /// `frame`, checked before anything is allocated: CVT's folds at most the objects (a
+    /// fold holds at least one), ICET's search within [`IcetParams::MAX_POPULATION`] and
     /// [`IcetParams::MAX_GENERATIONS`] and on at least 2 objects, ACT's samples within
     /// [`ActParams::MAX_SAMPLES`]; a learner's settings are checked only when it reads
     /// them. The front ends call it with the smallest training part's size.
     ///
+    /// Whatever the learner, the weights a fit may hold are bounded: every node of a tree
+    /// and every cell of a split trie keeps one weight per class, a tree may grow about a
+    /// node per training object (one per object of its own class, where the classes are
+    /// as many as the objects), and a fit holds a trie and a tree (ICET and ACT a third:
+    /// the search's trie, the lookahead's cells), CVT ten on each of its folds and on all
+    /// the objects. Classes times objects times those copies must be at most
+    /// [`MAX_CLASS_WEIGHTS`](FamilyParams::MAX_CLASS_WEIGHTS): a target with as many
+    /// classes as objects (a numeric column named as the class) is refused here, not
+    /// after gigabytes.
+    ///
     /// ```
-    /// use cslearn::testcost::{CvtParams, FamilyParams, Method};
+    /// use cslearn::testcost::{Column, CvtParams, FamilyParams, Frame, Method};
+    /// let frame = |classes: u32| Frame::new(vec!["x".into()], vec![Column::Numeric(vec![0.0; 20_000])],
+    ///     (0..20_000).map(|i| i % classes).collect(), (0..classes).map(|c| c.to_string()).collect()).unwrap();
     /// let p = FamilyParams { cvt: CvtParams::with_folds(10).unwrap(), ..FamilyParams::default() };
-    /// assert!(p.check(Method::Cvt, 10).is_ok());
-    /// let e = p.check(Method::Cvt, 9).unwrap_err().to_string();
+    /// let two = frame(2);
+    /// assert!(p.check(Method::Cvt, &two, 10).is_ok());
+    /// let e = p.check(Method::Cvt, &two, 9).unwrap_err().to_string();
     /// assert!(e.contains("10 folds") && e.contains("9 training objects"), "{e}");
-    /// assert!(p.check(Method::Eg2, 9).is_ok());
+    /// assert!(p.check(Method::Eg2, &two, 9).is_ok());
+    /// // 10,000 classes of two objects each: too many weights for any learner.
+    /// let e = p.check(Method::Eg2, &frame(10_000), 18_000).unwrap_err().to_string();
+    /// assert!(e.contains("10000 classes over 18000 training objects"), "{e}");
     /// ```
-    pub fn check(&self, method: Method, objects: usize) -> Result<(), Error> {
+    pub fn check(&self, method: Method, frame: &Frame, objects: usize) -> Result<(), Error> {
         let invalid = |what: String, reason: String| Err(Error::Invalid { what, reason });
         let cvt = self.cvt.folds;
         if method == Method::Cvt && (cvt < 2 || cvt > objects) {
@@ -230,6 +250,26 @@ impl FamilyParams {
                 format!("{cvt} folds for CVT"),
                 format!(
                     "between 2 and the {objects} training objects (each fold holds at least one)"
+                ),
+            );
+        }
+        let classes = frame.class_count();
+        let copies = match method {
+            Method::Cvt => 10 * (cvt + 1),
+            Method::Icet | Method::Act => 3,
+            _ => 2,
+        };
+        let weights = classes.saturating_mul(objects).saturating_mul(copies);
+        if weights > FamilyParams::MAX_CLASS_WEIGHTS {
+            return invalid(
+                format!("{classes} classes over {objects} training objects"),
+                format!(
+                    "every node of a tree keeps a weight per class, and {} may hold {copies} \
+                     nodes or trie cells per training object: {weights} weights, more than the \
+                     {} a fit may hold (a numeric column named as the class? merge its values \
+                     into fewer classes)",
+                    method.name(),
+                    FamilyParams::MAX_CLASS_WEIGHTS
                 ),
             );
         }
