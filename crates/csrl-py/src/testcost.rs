@@ -369,6 +369,8 @@ impl TestCostTree {
             act,
             cvt,
             budget,
+            // The lookahead's limit is the library's: `MAX_LOOKAHEAD_FEATURES`.
+            ..FamilyParams::default()
         };
         let rows: Vec<usize> = (0..frame.len()).collect();
         mc.check_totals(&prices, rows.len())

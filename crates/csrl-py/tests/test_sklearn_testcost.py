@@ -328,6 +328,41 @@ def test_classes_times_objects_past_what_a_fit_may_hold_are_refused_before_learn
     assert cs.Eg2Classifier().fit(X, y).score(X, y) > 0
 
 
+def test_a_table_too_wide_for_the_lookahead_is_refused_before_learning():
+    # ACT's sampled lookahead takes time in the square of the features: past 1000, ACT
+    # with samples and CVT are refused; ACT without samples and EG2 learn.
+    wide = csrl._csrl.MAX_LOOKAHEAD_FEATURES + 1
+    X = np.arange(8 * wide, dtype=float).reshape(8, wide) % 5
+    y = [0, 1] * 4
+    with pytest.raises(ValueError, match=f"{wide} features for CVT's lookahead grower: at most 1000"):
+        cs.CvtClassifier(cvt_folds=2).fit(X, y)
+    with pytest.raises(ValueError, match=f"{wide} features for ACT's lookahead"):
+        cs.ActClassifier().fit(X, y)
+    assert cs.ActClassifier(act_samples=0).fit(X, y).predict(X).shape == (8,)
+    assert cs.Eg2Classifier().fit(X, y).predict(X).shape == (8,)
+
+
+def test_one_object_is_learned_as_a_leaf_and_a_class_of_one_object_is_said():
+    # One object: a learner answers its class; CVT's cross-validation needs a fold per
+    # object, so it refuses.
+    for cls in (cs.Eg2Classifier, cs.DtmcClassifier, cs.IcetClassifier, cs.ActClassifier):
+        clf = cls().fit([[1.0, 2.0]], ["only"])
+        assert clf.predict([[5.0, 0.0]]).tolist() == ["only"], cls.__name__
+        assert len(clf._model.nodes()) == 1
+    with pytest.raises(ValueError, match="cvt_folds=5 needs at least 5 samples, found n_samples = 1"):
+        cs.CvtClassifier().fit([[1.0, 2.0]], ["only"])
+    # A class of one object: learned, and CVT says that one of its inner folds lacks it.
+    X = np.arange(14, dtype=float).reshape(7, 2)
+    y = ["a", "a", "a", "b", "b", "b", "c"]
+    with pytest.warns(UserWarning, match="class 'c' has one object: the fold of CVT's cross-validation"):
+        cvt = cs.CvtClassifier(cvt_folds=2).fit(X, y)
+    assert set(cvt.classes_) == {"a", "b", "c"}
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        cs.CvtClassifier(cvt_folds=2).fit(X[:6], y[:6])
+        cs.ActClassifier().fit(X, y)
+
+
 def test_the_published_benchmarks_settings_are_estimator_parameters():
     # Listed prices: a numeric test bought once costs its price again further down, so
     # IDX no longer splits on x0 alone (see the blobs test above).

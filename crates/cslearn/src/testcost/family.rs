@@ -190,6 +190,23 @@ pub struct FamilyParams {
     /// learns the same trees as before budgets existed.
     #[serde(default, skip_serializing_if = "Budget::is_unlimited")]
     pub budget: Budget,
+    /// The most features ACT's sampled lookahead (ACT with samples, and CVT's lookahead
+    /// grower) may be run on ([`FamilyParams::check`]):
+    /// [`DEFAULT_MAX_LOOKAHEAD_FEATURES`](FamilyParams::DEFAULT_MAX_LOOKAHEAD_FEATURES)
+    /// unless raised.
+    #[serde(
+        default = "default_max_lookahead_features",
+        skip_serializing_if = "is_default_max_lookahead_features"
+    )]
+    pub max_lookahead_features: usize,
+}
+
+fn default_max_lookahead_features() -> usize {
+    FamilyParams::DEFAULT_MAX_LOOKAHEAD_FEATURES
+}
+
+fn is_default_max_lookahead_features(features: &usize) -> bool {
+    *features == FamilyParams::DEFAULT_MAX_LOOKAHEAD_FEATURES
 }
 
 impl Default for FamilyParams {
@@ -202,6 +219,7 @@ impl Default for FamilyParams {
             cvt: CvtParams::default(),
             selection_prices: SelectionPrices::Path,
             budget: Budget::UNLIMITED,
+            max_lookahead_features: FamilyParams::DEFAULT_MAX_LOOKAHEAD_FEATURES,
         }
     }
 }
@@ -210,6 +228,14 @@ impl FamilyParams {
     /// The most class weights a fit may hold ([`check`](FamilyParams::check)): 2^27, a
     /// GiB of them.
     pub const MAX_CLASS_WEIGHTS: usize = 1 << 27;
+
+    /// The most features ACT's sampled lookahead is run on unless
+    /// [`max_lookahead_features`](FamilyParams::max_lookahead_features) says otherwise. At
+    /// every node the lookahead grows trees under each branch of every candidate test, and
+    /// each of their nodes scores every test, so its time grows with the square of the
+    /// features: on 50 objects one ACT fit took 1.2 s on 200 features, 6.7 s on 500 and
+    /// about 36 s on 1000, CVT about four times as long; on 10,000 it would take hours.
+    pub const DEFAULT_MAX_LOOKAHEAD_FEATURES: usize = 1000;
 
     /// Whether `method` can learn with these settings from `objects` training objects of
     /// `frame`, checked before anything is allocated: CVT's folds at most the objects (a
@@ -226,7 +252,8 @@ impl FamilyParams {
     /// the objects. Classes times objects times those copies must be at most
     /// [`MAX_CLASS_WEIGHTS`](FamilyParams::MAX_CLASS_WEIGHTS): a target with as many
     /// classes as objects (a numeric column named as the class) is refused here, not
-    /// after gigabytes.
+    /// after gigabytes. ACT with samples and CVT (its lookahead grower) are refused on
+    /// more features than [`max_lookahead_features`](FamilyParams::max_lookahead_features).
     ///
     /// ```
     /// use cslearn::testcost::{Column, CvtParams, FamilyParams, Frame, Method};
@@ -241,6 +268,14 @@ impl FamilyParams {
     /// // 10,000 classes of two objects each: too many weights for any learner.
     /// let e = p.check(Method::Eg2, &frame(10_000), 18_000).unwrap_err().to_string();
     /// assert!(e.contains("10000 classes over 18000 training objects"), "{e}");
+    /// // 1001 features: the lookahead would take too long, unless the limit is raised.
+    /// let wide = Frame::new((0..1001).map(|j| format!("x{j}")).collect(),
+    ///     (0..1001).map(|_| Column::Numeric(vec![0.0; 4])).collect(), vec![0, 1, 0, 1],
+    ///     vec!["a".into(), "b".into()]).unwrap();
+    /// let e = FamilyParams::default().check(Method::Cvt, &wide, 4).unwrap_err().to_string();
+    /// assert!(e.contains("1001 features for CVT's lookahead grower") && e.contains("at most 1000"), "{e}");
+    /// let raised = FamilyParams { max_lookahead_features: 1001, ..FamilyParams::default() };
+    /// assert!(raised.check(Method::Cvt, &wide, 4).is_ok());
     /// ```
     pub fn check(&self, method: Method, frame: &Frame, objects: usize) -> Result<(), Error> {
         let invalid = |what: String, reason: String| Err(Error::Invalid { what, reason });
@@ -250,6 +285,25 @@ impl FamilyParams {
                 format!("{cvt} folds for CVT"),
                 format!(
                     "between 2 and the {objects} training objects (each fold holds at least one)"
+                ),
+            );
+        }
+        let features = frame.feature_count();
+        let lookahead = match method {
+            Method::Act if self.act.samples > 0 => Some("ACT's lookahead"),
+            Method::Cvt => Some("CVT's lookahead grower"),
+            _ => None,
+        };
+        if let Some(lookahead) = lookahead
+            && features > self.max_lookahead_features
+        {
+            return invalid(
+                format!("{features} features for {lookahead}"),
+                format!(
+                    "at most {} (the lookahead grows trees under every candidate test, each of \
+                     whose nodes scores every test: its time grows with the square of the \
+                     features)",
+                    self.max_lookahead_features
                 ),
             );
         }
