@@ -270,12 +270,12 @@ impl FamilyParams {
     /// assert!(e.contains("10000 classes over 18000 training objects"), "{e}");
     /// // 1001 features: the lookahead would take too long, unless the limit is raised.
     /// let wide = Frame::new((0..1001).map(|j| format!("x{j}")).collect(),
-    ///     (0..1001).map(|_| Column::Numeric(vec![0.0; 4])).collect(), vec![0, 1, 0, 1],
+    ///     (0..1001).map(|_| Column::Numeric(vec![0.0; 6])).collect(), vec![0, 1, 0, 1, 0, 1],
     ///     vec!["a".into(), "b".into()]).unwrap();
-    /// let e = FamilyParams::default().check(Method::Cvt, &wide, 4).unwrap_err().to_string();
+    /// let e = FamilyParams::default().check(Method::Cvt, &wide, 6).unwrap_err().to_string();
     /// assert!(e.contains("1001 features for CVT's lookahead grower") && e.contains("at most 1000"), "{e}");
     /// let raised = FamilyParams { max_lookahead_features: 1001, ..FamilyParams::default() };
-    /// assert!(raised.check(Method::Cvt, &wide, 4).is_ok());
+    /// assert!(raised.check(Method::Cvt, &wide, 6).is_ok());
     /// ```
     pub fn check(&self, method: Method, frame: &Frame, objects: usize) -> Result<(), Error> {
         let invalid = |what: String, reason: String| Err(Error::Invalid { what, reason });
