@@ -1036,14 +1036,22 @@ fn job_count(def: &Definition, priced: &[Priced]) -> Result<u64> {
     Ok(jobs)
 }
 
-/// What a data set must allow before a job is made: a class with objects, a fold per
-/// `--folds` (and per `--cvt-folds` inside a training part, with CVT), and every total
-/// cost a true number at the dearest price and mc.
+/// What a data set must allow before a job is made: at least two objects of every class
+/// (the stratified folds hold a class of one object out of one fold's training part, and
+/// a tree must see every class it is judged on), a fold per `--folds` (and per
+/// `--cvt-folds` inside a training part, with CVT), and every total cost a true number at
+/// the dearest price and mc.
 fn check_dataset(def: &Definition, name: &str, loaded: &cslearn::testcost::Loaded) -> Result<()> {
     let frame = &loaded.frame;
-    let smallest = frame.class_totals().into_iter().min().unwrap_or(0);
-    if smallest == 0 {
-        bail!("data set `{name}`: a class with no objects");
+    let totals = frame.class_totals();
+    if let Some(c) = totals.iter().position(|&t| t < 2) {
+        bail!(
+            "data set `{name}`: class `{}` has {} object{}: the stratified folds would judge \
+             a tree on a class its training part lacks (every class needs at least 2)",
+            frame.class_names()[c],
+            totals[c],
+            if totals[c] == 1 { "" } else { "s" }
+        );
     }
     let n = frame.len();
     if def.folds > n {
@@ -1359,6 +1367,39 @@ pub(crate) mod tests {
             std::fs::read_dir(dir.path()).unwrap().next().is_none(),
             "nothing was written"
         );
+    }
+
+    /// A data set of one object, or with a class of one object, is refused by name before
+    /// a job is made: stratified folds would judge a tree on a class its training part
+    /// lacks (once both ran).
+    #[test]
+    fn data_sets_with_a_class_of_one_object_are_refused_by_name() {
+        let dir = tempfile::tempdir().unwrap();
+        let data = "1,a\n2,a\n3,a\n4,b\n5,b\n6,b\n7,c\n";
+        std::fs::write(dir.path().join("lone.data"), data).unwrap();
+        std::fs::write(dir.path().join("one.data"), "1,a\n").unwrap();
+        let table = |name: &str| {
+            format!(
+                "[[dataset]]\nname = \"{name}\"\nfiles = [\"{name}.data\"]\n\
+                 columns = [\"x\", \"t\"]\ntarget = \"t\"\nmissing = []\n"
+            )
+        };
+        let manifest = dir.path().join("datasets.toml");
+        std::fs::write(&manifest, table("lone") + &table("one")).unwrap();
+        for (name, expected) in [
+            ("lone", "data set `lone`: class `c` has 1 object"),
+            ("one", "data set `one`: class `a` has 1 object"),
+        ] {
+            let out = dir.path().join(format!("out-{name}"));
+            let mut a = args(&out, 1);
+            a.manifest.clone_from(&manifest);
+            a.datasets = vec![name.into()];
+            a.costs = vec!["random".into()];
+            let err = format!("{:#}", testcost(&a).unwrap_err());
+            assert!(err.contains(expected), "{err}");
+            assert!(err.contains("every class needs at least 2"), "{err}");
+            assert!(!out.exists(), "nothing was written");
+        }
     }
 
     /// A results line edited by hand is refused by name, never put in another row: labels

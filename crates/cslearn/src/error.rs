@@ -290,4 +290,8 @@ pub enum Error {
         /// The limit.
         max: u64,
     },
+    /// A fit stopped before it ended, because its
+    /// [`Stop`](crate::testcost::Stop) was requested; what it had grown is dropped.
+    #[error("the fit was stopped before it ended")]
+    Stopped,
 }

@@ -326,6 +326,10 @@ fn _csrl(m: &Bound<'_, PyModule>) -> PyResult<()> {
         "MAX_CLASSES",
         cslearn::testcost::FrameSpec::DEFAULT_MAX_CLASSES,
     )?;
+    m.add(
+        "MAX_LOOKAHEAD_FEATURES",
+        cslearn::testcost::FamilyParams::DEFAULT_MAX_LOOKAHEAD_FEATURES,
+    )?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

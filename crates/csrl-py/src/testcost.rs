@@ -11,7 +11,7 @@
 
 use cslearn::testcost::{
     ActParams, Budget, Column, CostTree, CvtChoice, CvtParams, FamilyParams, FeatureShape, Frame,
-    IcetGenome, IcetParams, MISSING, Method, MisclassCosts, Pruning, SelectionPrices, Split,
+    IcetGenome, IcetParams, MISSING, Method, MisclassCosts, Pruning, SelectionPrices, Split, Stop,
     TestPrice, TestPrices,
 };
 use pyo3::prelude::*;
@@ -209,6 +209,51 @@ impl TestCostTree {
     }
 }
 
+/// How long the calling thread waits for a fit before it asks Python, again, whether a
+/// signal (Ctrl-C) came.
+const SIGNAL_CHECK: std::time::Duration = std::time::Duration::from_millis(50);
+
+/// `fit` run on a thread of its own, without the GIL, while the calling thread (Python's
+/// main thread, where signal handlers run) waits for it and, every [`SIGNAL_CHECK`], takes
+/// the GIL to run Python's signal handlers: when one raises (`KeyboardInterrupt` on
+/// Ctrl-C), the fit's [`Stop`] is requested, the fit ends at once, and the exception is
+/// raised in its place.
+fn until_interrupted<T: Send>(
+    py: Python<'_>,
+    fit: impl FnOnce(&Stop) -> Result<T, cslearn::Error> + Send,
+) -> PyResult<T> {
+    use std::sync::mpsc::{RecvTimeoutError, channel};
+    let stop = Stop::default();
+    let (result, raised) = py.detach(|| {
+        std::thread::scope(|scope| {
+            let (done, finished) = channel::<()>();
+            let stop = &stop;
+            let worker = scope.spawn(move || {
+                let result = fit(stop);
+                // The receiver may be gone only if the waiting thread was: nothing to tell.
+                let _ = done.send(());
+                result
+            });
+            let mut raised = None;
+            while let Err(RecvTimeoutError::Timeout) = finished.recv_timeout(SIGNAL_CHECK) {
+                if let Err(e) = Python::attach(|py| py.check_signals()) {
+                    raised = Some(e);
+                    stop.request();
+                    break;
+                }
+            }
+            let result = worker
+                .join()
+                .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+            (result, raised)
+        })
+    });
+    if let Some(e) = raised {
+        return Err(e);
+    }
+    result.map_err(|e| data_error(&e))
+}
+
 fn check_unit(value: f64, what: &str, low_open: bool, high_open: bool) -> PyResult<()> {
     let low_ok = if low_open { value > 0.0 } else { value >= 0.0 };
     let high_ok = if high_open { value < 1.0 } else { value <= 1.0 };
@@ -237,7 +282,8 @@ impl TestCostTree {
     /// prunes ("errors" or "costs") and `search_objects` the most objects its search
     /// uses; `folds` CVT's cross-validation (`seed` also its folds); `max_test_cost` and
     /// `max_tests` a budget per object (`Budget`), within which the greedy learners grow
-    /// (`None`: no limit). The GIL is released while it grows.
+    /// (`None`: no limit). The GIL is released while it grows, and Ctrl-C stops it
+    /// (`KeyboardInterrupt`, checked every 50 ms).
     #[staticmethod]
     #[pyo3(signature = (learner, names, columns, classes, class_names, prices, group_names, misclassification, confidence=0.25, w=1.0, seed=0, population=50, generations=20, samples=5, selection_prices="path", icet_pruning="errors", search_objects=400, folds=5, max_test_cost=None, max_tests=None, threads=1))]
     #[expect(
@@ -323,16 +369,19 @@ impl TestCostTree {
             act,
             cvt,
             budget,
+            // The lookahead's limit is the library's: `MAX_LOOKAHEAD_FEATURES`.
+            ..FamilyParams::default()
         };
         let rows: Vec<usize> = (0..frame.len()).collect();
         mc.check_totals(&prices, rows.len())
             .map_err(|e| data_error(&e))?;
         // Counts are judged against the data before anything is allocated.
         params
-            .check(method, rows.len())
+            .check(method, &frame, rows.len())
             .map_err(|e| data_error(&e))?;
-        let fitted = py
-            .detach(|| cslearn::testcost::fit(method, &frame, &rows, &prices, &mc, &params, seed));
+        let fitted = until_interrupted(py, |stop| {
+            cslearn::testcost::fit_until(method, &frame, &rows, &prices, &mc, &params, seed, stop)
+        })?;
         Ok(TestCostTree {
             learner: method,
             names,

@@ -2,6 +2,8 @@
 misclassification costs, nominal columns, ICET's seed and pickling."""
 
 import pickle
+import subprocess
+import sys
 import warnings
 
 import numpy as np
@@ -316,6 +318,51 @@ def test_a_continuous_target_is_refused_before_its_cost_matrix_is_made():
         cs.TestCostTreeClassifier().fit(X, np.arange(20000))
 
 
+def test_classes_times_objects_past_what_a_fit_may_hold_are_refused_before_learning():
+    # 1000 classes of three objects: CVT's ten trees and tries on each of its six sets of
+    # objects would keep 1000 weights at every node; EG2's one tree may.
+    X = np.arange(3000, dtype=float).reshape(-1, 1)
+    y = np.arange(3000) % 1000
+    with pytest.raises(ValueError, match="1000 classes over 3000 training objects"):
+        cs.CvtClassifier().fit(X, y)
+    assert cs.Eg2Classifier().fit(X, y).score(X, y) > 0
+
+
+def test_a_table_too_wide_for_the_lookahead_is_refused_before_learning():
+    # ACT's sampled lookahead takes time in the square of the features: past 1000, ACT
+    # with samples and CVT are refused; ACT without samples and EG2 learn.
+    wide = csrl._csrl.MAX_LOOKAHEAD_FEATURES + 1
+    X = np.arange(8 * wide, dtype=float).reshape(8, wide) % 5
+    y = [0, 1] * 4
+    with pytest.raises(ValueError, match=f"{wide} features for CVT's lookahead grower: at most 1000"):
+        cs.CvtClassifier(cvt_folds=2).fit(X, y)
+    with pytest.raises(ValueError, match=f"{wide} features for ACT's lookahead"):
+        cs.ActClassifier().fit(X, y)
+    assert cs.ActClassifier(act_samples=0).fit(X, y).predict(X).shape == (8,)
+    assert cs.Eg2Classifier().fit(X, y).predict(X).shape == (8,)
+
+
+def test_one_object_is_learned_as_a_leaf_and_a_class_of_one_object_is_said():
+    # One object: a learner answers its class; CVT's cross-validation needs a fold per
+    # object, so it refuses.
+    for cls in (cs.Eg2Classifier, cs.DtmcClassifier, cs.IcetClassifier, cs.ActClassifier):
+        clf = cls().fit([[1.0, 2.0]], ["only"])
+        assert clf.predict([[5.0, 0.0]]).tolist() == ["only"], cls.__name__
+        assert len(clf._model.nodes()) == 1
+    with pytest.raises(ValueError, match="cvt_folds=5 needs at least 5 samples, found n_samples = 1"):
+        cs.CvtClassifier().fit([[1.0, 2.0]], ["only"])
+    # A class of one object: learned, and CVT says that one of its inner folds lacks it.
+    X = np.arange(14, dtype=float).reshape(7, 2)
+    y = ["a", "a", "a", "b", "b", "b", "c"]
+    with pytest.warns(UserWarning, match="class 'c' has one object: the fold of CVT's cross-validation"):
+        cvt = cs.CvtClassifier(cvt_folds=2).fit(X, y)
+    assert set(cvt.classes_) == {"a", "b", "c"}
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        cs.CvtClassifier(cvt_folds=2).fit(X[:6], y[:6])
+        cs.ActClassifier().fit(X, y)
+
+
 def test_the_published_benchmarks_settings_are_estimator_parameters():
     # Listed prices: a numeric test bought once costs its price again further down, so
     # IDX no longer splits on x0 alone (see the blobs test above).
@@ -495,3 +542,66 @@ def test_export_text_names_tests_prices_and_classes():
         "|--- size > 5.00 (price 1.5)",
         "|   |--- class: big",
     ]
+
+
+# A child interpreter fits a test-cost tree that would grow for hours, while a helper
+# thread waits, in Python, until the main thread is inside the compiled fit (its innermost
+# Python frame is `fit`, at the line that calls `_csrl.TestCostTree.fit`), then sends the
+# process SIGINT. No clock and no fixed wait: with the GIL held by the fit the helper
+# could not run at all, and a fit deaf to Ctrl-C would run for hours; its ending proves
+# both. The child first takes Python's own Ctrl-C handler: a process started in the
+# background by a shell inherits SIGINT ignored, and Python then leaves it ignored.
+FIT_STOPPED = """
+import inspect, os, signal, sys, threading
+signal.signal(signal.SIGINT, signal.default_int_handler)
+import numpy as np
+from csrl import sklearn as cs
+source, first = inspect.getsourcelines(cs.TestCostTreeClassifier.fit)
+line = first + next(i for i, text in enumerate(source) if "_csrl.TestCostTree.fit(" in text)
+main = threading.main_thread().ident
+def growing():
+    frame = sys._current_frames().get(main)
+    return frame is not None and frame.f_code.co_name == "fit" and frame.f_lineno == line
+def helper():
+    while not growing():
+        os.sched_yield()
+    print("growing", flush=True)
+    os.kill(os.getpid(), signal.SIGINT)
+threading.Thread(target=helper, daemon=True).start()
+rng = np.random.default_rng(1)
+X = rng.random((OBJECTS, FEATURES))
+y = (X[:, 0] + X[:, 1] + rng.random(OBJECTS) > 1.5).astype(int)
+clf = ESTIMATOR
+try:
+    clf.fit(X, y)
+    print("finished", flush=True)
+except KeyboardInterrupt:
+    print("fitted" if hasattr(clf, "classes_") else "unfitted", flush=True)
+    raise
+"""
+
+# Fits of hours: ACT sampling 1000 trees under every branch of every candidate; ICET's
+# largest search (10,000 individuals for 10,000 generations: 10^8 trees); CVT, whose
+# lookahead grower grows on six sets of objects, on 300 features.
+LONG_FITS = {
+    "act": ("cs.ActClassifier(act_samples=1000)", 3000, 10),
+    "icet": ("cs.IcetClassifier(population=10000, generations=10000)", 1000, 10),
+    "cvt": ("cs.CvtClassifier()", 2000, 300),
+}
+
+
+@pytest.mark.parametrize("learner", LONG_FITS)
+def test_ctrl_c_stops_a_long_fit_and_leaves_the_estimator_unfitted(learner):
+    estimator, objects, features = LONG_FITS[learner]
+    child = (
+        FIT_STOPPED.replace("ESTIMATOR", estimator)
+        .replace("OBJECTS", str(objects))
+        .replace("FEATURES", str(features))
+    )
+    # The timeout guards against a hang only: a fit deaf to Ctrl-C runs past it and fails.
+    proc = subprocess.run([sys.executable, "-c", child], capture_output=True, text=True, timeout=300)
+    assert "growing" in proc.stdout, (proc.stdout, proc.stderr)
+    assert "unfitted" in proc.stdout, (proc.stdout, proc.stderr)
+    assert "KeyboardInterrupt" in proc.stderr, proc.stderr
+    assert "finished" not in proc.stdout
+    assert proc.returncode != 0

@@ -249,6 +249,10 @@ fn check_flags(args: &ClassifyArgs) -> Result<()> {
             ("--max-test-cost", args.max_test_cost.is_some()),
             ("--max-tests", args.max_tests.is_some()),
             ("--max-classes", args.max_classes.is_some()),
+            (
+                "--max-lookahead-features",
+                args.max_lookahead_features.is_some(),
+            ),
         ];
         let family = cslearn::testcost::Method::ALL.map(cslearn::testcost::Method::name);
         let family = family.join(", ");

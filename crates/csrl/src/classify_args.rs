@@ -180,6 +180,11 @@ pub struct ClassifyArgs {
     /// so the tree and every output are the same on any number of threads.
     #[arg(long, value_name = "N")]
     pub(crate) cvt_threads: Option<usize>,
+    /// ACT and CVT only: the most features ACT's sampled lookahead (ACT, and CVT's
+    /// lookahead grower) is run on (1000 by default): its time grows with the square of
+    /// the features, and a wider table is refused unless this raises the limit.
+    #[arg(long, value_name = "N")]
+    pub(crate) max_lookahead_features: Option<usize>,
     /// Family only: the most one object may pay for its tests (after group discounts; a
     /// test done once is free further down). The greedy learners (id3-batch, c45, idx,
     /// cs-id3-batch, eg2, dtmc) grow within it; every learner's tree classifies within it,
@@ -191,8 +196,9 @@ pub struct ClassifyArgs {
     #[arg(long, value_name = "K")]
     pub(crate) max_tests: Option<usize>,
     /// Family only: the most distinct classes the target may have (1000 by default): a
-    /// numeric column named as the target by mistake has as many classes as rows, and a
-    /// misclassification matrix of their square.
+    /// numeric column named as the target by mistake has as many classes as rows, and
+    /// every node of a tree keeps a weight for each. Raised, a fit is still refused when
+    /// its classes times its training objects would hold too many weights.
     #[arg(long, value_name = "N")]
     pub(crate) max_classes: Option<usize>,
 }

@@ -165,6 +165,12 @@ fn default_mc(prices: &TestPrices) -> f64 {
 fn splits(args: &ClassifyArgs, frame: &Frame) -> Result<(String, Vec<TrainTest>)> {
     use rand::{RngExt, SeedableRng};
     let n = frame.len();
+    anyhow::ensure!(
+        n >= 2,
+        "{}: one object, which cannot be both learned from and held out: an evaluation \
+         needs at least 2",
+        args.data.display()
+    );
     let complement = |test: &[usize]| -> Vec<usize> {
         let mut held = vec![false; n];
         for &r in test {
@@ -177,7 +183,6 @@ fn splits(args: &ClassifyArgs, frame: &Frame) -> Result<(String, Vec<TrainTest>)
             f > 0.0 && f < 1.0,
             "--holdout must be a share strictly between 0 and 1, found {f}"
         );
-        anyhow::ensure!(n >= 2, "--holdout needs at least 2 objects, found {n}");
         // The same share of each class, shuffled by the seed; each class keeps at least
         // one object for training.
         let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(args.seed);
@@ -213,16 +218,34 @@ fn splits(args: &ClassifyArgs, frame: &Frame) -> Result<(String, Vec<TrainTest>)
         let train = complement(&test);
         return Ok((format!("holdout {f}"), vec![(train, test)]));
     }
-    let k = args.folds.unwrap_or(DEFAULT_FOLDS);
+    let Some(k) = args.folds else {
+        anyhow::ensure!(
+            DEFAULT_FOLDS <= n,
+            "{}: {n} objects, too few for the default {DEFAULT_FOLDS}-fold cross-validation \
+             (each fold holds at least one): give --folds K, 2 to {n}, or --holdout F",
+            args.data.display()
+        );
+        return Ok(dealt(frame, DEFAULT_FOLDS, args.seed, complement));
+    };
     anyhow::ensure!(
         k >= 2 && k <= n,
         "--folds must be between 2 and the number of objects ({n}), found {k}"
     );
-    let parts = cslearn::testcost::folds(frame, k, args.seed)
+    Ok(dealt(frame, k, args.seed, complement))
+}
+
+/// The `k` stratified folds of `frame`, each with its training part.
+fn dealt(
+    frame: &Frame,
+    k: usize,
+    seed: u64,
+    complement: impl Fn(&[usize]) -> Vec<usize>,
+) -> (String, Vec<TrainTest>) {
+    let parts = cslearn::testcost::folds(frame, k, seed)
         .into_iter()
         .map(|test| (complement(&test), test))
         .collect();
-    Ok((format!("{k}-fold"), parts))
+    (format!("{k}-fold"), parts)
 }
 
 /// Refuse a split whose training part lacks a class.
@@ -254,6 +277,31 @@ fn check_classes(args: &ClassifyArgs, frame: &Frame, splits: &[TrainTest]) -> Re
         }
     }
     Ok(())
+}
+
+/// For CVT, a warning when a training part holds a class of one object: the stratified
+/// dealing of CVT's own cross-validation leaves it out of every inner fold's training
+/// part but one, where the object is held out and counts as an error whatever the tree.
+fn warn_of_lone_classes(frame: &Frame, splits: &[TrainTest]) {
+    for (j, (train, _)) in splits.iter().enumerate() {
+        let mut seen = vec![0usize; frame.class_count()];
+        for &r in train {
+            seen[frame.class(r) as usize] += 1;
+        }
+        if let Some(c) = seen.iter().position(|&m| m == 1) {
+            let part = if splits.len() == 1 {
+                "the training part".to_string()
+            } else {
+                format!("the training part of fold {}", j + 1)
+            };
+            crate::note(format_args!(
+                "warning: {part} has one object of class `{}`: CVT's inner fold that holds \
+                 it out learns without the class, and counts it as an error",
+                frame.class_names()[c]
+            ));
+            return;
+        }
+    }
 }
 
 /// The genome as JSON: ICET's biased price of each feature, its `w`, confidence and
@@ -446,7 +494,16 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
         None => cvt,
     };
     let budget = read_budget(args)?;
+    if args.max_lookahead_features.is_some() && !matches!(method, Method::Act | Method::Cvt) {
+        anyhow::bail!(
+            "--max-lookahead-features is read by --learner act and cvt only, not by --learner {}",
+            method.name()
+        );
+    }
     let params = cslearn::testcost::FamilyParams {
+        max_lookahead_features: args
+            .max_lookahead_features
+            .unwrap_or(cslearn::testcost::FamilyParams::DEFAULT_MAX_LOOKAHEAD_FEATURES),
         budget,
         selection_prices,
         cvt,
@@ -462,9 +519,19 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
         .map(|(train, _)| train.len())
         .min()
         .unwrap_or(0);
-    params
-        .check(method, smallest)
-        .map_err(|e| anyhow::anyhow!("--learner {}: {e}", method.name()))?;
+    params.check(method, &frame, smallest).map_err(|e| {
+        let hint = match &e {
+            cslearn::Error::Invalid { what, .. } if what.contains("lookahead") => {
+                "; --max-lookahead-features N raises the limit (eg2 and dtmc learn wide \
+                     tables fast)"
+            }
+            _ => "",
+        };
+        anyhow::anyhow!("--learner {}: {e}{hint}", method.name())
+    })?;
+    if method == Method::Cvt {
+        warn_of_lone_classes(&frame, &parts);
+    }
     let bar = crate::progress::progress_bar(parts.len() + usize::from(args.save.is_some()));
     let mut results = Vec::with_capacity(parts.len());
     for (j, (train, test)) in parts.iter().enumerate() {

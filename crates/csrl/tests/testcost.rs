@@ -697,6 +697,62 @@ fn a_class_missing_from_a_training_part_is_refused() {
 }
 
 #[test]
+fn one_object_or_too_few_for_the_default_folds_are_refused_saying_what_to_give() {
+    let s = Scratch::new();
+    s.file("costs.csv", "feature,cost\na,1\n");
+    let costs = s.path("costs.csv");
+    let run = |data: &str, learner: &str, extra: &[&str]| {
+        let mut args = vec![
+            "classify",
+            "--data",
+            data,
+            "--costs",
+            &costs,
+            "--target",
+            "t",
+            "--learner",
+            learner,
+        ];
+        args.extend_from_slice(extra);
+        csrl(&args)
+    };
+    let one = s.file("one.csv", "a,t\n1,n\n");
+    for extra in [&[][..], &["--holdout", "0.5"], &["--folds", "2"]] {
+        refused(
+            &run(&one, "eg2", extra),
+            &[
+                "one.csv: one object",
+                "cannot be both learned from and held out",
+            ],
+        );
+    }
+    // Seven objects, no --folds: the default ten folds would leave some empty.
+    let seven = s.file("seven.csv", "a,t\n1,n\n2,n\n3,n\n4,p\n5,p\n6,p\n7,c\n");
+    refused(
+        &run(&seven, "eg2", &[]),
+        &[
+            "seven.csv: 7 objects, too few for the default 10-fold cross-validation",
+            "give --folds K, 2 to 7, or --holdout F",
+        ],
+    );
+    // Held out, the class of one object stays in training: it runs, and CVT, whose own
+    // folds cannot all see it, says so.
+    let out = run(&seven, "cvt", &["--holdout", "0.3", "--cvt-folds", "2"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains(
+            "warning: the training part has one object of class `c`: CVT's inner fold that \
+             holds it out learns without the class"
+        ),
+        "{}",
+        stderr(&out)
+    );
+    let out = run(&seven, "eg2", &["--holdout", "0.3"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(!stderr(&out).contains("warning"), "{}", stderr(&out));
+}
+
+#[test]
 fn flags_the_learner_does_not_read_are_refused() {
     let s = Scratch::new();
     s.file("costs.csv", "feature,cost\na,10\nb,8\n");
@@ -852,6 +908,107 @@ fn a_target_with_more_classes_than_the_limit_is_refused_with_how_to_raise_it() {
     refused(
         &s.classify("eg2", "prices.expense", &["--max-classes", "1499"]),
         &["1500 distinct values", "at most 1499"],
+    );
+}
+
+#[test]
+fn a_target_of_100000_values_with_the_limit_raised_is_refused_before_anything_is_learned() {
+    // A numeric column given as the target, --max-classes raised to take it: its uniform
+    // cost matrix, once 80 GB, is one number, and what cannot be learned is refused.
+    let s = Scratch::new();
+    let target = |modulus: usize| {
+        let mut data = String::from("a,b,t\n");
+        for i in 0..100_000 {
+            data.push_str(&format!("{},x,{}\n", i % 7, i % modulus));
+        }
+        s.file("data.csv", &data);
+    };
+    // Every value once: no class can be learned and held out.
+    target(100_000);
+    refused(
+        &s.classify("eg2", "prices.expense", &["--max-classes", "100000"]),
+        &[
+            "data.csv",
+            "class `0` (1 in the data)",
+            "a class of one object",
+        ],
+    );
+    // Every value twice, one of each held out: a tree would keep a weight per class at
+    // each of up to 50,000 nodes.
+    target(50_000);
+    refused(
+        &s.classify(
+            "eg2",
+            "prices.expense",
+            &["--max-classes", "100000", "--holdout", "0.5"],
+        ),
+        &[
+            "--learner eg2",
+            "50000 classes over 50000 training objects",
+            "more than the 134217728 a fit may hold",
+        ],
+    );
+}
+
+#[test]
+fn a_table_too_wide_for_the_lookahead_is_refused_naming_the_flag_that_raises_the_limit() {
+    // 50 objects of 10,000 numeric columns: CVT once ran past three minutes (its
+    // lookahead grower would take hours).
+    let s = Scratch::new();
+    let columns = 10_000;
+    let mut data: String = (0..columns).map(|j| format!("x{j},")).collect();
+    data.push_str("t\n");
+    let mut prices = String::from("feature,cost\n");
+    for j in 0..columns {
+        prices.push_str(&format!("x{j},{}\n", 1 + j % 9));
+    }
+    for i in 0..50 {
+        data.extend((0..columns).map(|j| format!("{},", (i * 7 + j * 13) % 101)));
+        data.push_str(if i % 2 == 0 { "p\n" } else { "n\n" });
+    }
+    let (data, prices) = (s.file("wide.csv", &data), s.file("wide.costs.csv", &prices));
+    let wide = |learner: &str, extra: &[&str]| {
+        let mut args = vec![
+            "classify",
+            "--data",
+            &data,
+            "--costs",
+            &prices,
+            "--target",
+            "t",
+            "--learner",
+            learner,
+        ];
+        args.extend_from_slice(extra);
+        csrl(&args)
+    };
+    for (learner, what) in [
+        ("cvt", "10000 features for CVT's lookahead grower"),
+        ("act", "10000 features for ACT's lookahead"),
+    ] {
+        refused(
+            &wide(learner, &[]),
+            &[
+                &format!("--learner {learner}"),
+                what,
+                "at most 1000",
+                "--max-lookahead-features N raises the limit",
+            ],
+        );
+    }
+    // ACT without samples looks one step ahead, in time linear in the features.
+    let out = wide("act", &["--act-samples", "0", "--holdout", "0.5"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    // The limit is the flag's, for ACT and CVT only.
+    refused(
+        &s.classify("cvt", "prices.expense", &["--max-lookahead-features", "1"]),
+        &["2 features for CVT's lookahead grower: at most 1"],
+    );
+    let out = s.classify("cvt", "prices.expense", &["--max-lookahead-features", "2"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    refused(
+        &s.classify("eg2", "prices.expense", &["--max-lookahead-features", "2"]),
+        &["--max-lookahead-features is read by --learner act and cvt only"],
     );
 }
 

@@ -30,6 +30,7 @@ use super::data::Frame;
 use super::evaluate::folds_of;
 use super::prices::{MisclassCosts, TestPrices};
 use super::splits::Splits;
+use super::stop::Stop;
 use super::tree::{CostTree, GrowParams, SelectionPrices};
 use crate::Error;
 
@@ -189,7 +190,12 @@ type Tries<'a> = Vec<(Criterion, Splits<'a>)>;
 /// Every grower's tree on `rows`, in the order of [`GROWERS`], growers of one kind
 /// sharing a split trie; the lookahead's samples are drawn from `seed`. The tries are
 /// `tries` (those of another call on the same objects, with their statistics), and stay
-/// there but for DTMC's, whose statistics are priced at this call's `mc`.
+/// there but for DTMC's, whose statistics are priced at this call's `mc`. A trie made here
+/// watches `stop`.
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the data, prices, costs, selection and seed, the tries and the stop"
+)]
 fn grow_all<'a>(
     frame: &'a Frame,
     rows: &[usize],
@@ -198,6 +204,7 @@ fn grow_all<'a>(
     selection: SelectionPrices,
     seed: u64,
     tries: &mut Tries<'a>,
+    stop: &'a Stop,
 ) -> Vec<CostTree> {
     let ones = vec![1.0; rows.len()];
     let min_objects = GrowParams::new(Criterion::C45).min_objects;
@@ -208,7 +215,9 @@ fn grow_all<'a>(
             let t = match tries.iter().position(|(k, _)| *k == kind) {
                 Some(t) => t,
                 None => {
-                    tries.push((kind, Splits::new(frame, rows, &ones, mc, kind, min_objects)));
+                    let mut splits = Splits::new(frame, rows, &ones, mc, kind, min_objects);
+                    splits.watch(stop);
+                    tries.push((kind, splits));
                     tries.len() - 1
                 }
             };
@@ -245,6 +254,7 @@ fn grow_roots<'a>(
     seed: u64,
     tries: &mut [Tries<'a>],
     threads: usize,
+    stop: &'a Stop,
 ) -> Vec<Vec<CostTree>> {
     let grow = |k: usize, tries: &mut Tries<'a>| {
         grow_all(
@@ -255,6 +265,7 @@ fn grow_roots<'a>(
             selection,
             sub_seed(seed, k as u64),
             tries,
+            stop,
         )
     };
     if threads <= 1 {
@@ -338,10 +349,10 @@ const CONFIDENCE: f64 = 0.25;
 
 /// CVT's tree on the objects `rows` of `frame`, with its choice; the folds are drawn from
 /// `seed`. It grows through `tries`, those of CVT's trees on the same objects, folds and
-/// prices at other costs (empty for a first tree).
+/// prices at other costs (empty for a first tree), which watch `stop`.
 #[expect(
     clippy::too_many_arguments,
-    reason = "the data, prices, costs, settings and seed, and the tries"
+    reason = "the data, prices, costs, settings and seed, the tries and the stop"
 )]
 pub(super) fn cvt_tree_in<'a>(
     frame: &'a Frame,
@@ -352,6 +363,7 @@ pub(super) fn cvt_tree_in<'a>(
     selection: SelectionPrices,
     seed: u64,
     tries: &mut CvtTries<'a>,
+    stop: &'a Stop,
 ) -> (CostTree, CvtChoice) {
     // Each fold's training objects and held-out objects, the same for every grower.
     let parts: Vec<(Vec<usize>, Vec<usize>)> = folds_of(frame, rows, params.folds.max(2), seed)
@@ -381,6 +393,7 @@ pub(super) fn cvt_tree_in<'a>(
         seed,
         &mut tries.roots[..roots.len()],
         threads,
+        stop,
     )
     .into_iter();
     // Per grower: its tree on every object, its path's points, and the held-out total
@@ -780,7 +793,16 @@ mod tests {
     fn growers_sharing_a_trie_grow_what_each_grows_alone() {
         let (frame, prices, mc, train, _) = heart();
         let selection = SelectionPrices::Listed;
-        let trees = grow_all(&frame, &train, &prices, &mc, selection, 7, &mut Vec::new());
+        let trees = grow_all(
+            &frame,
+            &train,
+            &prices,
+            &mc,
+            selection,
+            7,
+            &mut Vec::new(),
+            &Stop::default(),
+        );
         for (tree, &(name, grower)) in trees.iter().zip(&GROWERS) {
             let alone = match grower {
                 Grower::Greedy(criterion) => {

@@ -63,8 +63,9 @@ pub struct FrameSpec {
     pub missing: Vec<String>,
     /// The most distinct classes [`Frame::read_csv`] accepts in the class column (`None`:
     /// [`FrameSpec::DEFAULT_MAX_CLASSES`]; after `positive_if`, which makes two). A numeric column named as the class by mistake
-    /// has as many values as objects, and its misclassification matrix grows with their
-    /// square: it is refused before anything is learned.
+    /// has as many values as objects, every node of a tree keeps a weight for each, and a
+    /// misclassification matrix that is not uniform grows with their square: it is
+    /// refused before anything is learned.
     pub max_classes: Option<usize>,
 }
 

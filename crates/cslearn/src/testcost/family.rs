@@ -11,6 +11,7 @@ use super::data::Frame;
 use super::evaluate::shuffle;
 use super::prices::{MisclassCosts, TestPrices};
 use super::splits::Splits;
+use super::stop::Stop;
 use super::tree::{CostTree, GrowParams, Pruning, SelectionPrices};
 use crate::Error;
 
@@ -189,6 +190,23 @@ pub struct FamilyParams {
     /// learns the same trees as before budgets existed.
     #[serde(default, skip_serializing_if = "Budget::is_unlimited")]
     pub budget: Budget,
+    /// The most features ACT's sampled lookahead (ACT with samples, and CVT's lookahead
+    /// grower) may be run on ([`FamilyParams::check`]):
+    /// [`DEFAULT_MAX_LOOKAHEAD_FEATURES`](FamilyParams::DEFAULT_MAX_LOOKAHEAD_FEATURES)
+    /// unless raised.
+    #[serde(
+        default = "default_max_lookahead_features",
+        skip_serializing_if = "is_default_max_lookahead_features"
+    )]
+    pub max_lookahead_features: usize,
+}
+
+fn default_max_lookahead_features() -> usize {
+    FamilyParams::DEFAULT_MAX_LOOKAHEAD_FEATURES
+}
+
+fn is_default_max_lookahead_features(features: &usize) -> bool {
+    *features == FamilyParams::DEFAULT_MAX_LOOKAHEAD_FEATURES
 }
 
 impl Default for FamilyParams {
@@ -201,27 +219,65 @@ impl Default for FamilyParams {
             cvt: CvtParams::default(),
             selection_prices: SelectionPrices::Path,
             budget: Budget::UNLIMITED,
+            max_lookahead_features: FamilyParams::DEFAULT_MAX_LOOKAHEAD_FEATURES,
         }
     }
 }
 
 impl FamilyParams {
-    /// Whether `method` can learn with these settings from `objects` training objects,
-    /// checked before anything is allocated: CVT's folds at most the objects (a fold holds
-    /// at least one), ICET's search within [`IcetParams::MAX_POPULATION`] and
+    /// The most class weights a fit may hold ([`check`](FamilyParams::check)): 2^27, a
+    /// GiB of them.
+    pub const MAX_CLASS_WEIGHTS: usize = 1 << 27;
+
+    /// The most features ACT's sampled lookahead is run on unless
+    /// [`max_lookahead_features`](FamilyParams::max_lookahead_features) says otherwise. At
+    /// every node the lookahead grows trees under each branch of every candidate test, and
+    /// each of their nodes scores every test, so its time grows with the square of the
+    /// features: on 50 objects one ACT fit took 1.2 s on 200 features, 6.7 s on 500 and
+    /// about 36 s on 1000, CVT about four times as long; on 10,000 it would take hours.
+    pub const DEFAULT_MAX_LOOKAHEAD_FEATURES: usize = 1000;
+
+    /// Whether `method` can learn with these settings from `objects` training objects of
+    /// `frame`, checked before anything is allocated: CVT's folds at most the objects (a
+    /// fold holds at least one), ICET's search within [`IcetParams::MAX_POPULATION`] and
     /// [`IcetParams::MAX_GENERATIONS`] and on at least 2 objects, ACT's samples within
     /// [`ActParams::MAX_SAMPLES`]; a learner's settings are checked only when it reads
     /// them. The front ends call it with the smallest training part's size.
     ///
+    /// Whatever the learner, the weights a fit may hold are bounded: every node of a tree
+    /// and every cell of a split trie keeps one weight per class, a tree may grow about a
+    /// node per training object (one per object of its own class, where the classes are
+    /// as many as the objects), and a fit holds a trie and a tree (ICET and ACT a third:
+    /// the search's trie, the lookahead's cells), CVT ten on each of its folds and on all
+    /// the objects. Classes times objects times those copies must be at most
+    /// [`MAX_CLASS_WEIGHTS`](FamilyParams::MAX_CLASS_WEIGHTS): a target with as many
+    /// classes as objects (a numeric column named as the class) is refused here, not
+    /// after gigabytes. ACT with samples and CVT (its lookahead grower) are refused on
+    /// more features than [`max_lookahead_features`](FamilyParams::max_lookahead_features).
+    ///
     /// ```
-    /// use cslearn::testcost::{CvtParams, FamilyParams, Method};
+    /// use cslearn::testcost::{Column, CvtParams, FamilyParams, Frame, Method};
+    /// let frame = |classes: u32| Frame::new(vec!["x".into()], vec![Column::Numeric(vec![0.0; 20_000])],
+    ///     (0..20_000).map(|i| i % classes).collect(), (0..classes).map(|c| c.to_string()).collect()).unwrap();
     /// let p = FamilyParams { cvt: CvtParams::with_folds(10).unwrap(), ..FamilyParams::default() };
-    /// assert!(p.check(Method::Cvt, 10).is_ok());
-    /// let e = p.check(Method::Cvt, 9).unwrap_err().to_string();
+    /// let two = frame(2);
+    /// assert!(p.check(Method::Cvt, &two, 10).is_ok());
+    /// let e = p.check(Method::Cvt, &two, 9).unwrap_err().to_string();
     /// assert!(e.contains("10 folds") && e.contains("9 training objects"), "{e}");
-    /// assert!(p.check(Method::Eg2, 9).is_ok());
+    /// assert!(p.check(Method::Eg2, &two, 9).is_ok());
+    /// // 10,000 classes of two objects each: too many weights for any learner.
+    /// let e = p.check(Method::Eg2, &frame(10_000), 18_000).unwrap_err().to_string();
+    /// assert!(e.contains("10000 classes over 18000 training objects"), "{e}");
+    /// // 1001 features: the lookahead would take too long, unless the limit is raised.
+    /// let wide = Frame::new((0..1001).map(|j| format!("x{j}")).collect(),
+    ///     (0..1001).map(|_| Column::Numeric(vec![0.0; 6])).collect(), vec![0, 1, 0, 1, 0, 1],
+    ///     vec!["a".into(), "b".into()]).unwrap();
+    /// let e = FamilyParams::default().check(Method::Cvt, &wide, 6).unwrap_err().to_string();
+    /// assert!(e.contains("1001 features for CVT's lookahead grower") && e.contains("at most 1000"), "{e}");
+    /// let raised = FamilyParams { max_lookahead_features: 1001, ..FamilyParams::default() };
+    /// assert!(raised.check(Method::Cvt, &wide, 6).is_ok());
     /// ```
-    pub fn check(&self, method: Method, objects: usize) -> Result<(), Error> {
+    pub fn check(&self, method: Method, frame: &Frame, objects: usize) -> Result<(), Error> {
         let invalid = |what: String, reason: String| Err(Error::Invalid { what, reason });
         let cvt = self.cvt.folds;
         if method == Method::Cvt && (cvt < 2 || cvt > objects) {
@@ -229,6 +285,45 @@ impl FamilyParams {
                 format!("{cvt} folds for CVT"),
                 format!(
                     "between 2 and the {objects} training objects (each fold holds at least one)"
+                ),
+            );
+        }
+        let features = frame.feature_count();
+        let lookahead = match method {
+            Method::Act if self.act.samples > 0 => Some("ACT's lookahead"),
+            Method::Cvt => Some("CVT's lookahead grower"),
+            _ => None,
+        };
+        if let Some(lookahead) = lookahead
+            && features > self.max_lookahead_features
+        {
+            return invalid(
+                format!("{features} features for {lookahead}"),
+                format!(
+                    "at most {} (the lookahead grows trees under every candidate test, each of \
+                     whose nodes scores every test: its time grows with the square of the \
+                     features)",
+                    self.max_lookahead_features
+                ),
+            );
+        }
+        let classes = frame.class_count();
+        let copies = match method {
+            Method::Cvt => 10 * (cvt + 1),
+            Method::Icet | Method::Act => 3,
+            _ => 2,
+        };
+        let weights = classes.saturating_mul(objects).saturating_mul(copies);
+        if weights > FamilyParams::MAX_CLASS_WEIGHTS {
+            return invalid(
+                format!("{classes} classes over {objects} training objects"),
+                format!(
+                    "every node of a tree keeps a weight per class, and {} may hold {copies} \
+                     nodes or trie cells per training object: {weights} weights, more than the \
+                     {} a fit may hold (a numeric column named as the class? merge its values \
+                     into fewer classes)",
+                    method.name(),
+                    FamilyParams::MAX_CLASS_WEIGHTS
                 ),
             );
         }
@@ -366,9 +461,73 @@ pub fn fit(
     params: &FamilyParams,
     seed: u64,
 ) -> Fitted {
+    fit_watching(
+        method,
+        frame,
+        rows,
+        prices,
+        mc,
+        params,
+        seed,
+        &Stop::default(),
+    )
+}
+
+/// [`fit`], unless `stop` is requested before it ends: then it ends at once (every trie it
+/// grows through offers no more tests, ICET's search takes no more individuals) with
+/// [`Error::Stopped`], and what it grew is dropped. A stop never requested gives
+/// [`fit`]'s tree, to the bit.
+///
+/// # Errors
+/// [`Error::Stopped`] when `stop` was requested.
+///
+/// ```
+/// use cslearn::testcost::{fit, fit_until, Column, FamilyParams, Frame, Method, MisclassCosts, Stop, TestPrices};
+/// let frame = Frame::new(vec!["x".into()], vec![Column::Numeric((0..20).map(f64::from).collect())],
+///     (0..20).map(|i| u32::from(i >= 10)).collect(), vec!["a".into(), "b".into()]).unwrap();
+/// let (prices, mc) = (TestPrices::flat(&[5.0]).unwrap(), MisclassCosts::uniform(2, 100.0).unwrap());
+/// let rows: Vec<usize> = (0..20).collect();
+/// let params = FamilyParams::default();
+/// let stop = Stop::default();
+/// let fitted = fit_until(Method::Act, &frame, &rows, &prices, &mc, &params, 1, &stop).unwrap();
+/// assert_eq!(fitted, fit(Method::Act, &frame, &rows, &prices, &mc, &params, 1));
+/// stop.request();
+/// let stopped = fit_until(Method::Act, &frame, &rows, &prices, &mc, &params, 1, &stop);
+/// assert!(matches!(stopped, Err(cslearn::Error::Stopped)));
+/// ```
+#[expect(clippy::too_many_arguments, reason = "fit's arguments and the stop")]
+pub fn fit_until(
+    method: Method,
+    frame: &Frame,
+    rows: &[usize],
+    prices: &TestPrices,
+    mc: &MisclassCosts,
+    params: &FamilyParams,
+    seed: u64,
+    stop: &Stop,
+) -> Result<Fitted, Error> {
+    let fitted = fit_watching(method, frame, rows, prices, mc, params, seed, stop);
+    if stop.is_requested() {
+        return Err(Error::Stopped);
+    }
+    Ok(fitted)
+}
+
+/// [`fit`] through split tries that watch `stop`.
+#[expect(clippy::too_many_arguments, reason = "fit's arguments and the stop")]
+fn fit_watching(
+    method: Method,
+    frame: &Frame,
+    rows: &[usize],
+    prices: &TestPrices,
+    mc: &MisclassCosts,
+    params: &FamilyParams,
+    seed: u64,
+    stop: &Stop,
+) -> Fitted {
     if matches!(method, Method::Act | Method::Cvt) {
         // Their tree at one cost is fit_each's, through tries of its own.
-        let mut one = fit_each(
+        let mut one = fit_each_watching(
             method,
             frame,
             rows,
@@ -376,11 +535,12 @@ pub fn fit(
             std::slice::from_ref(mc),
             params,
             seed,
+            stop,
         );
         return one.remove(0);
     }
     if method == Method::Icet {
-        let genome = icet_search(frame, rows, prices, mc, params, seed);
+        let genome = icet_search(frame, rows, prices, mc, params, seed, stop);
         let biased = prices
             .repriced(&genome.prices)
             .unwrap_or_else(|_| prices.clone());
@@ -389,16 +549,31 @@ pub fn fit(
             .selecting_at(params.selection_prices);
         let grow = grow.pruning_by(params.icet.pruning);
         return Fitted {
-            tree: icet_tree(frame, rows, &biased, prices, mc, &grow),
+            tree: icet_tree(frame, rows, &biased, prices, mc, &grow, stop),
             genome: Some(genome),
             cvt: None,
         };
     }
     Fitted {
-        tree: CostTree::grow(frame, rows, prices, mc, &method.grow_params(params)),
+        tree: grow_watching(frame, rows, prices, mc, &method.grow_params(params), stop),
         genome: None,
         cvt: None,
     }
+}
+
+/// [`CostTree::grow`] through a split trie that watches `stop`.
+fn grow_watching(
+    frame: &Frame,
+    rows: &[usize],
+    prices: &TestPrices,
+    mc: &MisclassCosts,
+    params: &GrowParams,
+    stop: &Stop,
+) -> CostTree {
+    let ones = vec![1.0; rows.len()];
+    let mut splits = Splits::new(frame, rows, &ones, mc, params.criterion, params.min_objects);
+    splits.watch(stop);
+    CostTree::grow_in(&mut splits, prices, mc, params)
 }
 
 /// The tree `method` learns on the objects `rows` of `frame` at each misclassification
@@ -435,6 +610,33 @@ pub fn fit_each(
     params: &FamilyParams,
     seed: u64,
 ) -> Vec<Fitted> {
+    fit_each_watching(
+        method,
+        frame,
+        rows,
+        prices,
+        mcs,
+        params,
+        seed,
+        &Stop::default(),
+    )
+}
+
+/// [`fit_each`] through split tries that watch `stop`.
+#[expect(
+    clippy::too_many_arguments,
+    reason = "fit_each's arguments and the stop"
+)]
+fn fit_each_watching(
+    method: Method,
+    frame: &Frame,
+    rows: &[usize],
+    prices: &TestPrices,
+    mcs: &[MisclassCosts],
+    params: &FamilyParams,
+    seed: u64,
+    stop: &Stop,
+) -> Vec<Fitted> {
     let Some(first) = mcs.first() else {
         return Vec::new();
     };
@@ -449,6 +651,7 @@ pub fn fit_each(
                 seed,
             };
             let mut splits = act(first).trie(frame, rows);
+            splits.watch(stop);
             mcs.iter()
                 .map(|mc| Fitted {
                     tree: act(mc).tree_in(&mut splits),
@@ -470,6 +673,7 @@ pub fn fit_each(
                         params.selection_prices,
                         seed,
                         &mut tries,
+                        stop,
                     );
                     Fitted {
                         tree,
@@ -481,10 +685,10 @@ pub fn fit_each(
         }
         _ if method.depends_on_mc() => mcs
             .iter()
-            .map(|mc| fit(method, frame, rows, prices, mc, params, seed))
+            .map(|mc| fit_watching(method, frame, rows, prices, mc, params, seed, stop))
             .collect(),
         _ => {
-            let fitted = fit(method, frame, rows, prices, first, params, seed);
+            let fitted = fit_watching(method, frame, rows, prices, first, params, seed, stop);
             mcs.iter()
                 .map(|mc| {
                     let mut each = fitted.clone();
@@ -498,7 +702,8 @@ pub fn fit_each(
 
 /// ICET's tree: grown by `grow` at the `biased` prices; pruned by errors, or by total
 /// cost at the `real` prices (tests are chosen at the biased prices and must pay for
-/// themselves at the real ones), as its search's fitness prunes it.
+/// themselves at the real ones), as its search's fitness prunes it; grown through a split
+/// trie that watches `stop`.
 fn icet_tree(
     frame: &Frame,
     rows: &[usize],
@@ -506,6 +711,7 @@ fn icet_tree(
     real: &TestPrices,
     mc: &MisclassCosts,
     grow: &GrowParams,
+    stop: &Stop,
 ) -> CostTree {
     match (grow.pruning, grow.confidence) {
         (Pruning::Costs, Some(confidence)) => {
@@ -513,11 +719,11 @@ fn icet_tree(
                 confidence: None,
                 ..*grow
             };
-            let mut tree = CostTree::grow(frame, rows, biased, mc, &unpruned);
+            let mut tree = grow_watching(frame, rows, biased, mc, &unpruned, stop);
             tree.prune_by_cost(confidence, real);
             tree
         }
-        _ => CostTree::grow(frame, rows, biased, mc, grow),
+        _ => grow_watching(frame, rows, biased, mc, grow, stop),
     }
 }
 
@@ -573,6 +779,8 @@ fn random_genes<R: rand::Rng>(n: usize, rng: &mut R) -> Genes {
     genes
 }
 
+/// ICET's genetic search, its trees grown through a split trie that watches `stop`; it
+/// takes no more individuals once `stop` is requested.
 fn icet_search(
     frame: &Frame,
     rows: &[usize],
@@ -580,6 +788,7 @@ fn icet_search(
     mc: &MisclassCosts,
     params: &FamilyParams,
     seed: u64,
+    stop: &Stop,
 ) -> IcetGenome {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
     let n = prices.len();
@@ -623,6 +832,7 @@ fn icet_search(
         min_objects,
     );
     splits.hold_out(&score_half);
+    splits.watch(stop);
     let mut fitness = |genes: &Genes| -> f64 {
         let (biased, w, confidence) = decode(genes, prices);
         let biased = prices.repriced(&biased).unwrap_or_else(|_| prices.clone());
@@ -641,19 +851,22 @@ fn icet_search(
     start.push(params.confidence);
     let mut population: Vec<(Genes, f64)> = Vec::with_capacity(size);
     population.push((start.clone(), fitness(&start)));
-    while population.len() < size {
+    while population.len() < size && !stop.is_requested() {
         let genes = random_genes(n, &mut rng);
         let f = fitness(&genes);
         population.push((genes, f));
     }
     for _ in 1..icet.generations.max(1) {
+        if stop.is_requested() {
+            break;
+        }
         let best = population
             .iter()
             .min_by(|a, b| a.1.total_cmp(&b.1))
             .cloned()
             .unwrap_or_else(|| (start.clone(), f64::INFINITY));
         let mut next = vec![best];
-        while next.len() < size {
+        while next.len() < size && !stop.is_requested() {
             let pick = |rng: &mut Xoshiro256PlusPlus| {
                 let a = &population[rng.random_range(0..population.len())];
                 let b = &population[rng.random_range(0..population.len())];
@@ -724,7 +937,15 @@ mod tests {
                     .selecting_at(SelectionPrices::ALL[i % 2])
                     .pruning_by(Pruning::ALL[(i / 2) % 2]);
                 let walked = CostTree::held_out_cost(&mut splits, &biased, &prices, &mc, &params);
-                let tree = icet_tree(&frame, &grow, &biased, &prices, &mc, &params);
+                let tree = icet_tree(
+                    &frame,
+                    &grow,
+                    &biased,
+                    &prices,
+                    &mc,
+                    &params,
+                    &Stop::default(),
+                );
                 let direct = mean_total_cost(&tree, &frame, &score, &prices, &mc);
                 assert!(
                     (walked - direct).abs() < 1e-9 * direct.max(1.0),

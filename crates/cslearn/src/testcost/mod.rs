@@ -77,6 +77,7 @@ mod family;
 mod model;
 mod prices;
 mod splits;
+mod stop;
 mod tree;
 
 pub use act::ActParams;
@@ -87,10 +88,11 @@ pub use cvt::{CvtChoice, CvtParams, GROWERS, Grower};
 pub use data::{Column, Frame, FrameSpec, MISSING, read_rows};
 pub use evaluate::{feature_gains, folds, gain_prices, random_prices, standard_cost};
 pub use family::{
-    FamilyParams, Fitted, IcetGenome, IcetParams, Method, fit, fit_each, mean_total_cost,
+    FamilyParams, Fitted, IcetGenome, IcetParams, Method, fit, fit_each, fit_until, mean_total_cost,
 };
 pub use model::{SavedModel, TREE_MODEL_FORMAT, TREE_MODEL_VERSION, TreeModel};
 pub use prices::{Basket, MisclassCosts, TestPrice, TestPrices, TurneyExtra};
+pub use stop::Stop;
 pub use tree::{
     Classification, CostTree, FeatureShape, GrowParams, NodeIndex, Pruning, SelectionPrices, Split,
     TreeFault, TreeNode, laplace,

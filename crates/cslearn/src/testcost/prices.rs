@@ -683,16 +683,73 @@ impl Basket {
 /// What a wrong answer costs: `cost(predicted, actual)`, 0 on the diagonal unless a file
 /// says otherwise.
 ///
+/// A uniform matrix (0 on the diagonal, one cost everywhere else) is kept as that one
+/// cost, however many classes there are: its `classes x classes` entries are never
+/// allocated (written out, it is the full matrix, as files have always held it, and a full
+/// matrix read back or given by rows that is uniform is kept so). Every answer is the
+/// full matrix's, to the bit.
+///
 /// ```
 /// let mc = cslearn::testcost::MisclassCosts::uniform(2, 500.0).unwrap();
 /// assert_eq!((mc.cost(0, 1), mc.cost(1, 1)), (500.0, 0.0));
 /// assert_eq!(mc.max(), 500.0);
+/// // A million classes cost no memory.
+/// let many = cslearn::testcost::MisclassCosts::uniform(1_000_000, 5.0).unwrap();
+/// assert_eq!((many.cost(999_999, 0), many.max()), (5.0, 5.0));
 /// ```
-#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Clone, Debug, PartialEq, serde::Deserialize)]
+#[serde(from = "StoredCosts")]
 pub struct MisclassCosts {
     classes: usize,
+    entries: Entries,
+}
+
+/// A matrix's entries.
+#[derive(Clone, Debug, PartialEq)]
+enum Entries {
+    /// 0 on the diagonal, this everywhere else (0 with fewer than 2 classes, so that one
+    /// matrix has one form).
+    Uniform(f64),
     /// `by_predicted[predicted * classes + actual]`.
+    Dense(Vec<f64>),
+}
+
+/// A matrix as files hold it: every entry, by predicted class then actual class.
+#[derive(serde::Deserialize)]
+struct StoredCosts {
+    classes: usize,
     by_predicted: Vec<f64>,
+}
+
+impl From<StoredCosts> for MisclassCosts {
+    fn from(stored: StoredCosts) -> MisclassCosts {
+        MisclassCosts::of_entries(stored.classes, stored.by_predicted)
+    }
+}
+
+impl serde::Serialize for MisclassCosts {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        /// The entries, one by one, without making the matrix.
+        struct Every<'a>(&'a MisclassCosts);
+        impl serde::Serialize for Every<'_> {
+            fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+                let mc = self.0;
+                match &mc.entries {
+                    Entries::Dense(by_predicted) => serializer.collect_seq(by_predicted),
+                    Entries::Uniform(_) => {
+                        let k = mc.classes;
+                        serializer
+                            .collect_seq((0..k.saturating_mul(k)).map(|i| mc.cost(i / k, i % k)))
+                    }
+                }
+            }
+        }
+        let mut out = serializer.serialize_struct("MisclassCosts", 2)?;
+        out.serialize_field("classes", &self.classes)?;
+        out.serialize_field("by_predicted", &Every(self))?;
+        out.end()
+    }
 }
 
 impl MisclassCosts {
@@ -703,14 +760,35 @@ impl MisclassCosts {
     /// ```
     pub fn uniform(classes: usize, mc: f64) -> Result<MisclassCosts, Error> {
         check_price(mc, "misclassification cost")?;
-        let mut by_predicted = vec![mc; classes * classes];
-        for c in 0..classes {
-            by_predicted[c * classes + c] = 0.0;
-        }
         Ok(MisclassCosts {
             classes,
-            by_predicted,
+            entries: Entries::Uniform(if classes < 2 { 0.0 } else { mc }),
         })
+    }
+
+    /// The matrix of these entries (`by_predicted[predicted * classes + actual]`), kept as
+    /// its one cost when it is uniform: every diagonal entry is 0 and every other the same,
+    /// bit for bit. Entries of another number are kept as they are, for
+    /// [`checked`](MisclassCosts::checked) to refuse.
+    fn of_entries(classes: usize, by_predicted: Vec<f64>) -> MisclassCosts {
+        let zero = 0.0_f64.to_bits();
+        let uniform = classes.checked_mul(classes) == Some(by_predicted.len()) && {
+            let off = (classes >= 2).then(|| by_predicted[1].to_bits());
+            by_predicted.iter().enumerate().all(|(i, c)| {
+                let bits = c.to_bits();
+                if i / classes == i % classes {
+                    bits == zero
+                } else {
+                    Some(bits) == off
+                }
+            })
+        };
+        let entries = match (uniform, classes) {
+            (true, 0 | 1) => Entries::Uniform(0.0),
+            (true, _) => Entries::Uniform(by_predicted[1]),
+            (false, _) => Entries::Dense(by_predicted),
+        };
+        MisclassCosts { classes, entries }
     }
 
     /// A full matrix, `rows[actual][predicted]` (as a confusion matrix reads).
@@ -722,7 +800,7 @@ impl MisclassCosts {
     /// ```
     pub fn from_rows(rows: &[Vec<f64>]) -> Result<MisclassCosts, Error> {
         let classes = rows.len();
-        let mut by_predicted = vec![0.0; classes * classes];
+        let mut by_predicted = vec![0.0; classes.saturating_mul(classes)];
         for (actual, row) in rows.iter().enumerate() {
             if row.len() != classes {
                 return Err(Error::Invalid {
@@ -739,10 +817,7 @@ impl MisclassCosts {
                 by_predicted[predicted * classes + actual] = c;
             }
         }
-        Ok(MisclassCosts {
-            classes,
-            by_predicted,
-        })
+        Ok(MisclassCosts::of_entries(classes, by_predicted))
     }
 
     /// A matrix from a CSV file whose header is `actual` and the class names, and whose
@@ -847,18 +922,25 @@ impl MisclassCosts {
     /// The same costs, checked: a square matrix of finite, non-negative entries (for
     /// costs read from a file by serde, which does not check).
     pub(crate) fn checked(self) -> Result<MisclassCosts, Error> {
-        if self.classes.checked_mul(self.classes) != Some(self.by_predicted.len()) {
+        let by_predicted = match &self.entries {
+            Entries::Uniform(mc) => {
+                check_price(*mc, "misclassification matrix")?;
+                return Ok(self);
+            }
+            Entries::Dense(by_predicted) => by_predicted,
+        };
+        if self.classes.checked_mul(self.classes) != Some(by_predicted.len()) {
             return Err(Error::Invalid {
                 what: "misclassification matrix".into(),
                 reason: format!(
                     "{} entries, but {} classes need {}",
-                    self.by_predicted.len(),
+                    by_predicted.len(),
                     self.classes,
                     self.classes.saturating_mul(self.classes)
                 ),
             });
         }
-        for &c in &self.by_predicted {
+        for &c in by_predicted {
             check_price(c, "misclassification matrix")?;
         }
         Ok(self)
@@ -879,7 +961,11 @@ impl MisclassCosts {
     /// assert_eq!(cslearn::testcost::MisclassCosts::uniform(2, 9.0).unwrap().cost(1, 0), 9.0);
     /// ```
     pub fn cost(&self, predicted: usize, actual: usize) -> f64 {
-        self.by_predicted[predicted * self.classes + actual]
+        match &self.entries {
+            Entries::Uniform(_) if predicted == actual => 0.0,
+            Entries::Uniform(mc) => *mc,
+            Entries::Dense(by_predicted) => by_predicted[predicted * self.classes + actual],
+        }
     }
 
     /// The largest entry.
@@ -888,7 +974,10 @@ impl MisclassCosts {
     /// assert_eq!(cslearn::testcost::MisclassCosts::uniform(2, 9.0).unwrap().max(), 9.0);
     /// ```
     pub fn max(&self) -> f64 {
-        self.by_predicted.iter().copied().fold(0.0, f64::max)
+        match &self.entries {
+            Entries::Uniform(mc) => mc.max(0.0),
+            Entries::Dense(by_predicted) => by_predicted.iter().copied().fold(0.0, f64::max),
+        }
     }
 
     /// The answer of least expected cost for objects distributed as `weights` (one per
@@ -900,9 +989,13 @@ impl MisclassCosts {
     /// assert_eq!(mc.best(&[3.0, 1.0]), (1, 3.0));
     /// ```
     pub fn best(&self, weights: &[f64]) -> (usize, f64) {
+        let by_predicted = match &self.entries {
+            Entries::Uniform(mc) => return self.best_uniform(*mc, weights),
+            Entries::Dense(by_predicted) => by_predicted,
+        };
         let mut best = (0, f64::INFINITY);
         for predicted in 0..self.classes {
-            let row = &self.by_predicted[predicted * self.classes..(predicted + 1) * self.classes];
+            let row = &by_predicted[predicted * self.classes..(predicted + 1) * self.classes];
             let cost: f64 = row.iter().zip(weights).map(|(c, w)| c * w).sum();
             let better = cost < best.1 - 1e-9 * cost.abs().max(1.0)
                 || (cost <= best.1 + 1e-9 * cost.abs().max(1.0)
@@ -912,6 +1005,32 @@ impl MisclassCosts {
             }
         }
         best
+    }
+
+    /// [`best`](MisclassCosts::best) for a uniform matrix, in time linear in the classes:
+    /// the full matrix's answer, to the bit. Under one cost `mc > 0` for every error, an
+    /// answer's expected cost is `mc` times the weight of the other classes, so the
+    /// scan of `best` keeps the first class of largest weight (a larger weight wins by
+    /// cost or, within the scan's tolerance, by weight; an equal one never wins); with
+    /// `mc = 0` every cost is 0 and the scan keeps the same class by weight. Its cost is
+    /// then summed as `best` sums it: over its row, in order, the diagonal's 0 included.
+    fn best_uniform(&self, mc: f64, weights: &[f64]) -> (usize, f64) {
+        if self.classes == 0 {
+            return (0, f64::INFINITY);
+        }
+        let mut label = 0;
+        for (c, &w) in weights.iter().enumerate().take(self.classes).skip(1) {
+            if w > weights[label] {
+                label = c;
+            }
+        }
+        let cost: f64 = weights
+            .iter()
+            .take(self.classes)
+            .enumerate()
+            .map(|(c, w)| (if c == label { 0.0 } else { mc }) * w)
+            .sum();
+        (label, cost)
     }
 
     /// Whether every total over `objects` objects stays a true number: at worst an object
@@ -1164,5 +1283,104 @@ mod tests {
                 .to_string()
                 .contains("group 3")
         );
+    }
+
+    /// The full matrix of a uniform cost, kept entry by entry as files hold it.
+    fn dense(classes: usize, mc: f64) -> MisclassCosts {
+        let mut by_predicted = vec![mc; classes * classes];
+        for c in 0..classes {
+            by_predicted[c * classes + c] = 0.0;
+        }
+        MisclassCosts {
+            classes,
+            entries: Entries::Dense(by_predicted),
+        }
+    }
+
+    /// A uniform matrix kept as its one cost answers what its full matrix answers, to the
+    /// bit: the label and expected cost of any weights (ties, zeros and weights a hair
+    /// apart included), every entry, the largest; and it is written as the full matrix is.
+    #[test]
+    fn a_uniform_matrix_answers_as_its_full_matrix_to_the_bit() {
+        use rand::{RngExt, SeedableRng};
+        let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(11);
+        for round in 0..3000 {
+            let classes = rng.random_range(1..9usize);
+            let mc = match round % 4 {
+                0 => 0.0,
+                1 => 1e-300,
+                _ => rng.random_range(0.0..1000.0),
+            };
+            let (uniform, full) = (
+                MisclassCosts::uniform(classes, mc).unwrap(),
+                dense(classes, mc),
+            );
+            assert!(matches!(uniform.entries, Entries::Uniform(_)));
+            let weights: Vec<f64> = (0..classes)
+                .map(|_| match rng.random_range(0..4) {
+                    0 => 0.0,
+                    1 => 3.0,
+                    2 => 3.0 + 1e-12,
+                    _ => rng.random_range(0.0..50.0),
+                })
+                .collect();
+            let (a, b) = (uniform.best(&weights), full.best(&weights));
+            assert_eq!(
+                (a.0, a.1.to_bits()),
+                (b.0, b.1.to_bits()),
+                "{mc} {weights:?}"
+            );
+            assert_eq!(uniform.max().to_bits(), full.max().to_bits());
+            for p in 0..classes {
+                for q in 0..classes {
+                    assert_eq!(uniform.cost(p, q).to_bits(), full.cost(p, q).to_bits());
+                }
+            }
+            let json = serde_json::to_string(&uniform).unwrap();
+            assert_eq!(json, serde_json::to_string(&full).unwrap());
+            let read: MisclassCosts =
+                serde_json::from_value(serde_json::to_value(&uniform).unwrap()).unwrap();
+            assert_eq!(read, uniform);
+        }
+    }
+
+    #[test]
+    fn a_full_matrix_that_is_uniform_is_kept_as_its_one_cost() {
+        let rows = [
+            vec![0.0, 7.0, 7.0],
+            vec![7.0, 0.0, 7.0],
+            vec![7.0, 7.0, 0.0],
+        ];
+        let mc = MisclassCosts::from_rows(&rows).unwrap();
+        assert_eq!(mc.entries, Entries::Uniform(7.0));
+        assert_eq!(mc, MisclassCosts::uniform(3, 7.0).unwrap());
+        // One entry apart, or a cost on the diagonal: full.
+        let skew = [vec![0.0, 7.0], vec![7.5, 0.0]];
+        assert!(matches!(
+            MisclassCosts::from_rows(&skew).unwrap().entries,
+            Entries::Dense(_)
+        ));
+        let diagonal = [vec![1.0, 7.0], vec![7.0, 0.0]];
+        assert!(matches!(
+            MisclassCosts::from_rows(&diagonal).unwrap().entries,
+            Entries::Dense(_)
+        ));
+        // One class has one form whatever its cost.
+        assert_eq!(
+            MisclassCosts::uniform(1, 9.0).unwrap(),
+            MisclassCosts::from_rows(&[vec![0.0]]).unwrap()
+        );
+        // A stored matrix of the wrong size stays as read, and is refused when checked.
+        let bad: MisclassCosts =
+            serde_json::from_str(r#"{"classes":2,"by_predicted":[0.0,1.0,1.0]}"#).unwrap();
+        assert!(
+            bad.checked()
+                .unwrap_err()
+                .to_string()
+                .contains("3 entries, but 2 classes need 4")
+        );
+        let nan: MisclassCosts =
+            serde_json::from_str(r#"{"classes":2,"by_predicted":[0.0,-1.0,-1.0,0.0]}"#).unwrap();
+        assert!(nan.checked().is_err());
     }
 }

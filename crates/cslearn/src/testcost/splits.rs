@@ -27,6 +27,7 @@ use std::sync::Arc;
 use super::criterion::Criterion;
 use super::data::{Column, Frame, MISSING};
 use super::prices::MisclassCosts;
+use super::stop::Stop;
 
 /// The statistics of the best split of one feature at a node.
 #[derive(Clone, Copy, Debug)]
@@ -204,6 +205,8 @@ pub(crate) struct Splits<'a> {
     /// The cell of every children list made, in order, so that [`Splits::forget_since`]
     /// can drop the ones made after a [`Mark`].
     made: Vec<u32>,
+    /// Once it is requested, no cell offers a test ([`Splits::watch`]).
+    stop: Option<&'a Stop>,
 }
 
 /// A point in a trie's growth ([`Splits::mark`]) to forget what grew after it.
@@ -386,6 +389,7 @@ impl<'a> Splits<'a> {
             threshold_penalty: matches!(criterion, Criterion::C45),
             cells: Vec::new(),
             made: Vec::new(),
+            stop: None,
             scratch: Scratch {
                 branch: Vec::new(),
                 sorted: Vec::new(),
@@ -429,6 +433,17 @@ impl<'a> Splits<'a> {
         root.held_classes = classes;
     }
 
+    /// Offers no more tests once `stop` is requested: [`stats`](Splits::stats) answers
+    /// none, so every walk down the trie ends where it stands.
+    pub fn watch(&mut self, stop: &'a Stop) {
+        self.stop = Some(stop);
+    }
+
+    /// Whether the stop it watches was requested.
+    pub fn stopped(&self) -> bool {
+        self.stop.is_some_and(Stop::is_requested)
+    }
+
     /// Where the trie's growth stands now.
     pub fn mark(&self) -> Mark {
         Mark {
@@ -470,8 +485,12 @@ impl<'a> Splits<'a> {
         self.cells[c as usize].total
     }
 
-    /// The statistics of every feature that can split cell `c`.
+    /// The statistics of every feature that can split cell `c` (none once the stop it
+    /// watches is requested).
     pub fn stats(&mut self, c: u32) -> &[Stat] {
+        if self.stopped() {
+            return &[];
+        }
         if self.cells[c as usize].stats.is_some() {
         } else if self.cells[c as usize].total < 2.0 * self.min_objects - 1e-6 {
             // No test can leave the least branch size on two branches.

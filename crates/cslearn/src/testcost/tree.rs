@@ -1171,7 +1171,8 @@ fn grow_nodes(
 }
 
 /// The nodes of the tree grown through `splits`, splitting each impure cell above
-/// `max_depth` on the test `choose` picks for it (a leaf where it picks none).
+/// `max_depth` on the test `choose` picks for it (a leaf where it picks none); the nodes
+/// grown so far once the stop `splits` watches is requested.
 pub(super) fn grow_nodes_by(
     splits: &mut Splits<'_>,
     mc: &MisclassCosts,
@@ -1186,6 +1187,9 @@ pub(super) fn grow_nodes_by(
     }];
     let mut stack: Vec<(NodeIndex, u32)> = vec![(0, 0)];
     while let Some((node, c)) = stack.pop() {
+        if splits.stopped() {
+            break;
+        }
         let cell = splits.cell(c);
         if is_pure(&cell.class_weights) || cell.path.len() >= max_depth {
             continue;

@@ -21,6 +21,8 @@ MAX_TOTAL_COST: float
 """The most a classifier's learning may cost in all: the summed prices times the objects."""
 MAX_CLASSES: int
 """The most classes a test-cost tree learns (a continuous target has one per object)."""
+MAX_LOOKAHEAD_FEATURES: int
+"""The most features ACT's sampled lookahead (ACT, and CVT's lookahead grower) runs on."""
 
 class SettingsError(ValueError):
     """Settings that cannot be used (the message names them)."""

@@ -56,6 +56,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import warnings
 from collections.abc import Mapping
 from typing import Any, Optional
 
@@ -849,6 +850,17 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
             raise ValueError(
                 f"cvt_folds={cvt_folds} needs at least {cvt_folds} samples, found n_samples = {X.shape[0]}"
             )
+        if learner == "cvt":
+            counts = np.bincount(y_codes, minlength=len(classes))
+            lone = [classes[c] for c in np.flatnonzero(counts == 1)]
+            if lone:
+                # As scikit-learn's StratifiedKFold warns of a class smaller than its folds.
+                warnings.warn(
+                    f"class '{lone[0]}' has one object: the fold of CVT's cross-validation "
+                    "that holds it out learns without the class, and counts it as an error there",
+                    UserWarning,
+                    stacklevel=2,
+                )
         budget = self._budget_params()
         model = _csrl.TestCostTree.fit(
             learner,
