@@ -1641,6 +1641,78 @@ pub(crate) mod tests {
     }
 
     #[test]
+    fn a_learner_measured_alone_over_the_same_protocol_joins_as_the_tables_own() {
+        let (main, other, joined, whole) = (
+            tempfile::tempdir().unwrap(),
+            tempfile::tempdir().unwrap(),
+            tempfile::tempdir().unwrap(),
+            tempfile::tempdir().unwrap(),
+        );
+        testcost(&args(main.path(), 1)).unwrap();
+        // C4.5 alone (no CS-ID3 beside it), on the table's runs and mc.
+        let mut alone = args(other.path(), 1);
+        alone.learners = vec!["c45".into()];
+        testcost(&alone).unwrap();
+        let mut with = args(joined.path(), 1);
+        with.with = vec![other.path().to_path_buf()];
+        testcost(&with).unwrap();
+        // The same rows, ratios included, as one benchmark of the four learners.
+        let mut four = args(whole.path(), 1);
+        four.learners.push("c45".into());
+        testcost(&four).unwrap();
+        let read = |dir: &Path| std::fs::read_to_string(dir.join("testcost.csv")).unwrap();
+        let c45 = |csv: &str| -> Vec<String> {
+            csv.lines()
+                .filter(|l| l.contains(",c45,"))
+                .map(String::from)
+                .collect()
+        };
+        let (both, all) = (c45(&read(joined.path())), c45(&read(whole.path())));
+        assert_eq!(both.len(), 2 * 3, "iris random, heart random and Turney, two mc");
+        assert_eq!(both, all);
+        assert!(both.iter().all(|l| !l.ends_with(',')), "{both:?}");
+        let md = std::fs::read_to_string(joined.path().join("testcost.md")).unwrap();
+        assert!(
+            md.contains("c45: from another benchmark of the same protocol"),
+            "{md}"
+        );
+        assert!(!md.contains("[1 run]") && !md.contains("the first"), "{md}");
+
+        // Alone on fewer runs than the table's, its ratio is taken on the table's CS-ID3
+        // of those runs: what one benchmark of both on those runs gives.
+        let (main2, other2, joined2, whole2) = (
+            tempfile::tempdir().unwrap(),
+            tempfile::tempdir().unwrap(),
+            tempfile::tempdir().unwrap(),
+            tempfile::tempdir().unwrap(),
+        );
+        let mut two = args(main2.path(), 1);
+        two.runs = 2;
+        testcost(&two).unwrap();
+        let mut first = args(other2.path(), 1);
+        first.learners = vec!["c45".into()];
+        first.mc = vec![500.0];
+        testcost(&first).unwrap();
+        let mut with = args(joined2.path(), 1);
+        with.runs = 2;
+        with.with = vec![other2.path().to_path_buf()];
+        testcost(&with).unwrap();
+        let mut both_one = args(whole2.path(), 1);
+        both_one.learners = vec!["cs-id3-batch".into(), "c45".into()];
+        both_one.mc = vec![500.0];
+        testcost(&both_one).unwrap();
+        let ratios = |csv: &str| -> Vec<f64> {
+            c45(csv)
+                .iter()
+                .map(|l| l.rsplit(',').next().unwrap().parse().unwrap())
+                .collect()
+        };
+        let (got, want) = (ratios(&read(joined2.path())), ratios(&read(whole2.path())));
+        assert_eq!(got.len(), 3);
+        assert_eq!(got, want);
+    }
+
+    #[test]
     fn another_benchmark_over_the_same_folds_adds_its_learners_with_their_runs() {
         let (main, other, joined) = (
             tempfile::tempdir().unwrap(),

@@ -71,8 +71,36 @@ impl Table {
             return;
         }
         self.def.learners.extend(&new);
-        self.rows
-            .extend(rows.into_iter().filter(|r| new.contains(&r.learner)));
+        // A row without a ratio (its benchmark ran no CS-ID3) takes it from the table's
+        // CS-ID3 over the same runs: its row where the runs are the table's, otherwise
+        // its results of those runs (the first ones, on the same folds and prices).
+        let cs_id3 = Learner::Family(Method::CsId3Batch);
+        let base = if other.runs == self.def.runs {
+            self.rows.clone()
+        } else {
+            let def = Definition {
+                learners: vec![cs_id3],
+                ..other.clone()
+            };
+            let first: Vec<JobResult> = self
+                .results
+                .iter()
+                .filter(|r| r.learner == cs_id3 && r.run < other.runs)
+                .cloned()
+                .collect();
+            aggregate(&def, &first)
+        };
+        let mut rows: Vec<Row> = rows
+            .into_iter()
+            .filter(|r| new.contains(&r.learner))
+            .collect();
+        for r in rows.iter_mut().filter(|r| r.ratio.is_none()) {
+            r.ratio = find(&base, &r.dataset, r.costs, r.mc, cs_id3)
+                .map(|b| b.normalised)
+                .filter(|b| *b > 0.0)
+                .map(|b| r.normalised / b);
+        }
+        self.rows.extend(rows);
         self.results
             .extend(results.into_iter().filter(|r| new.contains(&r.learner)));
         let def = &self.def;
@@ -389,7 +417,7 @@ fn markdown(table: &Table, published_names: &BTreeMap<String, String>, command: 
             Pruning::Costs => "total cost (a test must pay for itself at the real prices)",
             Pruning::Errors => "errors, as C4.5",
         },
-        added_sentence(&table.added),
+        added_sentence(def, &table.added),
         library_sentence(&table.results),
     );
     for &mc in &def.mc {
@@ -523,11 +551,21 @@ fn runs_mark(row: &Row, def: &Definition) -> String {
 }
 
 /// What the report's header says of the learners another benchmark added: their runs
-/// (the first ones, on the same folds and prices) and their mc.
-fn added_sentence(added: &[Added]) -> String {
+/// (the first ones, on the same folds and prices) and their mc, or that they are the
+/// table's own.
+fn added_sentence(def: &Definition, added: &[Added]) -> String {
     let mut out = String::new();
     for Added { learners, runs, mc } in added {
         let names: Vec<&str> = learners.iter().map(|m| m.name()).collect();
+        if *runs == def.runs && *mc == def.mc {
+            let _ = write!(
+                out,
+                " {}: from another benchmark of the same protocol (the same folds, prices, \
+                 runs and mc).",
+                names.join(", "),
+            );
+            continue;
+        }
         let mc: Vec<String> = mc.iter().map(|m| m.to_string()).collect();
         let mc = match mc.split_last() {
             Some((last, rest)) if !rest.is_empty() => format!("{} and {last}", rest.join(", ")),
