@@ -1668,7 +1668,11 @@ pub(crate) mod tests {
                 .collect()
         };
         let (both, all) = (c45(&read(joined.path())), c45(&read(whole.path())));
-        assert_eq!(both.len(), 2 * 3, "iris random, heart random and Turney, two mc");
+        assert_eq!(
+            both.len(),
+            2 * 3,
+            "iris random, heart random and Turney, two mc"
+        );
         assert_eq!(both, all);
         assert!(both.iter().all(|l| !l.ends_with(',')), "{both:?}");
         let md = std::fs::read_to_string(joined.path().join("testcost.md")).unwrap();
