@@ -311,7 +311,7 @@ impl Sampler<'_> {
         let mut order: Vec<(f64, usize)> = Vec::with_capacity(candidates.len());
         let mut guess = leaf;
         for (i, (stat, _)) in candidates.iter().enumerate() {
-            let estimate = self.value(splits, c, stat, guess, false, 1);
+            let estimate = self.value(splits, c, stat, guess, false, self.samples.min(1));
             guess = guess.min(estimate);
             order.push((estimate, i));
         }
@@ -519,7 +519,7 @@ mod tests {
     /// grown until they are sure to be too dear) and the values read back choose what
     /// valuing everything whole chooses, bit for bit: nominal and numeric features,
     /// missing values, group discounts, two to six classes, every selection prices, at
-    /// cheap and dear errors, with one sample and with five.
+    /// cheap and dear errors, with no sample (each branch a leaf), one, three and five.
     #[test]
     fn bounds_and_remembered_values_choose_what_valuing_everything_whole_chooses() {
         let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/uci");
@@ -539,6 +539,7 @@ mod tests {
                         (SelectionPrices::Listed, 5),
                         (SelectionPrices::Path, 1),
                         (SelectionPrices::ListedOnce, 3),
+                        (SelectionPrices::Path, 0),
                     ] {
                         let params = ActParams::with_samples(samples).unwrap();
                         let act = Act {
