@@ -415,7 +415,9 @@ impl<D: Discriminate> IndexedLearner<D> {
                         *example = refined;
                     }
                 }
-                if again == Some(label) || probe.ledger().measured().len() == paid {
+                // A round that paid for more has changed the example, and with it what the
+                // library predicts: check again.
+                if probe.ledger().measured().len() == paid {
                     break;
                 }
             }

@@ -372,7 +372,9 @@ where
                 if let Some(example) = parts.library.get_mut(index) {
                     *example = probe.ledger().to_example(label);
                 }
-                if again == Some(label) || probe.ledger().measured().len() == paid {
+                // A round that paid for more has changed the example, and with it what the
+                // library predicts: check again.
+                if probe.ledger().measured().len() == paid {
                     break;
                 }
             }
@@ -396,7 +398,9 @@ where
     /// With the recheck on, after the library is updated the learner classifies the
     /// object again (values already paid for are free) and, if it is not recognised,
     /// discriminates again against the examples that misled it and refines the new
-    /// example, until it is recognised or nothing more can be measured. On noiseless,
+    /// example, until a check pays for nothing new (a check that measured more has changed
+    /// the example, so it is checked again): the object is then recognised, or nothing
+    /// more can be measured. On noiseless,
     /// non-contradictory data this guarantees that an object just learned is classified
     /// correctly when it comes again; without it, the greedy selection can, rarely, prefer
     /// a feature the new example lacks once that example is in the library. On the heart

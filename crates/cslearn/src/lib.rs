@@ -102,10 +102,10 @@
 //!
 //! | learner | accuracy, mean (min-max) | measuring cost per object, mean (min-max) |
 //! |---|---|---|
-//! | CS-ID3 | 0.654 (0.618-0.684) | 5.0 (4.2-6.4) |
+//! | CS-ID3 | 0.653 (0.618-0.684) | 5.0 (4.2-6.4) |
 //! | CS-ID3 without the recheck | 0.656 (0.615-0.688) | 4.7 (4.1-6.2) |
-//! | CS-IBL, tolerance 1 | 0.651 (0.622-0.691) | 47.9 (41.8-51.2) |
-//! | ID3, cost-blind | 0.644 (0.605-0.688) | 148.8 (87.6-188.4) |
+//! | CS-IBL, tolerance 1 | 0.649 (0.622-0.688) | 48.0 (41.8-51.2) |
+//! | ID3, cost-blind | 0.643 (0.602-0.688) | 148.8 (87.2-188.4) |
 //! | measuring everything | | 600.57 |
 //!
 //! CS-ID3 pays about a thirtieth of what cost-blind ID3 pays, at the same accuracy, and

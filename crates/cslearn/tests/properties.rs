@@ -53,14 +53,65 @@ fn problem() -> impl Strategy<Value = (Vec<f64>, Objects)> {
     })
 }
 
+/// The case a random seed drew for incremental ID3 (every price 0, five features): its
+/// recheck ended with a round that classified the object correctly but had just paid for
+/// more of it, so the stored example changed after the check, and the next classification
+/// took another path and answered class 1 for an object learned as class 0.
+#[test]
+fn a_recheck_that_changed_the_example_checks_again() {
+    use rand::SeedableRng;
+    let objects: [([u32; 5], u32); 15] = [
+        ([0, 0, 0, 0, 1], 2),
+        ([0, 0, 0, 0, 2], 0),
+        ([0, 1, 0, 0, 0], 1),
+        ([0, 1, 1, 0, 0], 0),
+        ([0, 1, 2, 0, 1], 0),
+        ([0, 2, 0, 0, 0], 0),
+        ([0, 2, 0, 0, 1], 0),
+        ([0, 2, 0, 1, 0], 2),
+        ([1, 0, 0, 0, 1], 2),
+        ([2, 0, 1, 0, 2], 0),
+        ([2, 0, 1, 1, 0], 1),
+        ([2, 0, 2, 0, 0], 1),
+        ([2, 1, 0, 0, 0], 0),
+        ([2, 1, 0, 0, 1], 0),
+        ([2, 1, 1, 0, 0], 0),
+    ];
+    let picks = [
+        547, 940, 993, 477, 683, 105, 2, 218, 885, 550, 273, 100, 796, 361, 621, 332, 417, 904,
+        157, 850, 567, 706, 584, 262, 780, 224, 321, 540, 338, 656, 418, 812, 428, 983, 200, 981,
+        474, 385, 761, 44, 800, 980, 292, 892, 349, 213, 475, 39, 14, 676,
+    ];
+    let costs = FeatureCosts::from_f64(&[0.0; 5]).unwrap();
+    let rng = || rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(picks.len() as u64);
+    let mut plain = cslearn::id3(costs.clone(), rng());
+    let mut indexed = cslearn::id3_indexed(costs, rng());
+    for (n, &pick) in picks.iter().enumerate() {
+        let (row, class) = &objects[pick % objects.len()];
+        let row: Vec<Option<Value>> = row.iter().map(|&v| Some(Value(v))).collect();
+        let class = ClassId(*class);
+        plain.learn(&row[..], class);
+        indexed.learn(&row[..], class);
+        assert_eq!(
+            plain.classify(&row[..]).class,
+            Some(class),
+            "object {n}, plain"
+        );
+        assert_eq!(
+            indexed.classify(&row[..]).class,
+            Some(class),
+            "object {n}, indexed"
+        );
+    }
+}
+
 fn stream_order(n: usize) -> impl Strategy<Value = Vec<usize>> {
     prop::collection::vec(0..n, 1..60)
 }
 
 proptest! {
-    // A fixed seed: the same cases on every run. Other seeds draw a case where incremental
-    // ID3, every price 0, answers a learned object wrongly when it comes again (five
-    // features; a known fault, to be fixed, not a reason to skip the property).
+    // A fixed seed: the same cases on every run (the case another seed once drew, where the
+    // recheck stopped too early, is `a_recheck_that_changed_the_example_checks_again`).
     #![proptest_config(ProptestConfig {
         cases: 64,
         rng_seed: proptest::test_runner::RngSeed::Fixed(1),
