@@ -16,7 +16,7 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use cslearn::testcost::{
     ActParams, Budget, Catalogue, CvtParams, FamilyParams, Frame, IcetParams, Loaded, Method,
-    MisclassCosts, Pruning, SelectionPrices, TestPrices, fit_each, folds, gain_prices,
+    MisclassCosts, Pruning, SelectionPrices, TestPrices, VoiParams, fit_each, folds, gain_prices,
     random_prices, standard_cost,
 };
 use serde::{Deserialize, Serialize};
@@ -84,6 +84,13 @@ pub struct TestcostArgs {
     /// grower keeps its own 5.
     #[arg(long, default_value_t = 5)]
     act_samples: usize,
+    /// VOI's lookahead: how many tests ahead a test is valued (the library's 2, at most 3).
+    #[arg(long, default_value_t = 2)]
+    voi_lookahead: usize,
+    /// VOI's m-estimate: the weight of the class prior in each node's estimate, in objects
+    /// (the library's 2).
+    #[arg(long, default_value_t = 2.0)]
+    voi_m: f64,
     /// A hard budget per object: at most K distinct tests. The greedy learners grow within
     /// it, every learner's trees classify within it (none by default).
     #[arg(long, value_name = "K")]
@@ -240,6 +247,10 @@ pub(crate) struct Definition {
     /// Results written before this setting existed sampled the library's 5.
     #[serde(default = "library_act_samples")]
     pub act_samples: usize,
+    /// VOI's settings; the library's are left out of the file (and results written before
+    /// VOI existed read as them).
+    #[serde(default, skip_serializing_if = "VoiParams::is_default")]
+    pub voi: VoiParams,
     /// The budget per object in tests; results written before it existed had none (and
     /// a definition without it is written as before).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -677,6 +688,7 @@ pub(crate) fn cross_validate(
             samples: def.act_samples,
             ..ActParams::default()
         },
+        voi: def.voi,
         ..FamilyParams::default()
     };
     let k = frame.class_count();
@@ -891,7 +903,7 @@ pub(crate) fn prepare(args: &TestcostArgs) -> Result<Prepared> {
     let learners: Vec<Learner> = if args.learners.is_empty() {
         Method::ALL
             .into_iter()
-            .filter(|m| !matches!(m, Method::Act | Method::Cvt))
+            .filter(|m| !matches!(m, Method::Act | Method::Cvt | Method::Voi))
             .map(Learner::Family)
             .collect()
     } else {
@@ -934,6 +946,12 @@ pub(crate) fn prepare(args: &TestcostArgs) -> Result<Prepared> {
         CvtParams::with_folds(args.cvt_folds).map_err(|e| anyhow::anyhow!("--cvt-folds: {e}"))?;
     let act = ActParams::with_samples(args.act_samples)
         .map_err(|e| anyhow::anyhow!("--act-samples: {e}"))?;
+    let voi = VoiParams {
+        lookahead: args.voi_lookahead,
+        m: args.voi_m,
+    };
+    voi.check()
+        .map_err(|e| anyhow::anyhow!("--voi-lookahead / --voi-m: {e}"))?;
     let budget = match args.max_test_cost {
         Some(b) if !(b.is_finite() && b >= 0.0) => {
             bail!("--max-test-cost {b}: a budget must be a finite price, not negative")
@@ -971,6 +989,7 @@ pub(crate) fn prepare(args: &TestcostArgs) -> Result<Prepared> {
         icet_search_objects: args.icet_search_objects,
         cvt_folds: cvt.folds,
         act_samples: act.samples,
+        voi,
         max_tests: args.max_tests,
         max_test_cost: budget.max_test_cost(),
         runs: args.runs,
@@ -1244,6 +1263,12 @@ fn args_line(args: &TestcostArgs) -> String {
     if args.act_samples != 5 {
         let _ = write!(line, " --act-samples {}", args.act_samples);
     }
+    if args.voi_lookahead != 2 {
+        let _ = write!(line, " --voi-lookahead {}", args.voi_lookahead);
+    }
+    if args.voi_m != 2.0 {
+        let _ = write!(line, " --voi-m {}", args.voi_m);
+    }
     if let Some(k) = args.max_tests {
         let _ = write!(line, " --max-tests {k}");
     }
@@ -1291,6 +1316,8 @@ pub(crate) mod tests {
             icet_search_objects: 400,
             cvt_folds: 5,
             act_samples: 5,
+            voi_lookahead: 2,
+            voi_m: 2.0,
             max_tests: None,
             max_test_cost: None,
             price_range: vec![1.0, 100.0],
@@ -1529,6 +1556,7 @@ pub(crate) mod tests {
             icet_search_objects: 400,
             cvt_folds: 5,
             act_samples: 5,
+            voi: VoiParams::default(),
             max_tests: None,
             max_test_cost: None,
             runs: 1,
@@ -1622,6 +1650,7 @@ pub(crate) mod tests {
             icet_search_objects: 400,
             cvt_folds: 5,
             act_samples: 5,
+            voi: VoiParams::default(),
             max_tests: None,
             max_test_cost: None,
             runs: 1,
@@ -1832,11 +1861,12 @@ pub(crate) mod tests {
     fn the_learners_are_written_as_before_and_cegb_as_its_name() {
         let definition = r#"{"datasets":["iris"],"learners":["C45","Id3","Idx","CsId3Batch","Eg2","Dtmc","Icet","Act","Cvt"],"mc":[500.0],"costs":["random"],"assignments":1,"price_range":[1.0,100.0],"price_draw":"uniform","selection_prices":"listed","icet_pruning":"costs","icet_search_objects":1000,"cvt_folds":5,"act_samples":5,"runs":1,"folds":3,"seed":1}"#;
         let def: Definition = serde_json::from_str(definition).unwrap();
-        assert_eq!(
-            def.learners,
-            Method::ALL.map(Learner::Family),
-            "in the order written"
-        );
+        let before_voi: Vec<Learner> = Method::ALL
+            .into_iter()
+            .filter(|m| *m != Method::Voi)
+            .map(Learner::Family)
+            .collect();
+        assert_eq!(def.learners, before_voi, "in the order written");
         assert_eq!(serde_json::to_string(&def).unwrap(), definition);
         let result = r#"{"id":0,"dataset":"iris","costs":"random","assignment":0,"run":0,"learner":"Eg2","by_mc":[{"mc":500.0,"total":60.95974067846856,"tests":37.62640734513521,"error_rate":0.04666666666666667,"standard":591.7064893819861,"auroc":0.9758}],"nodes":5.666666666666667,"learn_seconds":0.000412743,"classify_seconds":0.000017947}"#;
         let read: JobResult = serde_json::from_str(result).unwrap();

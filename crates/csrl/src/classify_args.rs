@@ -42,6 +42,10 @@ pub(crate) enum ClassifierKind {
     /// Batch tree: CVT (grower and stopping point chosen by cross-validated total cost).
     #[value(name = "cvt")]
     Cvt,
+    /// Batch tree: VOI (each test bought where, looking two tests ahead under smoothed
+    /// class estimates, it lowers the expected total cost).
+    #[value(name = "voi")]
+    Voi,
 }
 
 impl ClassifierKind {
@@ -59,6 +63,7 @@ impl ClassifierKind {
             ClassifierKind::Icet => Some(Method::Icet),
             ClassifierKind::Act => Some(Method::Act),
             ClassifierKind::Cvt => Some(Method::Cvt),
+            ClassifierKind::Voi => Some(Method::Voi),
         }
     }
 
@@ -175,6 +180,14 @@ pub struct ClassifyArgs {
     /// its grower and where its tree stops (default 5; at least 2).
     #[arg(long, value_name = "K")]
     pub(crate) cvt_folds: Option<usize>,
+    /// VOI only: how many tests ahead a test is valued (default 2, at most 3): at 1 a test
+    /// must pay for itself alone, at 2 a pair that pays together is bought.
+    #[arg(long, value_name = "D")]
+    pub(crate) voi_lookahead: Option<usize>,
+    /// VOI only: the m-estimate's weight of the class prior in each node's class
+    /// estimate, in objects (default 2; 0 takes the training counts as they are).
+    #[arg(long, value_name = "M")]
+    pub(crate) voi_m: Option<f64>,
     /// CVT only: the most threads one fit uses (default 1; 0 for every core): its trees
     /// on all the objects and on each fold grow at the same time, each from its own seed,
     /// so the tree and every output are the same on any number of threads.

@@ -482,6 +482,23 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
         method,
         CvtParams::with_folds,
     )?;
+    let voi_default = cslearn::testcost::VoiParams::default();
+    let voi = cslearn::testcost::VoiParams {
+        lookahead: learner_flag(
+            args.voi_lookahead,
+            "--voi-lookahead",
+            Method::Voi,
+            method,
+            |d| Ok::<_, cslearn::Error>(Some(d)),
+        )?
+        .unwrap_or(voi_default.lookahead),
+        m: learner_flag(args.voi_m, "--voi-m", Method::Voi, method, |m| {
+            Ok::<_, cslearn::Error>(Some(m))
+        })?
+        .unwrap_or(voi_default.m),
+    };
+    voi.check()
+        .map_err(|e| anyhow::anyhow!("--voi-lookahead / --voi-m: {e}"))?;
     // Without the flag, one thread (the library's default, not `usize`'s 0).
     let cvt = match args.cvt_threads {
         Some(_) => cvt.with_threads(learner_flag(
@@ -512,6 +529,7 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
             ..cslearn::testcost::IcetParams::default()
         },
         act,
+        voi,
         ..cslearn::testcost::FamilyParams::default()
     };
     let smallest = parts
@@ -629,6 +647,8 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
             "icet_pruning": (method == cslearn::testcost::Method::Icet).then(|| params.icet.pruning.name()),
             "act_samples": (method == cslearn::testcost::Method::Act).then_some(params.act.samples),
             "cvt_folds": (method == cslearn::testcost::Method::Cvt).then_some(params.cvt.folds),
+            "voi_lookahead": (method == cslearn::testcost::Method::Voi).then_some(params.voi.lookahead),
+            "voi_m": (method == cslearn::testcost::Method::Voi).then_some(params.voi.m),
             "all_tests_cost": prices.total(),
             "test_cost_per_object": test_cost,
             "tests_per_object": tests_bought,

@@ -80,6 +80,8 @@ fn testcost_args(args: &AnytimeArgs, samples: usize, out: PathBuf) -> TestcostAr
         icet_search_objects: 1000,
         cvt_folds: 5,
         act_samples: samples,
+        voi_lookahead: cslearn::testcost::VoiParams::default().lookahead,
+        voi_m: cslearn::testcost::VoiParams::default().m,
         max_tests: None,
         max_test_cost: None,
         price_range: vec![1.0, 100.0],

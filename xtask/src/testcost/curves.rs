@@ -699,6 +699,8 @@ pub fn budget(args: &BudgetArgs) -> Result<()> {
         icet_search_objects: 1000,
         cvt_folds: 5,
         act_samples: 5,
+        voi_lookahead: cslearn::testcost::VoiParams::default().lookahead,
+        voi_m: cslearn::testcost::VoiParams::default().m,
         max_tests: None,
         max_test_cost: None,
         price_range: vec![1.0, 100.0],

@@ -91,7 +91,7 @@ pub fn column(method: Method) -> Option<usize> {
         Method::Dtmc => Some(5),
         Method::Icet => Some(6),
         Method::Act => Some(7),
-        Method::Id3 | Method::Cvt => None,
+        Method::Id3 | Method::Cvt | Method::Voi => None,
     }
 }
 

@@ -13,6 +13,7 @@ use super::prices::{MisclassCosts, TestPrices};
 use super::splits::Splits;
 use super::stop::Stop;
 use super::tree::{CostTree, GrowParams, Pruning, SelectionPrices};
+use super::voi::{VoiParams, voi_tree_in, voi_trie};
 use crate::Error;
 
 /// A learner of the family.
@@ -46,11 +47,15 @@ pub enum Method {
     /// CVT, the cost-validated tree: the grower and the point where growth stops chosen
     /// by cross-validated total cost.
     Cvt,
+    /// VOI, the value-of-information tree: each test bought where, looking
+    /// [`VoiParams::lookahead`] tests ahead under smoothed class estimates, it lowers the
+    /// expected total cost.
+    Voi,
 }
 
 impl Method {
     /// Every learner, in the order of the benchmark's tables.
-    pub const ALL: [Method; 9] = [
+    pub const ALL: [Method; 10] = [
         Method::C45,
         Method::Id3,
         Method::Idx,
@@ -60,6 +65,7 @@ impl Method {
         Method::Icet,
         Method::Act,
         Method::Cvt,
+        Method::Voi,
     ];
 
     /// The learner's name, as `csrl classify --learner` and `cargo xtask testcost` spell it.
@@ -78,6 +84,7 @@ impl Method {
             Method::Icet => "icet",
             Method::Act => "act",
             Method::Cvt => "cvt",
+            Method::Voi => "voi",
         }
     }
 
@@ -110,7 +117,7 @@ impl Method {
     pub fn depends_on_mc(self) -> bool {
         matches!(
             self,
-            Method::Dtmc | Method::Icet | Method::Act | Method::Cvt
+            Method::Dtmc | Method::Icet | Method::Act | Method::Cvt | Method::Voi
         )
     }
 
@@ -129,7 +136,7 @@ impl Method {
             Method::Idx => pruned(Criterion::Idx),
             Method::CsId3Batch => pruned(Criterion::CsId3),
             Method::Eg2 | Method::Icet => pruned(Criterion::Eg2 { w: params.eg2_w }),
-            Method::Dtmc => GrowParams::new(Criterion::Dtmc),
+            Method::Dtmc | Method::Voi => GrowParams::new(Criterion::Dtmc),
             Method::Act => GrowParams::new(Criterion::Eg2 { w: params.eg2_w })
                 .pruned(params.act.confidence)
                 .pruning_by(Pruning::Costs),
@@ -180,6 +187,9 @@ pub struct FamilyParams {
     /// CVT's cross-validation.
     #[serde(default)]
     pub cvt: CvtParams,
+    /// VOI's lookahead and smoothing.
+    #[serde(default, skip_serializing_if = "VoiParams::is_default")]
+    pub voi: VoiParams,
     /// The price every learner's selection function sees for a test: after the node's
     /// path (the default) or as listed.
     #[serde(default)]
@@ -217,6 +227,7 @@ impl Default for FamilyParams {
             icet: IcetParams::default(),
             act: ActParams::default(),
             cvt: CvtParams::default(),
+            voi: VoiParams::default(),
             selection_prices: SelectionPrices::Path,
             budget: Budget::UNLIMITED,
             max_lookahead_features: FamilyParams::DEFAULT_MAX_LOOKAHEAD_FEATURES,
@@ -288,10 +299,14 @@ impl FamilyParams {
                 ),
             );
         }
+        if method == Method::Voi {
+            self.voi.check()?;
+        }
         let features = frame.feature_count();
         let lookahead = match method {
             Method::Act if self.act.samples > 0 => Some("ACT's lookahead"),
             Method::Cvt => Some("CVT's lookahead grower"),
+            Method::Voi if self.voi.lookahead > 1 => Some("VOI's lookahead"),
             _ => None,
         };
         if let Some(lookahead) = lookahead
@@ -538,6 +553,16 @@ fn fit_watching(
             stop,
         );
         return one.remove(0);
+    }
+    if method == Method::Voi {
+        let grow = method.grow_params(params);
+        let mut splits = voi_trie(frame, rows, mc, &grow);
+        splits.watch(stop);
+        return Fitted {
+            tree: voi_tree_in(&mut splits, prices, mc, &params.voi, &grow),
+            genome: None,
+            cvt: None,
+        };
     }
     if method == Method::Icet {
         let genome = icet_search(frame, rows, prices, mc, params, seed, stop);

@@ -79,6 +79,7 @@ mod prices;
 mod splits;
 mod stop;
 mod tree;
+mod voi;
 
 pub use act::ActParams;
 pub use budget::Budget;
@@ -97,3 +98,4 @@ pub use tree::{
     Classification, CostTree, FeatureShape, GrowParams, NodeIndex, Pruning, SelectionPrices, Split,
     TreeFault, TreeNode, laplace,
 };
+pub use voi::VoiParams;

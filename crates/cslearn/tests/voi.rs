@@ -1,0 +1,147 @@
+//! VOI, the value-of-information tree: the cases worked by hand.
+
+use cslearn::testcost::{
+    Budget, Column, FamilyParams, Frame, Method, MisclassCosts, TestPrices, VoiParams, fit,
+};
+
+/// Two binary tests whose exclusive or is the class, and a third that tells nothing:
+/// `copies` objects of each of the four combinations.
+fn xor(copies: usize) -> Frame {
+    let mut a = Vec::new();
+    let mut b = Vec::new();
+    let mut noise = Vec::new();
+    let mut classes = Vec::new();
+    for i in 0..4 * copies {
+        let (x, y) = ((i % 4) / 2, i % 2);
+        a.push(x as f64);
+        b.push(y as f64);
+        noise.push((i / 4 % 2) as f64);
+        classes.push((x ^ y) as u32);
+    }
+    Frame::new(
+        vec!["a".into(), "b".into(), "noise".into()],
+        vec![
+            Column::Numeric(a),
+            Column::Numeric(b),
+            Column::Numeric(noise),
+        ],
+        classes,
+        vec!["even".into(), "odd".into()],
+    )
+    .unwrap()
+}
+
+fn voi(lookahead: usize) -> FamilyParams {
+    FamilyParams {
+        voi: VoiParams {
+            lookahead,
+            ..VoiParams::default()
+        },
+        ..FamilyParams::default()
+    }
+}
+
+/// Neither test alone changes the odds (half the objects of each branch are odd), so
+/// with one test of lookahead none pays for itself; two together tell every object, and
+/// at a lookahead of two the pair is bought: 2 + 3 in tests against half of 100 in errors.
+#[test]
+fn a_pair_that_pays_is_bought_where_neither_test_alone_pays() {
+    let frame = xor(10);
+    let rows: Vec<usize> = (0..frame.len()).collect();
+    let prices = TestPrices::flat(&[2.0, 3.0, 1.0]).unwrap();
+    let mc = MisclassCosts::uniform(2, 100.0).unwrap();
+    let myopic = fit(Method::Voi, &frame, &rows, &prices, &mc, &voi(1), 1);
+    assert_eq!(myopic.tree.len(), 1, "one test ahead, no test pays alone");
+    let two = fit(Method::Voi, &frame, &rows, &prices, &mc, &voi(2), 1);
+    for &row in &rows {
+        let c = two.tree.classify(&frame, row, &prices);
+        assert_eq!(c.class, frame.classes()[row], "object {row}");
+        assert_eq!(
+            c.test_cost, 5.0,
+            "object {row} buys both tests and no other"
+        );
+        assert!(!c.tests.contains(&2), "the noise is never bought");
+    }
+    // The pair does not pay where an error costs less than the tests: 5 in tests against
+    // 4 expected in errors (the estimates are pulled towards even odds, so a little more).
+    let cheap = MisclassCosts::uniform(2, 8.0).unwrap();
+    let stop = fit(Method::Voi, &frame, &rows, &prices, &cheap, &voi(2), 1);
+    assert_eq!(stop.tree.len(), 1);
+}
+
+/// A budget of one test leaves nothing worth buying in the pair: the tree stays a leaf,
+/// where without the budget it buys both.
+#[test]
+fn a_budget_too_small_for_the_pair_buys_nothing() {
+    let frame = xor(10);
+    let rows: Vec<usize> = (0..frame.len()).collect();
+    let prices = TestPrices::flat(&[2.0, 3.0, 1.0]).unwrap();
+    let mc = MisclassCosts::uniform(2, 100.0).unwrap();
+    let params = FamilyParams {
+        budget: Budget::new(None, Some(1)).unwrap(),
+        ..voi(2)
+    };
+    let fitted = fit(Method::Voi, &frame, &rows, &prices, &mc, &params, 1);
+    assert_eq!(fitted.tree.len(), 1);
+}
+
+/// VOI draws nothing at random: any seed learns the same tree, to the bit.
+#[test]
+fn voi_learns_the_same_tree_from_any_seed() {
+    let n = 120;
+    let x: Vec<f64> = (0..n).map(|i| f64::from((i * 37) % 101)).collect();
+    let y: Vec<f64> = (0..n).map(|i| f64::from((i * 53) % 97)).collect();
+    let classes: Vec<u32> = (0..n as usize)
+        .map(|i| u32::from(x[i] + 0.5 * y[i] > 70.0) + u32::from(y[i] > 80.0))
+        .collect();
+    let frame = Frame::new(
+        vec!["x".into(), "y".into()],
+        vec![Column::Numeric(x), Column::Numeric(y)],
+        classes,
+        vec!["a".into(), "b".into(), "c".into()],
+    )
+    .unwrap();
+    let rows: Vec<usize> = (0..frame.len()).collect();
+    let prices = TestPrices::flat(&[5.0, 9.0]).unwrap();
+    let mc = MisclassCosts::uniform(3, 200.0).unwrap();
+    let first = fit(Method::Voi, &frame, &rows, &prices, &mc, &voi(2), 1);
+    assert!(first.tree.len() > 1, "the data is worth some tests");
+    for seed in [2, 99, u64::MAX] {
+        assert_eq!(
+            fit(Method::Voi, &frame, &rows, &prices, &mc, &voi(2), seed),
+            first
+        );
+    }
+}
+
+/// The settings are checked where a fit is asked for.
+#[test]
+fn lookahead_and_m_out_of_range_are_refused_by_check() {
+    let frame = xor(2);
+    for bad in [
+        VoiParams {
+            lookahead: 0,
+            m: 2.0,
+        },
+        VoiParams {
+            lookahead: 4,
+            m: 2.0,
+        },
+        VoiParams {
+            lookahead: 2,
+            m: f64::NAN,
+        },
+    ] {
+        let params = FamilyParams {
+            voi: bad,
+            ..FamilyParams::default()
+        };
+        let e = params
+            .check(Method::Voi, &frame, 8)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("VOI"), "{e}");
+        // Other learners do not read VOI's settings.
+        assert!(params.check(Method::Eg2, &frame, 8).is_ok());
+    }
+}
