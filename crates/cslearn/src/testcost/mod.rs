@@ -36,6 +36,7 @@
 //! | `icet` (Turney 1995) | same | EG2 over **biased prices** | same | pruning at a **searched confidence** | **genetic search** of prices, w and confidence |
 //! | `act` (Esmeir and Markovitch 2008) | same | **least cost of stochastic EG2 trees sampled** under each test | same | **stop when a leaf costs less**, pruning by cost | one pass |
 //! | `cvt` (ours: the cost-validated tree) | same | **seven growers** (EG2 at four `w`, gain ratio, DTMC, ACT's lookahead) | same | **cut at a price per leaf or by pessimistic cost**, measured on held-out objects | **cross-validation** of grower and cut |
+//! | `voi` (ours: the value-of-information tree) | same | **least expected total cost looking [`VoiParams::lookahead`] tests ahead** | **least mc cost under an m-estimate** of the classes | **stop when stopping costs least** within the lookahead, no pruning | one pass |
 //!
 //! The price a learner sees at a node is the test's price on that node's path: 0 for a
 //! test already done (a numeric feature split again), the discount after another test of
