@@ -85,12 +85,15 @@ pub struct TestcostArgs {
     #[arg(long, default_value_t = 5)]
     act_samples: usize,
     /// VOI's lookahead: how many tests ahead a test is valued (the library's 2, at most 3).
-    #[arg(long, default_value_t = 2)]
-    voi_lookahead: usize,
-    /// VOI's m-estimate: the weight of the class prior in each node's estimate, in objects
-    /// (the library's 2).
-    #[arg(long, default_value_t = 2.0)]
-    voi_m: f64,
+    #[arg(long, value_name = "D")]
+    voi_lookahead: Option<usize>,
+    /// VOI's leaf estimate, pessimistic at this confidence (the library's 0.25).
+    #[arg(long, value_name = "C")]
+    voi_confidence: Option<f64>,
+    /// VOI's leaf estimate, an m-estimate of the classes with the class shares weighing
+    /// this many objects (instead of the pessimistic estimate).
+    #[arg(long, value_name = "M")]
+    voi_m: Option<f64>,
     /// A hard budget per object: at most K distinct tests. The greedy learners grow within
     /// it, every learner's trees classify within it (none by default).
     #[arg(long, value_name = "K")]
@@ -946,12 +949,8 @@ pub(crate) fn prepare(args: &TestcostArgs) -> Result<Prepared> {
         CvtParams::with_folds(args.cvt_folds).map_err(|e| anyhow::anyhow!("--cvt-folds: {e}"))?;
     let act = ActParams::with_samples(args.act_samples)
         .map_err(|e| anyhow::anyhow!("--act-samples: {e}"))?;
-    let voi = VoiParams {
-        lookahead: args.voi_lookahead,
-        m: args.voi_m,
-    };
-    voi.check()
-        .map_err(|e| anyhow::anyhow!("--voi-lookahead / --voi-m: {e}"))?;
+    let voi = VoiParams::from_options(args.voi_lookahead, args.voi_confidence, args.voi_m)
+        .map_err(|e| anyhow::anyhow!("--voi-lookahead / --voi-confidence / --voi-m: {e}"))?;
     let budget = match args.max_test_cost {
         Some(b) if !(b.is_finite() && b >= 0.0) => {
             bail!("--max-test-cost {b}: a budget must be a finite price, not negative")
@@ -1263,11 +1262,17 @@ fn args_line(args: &TestcostArgs) -> String {
     if args.act_samples != 5 {
         let _ = write!(line, " --act-samples {}", args.act_samples);
     }
-    if args.voi_lookahead != 2 {
-        let _ = write!(line, " --voi-lookahead {}", args.voi_lookahead);
-    }
-    if args.voi_m != 2.0 {
-        let _ = write!(line, " --voi-m {}", args.voi_m);
+    for (flag, value) in [
+        ("--voi-lookahead", args.voi_lookahead.map(|d| d.to_string())),
+        (
+            "--voi-confidence",
+            args.voi_confidence.map(|c| c.to_string()),
+        ),
+        ("--voi-m", args.voi_m.map(|m| m.to_string())),
+    ] {
+        if let Some(value) = value {
+            let _ = write!(line, " {flag} {value}");
+        }
     }
     if let Some(k) = args.max_tests {
         let _ = write!(line, " --max-tests {k}");
@@ -1316,8 +1321,9 @@ pub(crate) mod tests {
             icet_search_objects: 400,
             cvt_folds: 5,
             act_samples: 5,
-            voi_lookahead: 2,
-            voi_m: 2.0,
+            voi_lookahead: None,
+            voi_confidence: None,
+            voi_m: None,
             max_tests: None,
             max_test_cost: None,
             price_range: vec![1.0, 100.0],

@@ -1,7 +1,7 @@
 //! VOI, the value-of-information tree: the cases worked by hand.
 
 use cslearn::testcost::{
-    Budget, Column, FamilyParams, Frame, Method, MisclassCosts, TestPrices, VoiParams, fit,
+    Budget, Column, FamilyParams, Frame, Method, MisclassCosts, TestPrices, VoiLeaf, VoiParams, fit,
 };
 
 /// Two binary tests whose exclusive or is the class, and a third that tells nothing:
@@ -44,29 +44,39 @@ fn voi(lookahead: usize) -> FamilyParams {
 /// Neither test alone changes the odds (half the objects of each branch are odd), so
 /// with one test of lookahead none pays for itself; two together tell every object, and
 /// at a lookahead of two the pair is bought: 2 + 3 in tests against half of 100 in errors.
+/// So with either leaf estimate.
 #[test]
 fn a_pair_that_pays_is_bought_where_neither_test_alone_pays() {
     let frame = xor(10);
     let rows: Vec<usize> = (0..frame.len()).collect();
     let prices = TestPrices::flat(&[2.0, 3.0, 1.0]).unwrap();
     let mc = MisclassCosts::uniform(2, 100.0).unwrap();
-    let myopic = fit(Method::Voi, &frame, &rows, &prices, &mc, &voi(1), 1);
-    assert_eq!(myopic.tree.len(), 1, "one test ahead, no test pays alone");
-    let two = fit(Method::Voi, &frame, &rows, &prices, &mc, &voi(2), 1);
-    for &row in &rows {
-        let c = two.tree.classify(&frame, row, &prices);
-        assert_eq!(c.class, frame.classes()[row], "object {row}");
+    for leaf in [VoiParams::default().leaf, VoiLeaf::MEstimate { m: 2.0 }] {
+        let at = |lookahead| FamilyParams {
+            voi: VoiParams { lookahead, leaf },
+            ..FamilyParams::default()
+        };
+        let myopic = fit(Method::Voi, &frame, &rows, &prices, &mc, &at(1), 1);
         assert_eq!(
-            c.test_cost, 5.0,
-            "object {row} buys both tests and no other"
+            myopic.tree.len(),
+            1,
+            "{leaf:?}: one test ahead, none pays alone"
         );
-        assert!(!c.tests.contains(&2), "the noise is never bought");
+        let two = fit(Method::Voi, &frame, &rows, &prices, &mc, &at(2), 1);
+        for &row in &rows {
+            let c = two.tree.classify(&frame, row, &prices);
+            assert_eq!(c.class, frame.classes()[row], "{leaf:?}: object {row}");
+            assert_eq!(
+                c.test_cost, 5.0,
+                "{leaf:?}: object {row} buys both, no other"
+            );
+        }
+        // The pair does not pay where an error costs less than the tests: 5 in tests
+        // against 4 expected in errors (and each estimate adds a little to the errors).
+        let cheap = MisclassCosts::uniform(2, 8.0).unwrap();
+        let stop = fit(Method::Voi, &frame, &rows, &prices, &cheap, &at(2), 1);
+        assert_eq!(stop.tree.len(), 1, "{leaf:?}");
     }
-    // The pair does not pay where an error costs less than the tests: 5 in tests against
-    // 4 expected in errors (the estimates are pulled towards even odds, so a little more).
-    let cheap = MisclassCosts::uniform(2, 8.0).unwrap();
-    let stop = fit(Method::Voi, &frame, &rows, &prices, &cheap, &voi(2), 1);
-    assert_eq!(stop.tree.len(), 1);
 }
 
 /// A budget of one test leaves nothing worth buying in the pair: the tree stays a leaf,
@@ -116,21 +126,23 @@ fn voi_learns_the_same_tree_from_any_seed() {
 
 /// The settings are checked where a fit is asked for.
 #[test]
-fn lookahead_and_m_out_of_range_are_refused_by_check() {
+fn settings_out_of_range_are_refused_by_check() {
     let frame = xor(2);
+    let with_leaf = |leaf| VoiParams {
+        leaf,
+        ..VoiParams::default()
+    };
     for bad in [
         VoiParams {
             lookahead: 0,
-            m: 2.0,
+            ..VoiParams::default()
         },
         VoiParams {
             lookahead: 4,
-            m: 2.0,
+            ..VoiParams::default()
         },
-        VoiParams {
-            lookahead: 2,
-            m: f64::NAN,
-        },
+        with_leaf(VoiLeaf::MEstimate { m: f64::NAN }),
+        with_leaf(VoiLeaf::Pessimistic { confidence: 0.0 }),
     ] {
         let params = FamilyParams {
             voi: bad,

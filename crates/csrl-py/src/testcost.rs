@@ -12,7 +12,7 @@
 use cslearn::testcost::{
     ActParams, Budget, Column, CostTree, CvtChoice, CvtParams, FamilyParams, FeatureShape, Frame,
     IcetGenome, IcetParams, MISSING, Method, MisclassCosts, Pruning, SelectionPrices, Split, Stop,
-    TestPrice, TestPrices,
+    TestPrice, TestPrices, VoiParams,
 };
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyType};
@@ -273,7 +273,7 @@ fn check_unit(value: f64, what: &str, low_open: bool, high_open: bool) -> PyResu
 #[pymethods]
 impl TestCostTree {
     /// Grow a tree with `learner` ("id3-batch", "c45", "idx", "cs-id3-batch", "eg2", "dtmc",
-    /// "icet", "act", "cvt") on every object. `prices` is `(full, discount, group)` per feature (group
+    /// "icet", "act", "cvt", "voi") on every object. `prices` is `(full, discount, group)` per feature (group
     /// an index into `group_names`, or `None`); `misclassification[actual][predicted]`
     /// the cost of each answer; `confidence` C4.5's pruning confidence, `w` EG2's weight
     /// of the price; `seed`, `population` and `generations` ICET's search (`seed` also
@@ -282,10 +282,11 @@ impl TestCostTree {
     /// prunes ("errors" or "costs") and `search_objects` the most objects its search
     /// uses; `folds` CVT's cross-validation (`seed` also its folds); `max_test_cost` and
     /// `max_tests` a budget per object (`Budget`), within which the greedy learners grow
-    /// (`None`: no limit). The GIL is released while it grows, and Ctrl-C stops it
+    /// (`None`: no limit); `voi_lookahead`, `voi_confidence` and `voi_m` VOI's settings
+    /// (`VoiParams::from_options`; `None`: the library's). The GIL is released while it grows, and Ctrl-C stops it
     /// (`KeyboardInterrupt`, checked every 50 ms).
     #[staticmethod]
-    #[pyo3(signature = (learner, names, columns, classes, class_names, prices, group_names, misclassification, confidence=0.25, w=1.0, seed=0, population=50, generations=20, samples=5, selection_prices="path", icet_pruning="errors", search_objects=400, folds=5, max_test_cost=None, max_tests=None, threads=1))]
+    #[pyo3(signature = (learner, names, columns, classes, class_names, prices, group_names, misclassification, confidence=0.25, w=1.0, seed=0, population=50, generations=20, samples=5, selection_prices="path", icet_pruning="errors", search_objects=400, folds=5, max_test_cost=None, max_tests=None, threads=1, voi_lookahead=None, voi_confidence=None, voi_m=None))]
     #[expect(
         clippy::too_many_arguments,
         reason = "one argument per setting, all keywords from Python"
@@ -313,6 +314,9 @@ impl TestCostTree {
         max_test_cost: Option<f64>,
         max_tests: Option<usize>,
         threads: usize,
+        voi_lookahead: Option<usize>,
+        voi_confidence: Option<f64>,
+        voi_m: Option<f64>,
     ) -> PyResult<TestCostTree> {
         let budget = budget(max_test_cost, max_tests)?;
         let method = Method::parse(learner).map_err(|e| data_error(&e))?;
@@ -330,6 +334,8 @@ impl TestCostTree {
         let icet_pruning = Pruning::parse(icet_pruning)
             .map_err(|e| DataError::new_err(format!("icet_pruning: {}", message(&e))))?;
         let act = ActParams::with_samples(samples).map_err(|e| data_error(&e))?;
+        let voi = VoiParams::from_options(voi_lookahead, voi_confidence, voi_m)
+            .map_err(|e| data_error(&e))?;
         let cvt = CvtParams::with_folds(folds)
             .map_err(|e| data_error(&e))?
             .with_threads(threads);
@@ -368,6 +374,7 @@ impl TestCostTree {
             selection_prices,
             act,
             cvt,
+            voi,
             budget,
             // The lookahead's limit is the library's: `MAX_LOOKAHEAD_FEATURES`.
             ..FamilyParams::default()

@@ -23,6 +23,7 @@ NAMED = [
     cs.IcetClassifier,
     cs.ActClassifier,
     cs.CvtClassifier,
+    cs.VoiClassifier,
 ]
 SMALL = {
     cs.IcetClassifier: {"population": 6, "generations": 3},

@@ -30,6 +30,7 @@ def estimators():
         cs.IcetClassifier(**FAST),
         cs.ActClassifier(act_samples=2),
         cs.CvtClassifier(cvt_folds=3),
+        cs.VoiClassifier(),
     ]
     return trees + [cs.CsId3Classifier(), cs.CsIblClassifier()]
 

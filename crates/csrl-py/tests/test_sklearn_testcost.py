@@ -29,6 +29,7 @@ NAMED = {
     "icet": cs.IcetClassifier,
     "act": cs.ActClassifier,
     "cvt": cs.CvtClassifier,
+    "voi": cs.VoiClassifier,
 }
 ESTIMATORS = [cs.TestCostTreeClassifier(), *(cls() for cls in NAMED.values())]
 

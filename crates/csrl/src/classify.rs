@@ -246,6 +246,7 @@ fn check_flags(args: &ClassifyArgs) -> Result<()> {
             ("--act-samples", args.act_samples.is_some()),
             ("--cvt-folds", args.cvt_folds.is_some()),
             ("--voi-lookahead", args.voi_lookahead.is_some()),
+            ("--voi-confidence", args.voi_confidence.is_some()),
             ("--voi-m", args.voi_m.is_some()),
             ("--cvt-threads", args.cvt_threads.is_some()),
             ("--max-test-cost", args.max_test_cost.is_some()),

@@ -184,8 +184,12 @@ pub struct ClassifyArgs {
     /// must pay for itself alone, at 2 a pair that pays together is bought.
     #[arg(long, value_name = "D")]
     pub(crate) voi_lookahead: Option<usize>,
-    /// VOI only: the m-estimate's weight of the class prior in each node's class
-    /// estimate, in objects (default 2; 0 takes the training counts as they are).
+    /// VOI only: what stopping at a node costs is estimated pessimistically, C4.5's
+    /// upper limit of the error rate at this confidence (default 0.25).
+    #[arg(long, value_name = "C")]
+    pub(crate) voi_confidence: Option<f64>,
+    /// VOI only: estimate what stopping costs by an m-estimate of the classes instead, the
+    /// class shares weighing this many objects (0 takes the training counts as they are).
     #[arg(long, value_name = "M")]
     pub(crate) voi_m: Option<f64>,
     /// CVT only: the most threads one fit uses (default 1; 0 for every core): its trees

@@ -482,23 +482,24 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
         method,
         CvtParams::with_folds,
     )?;
-    let voi_default = cslearn::testcost::VoiParams::default();
-    let voi = cslearn::testcost::VoiParams {
-        lookahead: learner_flag(
+    // Each flag is VOI's alone; together they are checked by the library.
+    let given = |v: Option<f64>, flag| {
+        learner_flag(v, flag, Method::Voi, method, |x| {
+            Ok::<_, cslearn::Error>(Some(x))
+        })
+    };
+    let voi = cslearn::testcost::VoiParams::from_options(
+        learner_flag(
             args.voi_lookahead,
             "--voi-lookahead",
             Method::Voi,
             method,
             |d| Ok::<_, cslearn::Error>(Some(d)),
-        )?
-        .unwrap_or(voi_default.lookahead),
-        m: learner_flag(args.voi_m, "--voi-m", Method::Voi, method, |m| {
-            Ok::<_, cslearn::Error>(Some(m))
-        })?
-        .unwrap_or(voi_default.m),
-    };
-    voi.check()
-        .map_err(|e| anyhow::anyhow!("--voi-lookahead / --voi-m: {e}"))?;
+        )?,
+        given(args.voi_confidence, "--voi-confidence")?,
+        given(args.voi_m, "--voi-m")?,
+    )
+    .map_err(|e| anyhow::anyhow!("--voi-lookahead / --voi-confidence / --voi-m: {e}"))?;
     // Without the flag, one thread (the library's default, not `usize`'s 0).
     let cvt = match args.cvt_threads {
         Some(_) => cvt.with_threads(learner_flag(
@@ -648,7 +649,7 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
             "act_samples": (method == cslearn::testcost::Method::Act).then_some(params.act.samples),
             "cvt_folds": (method == cslearn::testcost::Method::Cvt).then_some(params.cvt.folds),
             "voi_lookahead": (method == cslearn::testcost::Method::Voi).then_some(params.voi.lookahead),
-            "voi_m": (method == cslearn::testcost::Method::Voi).then_some(params.voi.m),
+            "voi_leaf": (method == cslearn::testcost::Method::Voi).then_some(params.voi.leaf),
             "all_tests_cost": prices.total(),
             "test_cost_per_object": test_cost,
             "tests_per_object": tests_bought,

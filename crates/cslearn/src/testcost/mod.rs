@@ -99,4 +99,4 @@ pub use tree::{
     Classification, CostTree, FeatureShape, GrowParams, NodeIndex, Pruning, SelectionPrices, Split,
     TreeFault, TreeNode, laplace,
 };
-pub use voi::VoiParams;
+pub use voi::{VoiLeaf, VoiParams};

@@ -8,51 +8,118 @@
 //! found the same way `lookahead - 1` more tests ahead (a branch at the horizon stops).
 //! The node buys the test of least expected total cost if that is less than stopping;
 //! a pair of tests that pays while neither pays alone is therefore bought at a lookahead
-//! of two. Class estimates are m-estimates: `(w_k + m p_k) / (W + m)`, the node's class
-//! weights pulled towards the training objects' class shares `p` (Laplace-smoothed) by
-//! `m` objects' worth, so that a branch of two objects never looks certain; the tree's
-//! nodes keep these pseudo-counts as their weights, so its answers and probabilities
-//! are the estimates the choices were made by.
+//! of two. What stopping costs is estimated so that a branch of two objects of one class
+//! does not look certain ([`VoiLeaf`]): by default C4.5's pessimistic error (the upper
+//! limit of a confidence interval on the node's error rate), or an m-estimate of the
+//! classes, which the tree then keeps as its nodes' weights.
 
 use super::budget::Budget;
 use super::criterion::Criterion;
 use super::prices::{MisclassCosts, TestPrices};
 use super::splits::{Splits, Stat};
 use super::tree::{
-    CostTree, GrowParams, SelectionPrices, TreeNode, grow_nodes_by, is_pure, path_spending,
-    price_after,
+    CostTree, GrowParams, SelectionPrices, TreeNode, deviation, estimated_cost, grow_nodes_by,
+    is_pure, path_spending, price_after,
 };
 use crate::Error;
 
 /// VOI's settings.
 ///
 /// ```
-/// let p = cslearn::testcost::VoiParams::default();
-/// assert_eq!((p.lookahead, p.m), (2, 2.0));
+/// use cslearn::testcost::{VoiLeaf, VoiParams};
+/// let p = VoiParams::default();
+/// assert_eq!((p.lookahead, p.leaf), (2, VoiLeaf::Pessimistic { confidence: 0.25 }));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct VoiParams {
     /// How many tests ahead a test is valued (1: its branches stop; 2: each branch may
     /// buy one more test), 2 by default, at most [`MAX_LOOKAHEAD`](VoiParams::MAX_LOOKAHEAD).
     pub lookahead: usize,
-    /// The m-estimate's weight of the class prior, in objects (2 by default; 0 takes the
-    /// training weights as they are).
-    pub m: f64,
+    /// How what stopping costs is estimated.
+    pub leaf: VoiLeaf,
 }
 
 impl Default for VoiParams {
     fn default() -> Self {
         VoiParams {
             lookahead: 2,
-            m: 2.0,
+            leaf: VoiLeaf::Pessimistic { confidence: 0.25 },
         }
     }
+}
+
+/// How VOI estimates what stopping at a node costs, so that a node of few objects of one
+/// class does not promise that the next object is of that class.
+///
+/// ```
+/// use cslearn::testcost::VoiLeaf;
+/// let leaf: VoiLeaf = serde_json::from_str(r#"{"m_estimate":{"m":2.0}}"#).unwrap();
+/// assert_eq!(leaf, VoiLeaf::MEstimate { m: 2.0 });
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum VoiLeaf {
+    /// The cost of the node's errors under its answer, plus C4.5's added errors at
+    /// `confidence` (ACT's estimate of a leaf) at the dearest error of that answer; the
+    /// tree's nodes keep their training weights, as the family's do.
+    Pessimistic {
+        /// The confidence of the upper limit (C4.5's 0.25).
+        confidence: f64,
+    },
+    /// The expected misclassification cost of the best answer under the m-estimate
+    /// `(w_k + m p_k) / (W + m)` of each class (the node's class weights pulled towards
+    /// the training objects' class shares `p`, Laplace-smoothed, by `m` objects' worth);
+    /// the tree's nodes keep these pseudo-counts as their weights, so that its answers
+    /// and probabilities are the estimates the tests were bought by.
+    MEstimate {
+        /// The weight of the class shares, in objects (0 takes the counts as they are).
+        m: f64,
+    },
 }
 
 impl VoiParams {
     /// The deepest lookahead accepted: the work per node grows as the number of features
     /// to this power.
     pub const MAX_LOOKAHEAD: usize = 3;
+
+    /// The settings a front end's options ask for: the defaults where an option is not
+    /// given, an m-estimate where `m` is given, checked ([`check`](VoiParams::check)). A
+    /// confidence and an m together are refused: the leaf estimate is one or the other.
+    ///
+    /// ```
+    /// use cslearn::testcost::{VoiLeaf, VoiParams};
+    /// assert_eq!(VoiParams::from_options(None, None, None).unwrap(), VoiParams::default());
+    /// let p = VoiParams::from_options(Some(3), None, Some(1.0)).unwrap();
+    /// assert_eq!((p.lookahead, p.leaf), (3, VoiLeaf::MEstimate { m: 1.0 }));
+    /// assert!(VoiParams::from_options(None, Some(0.1), Some(1.0)).is_err());
+    /// assert!(VoiParams::from_options(Some(9), None, None).is_err());
+    /// ```
+    pub fn from_options(
+        lookahead: Option<usize>,
+        confidence: Option<f64>,
+        m: Option<f64>,
+    ) -> Result<VoiParams, Error> {
+        let default = VoiParams::default();
+        let leaf = match (confidence, m) {
+            (Some(confidence), Some(m)) => {
+                return Err(Error::Invalid {
+                    what: format!("VOI confidence {confidence} and m {m}"),
+                    reason: "a leaf is estimated pessimistically (a confidence) or by an \
+                             m-estimate (an m), not both"
+                        .into(),
+                });
+            }
+            (Some(confidence), None) => VoiLeaf::Pessimistic { confidence },
+            (None, Some(m)) => VoiLeaf::MEstimate { m },
+            (None, None) => default.leaf,
+        };
+        let params = VoiParams {
+            lookahead: lookahead.unwrap_or(default.lookahead),
+            leaf,
+        };
+        params.check()?;
+        Ok(params)
+    }
 
     /// Whether these are the defaults (result files leave the defaults out).
     ///
@@ -63,13 +130,16 @@ impl VoiParams {
         *self == VoiParams::default()
     }
 
-    /// Refuse a lookahead outside 1 to [`MAX_LOOKAHEAD`](VoiParams::MAX_LOOKAHEAD) and an m
-    /// that is negative or not finite.
+    /// Refuse a lookahead outside 1 to [`MAX_LOOKAHEAD`](VoiParams::MAX_LOOKAHEAD), a
+    /// confidence outside (0, 1) and an m that is negative or not finite.
     ///
     /// ```
-    /// use cslearn::testcost::VoiParams;
-    /// assert!(VoiParams { lookahead: 0, m: 2.0 }.check().is_err());
-    /// assert!(VoiParams { lookahead: 2, m: -1.0 }.check().is_err());
+    /// use cslearn::testcost::{VoiLeaf, VoiParams};
+    /// assert!(VoiParams { lookahead: 0, ..VoiParams::default() }.check().is_err());
+    /// let leaf = VoiLeaf::MEstimate { m: -1.0 };
+    /// assert!(VoiParams { leaf, ..VoiParams::default() }.check().is_err());
+    /// let leaf = VoiLeaf::Pessimistic { confidence: 1.0 };
+    /// assert!(VoiParams { leaf, ..VoiParams::default() }.check().is_err());
     /// assert!(VoiParams::default().check().is_ok());
     /// ```
     pub fn check(&self) -> Result<(), Error> {
@@ -82,13 +152,21 @@ impl VoiParams {
                 ),
             });
         }
-        if !(self.m.is_finite() && self.m >= 0.0) {
-            return Err(Error::Invalid {
-                what: format!("VOI m {}", self.m),
+        match self.leaf {
+            VoiLeaf::MEstimate { m } if !(m.is_finite() && m >= 0.0) => Err(Error::Invalid {
+                what: format!("VOI m {m}"),
                 reason: "the m-estimate's weight is a finite number of objects, 0 or more".into(),
-            });
+            }),
+            VoiLeaf::Pessimistic { confidence } if !(confidence > 0.0 && confidence < 1.0) => {
+                Err(Error::Invalid {
+                    what: format!("VOI confidence {confidence}"),
+                    reason: "the pessimistic estimate's confidence is between 0 and 1, both \
+                             excluded (C4.5's is 0.25)"
+                        .into(),
+                })
+            }
+            _ => Ok(()),
         }
-        Ok(())
     }
 }
 
@@ -98,9 +176,12 @@ struct Valuer<'p> {
     mc: &'p MisclassCosts,
     selection: SelectionPrices,
     budget: Budget,
-    /// The class prior the estimates are pulled towards, times m.
+    leaf: VoiLeaf,
+    /// The class prior the m-estimates are pulled towards, times m (zeros for the
+    /// pessimistic estimate).
     prior_m: Vec<f64>,
-    m: f64,
+    /// C4.5's squared normal deviate at the pessimistic estimate's confidence.
+    coeff: f64,
 }
 
 impl Valuer<'_> {
@@ -119,9 +200,16 @@ impl Valuer<'_> {
         if total <= 0.0 {
             return 0.0;
         }
-        let (_, cost) = self.mc.best(&self.pseudo(weights));
-        // `best` sums the pseudo-counts' costs: per object, divide by their sum.
-        total * cost / (total + self.m)
+        match self.leaf {
+            VoiLeaf::Pessimistic { confidence } => {
+                estimated_cost(self.mc, weights, confidence, self.coeff)
+            }
+            VoiLeaf::MEstimate { m } => {
+                let (_, cost) = self.mc.best(&self.pseudo(weights));
+                // `best` sums the pseudo-counts' costs: per object, divide by their sum.
+                total * cost / (total + m)
+            }
+        }
     }
 
     /// Whether the path's objects may still buy `stat`'s test.
@@ -190,23 +278,30 @@ pub(super) fn voi_tree_in(
     let root = splits.cell(0).class_weights.clone();
     let total: f64 = root.iter().sum();
     let classes = root.len().max(1) as f64;
+    let (m, confidence) = match params.leaf {
+        VoiLeaf::MEstimate { m } => (m, 0.25),
+        VoiLeaf::Pessimistic { confidence } => (0.0, confidence),
+    };
     let prior_m: Vec<f64> = root
         .iter()
-        .map(|w| params.m * (w + 1.0) / (total + classes))
+        .map(|w| m * (w + 1.0) / (total + classes))
         .collect();
     let valuer = Valuer {
         prices,
         mc,
         selection: grow.selection_prices,
         budget: grow.budget,
+        leaf: params.leaf,
         prior_m,
-        m: params.m,
+        coeff: deviation(confidence).powi(2),
     };
     let mut nodes = grow_nodes_by(splits, mc, grow.max_depth, |splits, c| {
         valuer.value(splits, c, params.lookahead).1
     });
-    for node in &mut nodes {
-        relabel(node, &valuer);
+    if matches!(params.leaf, VoiLeaf::MEstimate { .. }) {
+        for node in &mut nodes {
+            relabel(node, &valuer);
+        }
     }
     CostTree::from_nodes(nodes, mc)
 }

@@ -179,6 +179,9 @@ class TestCostTree:
         max_test_cost: Optional[float] = None,
         max_tests: Optional[int] = None,
         threads: int = 1,
+        voi_lookahead: Optional[int] = None,
+        voi_confidence: Optional[float] = None,
+        voi_m: Optional[float] = None,
     ) -> TestCostTree: ...
     def classify(
         self,

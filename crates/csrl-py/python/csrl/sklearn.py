@@ -29,7 +29,8 @@ needs measured:
   (:class:`C45Classifier`), IDX (:class:`IdxClassifier`), batch CS-ID3
   (:class:`CsId3BatchClassifier`), EG2 (:class:`Eg2Classifier`), DTMC
   (:class:`DtmcClassifier`), ICET (:class:`IcetClassifier`), ACT
-  (:class:`ActClassifier`) or CVT (:class:`CvtClassifier`); or by any of them named
+  (:class:`ActClassifier`), CVT (:class:`CvtClassifier`) or VOI
+  (:class:`VoiClassifier`); or by any of them named
   by :class:`TestCostTreeClassifier`'s ``learner``. Numeric columns are split at
   thresholds as they are (no binning); columns holding strings (or named in
   ``nominal_features``, or of pandas' ``category`` dtype) are nominal, one branch per
@@ -83,6 +84,7 @@ __all__ = [
     "IcetClassifier",
     "ActClassifier",
     "CvtClassifier",
+    "VoiClassifier",
     "Id3Classifier",
     "IdxClassifier",
     "TestCostTreeClassifier",
@@ -325,7 +327,7 @@ def _fmt(v: Any) -> str:
 
 # --- The test-cost tree family -------------------------------------------------------
 
-_LEARNERS = ("id3-batch", "c45", "idx", "cs-id3-batch", "eg2", "dtmc", "icet", "act", "cvt")
+_LEARNERS = ("id3-batch", "c45", "idx", "cs-id3-batch", "eg2", "dtmc", "icet", "act", "cvt", "voi")
 
 
 def _is_missing(v: Any) -> bool:
@@ -392,6 +394,12 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
       the grower and the cut of least total cost on held-out objects
       (``cvt_folds``-fold cross-validation on the training objects, folds and samples
       drawn from ``seed``) give the tree.
+    * ``"voi"``, the value-of-information tree: at each node, the test whose price plus,
+      over its branches, the least of stopping and buying more (``voi_lookahead`` tests
+      ahead, 2) costs least, if that is less than stopping; stopping costs C4.5's
+      pessimistic estimate of the errors at ``voi_confidence`` (0.25), or an m-estimate
+      of the classes with ``voi_m``. A pair of tests that pays only together is bought.
+      Nothing random: any ``seed``, the same tree.
 
     The price a learner sees at a node is the test's price on that node's path: nothing
     for a test already done, the discount after another test of its group. Every node
@@ -435,6 +443,12 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         icet_search_objects: the most training objects ICET's search uses, half to grow
             and half to score (400; at least 2); the final tree grows on all of them.
         cvt_folds: the folds of CVT's cross-validation (5; at least 2).
+        voi_lookahead: how many tests ahead VOI values a test (2; 1 to 3).
+        voi_confidence: the confidence of VOI's pessimistic estimate of what stopping
+            costs (``None``: 0.25; in (0, 1)).
+        voi_m: estimate what stopping costs by an m-estimate of the classes instead, the
+            class shares weighing this many objects (at least 0; not with
+            ``voi_confidence``); ``None``: the pessimistic estimate.
         n_jobs: the threads one CVT fit uses (``None``: one; ``-1``: every core; else at
             least 1): its trees on all the objects and on each fold grow at the same time,
             each from its own seed, so the tree does not depend on it. Other learners
@@ -497,6 +511,9 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         icet_pruning: str = "errors",
         icet_search_objects: int = 400,
         cvt_folds: int = 5,
+        voi_lookahead: int = 2,
+        voi_confidence: Optional[float] = None,
+        voi_m: Optional[float] = None,
         max_test_cost: Optional[float] = None,
         max_tests: Optional[int] = None,
         n_jobs: Optional[int] = None,
@@ -517,6 +534,9 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         self.icet_pruning = icet_pruning
         self.icet_search_objects = icet_search_objects
         self.cvt_folds = cvt_folds
+        self.voi_lookahead = voi_lookahead
+        self.voi_confidence = voi_confidence
+        self.voi_m = voi_m
         self.max_test_cost = max_test_cost
         self.max_tests = max_tests
         self.n_jobs = n_jobs
@@ -812,6 +832,9 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         icet_pruning = getattr(self, "icet_pruning", "errors")
         icet_search_objects = getattr(self, "icet_search_objects", 400)
         cvt_folds = getattr(self, "cvt_folds", 5)
+        voi_lookahead = getattr(self, "voi_lookahead", 2)
+        voi_confidence = getattr(self, "voi_confidence", None)
+        voi_m = getattr(self, "voi_m", None)
         n_jobs = getattr(self, "n_jobs", None)
         whole = isinstance(n_jobs, (numbers.Integral, np.integer)) and not isinstance(n_jobs, bool)
         if n_jobs is None:
@@ -845,6 +868,27 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
                 raise ValueError(f"{what} must be an integer at least {least}, found {v!r}")
         if act_samples > 1000:
             raise ValueError(f"act_samples must be at most 1000, found {act_samples!r}")
+        if isinstance(voi_lookahead, bool) or not (
+            isinstance(voi_lookahead, (numbers.Integral, np.integer)) and 1 <= voi_lookahead <= 3
+        ):
+            raise ValueError(f"voi_lookahead must be an integer from 1 to 3, found {voi_lookahead!r}")
+        if voi_confidence is not None and (
+            isinstance(voi_confidence, bool)
+            or not isinstance(voi_confidence, numbers.Real)
+            or not 0 < voi_confidence < 1
+        ):
+            raise ValueError(f"voi_confidence must be None or a number in (0, 1), found {voi_confidence!r}")
+        if voi_m is not None and (
+            isinstance(voi_m, bool)
+            or not isinstance(voi_m, numbers.Real)
+            or not (math.isfinite(float(voi_m)) and voi_m >= 0)
+        ):
+            raise ValueError(f"voi_m must be None or a finite number at least 0, found {voi_m!r}")
+        if voi_confidence is not None and voi_m is not None:
+            raise ValueError(
+                "voi_confidence and voi_m cannot both be given: VOI estimates what stopping "
+                "costs pessimistically (a confidence) or by an m-estimate (an m)"
+            )
         if learner == "cvt" and cvt_folds > X.shape[0]:
             # Each fold holds at least one object (the library refuses it too).
             raise ValueError(
@@ -882,6 +926,9 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
             search_objects=int(icet_search_objects),
             folds=int(cvt_folds),
             threads=threads,
+            voi_lookahead=int(voi_lookahead),
+            voi_confidence=None if voi_confidence is None else float(voi_confidence),
+            voi_m=None if voi_m is None else float(voi_m),
             **budget,
         )
         self.classes_ = classes
@@ -1293,3 +1340,55 @@ class CvtClassifier(TestCostTreeClassifier):
         self.max_test_cost = max_test_cost
         self.max_tests = max_tests
         self.n_jobs = n_jobs
+
+
+class VoiClassifier(TestCostTreeClassifier):
+    """VOI, the value-of-information tree: at each node, the test whose price plus, over
+    its branches, the least of stopping and buying more (``voi_lookahead`` tests ahead)
+    costs least, if that is less than stopping, so that a pair of tests that pays only
+    together is bought; stopping costs C4.5's pessimistic estimate of the node's errors
+    at ``voi_confidence`` (``None``: 0.25), or, with ``voi_m``, the expected cost of
+    the best answer under an m-estimate of the classes. Its tree depends on
+    ``misclassification_cost`` (:class:`TestCostTreeClassifier` with
+    ``learner="voi"``); nothing in it is random. ``max_test_cost`` and ``max_tests``
+    hold every object to a budget: the tree grows within it and classifies within it.
+
+    >>> import numpy as np
+    >>> from csrl.sklearn import VoiClassifier
+    >>> a, b = np.arange(40) % 2, np.arange(40) // 2 % 2
+    >>> X = np.column_stack([a, b]).astype(float)
+    >>> y = a ^ b  # only the pair tells the class
+    >>> voi = VoiClassifier(feature_costs=[2.0, 3.0], misclassification_cost=100.0).fit(X, y)
+    >>> voi.predict_cost(X[:2]).tolist(), voi.score(X, y)
+    ([5.0, 5.0], 1.0)
+    >>> VoiClassifier(voi_lookahead=1, feature_costs=[2.0, 3.0]).fit(X, y).predict_cost(X[:1]).tolist()
+    [0.0]
+    """
+
+    _learner = "voi"
+
+    def __init__(
+        self,
+        feature_costs: Optional[Any] = None,
+        feature_groups: Optional[Any] = None,
+        feature_discounts: Optional[Any] = None,
+        misclassification_cost: Any = 100.0,
+        nominal_features: Optional[Any] = None,
+        voi_lookahead: int = 2,
+        voi_confidence: Optional[float] = None,
+        voi_m: Optional[float] = None,
+        selection_prices: str = "path",
+        max_test_cost: Optional[float] = None,
+        max_tests: Optional[int] = None,
+    ) -> None:
+        self.feature_costs = feature_costs
+        self.feature_groups = feature_groups
+        self.feature_discounts = feature_discounts
+        self.misclassification_cost = misclassification_cost
+        self.nominal_features = nominal_features
+        self.voi_lookahead = voi_lookahead
+        self.voi_confidence = voi_confidence
+        self.voi_m = voi_m
+        self.selection_prices = selection_prices
+        self.max_test_cost = max_test_cost
+        self.max_tests = max_tests
