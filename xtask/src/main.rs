@@ -92,6 +92,10 @@ enum Command {
     /// (CEGB) its tradeoff on the benchmark's folds and prices, the area under each curve,
     /// and a figure per data set.
     Budget(testcost::curves::BudgetArgs),
+    /// Write CUBE, the synthetic data set of the costly-feature literature (20 features,
+    /// 8 classes, each telling its class on three features of its own), from its recipe
+    /// and a seed.
+    Cube(testcost::cube::CubeArgs),
     /// Benchmarks: CS-QL's growth with the world's size, and its moves per second.
     Bench(bench::BenchArgs),
     /// Every test: `cargo test --workspace`, then the Python package's tests in a virtual
@@ -123,6 +127,7 @@ fn main() -> ExitCode {
         Command::Testcost(args) => testcost::testcost(args),
         Command::Anytime(args) => testcost::anytime::anytime(args),
         Command::Budget(args) => testcost::curves::budget(args),
+        Command::Cube(args) => testcost::cube::cube(args),
         Command::Bench(args) => bench::run(args),
         Command::Test(args) => pytest::test(args),
     };

@@ -25,6 +25,7 @@ use crate::shard::JobLine;
 
 pub mod anytime;
 mod cegb;
+pub mod cube;
 pub mod curves;
 mod published;
 mod report;

@@ -381,6 +381,7 @@ fn every_shipped_data_set_loads_with_its_documented_classes() {
         ("tic-tac-toe", 958, 2),
         ("titanic", 2201, 2),
         ("spambase", 4601, 2),
+        ("cube", 10000, 8),
     ];
     assert_eq!(catalogue.sources().len(), expected.len());
     for &(name, objects, classes) in expected {
@@ -416,10 +417,11 @@ fn every_shipped_data_set_loads_with_its_documented_classes() {
     assert!(spambase.turney.is_none());
     let source = |name: &str| catalogue.sources().iter().find(|s| s.name == name).unwrap();
     assert!(!source("spambase").benchmark && source("spambase").unit_prices);
+    assert!(!source("cube").benchmark && source("cube").unit_prices);
     assert!(source("heart").benchmark && !source("heart").unit_prices);
     let benchmark: Vec<&str> = catalogue.benchmark().map(|s| s.name.as_str()).collect();
-    assert_eq!(benchmark.len(), expected.len() - 1);
-    assert!(!benchmark.contains(&"spambase"));
+    assert_eq!(benchmark.len(), expected.len() - 2);
+    assert!(!benchmark.contains(&"spambase") && !benchmark.contains(&"cube"));
 }
 
 /// The manifest's `benchmark` and `unit_prices` keys: absent, a data set is the
