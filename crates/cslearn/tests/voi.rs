@@ -31,14 +31,21 @@ fn xor(copies: usize) -> Frame {
     .unwrap()
 }
 
-fn voi(lookahead: usize) -> FamilyParams {
+fn voi(lookahead: usize, leaf: VoiLeaf) -> FamilyParams {
     FamilyParams {
-        voi: VoiParams {
-            lookahead,
-            ..VoiParams::default()
-        },
+        voi: VoiParams { lookahead, leaf },
         ..FamilyParams::default()
     }
+}
+
+/// The exclusive-or data of `xor(10)`, every object to learn from, the prices of the two
+/// tests (2 and 3) and the noise (1), and an error priced 100.
+fn xor_problem() -> (Frame, Vec<usize>, TestPrices, MisclassCosts) {
+    let frame = xor(10);
+    let rows: Vec<usize> = (0..frame.len()).collect();
+    let prices = TestPrices::flat(&[2.0, 3.0, 1.0]).unwrap();
+    let mc = MisclassCosts::uniform(2, 100.0).unwrap();
+    (frame, rows, prices, mc)
 }
 
 /// Neither test alone changes the odds (half the objects of each branch are odd), so
@@ -47,15 +54,9 @@ fn voi(lookahead: usize) -> FamilyParams {
 /// So with either leaf estimate.
 #[test]
 fn a_pair_that_pays_is_bought_where_neither_test_alone_pays() {
-    let frame = xor(10);
-    let rows: Vec<usize> = (0..frame.len()).collect();
-    let prices = TestPrices::flat(&[2.0, 3.0, 1.0]).unwrap();
-    let mc = MisclassCosts::uniform(2, 100.0).unwrap();
+    let (frame, rows, prices, mc) = xor_problem();
     for leaf in [VoiParams::default().leaf, VoiLeaf::MEstimate { m: 2.0 }] {
-        let at = |lookahead| FamilyParams {
-            voi: VoiParams { lookahead, leaf },
-            ..FamilyParams::default()
-        };
+        let at = |lookahead| voi(lookahead, leaf);
         let myopic = fit(Method::Voi, &frame, &rows, &prices, &mc, &at(1), 1);
         assert_eq!(
             myopic.tree.len(),
@@ -83,13 +84,10 @@ fn a_pair_that_pays_is_bought_where_neither_test_alone_pays() {
 /// where without the budget it buys both.
 #[test]
 fn a_budget_too_small_for_the_pair_buys_nothing() {
-    let frame = xor(10);
-    let rows: Vec<usize> = (0..frame.len()).collect();
-    let prices = TestPrices::flat(&[2.0, 3.0, 1.0]).unwrap();
-    let mc = MisclassCosts::uniform(2, 100.0).unwrap();
+    let (frame, rows, prices, mc) = xor_problem();
     let params = FamilyParams {
         budget: Budget::new(None, Some(1)).unwrap(),
-        ..voi(2)
+        ..voi(2, VoiParams::default().leaf)
     };
     let fitted = fit(Method::Voi, &frame, &rows, &prices, &mc, &params, 1);
     assert_eq!(fitted.tree.len(), 1);
@@ -114,11 +112,27 @@ fn voi_learns_the_same_tree_from_any_seed() {
     let rows: Vec<usize> = (0..frame.len()).collect();
     let prices = TestPrices::flat(&[5.0, 9.0]).unwrap();
     let mc = MisclassCosts::uniform(3, 200.0).unwrap();
-    let first = fit(Method::Voi, &frame, &rows, &prices, &mc, &voi(2), 1);
+    let first = fit(
+        Method::Voi,
+        &frame,
+        &rows,
+        &prices,
+        &mc,
+        &voi(2, VoiParams::default().leaf),
+        1,
+    );
     assert!(first.tree.len() > 1, "the data is worth some tests");
     for seed in [2, 99, u64::MAX] {
         assert_eq!(
-            fit(Method::Voi, &frame, &rows, &prices, &mc, &voi(2), seed),
+            fit(
+                Method::Voi,
+                &frame,
+                &rows,
+                &prices,
+                &mc,
+                &voi(2, VoiParams::default().leaf),
+                seed
+            ),
             first
         );
     }

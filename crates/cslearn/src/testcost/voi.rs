@@ -212,12 +212,12 @@ impl Valuer<'_> {
         }
     }
 
-    /// Whether the path's objects may still buy `stat`'s test.
-    fn affords(&self, path: &[usize], stat: &Stat) -> bool {
-        if self.budget.is_unlimited() {
+    /// Whether the path's objects, which have spent `spent` (what they paid, the tests
+    /// they bought; `None` without a budget), may still buy `stat`'s test.
+    fn affords(&self, path: &[usize], spent: Option<(f64, usize)>, stat: &Stat) -> bool {
+        let Some((paid, bought)) = spent else {
             return true;
-        }
-        let (paid, bought) = path_spending(self.prices, path);
+        };
         let new = !path.contains(&stat.feature);
         let price = if new {
             price_after(self.prices, stat.feature, path)
@@ -237,10 +237,12 @@ impl Valuer<'_> {
             return (stop, None);
         }
         let path = cell.path.clone();
+        // What the path has spent, summed once for every test valued here.
+        let spent = (!self.budget.is_unlimited()).then(|| path_spending(self.prices, &path));
         let stats: Vec<Stat> = splits.stats(c).to_vec();
         let mut best = (stop, None);
         for stat in stats {
-            if !self.affords(&path, &stat) {
+            if !self.affords(&path, spent, &stat) {
                 continue;
             }
             let price = self.selection.price(self.prices, stat.feature, &path);
