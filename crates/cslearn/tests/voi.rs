@@ -171,3 +171,143 @@ fn settings_out_of_range_are_refused_by_check() {
         assert!(params.check(Method::Eg2, &frame, 8).is_ok());
     }
 }
+
+/// The explanation of an object's classification, worked by hand on the exclusive-or
+/// pair with the counts as they are (an m-estimate with m = 0). At the root (20 objects
+/// of each class) stopping costs 50 per object, half of them wrong at 100; test `a` at
+/// 2 then `b` at 3 tell every object, so buying `a` costs 5 and saves 45 (`b` first costs
+/// the same and comes later). Below `a`, stopping costs 50 again and `b` costs 3: it
+/// saves 47. An object missing `b` buys it all the same and answers from both branches;
+/// one held to 2 buys `a` and answers where `b` is asked for.
+#[test]
+fn an_explanation_gives_each_test_its_price_node_probabilities_and_expected_saving() {
+    use cslearn::testcost::{CostTree, Criterion, GrowParams};
+    let (frame, rows, prices, mc) = xor_problem();
+    let fitted = fit(
+        Method::Voi,
+        &frame,
+        &rows,
+        &prices,
+        &mc,
+        &voi(2, VoiLeaf::MEstimate { m: 0.0 }),
+        1,
+    );
+    let tree = &fitted.tree;
+    let root = tree.node(0).value.unwrap();
+    assert_eq!(
+        (root.stop, root.test, root.gain()),
+        (50.0, Some(5.0), Some(45.0))
+    );
+    let why = tree.explain(&frame, 3, &prices, &Budget::UNLIMITED);
+    let bought: Vec<(usize, f64, Option<f64>)> = why
+        .steps
+        .iter()
+        .map(|s| (s.feature, s.paid, s.expected_gain))
+        .collect();
+    assert_eq!(bought, [(0, 2.0, Some(45.0)), (1, 3.0, Some(47.0))]);
+    assert_eq!(why.steps[0].node, Some(0));
+    assert_eq!(why.steps[0].probabilities, Some(vec![0.5, 0.5]));
+    assert_eq!(why.steps[1].probabilities, Some(vec![0.5, 0.5]));
+    assert_eq!(why.classification, tree.classify(&frame, 3, &prices));
+    let leaf = why.stopped_at.unwrap();
+    assert!(tree.node(leaf).split.is_none());
+    // Ten objects of class `even` at the leaf: (10 + 1) / (10 + 2).
+    assert_eq!(
+        why.classification.probabilities,
+        vec![11.0 / 12.0, 1.0 / 12.0]
+    );
+
+    // Missing `b`: both tests bought at their nodes, the answer from both branches.
+    let missing = Frame::new(
+        vec!["a".into(), "b".into(), "noise".into()],
+        vec![
+            Column::Numeric(vec![1.0]),
+            Column::Numeric(vec![f64::NAN]),
+            Column::Numeric(vec![0.0]),
+        ],
+        vec![1],
+        vec!["even".into(), "odd".into()],
+    )
+    .unwrap();
+    let why = tree.explain(&missing, 0, &prices, &Budget::UNLIMITED);
+    assert_eq!(why.stopped_at, None);
+    assert_eq!(why.steps.len(), 2);
+    assert!(why.steps.iter().all(|s| s.node.is_some()));
+    assert_eq!(why.classification, tree.classify(&missing, 0, &prices));
+
+    // Held to 2: `a` only, and the node that asks for `b` answers.
+    let budget = Budget::new(Some(2.0), None).unwrap();
+    let why = tree.explain(&frame, 3, &prices, &budget);
+    assert_eq!(why.steps.len(), 1);
+    let asked = why.stopped_at.unwrap();
+    assert_eq!(
+        tree.node(asked).split.as_ref().map(|s| s.feature()),
+        Some(1)
+    );
+    assert_eq!(
+        why.classification,
+        tree.classify_within(&frame, 3, &prices, &budget)
+    );
+
+    // A learner that does not value its tests explains without expected savings.
+    let a: Vec<f64> = (0..40).map(|i| f64::from(i % 2)).collect();
+    let told = Frame::new(
+        vec!["a".into()],
+        vec![Column::Numeric(a.clone())],
+        a.iter().map(|&x| x as u32).collect(),
+        vec!["even".into(), "odd".into()],
+    )
+    .unwrap();
+    let prices = TestPrices::flat(&[2.0]).unwrap();
+    let id3 = CostTree::grow(&told, &rows, &prices, &mc, &GrowParams::new(Criterion::Id3));
+    let why = id3.explain(&told, 3, &prices, &Budget::UNLIMITED);
+    assert!(!why.steps.is_empty());
+    assert!(why.steps.iter().all(|s| s.expected_gain.is_none()));
+    let paid: f64 = why.steps.iter().map(|s| s.paid).sum();
+    assert_eq!(paid, why.classification.test_cost);
+}
+
+/// VOI's node values travel in its model file, and a file with a value that is not a
+/// cost is refused, naming the node.
+#[test]
+fn node_values_are_saved_with_the_tree_and_checked_when_read() {
+    use cslearn::testcost::TreeModel;
+    let (frame, rows, prices, mc) = xor_problem();
+    let fitted = fit(
+        Method::Voi,
+        &frame,
+        &rows,
+        &prices,
+        &mc,
+        &voi(2, VoiLeaf::MEstimate { m: 0.0 }),
+        1,
+    );
+    let model = TreeModel::new(Method::Voi, &frame, "class", None, &fitted, &prices);
+    let text = model.to_json();
+    assert!(
+        text.contains(r#""value":{"stop":50.0,"test":5.0}"#),
+        "{text}"
+    );
+    let again = TreeModel::from_json(text.as_bytes(), "m.json").unwrap();
+    assert_eq!(again.tree().node(0).value, fitted.tree.node(0).value);
+    let bad = text.replacen(r#""stop":50.0"#, r#""stop":-1.0"#, 1);
+    let err = TreeModel::from_json(bad.as_bytes(), "m.json")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("tree node 0") && err.contains("`stop` or `test`"),
+        "{err}"
+    );
+    // The other learners' files have no values.
+    let eg2 = fit(
+        Method::Eg2,
+        &frame,
+        &rows,
+        &prices,
+        &mc,
+        &FamilyParams::default(),
+        1,
+    );
+    let text = TreeModel::new(Method::Eg2, &frame, "class", None, &eg2, &prices).to_json();
+    assert!(!text.contains("\"value\""), "{text}");
+}

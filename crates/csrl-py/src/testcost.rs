@@ -460,6 +460,66 @@ impl TestCostTree {
         }))
     }
 
+    /// How each object is classified, test by test (`CostTree::explain`; columns and
+    /// budget as in `classify`): per object, its steps, each `(feature, paid, node,
+    /// probabilities, expected_gain)` in the order bought (`node` and `probabilities`
+    /// `None` for a test bought on a branch below a missing value; `expected_gain` VOI's
+    /// only), and the node it stopped at (`None` where it answered from several branches).
+    #[expect(
+        clippy::type_complexity,
+        reason = "the tuples Python receives: steps and the node stopped at, per object"
+    )]
+    #[pyo3(signature = (columns, max_test_cost=None, max_tests=None))]
+    fn explain(
+        &self,
+        py: Python<'_>,
+        columns: Vec<PyColumn<'_>>,
+        max_test_cost: Option<f64>,
+        max_tests: Option<usize>,
+    ) -> PyResult<
+        Vec<(
+            Vec<(usize, f64, Option<usize>, Option<Vec<f64>>, Option<f64>)>,
+            Option<usize>,
+        )>,
+    > {
+        let budget = budget(max_test_cost, max_tests)?;
+        let n = match columns.first() {
+            None => 0,
+            Some((_, cells)) => cells.len()?,
+        };
+        if columns.len() != self.names.len() {
+            return Err(DataError::new_err(format!(
+                "{} columns, but the tree was grown on {} features",
+                columns.len(),
+                self.names.len()
+            )));
+        }
+        if n == 0 {
+            return Ok(Vec::new());
+        }
+        let (frame, _) = frame(
+            &self.names,
+            columns,
+            vec![0; n],
+            &self.class_names,
+            Some(&self.kinds),
+        )?;
+        let (tree, prices) = (&self.tree, &self.prices);
+        Ok(py.detach(|| {
+            (0..n)
+                .map(|row| {
+                    let why = tree.explain(&frame, row, prices, &budget);
+                    let steps = why
+                        .steps
+                        .into_iter()
+                        .map(|s| (s.feature, s.paid, s.node, s.probabilities, s.expected_gain))
+                        .collect();
+                    (steps, why.stopped_at)
+                })
+                .collect()
+        }))
+    }
+
     /// The nodes, root first: `(label, weights, split)` with the class code each answers,
     /// the training weight of each class there, and `None` at a leaf or
     /// `(feature, threshold, children)` (threshold `None` for a nominal feature, whose

@@ -153,3 +153,40 @@ def test_probabilities_match_the_command_lines_json_for_the_same_trees(tmp_path,
             np.testing.assert_array_equal(proba, expected)
             answers = [p["class"] for p, t in zip(predictions, test) if t]
             assert clf.predict(X[test]).tolist() == answers
+
+
+@pytest.mark.parametrize(
+    "estimator",
+    [e for e in ESTIMATORS if not isinstance(e, INCREMENTAL)],
+    ids=lambda e: type(e).__name__,
+)
+def test_explain_gives_each_objects_tests_and_answer_as_predict_does(estimator):
+    X, y = iris_with_gaps(binned=False)
+    clf = clone(estimator).set_params(feature_costs=[3.0, 1.0, 5.0, 2.0])
+    clf.fit(X, y)
+    explained = clf.explain(X)
+    assert len(explained) == len(X)
+    np.testing.assert_array_equal([e["class"] for e in explained], clf.predict(X))
+    np.testing.assert_array_equal([e["test_cost"] for e in explained], clf.predict_cost(X))
+    np.testing.assert_array_equal(
+        np.array([e["probabilities"] for e in explained]), clf.predict_proba(X)
+    )
+    assert [[t["feature"] for t in e["tests"]] for e in explained] == clf.predict_tests(X)
+    valued = isinstance(clf, cs.VoiClassifier)
+    missing_seen = False
+    for e, row in zip(explained, X):
+        assert sum(t["paid"] for t in e["tests"]) == pytest.approx(e["test_cost"], abs=1e-9)
+        for t in e["tests"]:
+            if t["node"] is None:
+                assert t["probabilities"] is None
+                continue
+            np.testing.assert_allclose(t["probabilities"].sum(), 1.0, atol=1e-12)
+            # VOI buys a test only where it is expected to pay; the others do not say.
+            if valued:
+                assert t["expected_gain"] > 0
+            else:
+                assert t["expected_gain"] is None
+        tested_missing = any(np.isnan(row[t["feature"]]) for t in e["tests"])
+        assert (e["stopped_at"] is None) == tested_missing
+        missing_seen |= tested_missing
+    assert missing_seen or all(len(e["tests"]) == 0 for e in explained)

@@ -36,6 +36,12 @@ pub struct PredictArgs {
     /// Trees only: the most distinct tests one row may buy, held as --max-test-cost is.
     #[arg(long, value_name = "K")]
     max_tests: Option<usize>,
+    /// Trees only: instead of the table, explain how the row at line LINE of --data (the
+    /// header is line 1) is classified: each test it buys, in order, with what it paid,
+    /// the class probabilities where it was asked for and, for VOI's trees, what it was
+    /// expected to save per object; then the answer and its probabilities.
+    #[arg(long, value_name = "LINE")]
+    explain: Option<u64>,
 }
 
 /// Quote a CSV field when it needs it.
@@ -142,6 +148,34 @@ pub fn run(args: &PredictArgs, out: &mut dyn Write) -> Result<()> {
             args.model.display(),
             model.describe()
         );
+    }
+    if let Some(line) = args.explain {
+        let Loaded::Tree(tree) = &model else {
+            anyhow::bail!(
+                "--explain is read with a tree of the test-cost family (format \
+                 `csrl-cost-tree`); {} is a model of {}",
+                args.model.display(),
+                model.describe()
+            );
+        };
+        anyhow::ensure!(
+            args.out.is_none() && !args.probabilities,
+            "--explain prints one row's account instead of the table: it takes neither \
+             --out nor --probabilities"
+        );
+        let why = tree
+            .explain_line(&args.data, line, &budget)
+            .context("cannot explain the row")?;
+        write!(
+            out,
+            "line {line} of {}, by {} ({}):\n{}",
+            args.data.display(),
+            args.model.display(),
+            model.describe(),
+            tree.explanation_text(&why)
+        )?;
+        out.flush()?;
+        return Ok(());
     }
     // Rows are written as they are classified, so memory does not grow with the output.
     // The table is read and checked whole before the first row comes, so `--out` is

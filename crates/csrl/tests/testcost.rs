@@ -1248,3 +1248,118 @@ fn predict_writes_the_probabilities_of_an_incremental_model_too() {
         assert_eq!(cells[1], answer, "{line}");
     }
 }
+
+/// `predict --explain LINE` gives one row's account: each test bought, in order, with its
+/// price, node and probabilities, and for VOI what it was expected to save; its tests
+/// and answer are the table's for that row. A row that is not in the file, a classifier
+/// of the incremental learners and an output file are refused.
+#[test]
+fn predict_explains_one_row_test_by_test() {
+    let dir = tempfile::tempdir().unwrap();
+    let model = dir.path().join("voi.json").to_string_lossy().into_owned();
+    let out = on_heart("voi", &["--mc", "500", "--save", &model]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let data = repo("data/heart-disease/cleveland.csv");
+    let table = csrl(&["predict", "--model", &model, "--data", &data]);
+    assert!(table.status.success(), "{}", stderr(&table));
+    let table = String::from_utf8(table.stdout).unwrap();
+    for line in ["2", "3", "40"] {
+        let out = csrl(&[
+            "predict",
+            "--model",
+            &model,
+            "--data",
+            &data,
+            "--explain",
+            line,
+        ]);
+        assert!(out.status.success(), "{}", stderr(&out));
+        let text = String::from_utf8(out.stdout).unwrap();
+        let row: Vec<&str> = table
+            .lines()
+            .find(|l| l.starts_with(&format!("{line},")))
+            .unwrap()
+            .split(',')
+            .collect();
+        let tests: Vec<&str> = row[3].split(';').filter(|t| !t.is_empty()).collect();
+        let steps: Vec<&str> = text.lines().filter(|l| l.contains(". ")).collect();
+        assert_eq!(steps.len(), tests.len(), "{text}");
+        for (i, (step, test)) in steps.iter().zip(&tests).enumerate() {
+            assert!(
+                step.starts_with(&format!("{}. {test}: paid ", i + 1)),
+                "{text}"
+            );
+            assert!(step.contains("expected to save"), "{text}");
+        }
+        assert!(
+            text.contains(&format!("answer {} (tests {} in all)", row[1], row[2])),
+            "{text}"
+        );
+    }
+    let refused = csrl(&[
+        "predict",
+        "--model",
+        &model,
+        "--data",
+        &data,
+        "--explain",
+        "999",
+    ]);
+    assert_eq!(refused.status.code(), Some(1));
+    assert!(
+        stderr(&refused)
+            .contains("line 999: not a row of the table (its rows are on lines 2 to 305"),
+        "{}",
+        stderr(&refused)
+    );
+    let with_out = dir.path().join("x.csv").to_string_lossy().into_owned();
+    let refused = csrl(&[
+        "predict",
+        "--model",
+        &model,
+        "--data",
+        &data,
+        "--explain",
+        "2",
+        "--out",
+        &with_out,
+    ]);
+    assert!(!refused.status.success());
+    assert!(
+        stderr(&refused).contains("--explain prints one row's account"),
+        "{}",
+        stderr(&refused)
+    );
+    assert!(!std::path::Path::new(&with_out).exists());
+    let classifier = dir.path().join("cs.json").to_string_lossy().into_owned();
+    let costs = repo("data/heart-disease/costs.csv");
+    let out = csrl(&[
+        "classify",
+        "--data",
+        &data,
+        "--costs",
+        &costs,
+        "--target",
+        "num",
+        "--positive-if",
+        ">0",
+        "--save",
+        &classifier,
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let refused = csrl(&[
+        "predict",
+        "--model",
+        &classifier,
+        "--data",
+        &data,
+        "--explain",
+        "2",
+    ]);
+    assert!(!refused.status.success());
+    assert!(
+        stderr(&refused).contains("--explain is read with a tree"),
+        "{}",
+        stderr(&refused)
+    );
+}

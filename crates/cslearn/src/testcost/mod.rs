@@ -96,7 +96,7 @@ pub use model::{SavedModel, TREE_MODEL_FORMAT, TREE_MODEL_VERSION, TreeModel};
 pub use prices::{Basket, MisclassCosts, TestPrice, TestPrices, TurneyExtra};
 pub use stop::Stop;
 pub use tree::{
-    Classification, CostTree, FeatureShape, GrowParams, NodeIndex, Pruning, SelectionPrices, Split,
-    TreeFault, TreeNode, laplace,
+    Classification, CostTree, ExplainedTest, Explanation, FeatureShape, GrowParams, NodeIndex,
+    NodeValue, Pruning, SelectionPrices, Split, TreeFault, TreeNode, laplace,
 };
 pub use voi::{VoiLeaf, VoiParams};

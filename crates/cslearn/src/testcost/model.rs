@@ -75,13 +75,13 @@ struct TreeFile {
 /// |---|---|
 /// | `format` | always `"csrl-cost-tree"` |
 /// | `version` | always `1`; a reader refuses any other |
-/// | `learner` | the learner's name ([`Method::name`]: `c45`, `idx`, `cs-id3-batch`, `eg2`, `dtmc`, `icet`, `id3`) |
+/// | `learner` | the learner's name ([`Method::name`]: `id3-batch`, `c45`, `idx`, `cs-id3-batch`, `eg2`, `dtmc`, `icet`, `act`, `cvt`, `voi`) |
 /// | `target` | the class column it was learned from |
 /// | `positive_if` | the rule that made two classes of it, if one did |
 /// | `classes` | the class names, indexed by class number |
 /// | `features` | one object per feature, in feature order: `name`, `kind` (`numeric` or `nominal`) and, for a nominal one, `values` (its values, indexed by value code) |
 /// | `prices` | the real prices of the tests ([`TestPrices`]: `tests`, each `full`, `discount`, `group`, `delayed`; `group_names`) |
-/// | `tree` | the tree ([`CostTree`]: `nodes`, each `weights` per class, `label` and `split`; `mc`, the misclassification costs its answers were chosen by) |
+/// | `tree` | the tree ([`CostTree`]: `nodes`, each `weights` per class, `label`, `split` and, for VOI, `value` ([`NodeValue`](super::NodeValue)); `mc`, the misclassification costs its answers were chosen by) |
 /// | `genome` | ICET only: the individual its search found ([`IcetGenome`]) |
 ///
 /// Unknown keys are refused, and so is every number out of range (a class, feature or
@@ -435,6 +435,122 @@ impl TreeModel {
         each: &mut dyn FnMut(Prediction, usize),
     ) -> Result<usize, Error> {
         self.predict_file_each_within(path, &Budget::UNLIMITED, each)
+    }
+
+    /// How the row at line `line` of a CSV table (see [`frame_for`](TreeModel::frame_for);
+    /// the header is line 1) is classified within `budget`, test by test
+    /// ([`CostTree::explain`](super::CostTree::explain)); [`explanation_text`](TreeModel::explanation_text)
+    /// puts it in words.
+    ///
+    /// # Errors
+    /// The table's, as [`frame_for`](TreeModel::frame_for) gives them, and a line that is
+    /// not one of its rows.
+    ///
+    /// ```
+    /// # use cslearn::testcost::*;
+    /// let frame = Frame::new(vec!["x".into()], vec![Column::Numeric((0..20).map(f64::from).collect())],
+    ///     (0..20).map(|i| u32::from(i >= 10)).collect(), vec!["a".into(), "b".into()]).unwrap();
+    /// let prices = TestPrices::flat(&[5.0]).unwrap();
+    /// let mc = MisclassCosts::uniform(2, 100.0).unwrap();
+    /// let rows: Vec<usize> = (0..20).collect();
+    /// let fitted = fit(Method::Voi, &frame, &rows, &prices, &mc, &FamilyParams::default(), 1);
+    /// let model = TreeModel::new(Method::Voi, &frame, "y", None, &fitted, &prices);
+    /// let dir = tempfile::tempdir().unwrap();
+    /// let path = dir.path().join("rows.csv");
+    /// std::fs::write(&path, "x\n3\n17\n").unwrap();
+    /// let why = model.explain_line(&path, 3, &Budget::UNLIMITED).unwrap();
+    /// assert_eq!((why.steps.len(), why.classification.class), (1, 1));
+    /// // Stopping at the root costs an error on half the objects; the test saves most of it.
+    /// assert!(why.steps[0].expected_gain.unwrap() > 40.0);
+    /// assert!(model.explanation_text(&why).contains("1. x: paid 5"));
+    /// let err = model.explain_line(&path, 9, &Budget::UNLIMITED).unwrap_err().to_string();
+    /// assert!(err.contains("line 9") && err.contains("lines 2 to 3"), "{err}");
+    /// ```
+    pub fn explain_line(
+        &self,
+        path: &Path,
+        line: u64,
+        budget: &Budget,
+    ) -> Result<super::Explanation, Error> {
+        let (frame, lines) = self.frame_for(path)?;
+        let Some(row) = lines.iter().position(|&l| l == line) else {
+            let span = match (lines.first(), lines.last()) {
+                (Some(a), Some(b)) => format!("its rows are on lines {a} to {b}"),
+                _ => "it has no rows".into(),
+            };
+            return Err(Error::Invalid {
+                what: format!("{}: line {line}", path.display()),
+                reason: format!("not a row of the table ({span}; the header is line 1)"),
+            });
+        };
+        Ok(self
+            .file
+            .tree
+            .explain(&frame, row, &self.file.prices, budget))
+    }
+
+    /// An explanation ([`explain_line`](TreeModel::explain_line)) in words, with the
+    /// model's feature and class names: one line per test bought (what it paid, the
+    /// class probabilities where it was asked for, and, for VOI's trees, what it was
+    /// expected to save per object), then the answer and its probabilities, and, where
+    /// the object stopped at a node of VOI's, what stopping there was expected to cost.
+    pub fn explanation_text(&self, why: &super::Explanation) -> String {
+        use std::fmt::Write as _;
+        let name = |f: usize| self.file.features.get(f).map_or("?", |e| e.name.as_str());
+        let class = |c: u32| self.class_name(c).unwrap_or("?");
+        let probabilities = |p: &[f64]| {
+            p.iter()
+                .enumerate()
+                .map(|(c, p)| format!("{} {p:.3}", class(c as u32)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let mut text = String::new();
+        if why.steps.is_empty() {
+            text.push_str("no test bought\n");
+        }
+        for (i, step) in why.steps.iter().enumerate() {
+            let _ = write!(
+                text,
+                "{}. {}: paid {}",
+                i + 1,
+                name(step.feature),
+                step.paid
+            );
+            match (&step.node, &step.probabilities) {
+                (Some(node), Some(p)) => {
+                    let _ = write!(text, "; asked at node {node}, where {}", probabilities(p));
+                }
+                _ => text.push_str("; on a branch below a missing value"),
+            }
+            if let Some(gain) = step.expected_gain {
+                let _ = write!(text, "; expected to save {gain:.4} per object");
+            }
+            text.push('\n');
+        }
+        let c = &why.classification;
+        let _ = write!(
+            text,
+            "answer {} (tests {} in all); probabilities {}",
+            class(c.class),
+            c.test_cost,
+            probabilities(&c.probabilities)
+        );
+        match why.stopped_at {
+            Some(node) => {
+                let _ = write!(text, "; stopped at node {node}");
+                if let Some(value) = self.file.tree.node(node).value {
+                    let _ = write!(
+                        text,
+                        ", where stopping was expected to cost {:.4} per object",
+                        value.stop
+                    );
+                }
+            }
+            None => text.push_str("; answered from several branches (a missing value)"),
+        }
+        text.push('\n');
+        text
     }
 
     /// [`predict_file_each`](TreeModel::predict_file_each) with every row held to

@@ -324,6 +324,37 @@ pub struct TreeNode {
     pub label: u32,
     /// The test, or `None` at a leaf.
     pub split: Option<Split>,
+    /// What the node was worth to a learner that buys a test only where it expects the
+    /// test to pay (VOI), where that learner valued it; `None` for the other learners
+    /// (and left out of a model file).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub value: Option<NodeValue>,
+}
+
+/// What a node was worth when it was grown, per object reaching it: the expected total
+/// cost (tests from here on and misclassification) of stopping there and answering, and
+/// of buying the test it chose and going on as the learner looked ahead.
+///
+/// ```
+/// let v = cslearn::testcost::NodeValue { stop: 30.0, test: Some(22.5) };
+/// assert_eq!(v.gain(), Some(7.5));
+/// assert_eq!(cslearn::testcost::NodeValue { stop: 4.0, test: None }.gain(), None);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct NodeValue {
+    /// The expected cost per object of stopping at the node.
+    pub stop: f64,
+    /// The expected cost per object of buying the node's test (its price included), or
+    /// `None` where the node stops because no test was expected to pay.
+    pub test: Option<f64>,
+}
+
+impl NodeValue {
+    /// What buying the test was expected to save per object (`stop - test`), or `None`
+    /// at a node that stops.
+    pub fn gain(&self) -> Option<f64> {
+        self.test.map(|t| self.stop - t)
+    }
 }
 
 /// What classifying one object cost and answered.
@@ -354,6 +385,38 @@ pub struct Classification {
     /// the classes, so under uniform misclassification costs `class` is a class of
     /// largest probability (up to ties).
     pub probabilities: Vec<f64>,
+}
+
+/// How one object was classified, test by test ([`CostTree::explain`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Explanation {
+    /// The tests the object bought, in the order it bought them.
+    pub steps: Vec<ExplainedTest>,
+    /// The node the object stopped at and answered from, where it followed one path;
+    /// `None` where a missing value sent it down several branches (it answered from the
+    /// mix of the nodes they reached).
+    pub stopped_at: Option<usize>,
+    /// The classification: the answer, what the tests cost, and the probabilities when it
+    /// stopped (the same as [`CostTree::classify_within`]'s).
+    pub classification: Classification,
+}
+
+/// One test an object bought ([`Explanation::steps`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExplainedTest {
+    /// The feature tested.
+    pub feature: usize,
+    /// What the object paid for it, after the tests it bought before (group discounts).
+    pub paid: f64,
+    /// The node that asked for it, where the object followed one path to it; `None` for a
+    /// test bought on one of several branches below a missing value.
+    pub node: Option<usize>,
+    /// The class probabilities at that node, before the test (Laplace's rule over its
+    /// training weights, as a leaf there would answer).
+    pub probabilities: Option<Vec<f64>>,
+    /// What the learner expected the test to save per object at that node
+    /// ([`NodeValue::gain`]): VOI's trees have it, the other learners' do not.
+    pub expected_gain: Option<f64>,
 }
 
 /// Laplace's rule over class weights: `(w_c + 1) / (sum of w + k)` for `k` classes.
@@ -480,6 +543,17 @@ impl CostTree {
                 return Err(fault(
                     at(),
                     "a weight that is negative or not finite".into(),
+                ));
+            }
+            if let Some(value) = &node.value
+                && [Some(value.stop), value.test]
+                    .into_iter()
+                    .flatten()
+                    .any(|v| !(v.is_finite() && v >= 0.0))
+            {
+                return Err(fault(
+                    at(),
+                    "a value (`stop` or `test`) that is negative or not finite".into(),
                 ));
             }
             if node.label as usize >= classes {
@@ -1130,6 +1204,82 @@ impl CostTree {
         }
     }
 
+    /// How object `row` is classified within `budget`, test by test: each test it buys, in
+    /// order, with what it paid, the node that asked for it, the class probabilities there
+    /// and what the learner expected the test to save ([`NodeValue::gain`], for VOI's
+    /// trees), then where it stopped and what it answered. The classification is
+    /// [`classify_within`](CostTree::classify_within)'s, to the bit.
+    ///
+    /// ```
+    /// use cslearn::testcost::{Budget, Column, CostTree, Criterion, Frame, GrowParams, MisclassCosts, TestPrices};
+    /// let frame = Frame::new(vec!["x".into()], vec![Column::Numeric(vec![1.0, 2.0, 3.0, 4.0, f64::NAN])],
+    ///     vec![0, 0, 1, 1, 1], vec!["a".into(), "b".into()]).unwrap();
+    /// let prices = TestPrices::flat(&[7.0]).unwrap();
+    /// let mc = MisclassCosts::uniform(2, 10.0).unwrap();
+    /// let tree = CostTree::grow(&frame, &[0, 1, 2, 3], &prices, &mc, &GrowParams::new(Criterion::Id3));
+    /// let why = tree.explain(&frame, 0, &prices, &Budget::UNLIMITED);
+    /// assert_eq!((why.steps.len(), why.steps[0].feature, why.steps[0].paid), (1, 0, 7.0));
+    /// // Asked at the root, which holds two objects of each class.
+    /// assert_eq!((why.steps[0].node, why.steps[0].probabilities.clone()), (Some(0), Some(vec![0.5, 0.5])));
+    /// assert_eq!(why.steps[0].expected_gain, None); // ID3 does not value its tests
+    /// assert_eq!(why.classification, tree.classify(&frame, 0, &prices));
+    /// assert!(why.stopped_at.is_some());
+    /// // A missing value: the test is asked at the root, and the answer mixes both leaves.
+    /// assert_eq!(tree.explain(&frame, 4, &prices, &Budget::UNLIMITED).stopped_at, None);
+    /// ```
+    pub fn explain(
+        &self,
+        frame: &Frame,
+        row: usize,
+        prices: &TestPrices,
+        budget: &Budget,
+    ) -> Explanation {
+        let classification = self.classify_within(frame, row, prices, budget);
+        let bought = &classification.tests;
+        // The node that asked for each test bought on the object's one path.
+        let mut asked: Vec<usize> = Vec::new();
+        let mut at = 0usize;
+        let stopped_at = loop {
+            let node = &self.nodes[at];
+            let Some(split) = &node.split else {
+                break Some(at);
+            };
+            let feature = split.feature();
+            if !bought[..asked.len()].contains(&feature) {
+                if bought.get(asked.len()) != Some(&feature) {
+                    // Not affordable: the object answers here.
+                    break Some(at);
+                }
+                asked.push(at);
+            }
+            if frame.column(feature).is_missing(row) {
+                break None;
+            }
+            at = self.child(split, frame, row) as usize;
+        };
+        let steps = bought
+            .iter()
+            .enumerate()
+            .map(|(i, &feature)| {
+                let node = asked.get(i).copied();
+                ExplainedTest {
+                    feature,
+                    paid: price_after(prices, feature, &bought[..i]),
+                    node,
+                    probabilities: node.map(|n| laplace(&self.nodes[n].weights)),
+                    expected_gain: node
+                        .and_then(|n| self.nodes[n].value)
+                        .and_then(|v| v.gain()),
+                }
+            })
+            .collect();
+        Explanation {
+            steps,
+            stopped_at,
+            classification,
+        }
+    }
+
     /// The answer of least expected cost for a mix of leaves.
     fn best_for(&self, mixed: &[f64]) -> u32 {
         self.mc.best(mixed).0 as u32
@@ -1179,11 +1329,23 @@ pub(super) fn grow_nodes_by(
     max_depth: usize,
     mut choose: impl FnMut(&mut Splits<'_>, u32) -> Option<Stat>,
 ) -> Vec<TreeNode> {
+    grow_nodes_valued(splits, mc, max_depth, |splits, c| (choose(splits, c), None))
+}
+
+/// [`grow_nodes_by`] with `choose` also giving what it valued each node at, which the
+/// node keeps ([`TreeNode::value`]).
+pub(super) fn grow_nodes_valued(
+    splits: &mut Splits<'_>,
+    mc: &MisclassCosts,
+    max_depth: usize,
+    mut choose: impl FnMut(&mut Splits<'_>, u32) -> (Option<Stat>, Option<NodeValue>),
+) -> Vec<TreeNode> {
     let root = splits.cell(0).class_weights.clone();
     let mut nodes = vec![TreeNode {
         label: mc.best(&root).0 as u32,
         weights: root,
         split: None,
+        value: None,
     }];
     let mut stack: Vec<(NodeIndex, u32)> = vec![(0, 0)];
     while let Some((node, c)) = stack.pop() {
@@ -1195,7 +1357,9 @@ pub(super) fn grow_nodes_by(
             continue;
         }
         let node_weights = cell.class_weights.clone();
-        let Some(best) = choose(splits, c) else {
+        let (best, value) = choose(splits, c);
+        nodes[node as usize].value = value;
+        let Some(best) = best else {
             continue;
         };
         splits.children(c, &best);
@@ -1214,6 +1378,7 @@ pub(super) fn grow_nodes_by(
                 label: mc.best(&weights).0 as u32,
                 weights,
                 split: None,
+                value: None,
             });
             made.push(index);
             if let Some(child) = cell {

@@ -18,8 +18,8 @@ use super::criterion::Criterion;
 use super::prices::{MisclassCosts, TestPrices};
 use super::splits::{Splits, Stat};
 use super::tree::{
-    CostTree, GrowParams, SelectionPrices, TreeNode, deviation, estimated_cost, grow_nodes_by,
-    is_pure, path_spending, price_after,
+    CostTree, GrowParams, NodeValue, SelectionPrices, TreeNode, deviation, estimated_cost,
+    grow_nodes_valued, is_pure, path_spending, price_after,
 };
 use crate::Error;
 
@@ -297,8 +297,17 @@ pub(super) fn voi_tree_in(
         prior_m,
         coeff: deviation(confidence).powi(2),
     };
-    let mut nodes = grow_nodes_by(splits, mc, grow.max_depth, |splits, c| {
-        valuer.value(splits, c, params.lookahead).1
+    let mut nodes = grow_nodes_valued(splits, mc, grow.max_depth, |splits, c| {
+        let weights = &splits.cell(c).class_weights;
+        let total: f64 = weights.iter().sum();
+        let stop = valuer.leaf(weights, total);
+        let (cost, stat) = valuer.value(splits, c, params.lookahead);
+        let per_object = |v: f64| if total > 0.0 { v / total } else { 0.0 };
+        let value = NodeValue {
+            stop: per_object(stop),
+            test: stat.map(|_| per_object(cost)),
+        };
+        (stat, Some(value))
     });
     if matches!(params.leaf, VoiLeaf::MEstimate { .. }) {
         for node in &mut nodes {

@@ -189,6 +189,17 @@ class TestCostTree:
         max_test_cost: Optional[float] = None,
         max_tests: Optional[int] = None,
     ) -> tuple[list[int], list[float], list[list[int]], list[list[float]]]: ...
+    def explain(
+        self,
+        columns: list[_Column],
+        max_test_cost: Optional[float] = None,
+        max_tests: Optional[int] = None,
+    ) -> list[
+        tuple[
+            list[tuple[int, float, Optional[int], Optional[list[float]], Optional[float]]],
+            Optional[int],
+        ]
+    ]: ...
     def nodes(
         self,
     ) -> list[tuple[int, list[float], Optional[tuple[int, Optional[float], list[int]]]]]: ...

@@ -983,6 +983,56 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         """
         return self._classify(X)[3]
 
+    def explain(self, X: Any) -> list:
+        """How each object is classified, test by test: a dict per object with
+        ``tests`` (one dict per test bought, in order: ``feature``, its index; ``paid``,
+        its price after the tests before it; ``node``, the node that asked for it, and
+        ``probabilities`` there, in the order of ``classes_``, both ``None`` for a test
+        bought on a branch below a missing value; ``expected_gain``, what the learner
+        expected the test to save per object, VOI's trees only, ``None`` otherwise),
+        ``stopped_at`` (the node it answered from, ``None`` where a missing value sent it
+        down several branches), ``class``, ``test_cost`` and ``probabilities`` (as
+        ``predict``, ``predict_cost`` and ``predict_proba`` give them).
+
+        >>> import numpy as np
+        >>> from csrl.sklearn import VoiClassifier
+        >>> X = np.arange(20.0).reshape(-1, 1)
+        >>> clf = VoiClassifier(feature_costs=[5.0], misclassification_cost=100.0)
+        >>> why = clf.fit(X, ["a"] * 10 + ["b"] * 10).explain([[17.0]])[0]
+        >>> [(t["feature"], t["paid"], t["node"]) for t in why["tests"]], why["class"]
+        ([(0, 5.0, 0)], 'b')
+        >>> why["tests"][0]["expected_gain"] > 40  # an error on half the objects, saved
+        True
+        """
+        codes, costs, _, proba = self._classify(X)
+        X, categories = self._read(X)
+        explained = self._model.explain(
+            self._columns(X, categories), **getattr(self, "_budget", {})
+        )
+        names = self.classes_.tolist()
+        out = []
+        for i, (steps, stopped_at) in enumerate(explained):
+            tests = [
+                {
+                    "feature": feature,
+                    "paid": paid,
+                    "node": node,
+                    "probabilities": None if p is None else np.asarray(p, dtype=float),
+                    "expected_gain": gain,
+                }
+                for feature, paid, node, p, gain in steps
+            ]
+            out.append(
+                {
+                    "tests": tests,
+                    "stopped_at": stopped_at,
+                    "class": names[codes[i]],
+                    "test_cost": float(costs[i]),
+                    "probabilities": proba[i],
+                }
+            )
+        return out
+
     def predict_cost(self, X: Any) -> np.ndarray:
         """What classifying each object costs: the prices of the tests on its path (a
         test done once, once; the discount for a later test of a group; every branch's
