@@ -532,19 +532,11 @@ pub fn costly(args: &CostlyArgs) -> Result<()> {
             |_| 1.0,
             |id| run_job(&def, &lakes, id),
         )?;
-        if crate::shard::parse_shard(&args.shard)?.1 > 1 {
-            crate::note("run `cargo xtask costly --report` once every shard is done");
+        if crate::shard::one_of_several(&args.shard, "costly")? {
             return Ok(());
         }
     }
-    let (found, by_id): (Definition, BTreeMap<u64, JobResult>) =
-        crate::shard::collect(std::slice::from_ref(&args.out))?;
-    if found != def {
-        bail!(
-            "{} holds another job list ({found:?}); give its arguments, or another --out",
-            args.out.display()
-        );
-    }
+    let by_id: BTreeMap<u64, JobResult> = crate::shard::collect_of(&args.out, &def)?;
     let results: Vec<JobResult> = by_id.into_values().collect();
     report::write(&results, &args.out, "costly.md")?;
     if args.bless {

@@ -374,19 +374,11 @@ pub fn robustness(args: &RobustnessArgs) -> Result<()> {
                 })
             },
         )?;
-        if crate::shard::parse_shard(&args.shard)?.1 > 1 {
-            crate::note("run `cargo xtask robustness --report` once every shard is done");
+        if crate::shard::one_of_several(&args.shard, "robustness")? {
             return Ok(());
         }
     }
-    let (found, by_id): (Definition, BTreeMap<u64, JobResult>) =
-        crate::shard::collect(std::slice::from_ref(&args.out))?;
-    if found != def {
-        bail!(
-            "{} holds another sweep ({found:?}); give its arguments, or another --out",
-            args.out.display()
-        );
-    }
+    let by_id: BTreeMap<u64, JobResult> = crate::shard::collect_of(&args.out, &def)?;
     let results: Vec<JobResult> = by_id.into_values().collect();
     report::write(&def, &results, &args.out)?;
     if args.bless {

@@ -391,6 +391,35 @@ pub fn shard_dirs(dirs: &[PathBuf]) -> Result<Vec<PathBuf>> {
     Ok(out)
 }
 
+/// Whether `shard` is one of several: then the results are reported once every shard is
+/// done (this says how, for `cargo xtask {command}`), not by this run.
+pub fn one_of_several(shard: &str, command: &str) -> Result<bool> {
+    let several = parse_shard(shard)?.1 > 1;
+    if several {
+        crate::note(&format!(
+            "run `cargo xtask {command} --report` with the same arguments once every shard is done"
+        ));
+    }
+    Ok(several)
+}
+
+/// The results by job number of the job list `def` in `out` ([`collect`]), refused if
+/// `out` holds another job list.
+pub fn collect_of<D, T>(out: &Path, def: &D) -> Result<BTreeMap<u64, T>>
+where
+    D: DeserializeOwned + PartialEq + Clone + std::fmt::Debug,
+    T: JobLine,
+{
+    let (found, by_id): (D, BTreeMap<u64, T>) = collect(&[out.to_path_buf()])?;
+    if found != *def {
+        bail!(
+            "{} holds another job list ({found:?}); give its arguments, or another --out",
+            out.display()
+        );
+    }
+    Ok(by_id)
+}
+
 /// Read every shard under `dirs` and check that they are one job list, complete and
 /// without duplicates; returns its definition and the results by job number.
 pub fn collect<D, T>(dirs: &[PathBuf]) -> Result<(D, BTreeMap<u64, T>)>

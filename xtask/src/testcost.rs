@@ -827,21 +827,11 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
                 )
             },
         )?;
-        if crate::shard::parse_shard(&args.shard)?.1 > 1 {
-            crate::note(
-                "run `cargo xtask testcost --report` with the same arguments once every shard is done",
-            );
+        if crate::shard::one_of_several(&args.shard, "testcost")? {
             return Ok(());
         }
     }
-    let (found, by_id): (Definition, BTreeMap<u64, JobResult>) =
-        crate::shard::collect(std::slice::from_ref(&args.out))?;
-    if found != def {
-        bail!(
-            "{} holds another benchmark ({found:?}); give its arguments, or another --out",
-            args.out.display()
-        );
-    }
+    let by_id: BTreeMap<u64, JobResult> = crate::shard::collect_of(&args.out, &def)?;
     check_results(&def, &priced, &by_id, &args.out)?;
     let results: Vec<JobResult> = by_id.into_values().collect();
     let rows = report::aggregate(&def, &results);

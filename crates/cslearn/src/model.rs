@@ -664,6 +664,52 @@ pub(crate) fn json_error(path: &Path, e: &serde_json::Error) -> Error {
     }
 }
 
+/// The names of a model file (of either kind) are sound: at least one class, each
+/// named once; at least one feature, each with a name of its own that is not the
+/// `target`'s. `Err((where, what))`.
+pub(crate) fn check_names<'a>(
+    classes: &[String],
+    features: impl ExactSizeIterator<Item = &'a str>,
+    target: &str,
+) -> Result<(), (String, String)> {
+    let s = |x: &str| x.to_string();
+    if classes.is_empty() {
+        return Err((s("key `classes`"), s("no classes")));
+    }
+    let mut names = std::collections::BTreeSet::new();
+    for (i, c) in classes.iter().enumerate() {
+        if !names.insert(c.as_str()) {
+            return Err((format!("class {i}"), format!("`{c}` appears twice")));
+        }
+    }
+    if features.len() == 0 {
+        return Err((s("key `features`"), s("no features")));
+    }
+    let mut names = std::collections::BTreeSet::new();
+    for (i, name) in features.enumerate() {
+        let at = || format!("feature {i} (`{name}`)");
+        if name.is_empty() {
+            return Err((format!("feature {i}"), s("an empty name")));
+        }
+        if name == target {
+            return Err((at(), s("the target column cannot be a feature")));
+        }
+        if !names.insert(name) {
+            return Err((at(), s("the name appears twice")));
+        }
+    }
+    Ok(())
+}
+
+/// A nominal feature's values, each once: `Err(what)` naming the first repeated.
+pub(crate) fn check_values(values: &[String]) -> Result<(), String> {
+    let mut seen = std::collections::BTreeSet::new();
+    match values.iter().find(|v| !seen.insert(v.as_str())) {
+        Some(v) => Err(format!("value `{v}` appears twice")),
+        None => Ok(()),
+    }
+}
+
 /// Every number of a model file in range, every name once: `Err((where, what))`.
 fn check(file: &File) -> Result<(), (String, String)> {
     let s = |x: &str| x.to_string();
@@ -674,42 +720,20 @@ fn check(file: &File) -> Result<(), (String, String)> {
         }
         _ => {}
     }
-    if file.classes.is_empty() {
-        return Err((s("key `classes`"), s("no classes")));
-    }
-    let mut names = std::collections::BTreeSet::new();
-    for (i, c) in file.classes.iter().enumerate() {
-        if !names.insert(c.as_str()) {
-            return Err((format!("class {i}"), format!("`{c}` appears twice")));
-        }
-    }
-    if file.features.is_empty() {
-        return Err((s("key `features`"), s("no features")));
-    }
-    let mut names = std::collections::BTreeSet::new();
+    check_names(
+        &file.classes,
+        file.features.iter().map(|f| f.name.as_str()),
+        &file.target,
+    )?;
     for (i, f) in file.features.iter().enumerate() {
         let at = || format!("feature {i} (`{}`)", f.name);
-        if f.name.is_empty() {
-            return Err((format!("feature {i}"), s("an empty name")));
-        }
-        if f.name == file.target {
-            return Err((at(), s("the target column cannot be a feature")));
-        }
-        if !names.insert(f.name.as_str()) {
-            return Err((at(), s("the name appears twice")));
-        }
         match (&f.cuts, &f.values) {
             (Some(cuts), None) => {
                 if let Some(w) = cuts.windows(2).position(|w| w[0] >= w[1]) {
                     return Err((at(), format!("cut points not ascending at cut {}", w + 1)));
                 }
             }
-            (None, Some(values)) => {
-                let mut seen = std::collections::BTreeSet::new();
-                if let Some(v) = values.iter().find(|v| !seen.insert(v.as_str())) {
-                    return Err((at(), format!("value `{v}` appears twice")));
-                }
-            }
+            (None, Some(values)) => check_values(values).map_err(|what| (at(), what))?,
             _ => return Err((at(), s("needs exactly one of `cuts` and `values`"))),
         }
     }

@@ -137,6 +137,33 @@ pub struct TestCostTree {
 }
 
 impl TestCostTree {
+    /// The objects to classify as a frame over the tree's features (columns as in `fit`),
+    /// or `None` when there are none.
+    fn objects(&self, columns: Vec<PyColumn<'_>>) -> PyResult<Option<Frame>> {
+        let n = match columns.first() {
+            None => 0,
+            Some((_, cells)) => cells.len()?,
+        };
+        if columns.len() != self.names.len() {
+            return Err(DataError::new_err(format!(
+                "{} columns, but the tree was grown on {} features",
+                columns.len(),
+                self.names.len()
+            )));
+        }
+        if n == 0 {
+            return Ok(None);
+        }
+        let (frame, _) = frame(
+            &self.names,
+            columns,
+            vec![0; n],
+            &self.class_names,
+            Some(&self.kinds),
+        )?;
+        Ok(Some(frame))
+    }
+
     fn to_value(&self) -> PyResult<Value> {
         let ser = |e: serde_json::Error| DataError::new_err(format!("cannot save the tree: {e}"));
         let kinds: Vec<Value> = self
@@ -422,27 +449,10 @@ impl TestCostTree {
         max_tests: Option<usize>,
     ) -> PyResult<(Vec<u32>, Vec<f64>, Vec<Vec<usize>>, Vec<Vec<f64>>)> {
         let budget = budget(max_test_cost, max_tests)?;
-        let n = match columns.first() {
-            None => 0,
-            Some((_, cells)) => cells.len()?,
-        };
-        if columns.len() != self.names.len() {
-            return Err(DataError::new_err(format!(
-                "{} columns, but the tree was grown on {} features",
-                columns.len(),
-                self.names.len()
-            )));
-        }
-        if n == 0 {
+        let Some(frame) = self.objects(columns)? else {
             return Ok((Vec::new(), Vec::new(), Vec::new(), Vec::new()));
-        }
-        let (frame, _) = frame(
-            &self.names,
-            columns,
-            vec![0; n],
-            &self.class_names,
-            Some(&self.kinds),
-        )?;
+        };
+        let n = frame.len();
         let (tree, prices) = (&self.tree, &self.prices);
         Ok(py.detach(|| {
             let mut classes = Vec::with_capacity(n);
@@ -483,27 +493,10 @@ impl TestCostTree {
         )>,
     > {
         let budget = budget(max_test_cost, max_tests)?;
-        let n = match columns.first() {
-            None => 0,
-            Some((_, cells)) => cells.len()?,
-        };
-        if columns.len() != self.names.len() {
-            return Err(DataError::new_err(format!(
-                "{} columns, but the tree was grown on {} features",
-                columns.len(),
-                self.names.len()
-            )));
-        }
-        if n == 0 {
+        let Some(frame) = self.objects(columns)? else {
             return Ok(Vec::new());
-        }
-        let (frame, _) = frame(
-            &self.names,
-            columns,
-            vec![0; n],
-            &self.class_names,
-            Some(&self.kinds),
-        )?;
+        };
+        let n = frame.len();
         let (tree, prices) = (&self.tree, &self.prices);
         Ok(py.detach(|| {
             (0..n)

@@ -312,6 +312,72 @@ impl Swept {
     }
 }
 
+/// What every request of one job on `frame` shares: each object's cells as the worker
+/// reads them, the nominal features, and the price of each feature that LightGBM's lazy
+/// penalty takes (its listed, full price).
+struct JobData<'a> {
+    frame: &'a Frame,
+    cells: Vec<Vec<Option<f64>>>,
+    nominal: Vec<usize>,
+    listed: Vec<f64>,
+}
+
+impl<'a> JobData<'a> {
+    fn new(frame: &'a Frame, prices: &TestPrices) -> JobData<'a> {
+        JobData {
+            frame,
+            cells: rows(frame),
+            nominal: (0..frame.feature_count())
+                .filter(|&f| !frame.column(f).is_numeric())
+                .collect(),
+            listed: (0..prices.len()).map(|t| prices.test(t).full).collect(),
+        }
+    }
+
+    /// The request `op` to learn from the objects `train` and answer the objects `test`:
+    /// at the misclassification costs `mc` (a fit) or at each of `tradeoffs` (a sweep).
+    #[expect(
+        clippy::too_many_arguments,
+        reason = "the request's own fields: what is asked, on which objects, at what"
+    )]
+    fn request<'r>(
+        &'r self,
+        op: &'static str,
+        train: &[usize],
+        test: &[usize],
+        mc: Option<&'r [f64]>,
+        tradeoffs: Option<&'r [f64]>,
+        seed: u64,
+        settings: &'r serde_json::Value,
+    ) -> FitRequest<'r> {
+        FitRequest {
+            op,
+            train: train.iter().map(|&r| self.cells[r].as_slice()).collect(),
+            classes: train.iter().map(|&r| self.frame.class(r)).collect(),
+            class_count: self.frame.class_count(),
+            nominal: &self.nominal,
+            prices: &self.listed,
+            test: test.iter().map(|&r| self.cells[r].as_slice()).collect(),
+            mc,
+            tradeoffs,
+            seed,
+            settings,
+            timing: true,
+        }
+    }
+}
+
+/// Where a request was made, for its errors: `what` (CEGB, or its sweep) on data set
+/// `name`, the job's prices, run and fold `f`.
+fn place(what: &str, name: &str, job: Job, f: usize) -> String {
+    format!(
+        "{what} on `{name}`, {} prices {}, run {}, fold {f}",
+        job.costs.name(),
+        job.assignment,
+        job.run
+    )
+}
+
 /// Each object's cells as the worker reads them: a nominal value's code, a number, or
 /// `None` where the cell is missing.
 fn rows(frame: &Frame) -> Vec<Vec<Option<f64>>> {
@@ -492,37 +558,21 @@ pub(crate) fn run_job(
         .iter()
         .map(|&m| Ok((m, MisclassCosts::uniform(k, m)?)))
         .collect::<Result<_>>()?;
-    // LightGBM's lazy penalty: each feature's listed (full) price.
-    let listed: Vec<f64> = (0..prices.len()).map(|t| prices.test(t).full).collect();
-    let nominal: Vec<usize> = (0..frame.feature_count())
-        .filter(|&f| !frame.column(f).is_numeric())
-        .collect();
-    let cells = rows(frame);
+    let data = JobData::new(frame, prices);
     let mut tally = Tally::new(mcs.len());
     let (mut learn, mut classify) = (0.0, 0.0);
     for (f, train, test) in job_parts(def, name, job, frame) {
-        let request = FitRequest {
-            op: "fit",
-            train: train.iter().map(|&r| cells[r].as_slice()).collect(),
-            classes: train.iter().map(|&r| frame.class(r)).collect(),
-            class_count: k,
-            nominal: &nominal,
-            prices: &listed,
-            test: test.iter().map(|&r| cells[r].as_slice()).collect(),
-            mc: Some(&def.mc),
-            tradeoffs: None,
-            seed: learner_seed(def, name, job, f),
-            settings: &peer.settings,
-            timing: true,
-        };
-        let place = || {
-            format!(
-                "CEGB on `{name}`, {} prices {}, run {}, fold {f}",
-                job.costs.name(),
-                job.assignment,
-                job.run
-            )
-        };
+        let seed = learner_seed(def, name, job, f);
+        let request = data.request(
+            "fit",
+            &train,
+            &test,
+            Some(&def.mc),
+            None,
+            seed,
+            &peer.settings,
+        );
+        let place = || place("CEGB", name, job, f);
         let response: FitResponse = peer.ask(&request).with_context(place)?;
         tally
             .add(frame, prices, &mcs, &test, &response)
@@ -602,39 +652,22 @@ pub(crate) fn sweep_folds(
     settings: &serde_json::Value,
     mut ask: impl FnMut(&FitRequest<'_>) -> Result<SweepResponse>,
 ) -> Result<Sweep> {
-    let k = frame.class_count();
-    let costs = MisclassCosts::uniform(k, mc)?;
-    // LightGBM's lazy penalty: each feature's listed (full) price.
-    let listed: Vec<f64> = (0..prices.len()).map(|t| prices.test(t).full).collect();
-    let nominal: Vec<usize> = (0..frame.feature_count())
-        .filter(|&f| !frame.column(f).is_numeric())
-        .collect();
-    let cells = rows(frame);
+    let costs = MisclassCosts::uniform(frame.class_count(), mc)?;
+    let data = JobData::new(frame, prices);
     let mut tally = Tally::new(tradeoffs.len());
     let (mut learn, mut classify) = (0.0, 0.0);
     for (f, train, test) in job_parts(def, name, job, frame) {
-        let request = FitRequest {
-            op: "sweep",
-            train: train.iter().map(|&r| cells[r].as_slice()).collect(),
-            classes: train.iter().map(|&r| frame.class(r)).collect(),
-            class_count: k,
-            nominal: &nominal,
-            prices: &listed,
-            test: test.iter().map(|&r| cells[r].as_slice()).collect(),
-            mc: None,
-            tradeoffs: Some(tradeoffs),
-            seed: learner_seed(def, name, job, f),
+        let seed = learner_seed(def, name, job, f);
+        let request = data.request(
+            "sweep",
+            &train,
+            &test,
+            None,
+            Some(tradeoffs),
+            seed,
             settings,
-            timing: true,
-        };
-        let place = || {
-            format!(
-                "CEGB's sweep on `{name}`, {} prices {}, run {}, fold {f}",
-                job.costs.name(),
-                job.assignment,
-                job.run
-            )
-        };
+        );
+        let place = || place("CEGB's sweep", name, job, f);
         let response = ask(&request).with_context(place)?;
         tally
             .add_sweep(frame, prices, &costs, tradeoffs, &test, &response)

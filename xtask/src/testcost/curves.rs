@@ -794,21 +794,11 @@ pub fn budget(args: &BudgetArgs) -> Result<()> {
                 )
             },
         )?;
-        if crate::shard::parse_shard(&args.shard)?.1 > 1 {
-            crate::note(
-                "run `cargo xtask budget --report` with the same arguments once every shard is done",
-            );
+        if crate::shard::one_of_several(&args.shard, "budget")? {
             return Ok(());
         }
     }
-    let (found, by_id): (CurvesDefinition, BTreeMap<u64, CurveResult>) =
-        crate::shard::collect(std::slice::from_ref(&args.out))?;
-    if found != def {
-        bail!(
-            "{} holds another sweep ({found:?}); give its arguments, or another --out",
-            args.out.display()
-        );
-    }
+    let by_id: BTreeMap<u64, CurveResult> = crate::shard::collect_of(&args.out, &def)?;
     let results: Vec<CurveResult> = by_id.into_values().collect();
     let points = aggregate(&def, &results);
     let majority: BTreeMap<String, f64> = datasets

@@ -14,7 +14,7 @@ use crate::dataset::{
     MAX_TOTAL_COST, is_missing, open_regular, parse_number, read_bounded, read_table,
 };
 use crate::error::Error;
-use crate::model::{Model, Prediction, Probe, json_error};
+use crate::model::{Model, Prediction, Probe, check_names, check_values, json_error};
 use crate::types::{ClassId, Cost, FeatureId};
 
 /// The `format` of a saved tree of the test-cost family.
@@ -667,38 +667,16 @@ fn check(file: &TreeFile) -> Result<Method, (String, String)> {
     let s = |x: &str| x.to_string();
     let learner = Method::parse(&file.learner).map_err(|e| (s("key `learner`"), e.to_string()))?;
     let classes = file.classes.len();
-    if classes == 0 {
-        return Err((s("key `classes`"), s("no classes")));
-    }
-    let mut names = std::collections::BTreeSet::new();
-    for (i, c) in file.classes.iter().enumerate() {
-        if !names.insert(c.as_str()) {
-            return Err((format!("class {i}"), format!("`{c}` appears twice")));
-        }
-    }
-    if file.features.is_empty() {
-        return Err((s("key `features`"), s("no features")));
-    }
-    let mut names = std::collections::BTreeSet::new();
+    check_names(
+        &file.classes,
+        file.features.iter().map(|f| f.name.as_str()),
+        &file.target,
+    )?;
     for (i, f) in file.features.iter().enumerate() {
         let at = || format!("feature {i} (`{}`)", f.name);
-        if f.name.is_empty() {
-            return Err((format!("feature {i}"), s("an empty name")));
-        }
-        if f.name == file.target {
-            return Err((at(), s("the target column cannot be a feature")));
-        }
-        if !names.insert(f.name.as_str()) {
-            return Err((at(), s("the name appears twice")));
-        }
         match (f.kind.as_str(), &f.values) {
             ("numeric", None) => {}
-            ("nominal", Some(values)) => {
-                let mut seen = std::collections::BTreeSet::new();
-                if let Some(v) = values.iter().find(|v| !seen.insert(v.as_str())) {
-                    return Err((at(), format!("value `{v}` appears twice")));
-                }
-            }
+            ("nominal", Some(values)) => check_values(values).map_err(|what| (at(), what))?,
             ("numeric", Some(_)) => return Err((at(), s("a numeric feature has no `values`"))),
             ("nominal", None) => return Err((at(), s("a nominal feature needs `values`"))),
             (other, _) => {
