@@ -119,6 +119,12 @@ pub struct BudgetArgs {
     /// testcost --python` (default: the project's virtual environment).
     #[arg(long, value_name = "PATH")]
     python: Option<PathBuf>,
+    /// Results folders of other `cargo xtask budget` runs whose curves join the report:
+    /// the same data sets, price sets, draws, runs, folds, seed, settings and knob values,
+    /// but their own learners. Only the curves of learners this run does not have are
+    /// added: a learner joins without running the others again.
+    #[arg(long, value_delimiter = ',')]
+    with: Vec<PathBuf>,
     /// Only write the report from the results already in `--out`.
     #[arg(long)]
     report: bool,
@@ -233,6 +239,55 @@ pub(crate) struct CurvesDefinition {
 }
 
 impl CurvesDefinition {
+    /// Adds `other`'s curves of the learners this definition does not have, and returns
+    /// those learners; refused unless `other` is the same sweep but for its learners
+    /// (data sets, prices, draws, runs, folds, seed, settings and every knob's values,
+    /// CEGB's tradeoffs where both have them).
+    fn join(&mut self, other: &CurvesDefinition) -> Result<Vec<Learner>> {
+        let tradeoffs = match (self.tradeoffs.is_empty(), other.tradeoffs.is_empty()) {
+            (true, _) => other.tradeoffs.clone(),
+            (false, true) => self.tradeoffs.clone(),
+            (false, false) => {
+                if self.tradeoffs != other.tradeoffs {
+                    bail!("its CEGB tradeoffs differ from this sweep's");
+                }
+                self.tradeoffs.clone()
+            }
+        };
+        let same = CurvesDefinition {
+            benchmark: Definition {
+                learners: self.benchmark.learners.clone(),
+                ..other.benchmark.clone()
+            },
+            curves: self.curves.clone(),
+            tradeoffs: self.tradeoffs.clone(),
+            ..other.clone()
+        };
+        if same != *self {
+            bail!(
+                "it was run over other data sets, prices, folds, seed, settings or knob values \
+                 ({other:?}, against {self:?})"
+            );
+        }
+        let new: Vec<Learner> = other
+            .benchmark
+            .learners
+            .iter()
+            .filter(|l| !self.benchmark.learners.contains(l))
+            .copied()
+            .collect();
+        self.benchmark.learners.extend(new.iter().copied());
+        self.curves.extend(
+            other
+                .curves
+                .iter()
+                .filter(|c| new.contains(&c.learner))
+                .copied(),
+        );
+        self.tradeoffs = tradeoffs;
+        Ok(new)
+    }
+
     /// The values a curve of `knob` takes, in order.
     fn values(&self, knob: Knob) -> Vec<f64> {
         match knob {
@@ -799,7 +854,22 @@ pub fn budget(args: &BudgetArgs) -> Result<()> {
         }
     }
     let by_id: BTreeMap<u64, CurveResult> = crate::shard::collect_of(&args.out, &def)?;
-    let results: Vec<CurveResult> = by_id.into_values().collect();
+    let mut results: Vec<CurveResult> = by_id.into_values().collect();
+    for dir in &args.with {
+        let (other, by_id): (CurvesDefinition, BTreeMap<u64, CurveResult>) =
+            crate::shard::collect(std::slice::from_ref(dir))?;
+        let joined = def.join(&other).with_context(|| {
+            format!(
+                "--with {}: its curves cannot join this report",
+                dir.display()
+            )
+        })?;
+        results.extend(
+            by_id
+                .into_values()
+                .filter(|r| joined.contains(&r.curve.learner)),
+        );
+    }
     let points = aggregate(&def, &results);
     let majority: BTreeMap<String, f64> = datasets
         .iter()
@@ -1445,6 +1515,10 @@ fn args_line(args: &BudgetArgs) -> String {
     if args.seed != 1 {
         let _ = write!(line, " --seed {}", args.seed);
     }
+    if !args.with.is_empty() {
+        let with: Vec<String> = args.with.iter().map(|d| d.display().to_string()).collect();
+        let _ = write!(line, " --with {}", with.join(","));
+    }
     line
 }
 
@@ -1505,9 +1579,56 @@ mod tests {
             threads: Some(threads),
             shard: "1/1".into(),
             python: None,
+            with: Vec::new(),
             report: false,
             bless: false,
         }
+    }
+
+    /// A learner's curves run alone join a sweep of the same protocol with `--with`: the
+    /// joined report is the report of one sweep of every learner, byte for byte (its
+    /// header's command aside), and a sweep over other folds is refused, naming it.
+    #[test]
+    fn curves_run_apart_join_as_one_sweep() {
+        let (both, eg2, dtmc) = (
+            tempfile::tempdir().unwrap(),
+            tempfile::tempdir().unwrap(),
+            tempfile::tempdir().unwrap(),
+        );
+        budget(&args(both.path(), 2)).unwrap();
+        let mut alone = args(eg2.path(), 2);
+        alone.learners = vec!["eg2".into()];
+        budget(&alone).unwrap();
+        let mut other = args(dtmc.path(), 2);
+        other.learners = vec!["dtmc".into()];
+        budget(&other).unwrap();
+        let mut joined = alone.clone();
+        (joined.report, joined.with) = (true, vec![dtmc.path().to_path_buf()]);
+        budget(&joined).unwrap();
+        let read = |dir: &Path, file: &str| std::fs::read_to_string(dir.join(file)).unwrap();
+        assert_eq!(
+            read(eg2.path(), "budget.csv"),
+            read(both.path(), "budget.csv")
+        );
+        let body = |text: String| -> String {
+            text.lines()
+                .filter(|l| !l.contains("cargo xtask budget"))
+                .collect::<Vec<_>>()
+                .join("\n")
+        };
+        assert_eq!(
+            body(read(eg2.path(), "budget.md")),
+            body(read(both.path(), "budget.md"))
+        );
+        assert!(read(eg2.path(), "budget.md").contains(" --with "));
+        // Other folds: refused.
+        let elsewhere = tempfile::tempdir().unwrap();
+        let mut seeded = other.clone();
+        (seeded.out, seeded.seed) = (elsewhere.path().to_path_buf(), 6);
+        budget(&seeded).unwrap();
+        joined.with = vec![elsewhere.path().to_path_buf()];
+        let err = format!("{:#}", budget(&joined).unwrap_err());
+        assert!(err.contains("cannot join this report"), "{err}");
     }
 
     /// The results of a folder, by job.
