@@ -15,8 +15,9 @@
 //! ```
 //!
 //! `--file CSV TARGET [LEARNER,...]` grows one tree per learner on every object of a CSV
-//! file, every test priced 1, mc 100 (the Spambase measurement of `docs/testcost.md`:
-//! `-- --file data/uci/spambase/spambase.csv Outcome`).
+//! file, every test priced 1, mc 100, CVT on one thread and on two, VOI looking one, two
+//! and three tests ahead (the Spambase measurements of `docs/testcost.md`: `-- --file
+//! data/uci/spambase/spambase.csv Outcome`, and `... Outcome eg2,voi`).
 //!
 //! `--each` grows each learner's trees at the benchmark's four costs (mc 100, 500, 1000
 //! and 5000) one by one with `fit`, then all at once with `fit_each`, checks that they are
@@ -32,8 +33,8 @@ mod lookahead;
 use std::time::Instant;
 
 use cslearn::testcost::{
-    FamilyParams, Frame, FrameSpec, Method, MisclassCosts, SelectionPrices, TestPrices, fit,
-    fit_each, folds, random_prices,
+    FamilyParams, Frame, FrameSpec, Method, MisclassCosts, SelectionPrices, TestPrices, VoiParams,
+    fit, fit_each, folds, random_prices,
 };
 use lookahead::{Case, catalogue, fingerprint, pins};
 
@@ -123,27 +124,36 @@ fn file(path: &str, target: &str, learners: &[Method]) -> Result<(), Box<dyn std
     fit(Method::Eg2, &frame, &rows, &prices, &mc, &params, 1);
     let mut eg2 = None;
     for &learner in learners {
-        // CVT on one thread and on two: the same tree.
-        let threads: &[usize] = if learner == Method::Cvt {
-            &[1, 2]
-        } else {
-            &[1]
+        // CVT on one thread and on two: the same tree. VOI looking one, two and three
+        // tests ahead: its work grows as the features to that power.
+        let settings: Vec<(usize, Option<usize>)> = match learner {
+            Method::Cvt => vec![(1, None), (2, None)],
+            Method::Voi => (1..=3).map(|d| (1, Some(d))).collect(),
+            _ => vec![(1, None)],
         };
         let mut trees = Vec::new();
-        for &t in threads {
+        for &(t, lookahead) in &settings {
             let params = FamilyParams {
                 cvt: params.cvt.with_threads(t),
+                voi: VoiParams {
+                    lookahead: lookahead.unwrap_or(params.voi.lookahead),
+                    ..params.voi
+                },
                 ..params
             };
             let start = Instant::now();
             let tree = fit(learner, &frame, &rows, &prices, &mc, &params, 1).tree;
             let ms = start.elapsed().as_secs_f64() * 1e3;
             let ratio = eg2.map_or("-".into(), |b: f64| format!("{:.1}", ms / b));
-            println!(
-                "{:<7} {t:>8} {ms:>9.1} {:>6} {ratio:>7}",
-                learner.name(),
-                tree.len()
-            );
+            let name = match lookahead {
+                Some(d) => format!("{}-{d}", learner.name()),
+                None => learner.name().to_string(),
+            };
+            println!("{name:<7} {t:>8} {ms:>9.1} {:>6} {ratio:>7}", tree.len());
+            if lookahead.is_some() {
+                // Each lookahead grows a tree of its own.
+                continue;
+            }
             if learner == Method::Eg2 {
                 eg2 = Some(ms);
             }
