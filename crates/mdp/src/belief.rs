@@ -318,7 +318,31 @@ impl CostlyModel {
         self.start.iter().map(|&(p, s)| p * v(s)).sum()
     }
 
-    fn probes(&self, menu: SensingMenu) -> Vec<Probe> {
+    /// What action `a` does from belief `b`: `reward` plus its expected reward, whether
+    /// some pair of it must be measured, and the sub-distribution of the non-terminal
+    /// states it leads to (sorted by state, no zeros; its mass is the chance the episode
+    /// goes on).
+    pub(crate) fn successor(
+        &self,
+        b: &[(u32, f64)],
+        a: usize,
+        mut reward: f64,
+    ) -> (f64, bool, Belief) {
+        let mut forced = false;
+        let mut next: BTreeMap<u32, f64> = BTreeMap::new();
+        for &(s, p) in b {
+            let pair = self.pair(s, a);
+            reward += p * self.reward[pair];
+            forced |= self.must_measure[pair];
+            for &(t, q) in &self.next[pair] {
+                *next.entry(t).or_insert(0.0) += p * q;
+            }
+        }
+        let next: Belief = next.into_iter().filter(|x| x.1 > 0.0).collect();
+        (reward, forced, next)
+    }
+
+    pub(crate) fn probes(&self, menu: SensingMenu) -> Vec<Probe> {
         match menu {
             SensingMenu::Whole { price } => vec![Probe {
                 price,
@@ -335,7 +359,7 @@ impl CostlyModel {
 }
 
 /// A belief: `(state, probability)` sorted by state, summing to 1.
-type Belief = Vec<(u32, f64)>;
+pub(crate) type Belief = Vec<(u32, f64)>;
 /// A belief's key: probabilities rounded to multiples of [`BELIEF_QUANTUM`].
 type Key = Vec<(u32, u64)>;
 
@@ -346,7 +370,7 @@ fn key(b: &[(u32, f64)]) -> Key {
 }
 
 /// Normalise a sub-distribution sorted by state; its mass.
-fn normalise(mut b: Belief) -> (f64, Belief) {
+pub(crate) fn normalise(mut b: Belief) -> (f64, Belief) {
     let total: f64 = b.iter().map(|x| x.1).sum();
     for x in &mut b {
         x.1 /= total;
@@ -356,14 +380,14 @@ fn normalise(mut b: Belief) -> (f64, Belief) {
 
 /// A probe: one thing that can be measured, with its price and what each state reads.
 #[derive(Clone, Copy, Debug)]
-struct Probe {
-    price: f64,
+pub(crate) struct Probe {
+    pub(crate) price: f64,
     /// `None`: the state itself (the whole state).
-    feature: Option<usize>,
+    pub(crate) feature: Option<usize>,
 }
 
 impl Probe {
-    fn read(&self, m: &CostlyModel, s: u32) -> u32 {
+    pub(crate) fn read(&self, m: &CostlyModel, s: u32) -> u32 {
         match self.feature {
             None => s,
             Some(f) => m.readings[s as usize * m.prices.len() + f],
@@ -372,7 +396,7 @@ impl Probe {
 }
 
 /// The probes of a bit set over the menu ([`EVERY_PROBE`]: all of them, however many).
-fn members(mask: u32, probes: usize) -> impl Iterator<Item = usize> {
+pub(crate) fn members(mask: u32, probes: usize) -> impl Iterator<Item = usize> {
     (0..probes).filter(move |&j| mask == EVERY_PROBE || (j < 32 && mask >> j & 1 == 1))
 }
 
@@ -386,7 +410,12 @@ pub const EVERY_PROBE: u32 = u32::MAX;
 
 /// Split a sub-distribution (sorted by state) by what the probes in `set` read: the
 /// parts' masses (of the whole) and normalised beliefs, in the order of the readings.
-fn split(m: &CostlyModel, probes: &[Probe], set: &[usize], b: &[(u32, f64)]) -> Vec<(f64, Belief)> {
+pub(crate) fn split(
+    m: &CostlyModel,
+    probes: &[Probe],
+    set: &[usize],
+    b: &[(u32, f64)],
+) -> Vec<(f64, Belief)> {
     if set.is_empty() {
         return vec![normalise(b.to_vec())];
     }
@@ -656,18 +685,7 @@ pub(crate) fn solve_counted(
                     }
                 }
                 for a in 0..m.na {
-                    let mut reward = -move_cost;
-                    let mut forced = false;
-                    let mut next: BTreeMap<u32, f64> = BTreeMap::new();
-                    for &(s, p) in &b {
-                        let pair = m.pair(s, a);
-                        reward += p * m.reward[pair];
-                        forced |= m.must_measure[pair];
-                        for &(t, q) in &m.next[pair] {
-                            *next.entry(t).or_insert(0.0) += p * q;
-                        }
-                    }
-                    let next: Belief = next.into_iter().filter(|x| x.1 > 0.0).collect();
+                    let (reward, forced, next) = m.successor(&b, a, -move_cost);
                     let action = ActionId(a as u32);
                     if forced && b.len() > 1 {
                         continue; // such a pair is taken from a known state only

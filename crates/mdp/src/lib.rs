@@ -55,7 +55,8 @@
 //!   `frozenlake4x4`, `frozenlake8x8`, `taxi`, `cliffwalking`, as Gymnasium defines them).
 //! * [`reference_points`]: what the best policies score when sensing is priced in reward
 //!   units (always measuring, the best open-loop plan, the best policy that measures only
-//!   when it pays), computed exactly from a world's model.
+//!   when it pays), computed exactly from a world's model; [`optimum_bounds`]: the best
+//!   of every policy, bracketed between a policy's value and an upper bound to a gap.
 //!
 //! # Example
 //!
@@ -99,6 +100,7 @@ mod format;
 mod geometry;
 mod grid;
 mod map;
+mod optimum;
 mod oracle;
 mod process;
 mod random;
@@ -130,6 +132,7 @@ pub use format::MAX_FILE_BYTES;
 pub use geometry::{Cell, Offset, Pos};
 pub use grid::{Action, Blocked, GridOptions, GridWorld};
 pub use map::{MAX_SIDE, Map};
+pub use optimum::{BoundOptions, OptimumBounds, optimum_bounds};
 pub use oracle::Oracle;
 pub use process::{ActionId, Mdp, StateId, Step};
 pub use random::RandomMap;

@@ -358,40 +358,7 @@ fn measured_counted(
     let mut n_next = vec![0.0; m.n];
     let per = per_measure.unwrap_or(0.0);
     for h in 1..=horizon {
-        // Under the other rule a move that leaves the episode going measures, unless it
-        // was the last move of the horizon.
-        let after_price = if h > 1 { c } else { 0.0 };
-        let after_count = if h > 1 { per } else { 0.0 };
-        for (s, ws) in w.iter_mut().enumerate() {
-            if m.terminal[s] {
-                continue;
-            }
-            let mut best = f64::NEG_INFINITY;
-            let mut counted = 0.0;
-            for a in 0..m.na {
-                let i = m.pair(s as u32, a);
-                let mut q = m.reward[i];
-                let mut k = 0.0;
-                for &(t, p) in &m.next[i] {
-                    q += p * v[t as usize];
-                    k += p * n[t as usize];
-                    if rule == SensingRule::AfterOutcome {
-                        q -= p * after_price;
-                        k += p * after_count;
-                    }
-                }
-                if rule == SensingRule::WithMove {
-                    q -= c;
-                    k += per;
-                }
-                if q > best {
-                    counted = k;
-                }
-                best = best.max(q);
-            }
-            *ws = best;
-            n_next[s] = counted;
-        }
+        measured_step(m, (c, per), rule, h, (&v, &n), (&mut w, &mut n_next));
         let counts_same = per_measure.is_none() || n_next == n;
         if w == v && counts_same {
             break;
@@ -400,6 +367,54 @@ fn measured_counted(
         std::mem::swap(&mut n, &mut n_next);
     }
     (m.at_start(|s| v[s as usize]), m.at_start(|s| n[s as usize]))
+}
+
+/// One step of [`measured_counted`]'s backward induction: from the values `v` (and
+/// counts `n`) with `h - 1` moves left, those with `h` moves left into `w` (and `n_next`),
+/// the state measured at `c` after every move, each measurement counting `per`; of the
+/// best moves the first gives the count. Terminal states are left as they are.
+pub(crate) fn measured_step(
+    m: &CostlyModel,
+    (c, per): (f64, f64),
+    rule: SensingRule,
+    h: u32,
+    (v, n): (&[f64], &[f64]),
+    (w, n_next): (&mut [f64], &mut [f64]),
+) {
+    // Under the other rule a move that leaves the episode going measures, unless it
+    // was the last move of the horizon.
+    let after_price = if h > 1 { c } else { 0.0 };
+    let after_count = if h > 1 { per } else { 0.0 };
+    for (s, ws) in w.iter_mut().enumerate() {
+        if m.terminal[s] {
+            continue;
+        }
+        let mut best = f64::NEG_INFINITY;
+        let mut counted = 0.0;
+        for a in 0..m.na {
+            let i = m.pair(s as u32, a);
+            let mut q = m.reward[i];
+            let mut k = 0.0;
+            for &(t, p) in &m.next[i] {
+                q += p * v[t as usize];
+                k += p * n[t as usize];
+                if rule == SensingRule::AfterOutcome {
+                    q -= p * after_price;
+                    k += p * after_count;
+                }
+            }
+            if rule == SensingRule::WithMove {
+                q -= c;
+                k += per;
+            }
+            if q > best {
+                counted = k;
+            }
+            best = best.max(q);
+        }
+        *ws = best;
+        n_next[s] = counted;
+    }
 }
 
 /// The best expected return of an open-loop plan: `H` actions fixed at the start (which

@@ -721,3 +721,153 @@ fn the_reference_points_count_what_they_measure() {
         );
     }
 }
+
+fn bound_options(h: u32, gap: f64) -> mdp::BoundOptions {
+    mdp::BoundOptions {
+        horizon: h,
+        gap,
+        ..mdp::BoundOptions::default()
+    }
+}
+
+#[test]
+fn the_optimum_bounds_bracket_the_best_of_every_policy() {
+    // On tiny worlds the optimum of every policy is known by brute force over every
+    // history; the bounds must hold it and meet within the gap. Five live states leave
+    // two of them reading alike on both features.
+    let gap = 1e-6;
+    for seed in 0..10 {
+        let live = if seed % 3 == 2 { 5 } else { 4 };
+        let w = tiny(seed, live, 2, [0.03, 0.08]);
+        let p = plain(&w);
+        for h in 1..=4 {
+            for rule in [SensingRule::WithMove, SensingRule::AfterOutcome] {
+                for whole in [true, false] {
+                    let menu = if whole {
+                        SensingMenu::whole(&w)
+                    } else {
+                        SensingMenu::Features
+                    };
+                    let every = Setup {
+                        whole,
+                        rule,
+                        k: u32::MAX - 1,
+                        reveal: false,
+                    };
+                    let optimum = brute_best(&p, every, &[(0, 1.0)], h, 0);
+                    let b = mdp::optimum_bounds(&w, menu, rule, &bound_options(h, gap)).unwrap();
+                    let why =
+                        format!("seed {seed} h {h} {rule:?} whole {whole}: {b:?} vs {optimum}");
+                    assert!(b.converged && b.upper - b.lower <= gap + EPS, "{why}");
+                    assert!(
+                        b.lower <= optimum + EPS && b.upper >= optimum - EPS,
+                        "{why}"
+                    );
+                    let always = always_measuring(&w, menu, rule, &options(h, None)).unwrap();
+                    let aliased = live == 5 && !whole;
+                    assert!(aliased || b.lower >= always - EPS, "{why}: always {always}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn the_optimum_bounds_hold_what_the_reference_points_prove() {
+    // Where the best policy within K meets its ceiling the optimum is known; elsewhere the
+    // bounds must lie on the right side of each reference point.
+    let gap = 1e-4;
+    for (slide, price) in [(0.0, 0.025), (0.0, 0.05), (0.5, 0.025)] {
+        let w = lake("frozenlake4x4", 0.0, slide, price);
+        for menu in [SensingMenu::whole(&w), SensingMenu::Features] {
+            for rule in [SensingRule::WithMove, SensingRule::AfterOutcome] {
+                let h = 12;
+                let o = options(h, Some(2));
+                let best = best_sensing(&w, menu, rule, &o).unwrap().value;
+                let ceiling = mdp::sensing_ceiling(&w, menu, rule, &o).unwrap().value;
+                let free = mdp::free_sensing(&w, &o).unwrap();
+                let b = mdp::optimum_bounds(&w, menu, rule, &bound_options(h, gap)).unwrap();
+                let why = format!("slide {slide} price {price} {menu:?} {rule:?}: {b:?}");
+                assert!(b.converged && b.lower <= b.upper, "{why}");
+                assert!(b.upper >= best - EPS && b.lower <= free + EPS, "{why}");
+                assert!(b.lower >= best - gap, "{why}: best within 2 {best}");
+                if (ceiling - best).abs() < EPS {
+                    assert!(b.lower <= best + EPS && b.upper >= best - EPS, "{why}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn on_the_slippery_lake_the_lower_bound_is_not_below_the_search_within_k() {
+    let gap = 1e-3;
+    let w = lake("frozenlake4x4", 2.0 / 3.0, 0.0, 0.025);
+    let h = 10;
+    for menu in [SensingMenu::whole(&w), SensingMenu::Features] {
+        for rule in [SensingRule::WithMove, SensingRule::AfterOutcome] {
+            let b = mdp::optimum_bounds(&w, menu, rule, &bound_options(h, gap)).unwrap();
+            let why = format!("{menu:?} {rule:?}: {b:?}");
+            assert!(b.converged && b.lower <= b.upper, "{why}");
+            for k in [1, 2] {
+                let best = best_sensing(&w, menu, rule, &options(h, Some(k)))
+                    .unwrap()
+                    .value;
+                assert!(b.lower >= best - gap, "{why}: K {k} {best}");
+                assert!(b.upper >= best - EPS, "{why}: K {k} {best}");
+            }
+            let ceiling = mdp::sensing_ceiling(&w, menu, rule, &options(h, Some(2))).unwrap();
+            assert!(b.lower <= ceiling.value + EPS, "{why}: {ceiling:?}");
+            let again = mdp::optimum_bounds(&w, menu, rule, &bound_options(h, gap)).unwrap();
+            assert_eq!(again, b, "the search is deterministic");
+        }
+    }
+}
+
+#[test]
+fn the_optimum_bounds_refuse_bad_settings_and_stop_at_their_budget() {
+    let w = lake("frozenlake4x4", 2.0 / 3.0, 0.0, 0.025);
+    let menu = SensingMenu::whole(&w);
+    let rule = SensingRule::WithMove;
+    let o = bound_options(20, 1e-3);
+    for (bad, what) in [
+        (mdp::BoundOptions { horizon: 0, ..o }, "horizon"),
+        (mdp::BoundOptions { gap: -1.0, ..o }, "gap"),
+        (mdp::BoundOptions { gap: f64::NAN, ..o }, "gap"),
+        (
+            mdp::BoundOptions {
+                gap: f64::INFINITY,
+                ..o
+            },
+            "gap",
+        ),
+        (
+            mdp::BoundOptions {
+                max_entries: 10,
+                ..o
+            },
+            "max_entries",
+        ),
+    ] {
+        let err = mdp::optimum_bounds(&w, menu, rule, &bad).unwrap_err();
+        assert!(
+            matches!(err, ReferenceError::BadSetting { .. }) && err.to_string().contains(what),
+            "{err}"
+        );
+    }
+    let price = SensingMenu::Whole { price: -1.0 };
+    assert!(mdp::optimum_bounds(&w, price, rule, &o).is_err());
+    let huge = mdp::BoundOptions {
+        horizon: u32::MAX,
+        ..o
+    };
+    assert!(mdp::optimum_bounds(&w, menu, rule, &huge).is_err());
+    // No trial: the bounds the search starts from, a policy's value below, free sensing
+    // (or lower) above.
+    let none = mdp::BoundOptions { max_trials: 0, ..o };
+    let b = mdp::optimum_bounds(&w, menu, rule, &none).unwrap();
+    let free = mdp::free_sensing(&w, &options(20, None)).unwrap();
+    assert!(!b.converged && b.trials == 0 && b.lower <= b.upper && b.upper <= free + EPS);
+    let always = always_measuring(&w, menu, rule, &options(20, None)).unwrap();
+    assert!(b.lower >= always - EPS, "{b:?} {always}");
+}
