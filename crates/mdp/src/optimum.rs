@@ -116,8 +116,9 @@ pub struct OptimumBounds {
 /// Simmons, "Heuristic search value iteration for POMDPs", UAI 2004): trials from the
 /// start, each following the choice best under the upper bound and the reading whose
 /// gap, weighted by its probability, is largest, down to a belief whose two bounds are
-/// within the gap (or the horizon), then backing up every belief of the path from the
-/// last to the first. The gap is the same at every depth (there is no discount). Nothing
+/// within half the gap (or the horizon), then backing up every belief of the path from
+/// the last to the first; they stop when the bounds at the start are within the gap.
+/// Half the gap is the same at every depth (there is no discount). Nothing
 /// is random; ties go to the first choice (the actions in order, then the probe sets as
 /// numbers, then the probes) and the first reading (in the order of the readings).
 ///
@@ -201,7 +202,9 @@ struct Stage {
     alphas: Vec<Vec<f64>>,
     /// The upper bound at each state known for certain.
     corners: Vec<f64>,
-    /// The upper bound at beliefs of two states or more.
+    /// The upper bound at beliefs of two states or more, each with how far it is below
+    /// the states' values mixed (`value - corners . belief`, kept up to date as the
+    /// states' values fall).
     points: Vec<(Belief, f64)>,
     /// The states of each point, as a bit set of [`Search::words`] words a point, so
     /// that the points a belief covers are found without reading them.
@@ -226,6 +229,12 @@ struct Expanded {
     after: usize,
     children: Vec<(f64, Belief)>,
 }
+
+/// The share of [`BoundOptions::gap`] a trial narrows each belief to: below 1, so that
+/// the last belief of a trial is narrowed by a good part of the gap (at the gap itself a
+/// trial could end at a belief just above it whose backup gains less than
+/// [`IMPROVEMENT`], and the next trial follow the same path).
+const TRIAL_GAP: f64 = 0.5;
 
 /// How much a new vector or point must improve a bound at its belief to be kept.
 const IMPROVEMENT: f64 = 1e-12;
@@ -413,16 +422,18 @@ impl<'a> Search<'a> {
     /// gap apart, then a backup at every belief of the path, the last first.
     fn trial(&mut self, mut b: Belief, mut h: usize) {
         let mut path = Vec::new();
-        while h > 0 && self.upper(h, &b) - self.lower(h, &b) > self.gap {
+        let gap = self.gap * TRIAL_GAP;
+        while h > 0 && self.upper(h, &b) - self.lower(h, &b) > gap {
             let expanded = self.expand(&b, h);
-            let values: Vec<f64> = expanded.iter().map(|e| self.upper_of(e)).collect();
-            let best = first_max(&values);
-            self.keep_point(h, &b, values[best]);
+            let Some((best, value)) = self.best_upper(&expanded) else {
+                break;
+            };
+            self.keep_point(h, &b, value);
             let e = &expanded[best];
             let excess: Vec<f64> = e
                 .children
                 .iter()
-                .map(|(w, c)| w * (self.upper(e.after, c) - self.lower(e.after, c) - self.gap))
+                .map(|(w, c)| w * (self.upper(e.after, c) - self.lower(e.after, c) - gap))
                 .collect();
             let next = first_max(&excess);
             let step = (excess.get(next).is_some_and(|x| *x > 0.0))
@@ -467,9 +478,8 @@ impl<'a> Search<'a> {
             stage.alphas.push(alpha);
             self.entries += 1;
         }
-        let values: Vec<f64> = expanded.iter().map(|e| self.upper_of(e)).collect();
-        if !values.is_empty() {
-            self.keep_point(h, b, values[first_max(&values)]);
+        if let Some((_, value)) = self.best_upper(&expanded) {
+            self.keep_point(h, b, value);
         }
     }
 
@@ -511,6 +521,37 @@ impl<'a> Search<'a> {
             }
         }
         out
+    }
+
+    /// The choice best under the upper bound, the first of the best, and its value. A
+    /// choice is worth at most its reward plus what follows at the states' values mixed
+    /// (the points and the informed bound only lower that), so the choices are valued in
+    /// the order of that estimate until none left can reach the best found.
+    fn best_upper(&self, expanded: &[Expanded]) -> Option<(usize, f64)> {
+        let estimates: Vec<f64> = expanded
+            .iter()
+            .map(|e| {
+                let corners = &self.stages[e.after].corners;
+                e.reward
+                    + e.children
+                        .iter()
+                        .map(|(w, c)| w * dot(corners, c))
+                        .sum::<f64>()
+            })
+            .collect();
+        let mut order: Vec<usize> = (0..expanded.len()).collect();
+        order.sort_by(|&i, &j| estimates[j].total_cmp(&estimates[i]).then(i.cmp(&j)));
+        let mut best: Option<(usize, f64)> = None;
+        for i in order {
+            if best.is_some_and(|(_, v)| estimates[i] < v) {
+                break;
+            }
+            let v = self.upper_of(&expanded[i]);
+            if best.is_none_or(|(k, b)| v > b || (v == b && i < k)) {
+                best = Some((i, v));
+            }
+        }
+        best
     }
 
     /// The value of a choice under the upper bound of what follows it.
@@ -604,13 +645,18 @@ impl<'a> Search<'a> {
         let mut correction = 0.0f64;
         if b.len() > 1 && !stage.points.is_empty() {
             let mask = self.mask(b);
-            for (i, (point, v)) in stage.points.iter().enumerate() {
-                let words = &stage.masks[i * self.words..(i + 1) * self.words];
-                if words.iter().zip(&mask).any(|(p, q)| p & !q != 0) {
-                    continue; // a state of the point is not in the belief
+            // Points with a state outside the belief are skipped (one word: the lakes).
+            let outside = |i: usize| match mask.as_slice() {
+                [q] => stage.masks[i] & !q != 0,
+                _ => {
+                    let words = &stage.masks[i * self.words..(i + 1) * self.words];
+                    words.iter().zip(&mask).any(|(p, q)| p & !q != 0)
                 }
-                let ratio = covered(b, point);
-                correction = correction.min(ratio * (v - dot(&stage.corners, point)));
+            };
+            for (i, (point, v)) in stage.points.iter().enumerate() {
+                if !outside(i) {
+                    correction = correction.min(covered(b, point) * v);
+                }
             }
         }
         let informed = stage
@@ -636,12 +682,51 @@ impl<'a> Search<'a> {
             return;
         }
         if let [(s, _)] = b {
-            let corner = &mut self.stages[h].corners[*s as usize];
-            *corner = corner.min(v);
+            let stage = &mut self.stages[h];
+            let s = *s as usize;
+            let fall = stage.corners[s] - v;
+            if fall > 0.0 {
+                stage.corners[s] = v;
+                // Each point holding the state is that much less below the mixture.
+                let (word, bit) = (s / 64, 1u64 << (s % 64));
+                for (i, (point, below)) in stage.points.iter_mut().enumerate() {
+                    if stage.masks[i * self.words + word] & bit != 0
+                        && let Ok(k) = point.binary_search_by_key(&(s as u32), |x| x.0)
+                    {
+                        *below += fall * point[k].1;
+                    }
+                }
+            }
         } else if v < self.upper(h, b) - IMPROVEMENT {
             let mask = self.mask(b);
+            let words = self.words;
             let stage = &mut self.stages[h];
-            stage.points.push((b.to_vec(), v));
+            let below = v - dot(&stage.corners, b);
+            // A point holding `r` of the new one and no more than `r` times as far below
+            // the mixture gives no belief a lower bound than the new one does.
+            let keep: Vec<bool> = stage
+                .points
+                .iter()
+                .enumerate()
+                .map(|(i, (point, old))| {
+                    let theirs = &stage.masks[i * words..(i + 1) * words];
+                    let holds = mask.iter().zip(theirs).all(|(q, p)| q & !p == 0);
+                    !(holds && covered(point, b) * below <= *old)
+                })
+                .collect();
+            let before = stage.points.len();
+            let mut i = 0;
+            stage.points.retain(|_| {
+                i += 1;
+                keep[i - 1]
+            });
+            let mut i = 0;
+            stage.masks.retain(|_| {
+                i += 1;
+                keep[(i - 1) / words]
+            });
+            self.entries -= before - stage.points.len();
+            stage.points.push((b.to_vec(), below));
             stage.masks.extend(mask);
             self.entries += 1;
         }
