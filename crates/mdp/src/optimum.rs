@@ -28,10 +28,10 @@ pub struct BoundOptions {
     /// The most trials; past it the bounds are returned as they are
     /// ([`OptimumBounds::converged`] false).
     pub max_trials: usize,
-    /// The most vectors and points kept in all, the ones every search starts with
-    /// included (about `8 * states` bytes a vector, `16` a state of a point's belief):
-    /// past it the bounds are returned as they are. A horizon whose starting vectors
-    /// alone pass it is refused.
+    /// The most vectors and points of the lower and upper bounds kept in all, those the
+    /// lower bound starts with included (about `8 * states` bytes a vector, `16` a state
+    /// of a point's belief): past it the bounds are returned as they are. A horizon
+    /// whose starting vectors (with the informed bound's) alone pass it is refused.
     pub max_entries: usize,
 }
 
@@ -67,7 +67,8 @@ pub struct OptimumBounds {
     pub trials: usize,
     /// The beliefs backed up (each counted once per backup).
     pub backups: usize,
-    /// The vectors of the lower bound kept, over every number of moves left.
+    /// The vectors of the lower bound kept, over every number of moves left (the
+    /// informed bound's, a few per number of moves left and fixed, not counted).
     pub vectors: usize,
     /// The beliefs with a value of the upper bound kept, over every number of moves
     /// left (the states' values, `states * H` of them, not counted).
@@ -279,12 +280,19 @@ impl<'a> Search<'a> {
         let identifies = everything.groups == m.terminal.iter().filter(|t| !**t).count();
         let h_max = options.horizon as usize;
         let per_stage = m.na + if identifies { m.na } else { 0 };
-        let starting = h_max.saturating_mul(per_stage).saturating_add(1);
+        // The informed bound's vectors: one a move and probe set, and one for sensing.
+        let informed_per_stage = match rule {
+            SensingRule::WithMove => m.na.saturating_mul(sets.len()),
+            SensingRule::AfterOutcome => m.na + 1,
+        };
+        let starting = h_max
+            .saturating_mul(per_stage.saturating_add(informed_per_stage))
+            .saturating_add(2);
         if starting > options.max_entries {
             return Err(bad(
                 "horizon",
                 format!(
-                    "{} moves start the lower bound with {starting} vectors, more than max_entries ({})",
+                    "{} moves start the bounds with {starting} vectors, more than max_entries ({})",
                     options.horizon, options.max_entries
                 ),
             ));
