@@ -240,6 +240,8 @@ const TRIAL_GAP: f64 = 0.5;
 /// How much a new vector or point must improve a bound at its belief to be kept.
 const IMPROVEMENT: f64 = 1e-12;
 
+/// The search: the model, the probe sets its choices read, the bounds for every number
+/// of moves left (index `h`, 0 to the horizon), and what it has done so far.
 struct Search<'a> {
     m: &'a CostlyModel,
     rule: SensingRule,
