@@ -172,6 +172,18 @@ fn settings_out_of_range_are_refused_by_check() {
     }
 }
 
+/// VOI on the exclusive-or problem, two tests ahead, the counts as they are (an
+/// m-estimate with m = 0).
+fn counted_pair(
+    frame: &Frame,
+    rows: &[usize],
+    prices: &TestPrices,
+    mc: &MisclassCosts,
+) -> cslearn::testcost::Fitted {
+    let params = voi(2, VoiLeaf::MEstimate { m: 0.0 });
+    fit(Method::Voi, frame, rows, prices, mc, &params, 1)
+}
+
 /// The explanation of an object's classification, worked by hand on the exclusive-or
 /// pair with the counts as they are (an m-estimate with m = 0). At the root (20 objects
 /// of each class) stopping costs 50 per object, half of them wrong at 100; test `a` at
@@ -183,15 +195,7 @@ fn settings_out_of_range_are_refused_by_check() {
 fn an_explanation_gives_each_test_its_price_node_probabilities_and_expected_saving() {
     use cslearn::testcost::{CostTree, Criterion, GrowParams};
     let (frame, rows, prices, mc) = xor_problem();
-    let fitted = fit(
-        Method::Voi,
-        &frame,
-        &rows,
-        &prices,
-        &mc,
-        &voi(2, VoiLeaf::MEstimate { m: 0.0 }),
-        1,
-    );
+    let fitted = counted_pair(&frame, &rows, &prices, &mc);
     let tree = &fitted.tree;
     let root = tree.node(0).value.unwrap();
     assert_eq!(
@@ -273,15 +277,7 @@ fn an_explanation_gives_each_test_its_price_node_probabilities_and_expected_savi
 fn node_values_are_saved_with_the_tree_and_checked_when_read() {
     use cslearn::testcost::TreeModel;
     let (frame, rows, prices, mc) = xor_problem();
-    let fitted = fit(
-        Method::Voi,
-        &frame,
-        &rows,
-        &prices,
-        &mc,
-        &voi(2, VoiLeaf::MEstimate { m: 0.0 }),
-        1,
-    );
+    let fitted = counted_pair(&frame, &rows, &prices, &mc);
     let model = TreeModel::new(Method::Voi, &frame, "class", None, &fitted, &prices);
     let text = model.to_json();
     assert!(

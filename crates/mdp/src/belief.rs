@@ -342,6 +342,26 @@ impl CostlyModel {
         (reward, forced, next)
     }
 
+    /// [`probes`](CostlyModel::probes) for a search under `rule`: with the move every
+    /// subset of them is a choice, so more than [`MAX_MENU_FEATURES`] are refused.
+    pub(crate) fn probes_under(
+        &self,
+        menu: SensingMenu,
+        rule: SensingRule,
+    ) -> Result<Vec<Probe>, ReferenceError> {
+        let probes = self.probes(menu);
+        if rule == SensingRule::WithMove && probes.len() > MAX_MENU_FEATURES {
+            return Err(bad(
+                "sensing menu",
+                format!(
+                    "{} features; with the move at most {MAX_MENU_FEATURES} are tried in every subset (measure the whole state instead)",
+                    probes.len()
+                ),
+            ));
+        }
+        Ok(probes)
+    }
+
     pub(crate) fn probes(&self, menu: SensingMenu) -> Vec<Probe> {
         match menu {
             SensingMenu::Whole { price } => vec![Probe {
@@ -610,16 +630,7 @@ pub(crate) fn solve_counted(
     if options.max_beliefs == 0 {
         return Err(bad("max_beliefs", "0; at least one belief is needed"));
     }
-    let probes = m.probes(menu);
-    if rule == SensingRule::WithMove && probes.len() > MAX_MENU_FEATURES {
-        return Err(bad(
-            "sensing menu",
-            format!(
-                "{} features; with the move at most {MAX_MENU_FEATURES} are tried in every subset (measure the whole state instead)",
-                probes.len()
-            ),
-        ));
-    }
+    let probes = m.probes_under(menu, rule)?;
     // With the move at most MAX_MENU_FEATURES probes, so every subset is a number.
     let subsets_end: u32 = if probes.len() < 32 {
         (1u32 << probes.len()) - 1

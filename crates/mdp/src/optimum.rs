@@ -8,7 +8,7 @@
 use std::collections::BTreeMap;
 
 use crate::belief::{Belief, CostlyModel, Probe, members, split};
-use crate::costly::{MAX_MENU_FEATURES, ReferenceError, SensingMenu, SensingRule, bad, check_menu};
+use crate::costly::{ReferenceError, SensingMenu, SensingRule, bad, check_menu};
 use crate::reference::measured_step;
 use crate::world::World;
 
@@ -135,7 +135,7 @@ pub struct OptimumBounds {
 ///
 /// # Errors
 /// [`ReferenceError::BadSetting`] for a horizon of 0, a gap that is not a finite number
-/// of at least 0, a price that is not one, more than [`MAX_MENU_FEATURES`] features with
+/// of at least 0, a price that is not one, more than [`MAX_MENU_FEATURES`](crate::MAX_MENU_FEATURES) features with
 /// the move, or starting vectors past [`BoundOptions::max_entries`];
 /// [`ReferenceError::BadWorld`] for a world without a usable model.
 ///
@@ -174,16 +174,7 @@ pub fn optimum_bounds<W: World>(
     }
     check_menu(menu)?;
     let m = CostlyModel::of(world)?;
-    let probes = m.probes(menu);
-    if rule == SensingRule::WithMove && probes.len() > MAX_MENU_FEATURES {
-        return Err(bad(
-            "sensing menu",
-            format!(
-                "{} features; with the move at most {MAX_MENU_FEATURES} are tried in every subset (measure the whole state instead)",
-                probes.len()
-            ),
-        ));
-    }
+    let probes = m.probes_under(menu, rule)?;
     let mut search = Search::new(&m, probes, rule, options)?;
     Ok(search.run(options))
 }
