@@ -29,6 +29,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::shard::JobLine;
 
+mod optimum;
 mod report;
 
 /// Arguments of `cargo xtask costly`.
@@ -73,6 +74,11 @@ pub struct CostlyArgs {
     /// (`costly_after_outcome.csv`) (default: both).
     #[arg(long, value_delimiter = ',')]
     rules: Vec<String>,
+    /// Run no learner: bracket the optimum of every lake of the table with its model
+    /// known (`mdp::optimum_bounds`, about a minute and a half) and write
+    /// `docs/costly_optimum.csv`, the tables' last column.
+    #[arg(long, conflicts_with_all = ["report", "bless"])]
+    optimum: bool,
 }
 
 /// The part of the table a flag keeps: the entries of `all` (spelled by `name`) that
@@ -509,6 +515,9 @@ pub fn costly(args: &CostlyArgs) -> Result<()> {
     if args.runs == 0 {
         bail!("costly needs --runs of at least 1");
     }
+    if args.optimum {
+        return optimum::write(Path::new(optimum::PATH));
+    }
     crate::files::seeds(args.seed, args.runs)?;
     let def = args.definition()?;
     if args.bless && !def.is_whole() {
@@ -558,6 +567,7 @@ mod tests {
             out: PathBuf::from("unused"),
             report: false,
             bless: false,
+            optimum: false,
             worlds: vec![],
             dynamics: vec![],
             learners: vec![],

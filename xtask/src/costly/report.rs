@@ -10,7 +10,7 @@ use anyhow::{Result, anyhow};
 use mdp::SensingRule;
 use plotters::prelude::*;
 
-use super::{BLOCK, Dynamics, JobResult, Learner, PRICES, RULES, Summary, WORLDS};
+use super::{BLOCK, Dynamics, JobResult, Learner, PRICES, RULES, Summary, WORLDS, optimum};
 
 /// One row of the tables: a world, dynamics, price, rule and learner over its runs.
 struct Row<'a> {
@@ -95,8 +95,9 @@ const CSV_NAMES: [(SensingRule, &str); 2] = [
 /// tables and the figures (of the worlds run) into `dir`.
 pub(crate) fn write(results: &[JobResult], dir: &Path, md_name: &str) -> Result<()> {
     let rows = rows(results);
+    let optima = optimum::read(Path::new(optimum::PATH))?;
     let mut md = String::from(
-        "# The active-measurement benchmark: measured\n\nWritten by `cargo xtask costly --bless` (specification 6.10 and 6.11): the costed return per episode (reward less the prices of what was sensed, in reward units), mean over runs of each run's mean over all its episodes and over its last 10%. Beside each mean, `±` the half-width of its 95% interval over the runs (Student's t with runs - 1 degrees of freedom over the runs' means; the CSV columns `ci95_all` and `ci95_last10`, empty for a single run).\n\nAMRL-Q is played two ways: `amrl-q` explores in every run, greedy in the last 10% of each run's episodes, as the method is described; `amrl-q-greedy-after-first` follows the published harness, which reuses one agent whose greedy switch stays on: its first run as `amrl-q`, every later run greedy from its first episode (`[amrl_q] greedy_share = 1`).\n",
+        "# The active-measurement benchmark: measured\n\nWritten by `cargo xtask costly --bless` (specification 6.10 and 6.11): the costed return per episode (reward less the prices of what was sensed, in reward units), mean over runs of each run's mean over all its episodes and over its last 10%. Beside each mean, `±` the half-width of its 95% interval over the runs (Student's t with runs - 1 degrees of freedom over the runs' means; the CSV columns `ci95_all` and `ci95_last10`, empty for a single run).\n\nAMRL-Q is played two ways: `amrl-q` explores in every run, greedy in the last 10% of each run's episodes, as the method is described; `amrl-q-greedy-after-first` follows the published harness, which reuses one agent whose greedy switch stays on: its first run as `amrl-q`, every later run greedy from its first episode (`[amrl_q] greedy_share = 1`).\n\nThe last column, `optimum`, brackets the best expected costed return of any policy on the lake with its model known, the row and the column measured apart (`mdp::optimum_bounds`, kept in `docs/costly_optimum.csv` by `cargo xtask costly --optimum`; specification 6.10): one figure where its bounds meet to four places, `(open)` where the search's trials ran out before they came within 0.001. It is what a learner's last 10% could reach at most, had it known the lake from the start.\n",
     );
     for (rule, csv_name) in CSV_NAMES {
         if !rows.iter().any(|r| r.rule == rule) {
@@ -107,7 +108,7 @@ pub(crate) fn write(results: &[JobResult], dir: &Path, md_name: &str) -> Result<
         );
         let _ = write!(
             md,
-            "\n## {} (`{csv_name}`)\n\n| world | dynamics | price per coordinate | learner | runs | episodes | mean all | ± | mean last 10% | ± | measurements / episode | moves / episode | success |\n|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+            "\n## {} (`{csv_name}`)\n\n| world | dynamics | price per coordinate | learner | runs | episodes | mean all | ± | mean last 10% | ± | measurements / episode | moves / episode | success | optimum |\n|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
             rule_name(rule)
         );
         for r in rows.iter().filter(|r| r.rule == rule) {
@@ -145,6 +146,9 @@ pub(crate) fn write(results: &[JobResult], dir: &Path, md_name: &str) -> Result<
             );
             let shown_ci = ci.map(|c| c.map_or("–".to_string(), |c| format!("{c:.3}")));
             let [all, last, sensing, moves, success] = means;
+            let best = optima
+                .get(&optimum::key(r.world, r.dynamics, r.price, r.rule))
+                .map_or("–".to_string(), optimum::Bounds::text);
             let shown = [
                 format!("{all:.3}"),
                 shown_ci[0].clone(),
@@ -153,6 +157,7 @@ pub(crate) fn write(results: &[JobResult], dir: &Path, md_name: &str) -> Result<
                 format!("{sensing:.2}"),
                 format!("{moves:.2}"),
                 format!("{success:.3}"),
+                best,
             ];
             let _ = writeln!(
                 md,
