@@ -85,7 +85,8 @@ pub struct TestcostArgs {
     /// grower keeps its own 5.
     #[arg(long, default_value_t = 5)]
     act_samples: usize,
-    /// VOI's lookahead: how many tests ahead a test is valued (the library's 2, at most 3).
+    /// VOI's lookahead: how many tests ahead a test is valued, 1 to 3 (the library's: 3 on
+    /// at most 21 features, 2 beyond).
     #[arg(long, value_name = "D")]
     voi_lookahead: Option<usize>,
     /// VOI's leaf estimate, pessimistic at this confidence (the library's 0.25).
@@ -255,6 +256,12 @@ pub(crate) struct Definition {
     /// VOI existed read as them).
     #[serde(default, skip_serializing_if = "VoiParams::is_default")]
     pub voi: VoiParams,
+    /// Whether VOI's default lookahead follows the data's width (`VoiParams::lookahead_for`):
+    /// set by every benchmark that runs VOI at its default since it does. Results written
+    /// before, when the default looked two tests ahead everywhere, read as such
+    /// ([`voi_params`](Definition::voi_params)) and neither resume nor join with these.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub voi_by_width: bool,
     /// The budget per object in tests; results written before it existed had none (and
     /// a definition without it is written as before).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -265,6 +272,26 @@ pub(crate) struct Definition {
     pub runs: u64,
     pub folds: usize,
     pub seed: u64,
+}
+
+impl Definition {
+    /// VOI's settings as its jobs run them: two tests ahead where the lookahead is the
+    /// default and the definition was written before the default followed the width.
+    pub(crate) fn voi_params(&self) -> VoiParams {
+        match self.voi.lookahead {
+            None if !self.voi_by_width => VoiParams {
+                lookahead: Some(2),
+                ..self.voi
+            },
+            _ => self.voi,
+        }
+    }
+
+    /// Takes `other`'s VOI settings: a table that adds `other`'s VOI rows shows them.
+    pub(crate) fn take_voi(&mut self, other: &Definition) {
+        self.voi = other.voi;
+        self.voi_by_width = other.voi_by_width;
+    }
 }
 
 /// ICET's search size in the library's defaults.
@@ -692,7 +719,7 @@ pub(crate) fn cross_validate(
             samples: def.act_samples,
             ..ActParams::default()
         },
-        voi: def.voi,
+        voi: def.voi_params(),
         ..FamilyParams::default()
     };
     let k = frame.class_count();
@@ -850,8 +877,29 @@ pub fn testcost(args: &TestcostArgs) -> Result<()> {
                 dir.display()
             )
         })?;
-        check_results(&other, &priced, &by_id, dir)?;
-        let results: Vec<JobResult> = by_id.into_values().collect();
+        // Its jobs are numbered over its own data sets; the table keeps its own.
+        let other_priced = other
+            .datasets
+            .iter()
+            .map(|d| match datasets.iter().position(|t| t == d) {
+                Some(i) => Ok(priced[i]),
+                None => {
+                    let l = catalogue
+                        .load(d)
+                        .with_context(|| format!("--with {}: data set `{d}`", dir.display()))?;
+                    Ok(Priced::of(&catalogue, std::slice::from_ref(d), &[l])[0])
+                }
+            })
+            .collect::<Result<Vec<Priced>>>()?;
+        check_results(&other, &other_priced, &by_id, dir)?;
+        let results: Vec<JobResult> = by_id
+            .into_values()
+            .filter(|r| def.datasets.contains(&r.dataset))
+            .collect();
+        let other = Definition {
+            datasets: def.datasets.clone(),
+            ..other
+        };
         let rows = report::aggregate(&other, &results);
         table.join(&other, rows, results);
     }
@@ -966,6 +1014,7 @@ pub(crate) fn prepare(args: &TestcostArgs) -> Result<Prepared> {
     if args.runs == 0 || args.folds < 2 || args.assignments == 0 {
         bail!("testcost needs --runs and --assignments of at least 1 and --folds of at least 2");
     }
+    let voi_by_width = voi.lookahead.is_none() && learners.contains(&Learner::Family(Method::Voi));
     let def = Definition {
         datasets: datasets.clone(),
         learners,
@@ -980,6 +1029,7 @@ pub(crate) fn prepare(args: &TestcostArgs) -> Result<Prepared> {
         cvt_folds: cvt.folds,
         act_samples: act.samples,
         voi,
+        voi_by_width,
         max_tests: args.max_tests,
         max_test_cost: budget.max_test_cost(),
         runs: args.runs,
@@ -1184,10 +1234,17 @@ fn check_joinable(def: &Definition, other: &Definition) -> Result<()> {
     if let Some(mc) = other.mc.iter().find(|m| !def.mc.contains(m)) {
         bail!("it has mc {mc}, which this table does not");
     }
+    if let Some(d) = def.datasets.iter().find(|d| !other.datasets.contains(d)) {
+        bail!("it lacks the data set `{d}` (it may have more than the table, not fewer)");
+    }
+    // VOI's settings are those of the rows that come with VOI: only its learners join.
     let same_protocol = Definition {
         learners: def.learners.clone(),
         runs: def.runs,
         mc: def.mc.clone(),
+        voi: def.voi,
+        voi_by_width: def.voi_by_width,
+        datasets: def.datasets.clone(),
         ..other.clone()
     };
     if &same_protocol != def {
@@ -1554,6 +1611,7 @@ pub(crate) mod tests {
             cvt_folds: 5,
             act_samples: 5,
             voi: VoiParams::default(),
+            voi_by_width: false,
             max_tests: None,
             max_test_cost: None,
             runs: 1,
@@ -1648,6 +1706,7 @@ pub(crate) mod tests {
             cvt_folds: 5,
             act_samples: 5,
             voi: VoiParams::default(),
+            voi_by_width: false,
             max_tests: None,
             max_test_cost: None,
             runs: 1,
@@ -1850,6 +1909,72 @@ pub(crate) mod tests {
         with.with = vec![third.path().to_path_buf()];
         let err = format!("{:#}", testcost(&with).unwrap_err());
         assert!(err.contains("mc 1000"), "{err}");
+    }
+
+    /// A benchmark over more data sets joins a table over some of them (its rows of the
+    /// table's data sets, as its own report has them); one over fewer is refused.
+    #[test]
+    fn a_benchmark_over_more_data_sets_joins_with_the_tables_data_sets() {
+        let (small, wide, joined, refused) = (
+            tempfile::tempdir().unwrap(),
+            tempfile::tempdir().unwrap(),
+            tempfile::tempdir().unwrap(),
+            tempfile::tempdir().unwrap(),
+        );
+        let mut iris = args(small.path(), 1);
+        iris.datasets = vec!["iris".into()];
+        testcost(&iris).unwrap();
+        let mut both = args(wide.path(), 1);
+        both.learners = vec!["cs-id3-batch".into(), "c45".into()];
+        testcost(&both).unwrap();
+        let mut with = iris.clone();
+        with.out = joined.path().to_path_buf();
+        with.with = vec![wide.path().to_path_buf()];
+        testcost(&with).unwrap();
+        let read = |dir: &Path| std::fs::read_to_string(dir.join("testcost.csv")).unwrap();
+        let c45 = |csv: &str| -> Vec<String> {
+            csv.lines()
+                .filter(|l| l.contains(",c45,") && l.starts_with("iris,"))
+                .map(String::from)
+                .collect()
+        };
+        let added = c45(&read(joined.path()));
+        assert_eq!(added.len(), 2, "iris, random prices, two mc");
+        assert_eq!(added, c45(&read(wide.path())));
+        assert!(!read(joined.path()).contains("heart"));
+        // The table over both cannot take a benchmark over iris alone.
+        let mut narrow = args(refused.path(), 1);
+        narrow.with = vec![small.path().to_path_buf()];
+        let err = format!("{:#}", testcost(&narrow).unwrap_err());
+        assert!(err.contains("lacks the data set `heart`"), "{err}");
+    }
+
+    /// A benchmark with VOI written when its default looked two tests ahead everywhere
+    /// reads as such, and differs from one written since (which says it follows the
+    /// width); the definitions of the other learners read and write as before.
+    #[test]
+    fn voi_before_its_default_followed_the_width_reads_as_two_tests_ahead() {
+        let before = r#"{"datasets":["iris"],"learners":["Voi"],"mc":[500.0],"costs":["random"],"assignments":1,"price_range":[1.0,100.0],"price_draw":"uniform","selection_prices":"listed","icet_pruning":"costs","icet_search_objects":1000,"cvt_folds":5,"act_samples":5,"runs":1,"folds":3,"seed":1}"#;
+        let old: Definition = serde_json::from_str(before).unwrap();
+        assert_eq!(old.voi_params().lookahead, Some(2));
+        assert_eq!(serde_json::to_string(&old).unwrap(), before);
+        let now = Definition {
+            voi_by_width: true,
+            ..old.clone()
+        };
+        assert_ne!(now, old);
+        assert_eq!(now.voi_params().lookahead, None);
+        let text = serde_json::to_string(&now).unwrap();
+        assert!(text.contains(r#""voi_by_width":true"#), "{text}");
+        assert_eq!(serde_json::from_str::<Definition>(&text).unwrap(), now);
+        // A run of VOI at its default now writes it; without VOI nothing changes.
+        let dir = tempfile::tempdir().unwrap();
+        let mut voi = args(dir.path(), 1);
+        voi.learners = vec!["voi".into()];
+        assert!(prepare(&voi).unwrap().def.voi_by_width);
+        voi.voi_lookahead = Some(2);
+        assert!(!prepare(&voi).unwrap().def.voi_by_width);
+        assert!(!prepare(&args(dir.path(), 1)).unwrap().def.voi_by_width);
     }
 
     /// A definition and a result line as written before CEGB existed (every learner of

@@ -136,7 +136,7 @@ fn file(path: &str, target: &str, learners: &[Method]) -> Result<(), Box<dyn std
             let params = FamilyParams {
                 cvt: params.cvt.with_threads(t),
                 voi: VoiParams {
-                    lookahead: lookahead.unwrap_or(params.voi.lookahead),
+                    lookahead: lookahead.or(params.voi.lookahead),
                     ..params.voi
                 },
                 ..params

@@ -33,7 +33,10 @@ fn xor(copies: usize) -> Frame {
 
 fn voi(lookahead: usize, leaf: VoiLeaf) -> FamilyParams {
     FamilyParams {
-        voi: VoiParams { lookahead, leaf },
+        voi: VoiParams {
+            lookahead: Some(lookahead),
+            leaf,
+        },
         ..FamilyParams::default()
     }
 }
@@ -148,11 +151,11 @@ fn settings_out_of_range_are_refused_by_check() {
     };
     for bad in [
         VoiParams {
-            lookahead: 0,
+            lookahead: Some(0),
             ..VoiParams::default()
         },
         VoiParams {
-            lookahead: 4,
+            lookahead: Some(4),
             ..VoiParams::default()
         },
         with_leaf(VoiLeaf::MEstimate { m: f64::NAN }),

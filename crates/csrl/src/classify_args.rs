@@ -42,8 +42,8 @@ pub(crate) enum ClassifierKind {
     /// Batch tree: CVT (grower and stopping point chosen by cross-validated total cost).
     #[value(name = "cvt")]
     Cvt,
-    /// Batch tree: VOI (each test bought where, looking two tests ahead under smoothed
-    /// class estimates, it lowers the expected total cost).
+    /// Batch tree: VOI (each test bought where, looking two or three tests ahead under
+    /// smoothed class estimates, it lowers the expected total cost).
     #[value(name = "voi")]
     Voi,
 }
@@ -180,8 +180,9 @@ pub struct ClassifyArgs {
     /// its grower and where its tree stops (default 5; at least 2).
     #[arg(long, value_name = "K")]
     pub(crate) cvt_folds: Option<usize>,
-    /// VOI only: how many tests ahead a test is valued (default 2, at most 3): at 1 a test
-    /// must pay for itself alone, at 2 a pair that pays together is bought.
+    /// VOI only: how many tests ahead a test is valued, 1 to 3 (default: 3 on data of at
+    /// most 21 features, 2 beyond): at 1 a test must pay for itself alone, at 2 a pair
+    /// that pays together is bought.
     #[arg(long, value_name = "D")]
     pub(crate) voi_lookahead: Option<usize>,
     /// VOI only: what stopping at a node costs is estimated pessimistically, C4.5's

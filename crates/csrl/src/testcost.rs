@@ -648,7 +648,7 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
             "icet_pruning": (method == cslearn::testcost::Method::Icet).then(|| params.icet.pruning.name()),
             "act_samples": (method == cslearn::testcost::Method::Act).then_some(params.act.samples),
             "cvt_folds": (method == cslearn::testcost::Method::Cvt).then_some(params.cvt.folds),
-            "voi_lookahead": (method == cslearn::testcost::Method::Voi).then_some(params.voi.lookahead),
+            "voi_lookahead": (method == cslearn::testcost::Method::Voi).then_some(params.voi.lookahead_for(frame.feature_count())),
             "voi_leaf": (method == cslearn::testcost::Method::Voi).then_some(params.voi.leaf),
             "all_tests_cost": prices.total(),
             "test_cost_per_object": test_cost,

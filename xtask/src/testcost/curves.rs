@@ -257,6 +257,8 @@ impl CurvesDefinition {
         let same = CurvesDefinition {
             benchmark: Definition {
                 learners: self.benchmark.learners.clone(),
+                voi: self.benchmark.voi,
+                voi_by_width: self.benchmark.voi_by_width,
                 ..other.benchmark.clone()
             },
             curves: self.curves.clone(),
@@ -277,6 +279,9 @@ impl CurvesDefinition {
             .copied()
             .collect();
         self.benchmark.learners.extend(new.iter().copied());
+        if new.contains(&Learner::Family(Method::Voi)) {
+            self.benchmark.take_voi(&other.benchmark);
+        }
         self.curves.extend(
             other
                 .curves

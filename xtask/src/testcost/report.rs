@@ -71,6 +71,9 @@ impl Table {
             return;
         }
         self.def.learners.extend(&new);
+        if new.contains(&Learner::Family(Method::Voi)) {
+            self.def.take_voi(other);
+        }
         // A row without a ratio (its benchmark ran no CS-ID3) takes it from the table's
         // CS-ID3 over the same runs: its row where the runs are the table's, otherwise
         // its results of those runs (the first ones, on the same folds and prices).
@@ -385,7 +388,7 @@ fn markdown(table: &Table, published_names: &BTreeMap<String, String>, command: 
          cross-validation per data set and price assignment; random prices: {} assignments \
          per data set, each test {} [{}, {}]. Learners: {}. Selection functions see {}; \
          an object always pays after its path (a test done once is free further down). \
-         ICET prunes by {}.{}{} \
+         ICET prunes by {}.{}{}{} \
          `docs/testcost.md` reads the results.\n",
         if def.runs == 1 {
             "1 run".to_string()
@@ -417,6 +420,7 @@ fn markdown(table: &Table, published_names: &BTreeMap<String, String>, command: 
             Pruning::Costs => "total cost (a test must pay for itself at the real prices)",
             Pruning::Errors => "errors, as C4.5",
         },
+        voi_sentence(def),
         added_sentence(def, &table.added),
         library_sentence(&table.results),
     );
@@ -553,6 +557,24 @@ fn runs_mark(row: &Row, def: &Definition) -> String {
 /// What the report's header says of the learners another benchmark added: their runs
 /// (the first ones, on the same folds and prices) and their mc, or that they are the
 /// table's own.
+/// How far ahead VOI looked, where it is among the learners.
+fn voi_sentence(def: &Definition) -> String {
+    if !def.learners.contains(&Learner::Family(Method::Voi)) {
+        return String::new();
+    }
+    match (def.voi.lookahead, def.voi_params().lookahead) {
+        (None, None) => format!(
+            " VOI values a test three tests ahead on data of at most {} features, two \
+             beyond.",
+            cslearn::testcost::VoiParams::NARROW
+        ),
+        (None, _) => " VOI values a test two tests ahead (its default before it followed \
+                      the data's width)."
+            .to_string(),
+        (Some(d), _) => format!(" VOI values a test {d} tests ahead."),
+    }
+}
+
 fn added_sentence(def: &Definition, added: &[Added]) -> String {
     let mut out = String::new();
     for Added { learners, runs, mc } in added {

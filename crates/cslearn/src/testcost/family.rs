@@ -306,7 +306,7 @@ impl FamilyParams {
         let lookahead = match method {
             Method::Act if self.act.samples > 0 => Some("ACT's lookahead"),
             Method::Cvt => Some("CVT's lookahead grower"),
-            Method::Voi if self.voi.lookahead > 1 => Some("VOI's lookahead"),
+            Method::Voi if self.voi.lookahead_for(features) > 1 => Some("VOI's lookahead"),
             _ => None,
         };
         if let Some(lookahead) = lookahead

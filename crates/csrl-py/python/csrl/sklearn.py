@@ -396,7 +396,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
       drawn from ``seed``) give the tree.
     * ``"voi"``, the value-of-information tree: at each node, the test whose price plus,
       over its branches, the least of stopping and buying more (``voi_lookahead`` tests
-      ahead, 2) costs least, if that is less than stopping; stopping costs C4.5's
+      ahead: three on at most 21 features, two beyond) costs least, if that is less than stopping; stopping costs C4.5's
       pessimistic estimate of the errors at ``voi_confidence`` (0.25), or an m-estimate
       of the classes with ``voi_m``. A pair of tests that pays only together is bought.
       Nothing random: any ``seed``, the same tree.
@@ -443,7 +443,8 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         icet_search_objects: the most training objects ICET's search uses, half to grow
             and half to score (400; at least 2); the final tree grows on all of them.
         cvt_folds: the folds of CVT's cross-validation (5; at least 2).
-        voi_lookahead: how many tests ahead VOI values a test (2; 1 to 3).
+        voi_lookahead: how many tests ahead VOI values a test (``None``: three on data
+            of at most 21 features, two beyond; or 1 to 3).
         voi_confidence: the confidence of VOI's pessimistic estimate of what stopping
             costs (``None``: 0.25; in (0, 1)).
         voi_m: estimate what stopping costs by an m-estimate of the classes instead, the
@@ -511,7 +512,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         icet_pruning: str = "errors",
         icet_search_objects: int = 400,
         cvt_folds: int = 5,
-        voi_lookahead: int = 2,
+        voi_lookahead: Optional[int] = None,
         voi_confidence: Optional[float] = None,
         voi_m: Optional[float] = None,
         max_test_cost: Optional[float] = None,
@@ -832,7 +833,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         icet_pruning = getattr(self, "icet_pruning", "errors")
         icet_search_objects = getattr(self, "icet_search_objects", 400)
         cvt_folds = getattr(self, "cvt_folds", 5)
-        voi_lookahead = getattr(self, "voi_lookahead", 2)
+        voi_lookahead = getattr(self, "voi_lookahead", None)
         voi_confidence = getattr(self, "voi_confidence", None)
         voi_m = getattr(self, "voi_m", None)
         n_jobs = getattr(self, "n_jobs", None)
@@ -868,10 +869,11 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
                 raise ValueError(f"{what} must be an integer at least {least}, found {v!r}")
         if act_samples > 1000:
             raise ValueError(f"act_samples must be at most 1000, found {act_samples!r}")
-        if isinstance(voi_lookahead, bool) or not (
-            isinstance(voi_lookahead, (numbers.Integral, np.integer)) and 1 <= voi_lookahead <= 3
+        if voi_lookahead is not None and (
+            isinstance(voi_lookahead, bool)
+            or not (isinstance(voi_lookahead, (numbers.Integral, np.integer)) and 1 <= voi_lookahead <= 3)
         ):
-            raise ValueError(f"voi_lookahead must be an integer from 1 to 3, found {voi_lookahead!r}")
+            raise ValueError(f"voi_lookahead must be None or an integer from 1 to 3, found {voi_lookahead!r}")
         if voi_confidence is not None and (
             isinstance(voi_confidence, bool)
             or not isinstance(voi_confidence, numbers.Real)
@@ -926,7 +928,7 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
             search_objects=int(icet_search_objects),
             folds=int(cvt_folds),
             threads=threads,
-            voi_lookahead=int(voi_lookahead),
+            voi_lookahead=None if voi_lookahead is None else int(voi_lookahead),
             voi_confidence=None if voi_confidence is None else float(voi_confidence),
             voi_m=None if voi_m is None else float(voi_m),
             **budget,
@@ -1424,7 +1426,7 @@ class VoiClassifier(TestCostTreeClassifier):
         feature_discounts: Optional[Any] = None,
         misclassification_cost: Any = 100.0,
         nominal_features: Optional[Any] = None,
-        voi_lookahead: int = 2,
+        voi_lookahead: Optional[int] = None,
         voi_confidence: Optional[float] = None,
         voi_m: Optional[float] = None,
         selection_prices: str = "path",
