@@ -1975,6 +1975,24 @@ pub(crate) mod tests {
         voi.voi_lookahead = Some(2);
         assert!(!prepare(&voi).unwrap().def.voi_by_width);
         assert!(!prepare(&args(dir.path(), 1)).unwrap().def.voi_by_width);
+        // The report says how far VOI looked.
+        for (lookahead, said) in [
+            (
+                None,
+                "VOI values a test three tests ahead on data of at most 21 features",
+            ),
+            (Some(1), "VOI values a test one test ahead."),
+            (Some(2), "VOI values a test 2 tests ahead."),
+        ] {
+            let out = tempfile::tempdir().unwrap();
+            let mut run = args(out.path(), 1);
+            run.datasets = vec!["iris".into()];
+            run.learners = vec!["cs-id3-batch".into(), "voi".into()];
+            run.voi_lookahead = lookahead;
+            testcost(&run).unwrap();
+            let md = std::fs::read_to_string(out.path().join("testcost.md")).unwrap();
+            assert!(md.contains(said), "{md}");
+        }
     }
 
     /// A definition and a result line as written before CEGB existed (every learner of

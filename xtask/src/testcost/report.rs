@@ -571,6 +571,7 @@ fn voi_sentence(def: &Definition) -> String {
         (None, _) => " VOI values a test two tests ahead (its default before it followed \
                       the data's width)."
             .to_string(),
+        (Some(1), _) => " VOI values a test one test ahead.".to_string(),
         (Some(d), _) => format!(" VOI values a test {d} tests ahead."),
     }
 }
