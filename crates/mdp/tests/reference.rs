@@ -193,6 +193,30 @@ struct Setup {
     reveal: bool,
 }
 
+/// Every sensing rule and menu of `w` (the whole state, or its features apart), each with
+/// the brute force's setup for it: free to stay uncertain as long as it likes, nothing
+/// told for free.
+fn rules_and_menus(w: &FiniteWorld) -> Vec<(SensingRule, bool, SensingMenu, Setup)> {
+    let mut all = Vec::new();
+    for rule in [SensingRule::WithMove, SensingRule::AfterOutcome] {
+        for whole in [true, false] {
+            let menu = if whole {
+                SensingMenu::whole(w)
+            } else {
+                SensingMenu::Features
+            };
+            let free = Setup {
+                whole,
+                rule,
+                k: u32::MAX - 1,
+                reveal: false,
+            };
+            all.push((rule, whole, menu, free));
+        }
+    }
+    all
+}
+
 fn certain(d: &[(usize, f64)]) -> bool {
     let mut s: Vec<usize> = d.iter().filter(|x| x.1 > 0.0).map(|x| x.0).collect();
     s.sort();
@@ -384,26 +408,17 @@ fn best_sensing_is_the_best_of_every_policy() {
         let p = plain(&w);
         for h in 1..=4 {
             for k in [Some(0), Some(1), Some(2), None] {
-                for rule in [SensingRule::WithMove, SensingRule::AfterOutcome] {
-                    for whole in [true, false] {
-                        let menu = if whole {
-                            SensingMenu::whole(&w)
-                        } else {
-                            SensingMenu::Features
-                        };
-                        let got = best_sensing(&w, menu, rule, &options(h, k)).unwrap().value;
-                        let u = Setup {
-                            whole,
-                            rule,
-                            k: k.unwrap_or(u32::MAX - 1),
-                            reveal: false,
-                        };
-                        let want = brute_best(&p, u, &[(0, 1.0)], h, 0);
-                        assert!(
-                            (got - want).abs() < EPS,
-                            "seed {seed} h {h} k {k:?} {rule:?} whole {whole}: {got} vs {want}"
-                        );
-                    }
+                for (rule, whole, menu, free) in rules_and_menus(&w) {
+                    let got = best_sensing(&w, menu, rule, &options(h, k)).unwrap().value;
+                    let u = Setup {
+                        k: k.unwrap_or(free.k),
+                        ..free
+                    };
+                    let want = brute_best(&p, u, &[(0, 1.0)], h, 0);
+                    assert!(
+                        (got - want).abs() < EPS,
+                        "seed {seed} h {h} k {k:?} {rule:?} whole {whole}: {got} vs {want}"
+                    );
                 }
             }
         }
@@ -598,47 +613,34 @@ fn the_sensing_ceiling_is_the_relaxation_and_bounds_every_policy() {
         let w = tiny(seed, 4, 2, [0.03, 0.08]);
         let p = plain(&w);
         for h in 1..=4 {
-            for rule in [SensingRule::WithMove, SensingRule::AfterOutcome] {
-                for whole in [true, false] {
-                    let menu = if whole {
-                        SensingMenu::whole(&w)
-                    } else {
-                        SensingMenu::Features
-                    };
-                    let free = Setup {
-                        whole,
-                        rule,
-                        k: u32::MAX - 1,
-                        reveal: false,
-                    };
-                    let all = brute_best(&p, free, &[(0, 1.0)], h, 0);
-                    for k in [0, 1, 2] {
-                        let up = mdp::sensing_ceiling(&w, menu, rule, &options(h, Some(k)))
-                            .unwrap()
-                            .value;
-                        let relaxed = brute_best(
-                            &p,
-                            Setup {
-                                k,
-                                reveal: true,
-                                ..free
-                            },
-                            &[(0, 1.0)],
-                            h,
-                            0,
-                        );
-                        assert!(
-                            (up - relaxed).abs() < EPS,
-                            "seed {seed} h {h} k {k}: {up} vs {relaxed}"
-                        );
-                        let low = best_sensing(&w, menu, rule, &options(h, Some(k)))
-                            .unwrap()
-                            .value;
-                        assert!(
-                            up >= all - EPS && low <= all + EPS,
-                            "seed {seed} h {h} k {k}: {low} {all} {up}"
-                        );
-                    }
+            for (rule, _, menu, free) in rules_and_menus(&w) {
+                let all = brute_best(&p, free, &[(0, 1.0)], h, 0);
+                for k in [0, 1, 2] {
+                    let up = mdp::sensing_ceiling(&w, menu, rule, &options(h, Some(k)))
+                        .unwrap()
+                        .value;
+                    let relaxed = brute_best(
+                        &p,
+                        Setup {
+                            k,
+                            reveal: true,
+                            ..free
+                        },
+                        &[(0, 1.0)],
+                        h,
+                        0,
+                    );
+                    assert!(
+                        (up - relaxed).abs() < EPS,
+                        "seed {seed} h {h} k {k}: {up} vs {relaxed}"
+                    );
+                    let low = best_sensing(&w, menu, rule, &options(h, Some(k)))
+                        .unwrap()
+                        .value;
+                    assert!(
+                        up >= all - EPS && low <= all + EPS,
+                        "seed {seed} h {h} k {k}: {low} {all} {up}"
+                    );
                 }
             }
         }
@@ -741,32 +743,18 @@ fn the_optimum_bounds_bracket_the_best_of_every_policy() {
         let w = tiny(seed, live, 2, [0.03, 0.08]);
         let p = plain(&w);
         for h in 1..=4 {
-            for rule in [SensingRule::WithMove, SensingRule::AfterOutcome] {
-                for whole in [true, false] {
-                    let menu = if whole {
-                        SensingMenu::whole(&w)
-                    } else {
-                        SensingMenu::Features
-                    };
-                    let every = Setup {
-                        whole,
-                        rule,
-                        k: u32::MAX - 1,
-                        reveal: false,
-                    };
-                    let optimum = brute_best(&p, every, &[(0, 1.0)], h, 0);
-                    let b = mdp::optimum_bounds(&w, menu, rule, &bound_options(h, gap)).unwrap();
-                    let why =
-                        format!("seed {seed} h {h} {rule:?} whole {whole}: {b:?} vs {optimum}");
-                    assert!(b.converged && b.upper - b.lower <= gap + EPS, "{why}");
-                    assert!(
-                        b.lower <= optimum + EPS && b.upper >= optimum - EPS,
-                        "{why}"
-                    );
-                    let always = always_measuring(&w, menu, rule, &options(h, None)).unwrap();
-                    let aliased = live == 5 && !whole;
-                    assert!(aliased || b.lower >= always - EPS, "{why}: always {always}");
-                }
+            for (rule, whole, menu, every) in rules_and_menus(&w) {
+                let optimum = brute_best(&p, every, &[(0, 1.0)], h, 0);
+                let b = mdp::optimum_bounds(&w, menu, rule, &bound_options(h, gap)).unwrap();
+                let why = format!("seed {seed} h {h} {rule:?} whole {whole}: {b:?} vs {optimum}");
+                assert!(b.converged && b.upper - b.lower <= gap + EPS, "{why}");
+                assert!(
+                    b.lower <= optimum + EPS && b.upper >= optimum - EPS,
+                    "{why}"
+                );
+                let always = always_measuring(&w, menu, rule, &options(h, None)).unwrap();
+                let aliased = live == 5 && !whole;
+                assert!(aliased || b.lower >= always - EPS, "{why}: always {always}");
             }
         }
     }

@@ -68,23 +68,9 @@ pub(crate) fn write(path: &Path) -> Result<()> {
     for &(world, _, moves) in &WORLDS {
         for dynamics in Dynamics::ALL {
             for price in PRICES {
-                let lake = mdp::builtin_world(
-                    world,
-                    &WorldOptions {
-                        factor_costs: Some(vec![price, price]),
-                        ..dynamics.options()
-                    },
-                )?;
                 for rule in RULES {
-                    let options = BoundOptions {
-                        horizon: moves,
-                        gap: GAP,
-                        max_trials: max_trials(mdp::World::states(&lake).len()),
-                        ..BoundOptions::default()
-                    };
                     let started = Instant::now();
-                    let b = mdp::optimum_bounds(&lake, SensingMenu::Features, rule, &options)
-                        .with_context(|| format!("the optimum of {world}, {}", dynamics.name()))?;
+                    let b = bounds_of(world, moves, dynamics, price, rule)?;
                     let (w, d, p, r) = key(world, dynamics, price, rule);
                     println!(
                         "{w} {d} {p} {r}: {:.4} to {:.4}, {} trials, {:.1} s",
@@ -103,6 +89,32 @@ pub(crate) fn write(path: &Path) -> Result<()> {
         }
     }
     crate::files::write_atomic(path, csv)
+}
+
+/// The search's bounds of one lake of the table: `world` of `moves` moves an episode, its
+/// row and column measured apart at `price` each.
+fn bounds_of(
+    world: &str,
+    moves: u32,
+    dynamics: Dynamics,
+    price: f64,
+    rule: SensingRule,
+) -> Result<mdp::OptimumBounds> {
+    let lake = mdp::builtin_world(
+        world,
+        &WorldOptions {
+            factor_costs: Some(vec![price, price]),
+            ..dynamics.options()
+        },
+    )?;
+    let options = BoundOptions {
+        horizon: moves,
+        gap: GAP,
+        max_trials: max_trials(mdp::World::states(&lake).len()),
+        ..BoundOptions::default()
+    };
+    mdp::optimum_bounds(&lake, SensingMenu::Features, rule, &options)
+        .with_context(|| format!("the optimum of {world}, {}", dynamics.name()))
 }
 
 /// The bounds kept at `path`; none when there is no such file.
@@ -172,21 +184,7 @@ mod tests {
         let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
         let committed = read(&root.join(PATH)).unwrap();
         let (dynamics, price, rule) = (Dynamics::SemiSlippery, 0.05, SensingRule::AfterOutcome);
-        let lake = mdp::builtin_world(
-            "frozenlake4x4",
-            &WorldOptions {
-                factor_costs: Some(vec![price, price]),
-                ..dynamics.options()
-            },
-        )
-        .unwrap();
-        let options = BoundOptions {
-            horizon: WORLDS[0].2,
-            gap: GAP,
-            max_trials: max_trials(16),
-            ..BoundOptions::default()
-        };
-        let b = mdp::optimum_bounds(&lake, SensingMenu::Features, rule, &options).unwrap();
+        let b = bounds_of("frozenlake4x4", WORLDS[0].2, dynamics, price, rule).unwrap();
         let kept = committed[&key("frozenlake4x4", dynamics, price, rule)];
         assert_eq!(
             (b.lower, b.upper, b.converged),
