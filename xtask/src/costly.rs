@@ -29,6 +29,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::shard::JobLine;
 
+mod join;
 mod optimum;
 mod report;
 
@@ -77,8 +78,15 @@ pub struct CostlyArgs {
     /// Run no learner: bracket the optimum of every lake of the table with its model
     /// known (`mdp::optimum_bounds`, about a minute and a half) and write
     /// `docs/costly_optimum.csv`, the tables' last column.
-    #[arg(long, conflicts_with_all = ["report", "bless"])]
+    #[arg(long, conflicts_with_all = ["report", "bless", "with"])]
     optimum: bool,
+    /// Results folders of longer runs of part of the table (`cargo xtask costly --runs N
+    /// --dynamics ...`, the same `--seed`, at least this table's runs): their rows replace
+    /// this table's in the cells they cover, each saying how many runs it averages. The
+    /// runs both hold must agree to the bit. The committed table takes the slippery
+    /// lakes' rows this way, from 20 runs (`docs/costly.md`).
+    #[arg(long, value_delimiter = ',')]
+    with: Vec<PathBuf>,
 }
 
 /// The part of the table a flag keeps: the entries of `all` (spelled by `name`) that
@@ -408,6 +416,20 @@ pub struct Summary {
     success: f64,
 }
 
+impl Summary {
+    /// Every figure's bits, to compare two runs exactly.
+    fn to_bits(self) -> [u64; 6] {
+        [
+            self.episodes as u64,
+            self.mean_all.to_bits(),
+            self.mean_last10.to_bits(),
+            self.sensing_per_episode.to_bits(),
+            self.steps_per_episode.to_bits(),
+            self.success.to_bits(),
+        ]
+    }
+}
+
 impl From<CostlySummary> for Summary {
     fn from(s: CostlySummary) -> Summary {
         Summary {
@@ -546,10 +568,17 @@ pub fn costly(args: &CostlyArgs) -> Result<()> {
         }
     }
     let by_id: BTreeMap<u64, JobResult> = crate::shard::collect_of(&args.out, &def)?;
-    let results: Vec<JobResult> = by_id.into_values().collect();
-    report::write(&results, &args.out, "costly.md")?;
+    let mut results: Vec<JobResult> = by_id.into_values().collect();
+    let mut joined = Vec::new();
+    for dir in &args.with {
+        let (other, by_id): (Definition, BTreeMap<u64, JobResult>) =
+            crate::shard::collect(std::slice::from_ref(dir))?;
+        results = join::join(&def, results, (&other, by_id.into_values().collect()), dir)?;
+        joined.push(other.command());
+    }
+    report::write(&results, &joined, &args.out, "costly.md")?;
     if args.bless {
-        report::write(&results, Path::new("docs"), "costly_results.md")?;
+        report::write(&results, &joined, Path::new("docs"), "costly_results.md")?;
     }
     Ok(())
 }
@@ -568,6 +597,7 @@ mod tests {
             report: false,
             bless: false,
             optimum: false,
+            with: vec![],
             worlds: vec![],
             dynamics: vec![],
             learners: vec![],

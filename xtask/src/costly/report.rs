@@ -93,12 +93,28 @@ const CSV_NAMES: [(SensingRule, &str); 2] = [
 
 /// `costly.csv` and `costly_after_outcome.csv` (those of the rules run), the Markdown
 /// tables and the figures (of the worlds run) into `dir`.
-pub(crate) fn write(results: &[JobResult], dir: &Path, md_name: &str) -> Result<()> {
+///
+/// `joined` holds the commands of the longer runs joined in (`--with`), which the
+/// page names.
+pub(crate) fn write(
+    results: &[JobResult],
+    joined: &[String],
+    dir: &Path,
+    md_name: &str,
+) -> Result<()> {
     let rows = rows(results);
     let optima = optimum::read(Path::new(optimum::PATH))?;
     let mut md = String::from(
         "# The active-measurement benchmark: measured\n\nWritten by `cargo xtask costly --bless` (specification 6.10 and 6.11): the costed return per episode (reward less the prices of what was sensed, in reward units), mean over runs of each run's mean over all its episodes and over its last 10%. Beside each mean, `±` the half-width of its 95% interval over the runs (Student's t with runs - 1 degrees of freedom over the runs' means; the CSV columns `ci95_all` and `ci95_last10`, empty for a single run).\n\nAMRL-Q is played two ways: `amrl-q` explores in every run, greedy in the last 10% of each run's episodes, as the method is described; `amrl-q-greedy-after-first` follows the published harness, which reuses one agent whose greedy switch stays on: its first run as `amrl-q`, every later run greedy from its first episode (`[amrl_q] greedy_share = 1`).\n\nThe last column, `optimum`, brackets the best expected costed return of any policy on the lake with its model known, the row and the column measured apart (`mdp::optimum_bounds`, kept in `docs/costly_optimum.csv` by `cargo xtask costly --optimum`; specification 6.10): one figure where its bounds meet to four places, `(open)` where the search's trials ran out before they came within 0.001. It is what a learner's last 10% could reach at most, had it known the lake from the start.\n",
     );
+    if !joined.is_empty() {
+        let commands: Vec<String> = joined.iter().map(|c| format!("`{c}`")).collect();
+        let _ = write!(
+            md,
+            "\nThe rows do not all average the same number of runs (the `runs` column says how many): those of the cells that {} covers are its longer runs, joined with `--with`; their first runs are the other rows' runs, to the bit.\n",
+            commands.join(" and ")
+        );
+    }
     for (rule, csv_name) in CSV_NAMES {
         if !rows.iter().any(|r| r.rule == rule) {
             continue;
