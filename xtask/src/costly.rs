@@ -65,7 +65,8 @@ pub struct CostlyArgs {
     #[arg(long, value_delimiter = ',')]
     dynamics: Vec<String>,
     /// Learners, comma-separated, as `costly.csv` spells them (default: the table's; also
-    /// `belief-blind`, sensing by belief free to stop measuring, run only when named).
+    /// `belief-blind`, sensing by belief free to stop measuring, and `belief-shared`, the
+    /// same with its moves learned over every cell, run only when named).
     #[arg(long, value_delimiter = ',')]
     learners: Vec<String>,
     /// Prices per coordinate, comma-separated, as `costly.csv` spells them (default: all).
@@ -80,11 +81,12 @@ pub struct CostlyArgs {
     /// `docs/costly_optimum.csv`, the tables' last column.
     #[arg(long, conflicts_with_all = ["report", "bless", "with"])]
     optimum: bool,
-    /// Results folders of longer runs of part of the table (`cargo xtask costly --runs N
-    /// --dynamics ...`, the same `--seed`, at least this table's runs): their rows replace
-    /// this table's in the cells they cover, each saying how many runs it averages. The
-    /// runs both hold must agree to the bit. The committed table takes the slippery
-    /// lakes' rows this way, from 20 runs (`docs/costly.md`).
+    /// Results folders of other runs of part of the table (the same `--seed`), joined in
+    /// order: a row this table has is replaced by longer runs of it (at least as many;
+    /// the runs both hold must agree to the bit), a row it lacks (a learner run only when
+    /// named) is added; each row says how many runs it averages. The committed table
+    /// takes the slippery lakes' rows from 20 runs and `belief-shared`'s rows this way
+    /// (`docs/costly.md`).
     #[arg(long, value_delimiter = ',')]
     with: Vec<PathBuf>,
 }
@@ -228,15 +230,24 @@ pub enum Learner {
     /// the rest of an episode (`[belief] blind_plans` = [`BLIND_PLANS`]). Not in the
     /// committed table: run by naming it in `--learners`.
     BeliefBlind,
+    /// Sensing by belief free to stop measuring, as [`Learner::BeliefBlind`], its moves
+    /// learned over every cell at once (`[belief] shared_moves` = [`SHARED_MOVES`]). Run
+    /// by naming it; the committed table joins its rows (`docs/costly.md`).
+    BeliefShared,
 }
 
-/// The open-loop plans a step of [`Learner::BeliefBlind`] (`[belief] blind_plans`).
+/// The open-loop plans a step of [`Learner::BeliefBlind`] and [`Learner::BeliefShared`]
+/// (`[belief] blind_plans`).
 const BLIND_PLANS: usize = 16;
+
+/// The tries from a known cell after which [`Learner::BeliefShared`] trusts an action
+/// (`[belief] shared_moves`).
+const SHARED_MOVES: u32 = 48;
 
 impl Learner {
     /// Every learner `--learners` takes: the committed table's, in its order, then those
     /// run only when named.
-    const NAMED: [Learner; 8] = [
+    const NAMED: [Learner; 9] = [
         Learner::AmrlQ,
         Learner::AmrlQGreedyAfterFirst,
         Learner::AlwaysMeasuring,
@@ -245,6 +256,7 @@ impl Learner {
         Learner::Belief,
         Learner::CsQlWeighed,
         Learner::BeliefBlind,
+        Learner::BeliefShared,
     ];
 
     /// The learners of the committed table (the default of `--learners`).
@@ -260,6 +272,7 @@ impl Learner {
             Learner::Belief => "belief",
             Learner::CsQlWeighed => "cs-ql-weighed",
             Learner::BeliefBlind => "belief-blind",
+            Learner::BeliefShared => "belief-shared",
         }
     }
 
@@ -278,10 +291,15 @@ impl Learner {
             Learner::CsQl => cs_ql(play, (LearnerKind::CsQl, PredictSensing::Off)),
             Learner::FullSensing => cs_ql(play, (LearnerKind::FullSensing, PredictSensing::Off)),
             Learner::CsQlWeighed => cs_ql(play, (LearnerKind::CsQl, PredictSensing::Weighed)),
-            Learner::Belief | Learner::BeliefBlind => {
+            Learner::Belief | Learner::BeliefBlind | Learner::BeliefShared => {
                 let params = csql::BeliefParams {
-                    blind_plans: if self == Learner::BeliefBlind {
+                    blind_plans: if self == Learner::Belief {
+                        0
+                    } else {
                         BLIND_PLANS
+                    },
+                    shared_moves: if self == Learner::BeliefShared {
+                        SHARED_MOVES
                     } else {
                         0
                     },
@@ -681,7 +699,7 @@ mod tests {
                 "--learners",
                 |a| &mut a.learners,
                 "amrlq",
-                "amrl-q, amrl-q-greedy-after-first, always-measuring, cs-ql, full-sensing, belief, cs-ql-weighed, belief-blind",
+                "amrl-q, amrl-q-greedy-after-first, always-measuring, cs-ql, full-sensing, belief, cs-ql-weighed, belief-blind, belief-shared",
             ),
             ("--prices", |a| &mut a.prices, "0.050", "0.025, 0.05"),
             (

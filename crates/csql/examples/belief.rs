@@ -8,7 +8,7 @@
 //! RUNS (3) runs of each lake, K (7) the bound on uncertain steps, FILTER a part of
 //! "WORLD DYNAMICS" to keep (e.g. `8x8 semi`); the variables `TRUST`, `PRIOR`, `MAXB` and `OPT`
 //! set `trust`, `prior` and `max_beliefs` (4, 3, 5000), `OPT` the optimism (1), `BLIND`
-//! `blind_plans` (0). With `RUNS_SHOWN` set, each run's line is printed too (seed, mean
+//! `blind_plans` (0), `SHARED` `shared_moves` (0). With `RUNS_SHOWN` set, each run's line is printed too (seed, mean
 //! over all episodes, over the last 10%).
 
 use rand::SeedableRng;
@@ -31,6 +31,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         max_beliefs: env("MAXB", 5000.0) as usize,
         optimism: env("OPT", 1.0),
         blind_plans: env("BLIND", 0.0) as usize,
+        shared_moves: env("SHARED", 0.0) as u32,
         ..Default::default()
     };
     for (world, episodes, horizon) in [("frozenlake4x4", 1000, 100), ("frozenlake8x8", 2000, 200)] {

@@ -80,6 +80,7 @@ fn sample(k: &SettingKey) -> (String, String) {
         (Some("belief"), "max_beliefs") => ("100", ""),
         (Some("belief"), "move_cost") => ("1e-5", ""),
         (Some("belief"), "blind_plans") => ("8", ""),
+        (Some("belief"), "shared_moves") => ("48", ""),
         _ => panic!("no sample value for the key {}: add one", k.path()),
     };
     let line = alone(&format!("{} = {value}", k.name));
@@ -155,8 +156,8 @@ fn every_key_is_refused_exactly_where_its_learner_does_not_read_it() {
     // default), for each learner on costed episodes; CS-QL's keys for four learners;
     // U-Tree's, AMRL-Q's and belief's for four; the price for U-Tree; `max_trials` for
     // the two learners on episodes and `episodes` for the three judged over trials;
-    // belief's `blind_plans` for four.
-    assert_eq!(refused, 2 * 11 + 4 * 15 + 3 * 4 * 6 + 4 + 2 + 2 + 3 + 4);
+    // belief's `blind_plans` and `shared_moves` for four each.
+    assert_eq!(refused, 2 * 11 + 4 * 15 + 3 * 4 * 6 + 4 + 2 + 2 + 3 + 4 + 4);
 }
 
 /// A table of a learner that is not the run's is refused even empty or at its defaults,

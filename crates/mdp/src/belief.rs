@@ -664,7 +664,7 @@ pub(crate) fn solve_counted(
         SensingRule::WithMove => (0..=subsets_end).collect(),
         SensingRule::AfterOutcome => Vec::new(),
     };
-    let blind = (blind_plans > 0).then(|| Blind::of(m, options.horizon, blind_plans));
+    let blind = (blind_plans > 0).then(|| Blind::of(m, options.horizon, blind_plans, move_cost));
     let mut starts = Vec::new();
     for &s in roots {
         if s as usize >= m.n || m.terminal[s as usize] {
@@ -948,7 +948,7 @@ pub(crate) struct Blind {
 }
 
 impl Blind {
-    fn of(m: &CostlyModel, horizon: u32, max_plans: usize) -> Blind {
+    fn of(m: &CostlyModel, horizon: u32, max_plans: usize, move_cost: f64) -> Blind {
         let mut plans: Vec<Vec<f64>> = vec![vec![0.0; m.n]];
         let mut levels = Vec::with_capacity(horizon as usize);
         for _ in 0..horizon {
@@ -964,7 +964,7 @@ impl Blind {
                             if m.must_measure[i] {
                                 return f64::NEG_INFINITY;
                             }
-                            m.reward[i]
+                            m.reward[i] - move_cost
                                 + m.next[i]
                                     .iter()
                                     .map(|&(t, p)| p * alpha[t as usize])
@@ -1321,10 +1321,11 @@ impl BeliefPlan {
     /// let opts = PlanOptions { blind_plans: 8, move_cost: 1e-6, ..PlanOptions::default() };
     /// let plan = BeliefPlan::build(&model, &opts, &[StateId(0)]).unwrap();
     /// let start = plan.point(StateId(0)).unwrap();
-    /// // Deterministic: the open loop reaches the goal, and so it is chosen.
-    /// assert_eq!(plan.decide(start).unwrap().1, Decision::Blind);
+    /// // Deterministic: the open loop reaches the goal, worth as much as the best plan
+    /// // (each paying the same price per move on the same shortest way).
     /// let moves = plan.blind_moves(start).unwrap();
     /// assert_eq!(moves.len(), 100);
+    /// assert!(matches!(plan.decide(start).unwrap().1, Decision::Blind | Decision::Move { measure: 0, .. }));
     /// ```
     pub fn blind_moves(&self, node: NodeId) -> Option<Vec<ActionId>> {
         let blind = self.solved.blind.as_ref()?;

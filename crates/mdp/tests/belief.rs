@@ -1,6 +1,9 @@
 //! Plans over beliefs: the plan's value at the start is the reference search's, its
 //! choices can be followed step by step, a learned model's tables are checked, and a
-//! pair that must be measured is taken from a known state only.
+//! pair that must be measured is taken from a known state only; an open-loop plan pays for
+//! its moves.
+
+use rand::SeedableRng;
 
 use mdp::{
     ActionId, BeliefPlan, CostlyModel, Decision, ModelParts, PlanOptions, ReferenceOptions,
@@ -264,4 +267,34 @@ fn a_plan_past_its_bound_on_bytes_stops_with_what_it_held() {
     };
     let err = best_sensing(&w, SensingMenu::Features, SensingRule::WithMove, &tiny).unwrap_err();
     assert!(matches!(err, mdp::ReferenceError::TooLarge { .. }), "{err}");
+}
+
+/// An open-loop plan pays the price per move as every other choice of the plan does: on
+/// the deterministic lake, from the start, it walks the shortest way (six moves), where
+/// without that price a plan that dawdles and reaches the goal only after the episode's
+/// last move would tie with it.
+#[test]
+fn an_open_loop_plan_walks_the_shortest_way() {
+    let lake = lake(0.0);
+    let model = CostlyModel::of(&lake).unwrap();
+    let opts = PlanOptions {
+        blind_plans: 64,
+        move_cost: 1e-6,
+        ..PlanOptions::default()
+    };
+    let plan = BeliefPlan::build(&model, &opts, &[StateId(0)]).unwrap();
+    let start = plan.point(StateId(0)).unwrap();
+    let moves = plan.blind_moves(start).unwrap();
+    let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
+    let mut s = StateId(0);
+    let mut reached = None;
+    for (i, &a) in moves.iter().enumerate() {
+        let step = lake.sample(s, a, &mut rng);
+        if step.terminated || lake.is_terminal(step.next) {
+            reached = Some((i + 1, step.reward));
+            break;
+        }
+        s = step.next;
+    }
+    assert_eq!(reached, Some((6, 1.0)));
 }

@@ -1,8 +1,9 @@
-//! `--with`: longer runs of part of the table join it. A folder of `cargo xtask costly
-//! --runs N ...` (the same base seed, at least the table's runs) gives the rows of its
-//! cells: its runs replace the table's there, each row saying how many it averages. The
-//! runs both hold (the same seeds) must agree to the bit, so that a folder made by other
-//! code or settings is refused rather than mixed in.
+//! `--with`: other runs of part of the table join it. A folder of `cargo xtask costly
+//! --runs N ...` (the same base seed) gives the rows of its cells: where the table has a
+//! row, longer runs of it (at least as many; the runs both hold must agree to the bit, so
+//! that a folder made by other code or settings is refused rather than mixed in); where
+//! it has none (a learner run only when named), a row added. Each row says how many runs
+//! it averages.
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -26,8 +27,9 @@ fn cell(r: &JobResult) -> Cell {
 }
 
 /// The table's results with those of `other` (read from `dir`) in place of its own in
-/// every cell `other` covers. Refused, naming the reason: another base seed, fewer runs
-/// than the table's, a part outside the table, or a shared run that differs.
+/// every cell `other` covers, or added where it has none. Refused, naming the reason:
+/// another base seed, a world, dynamics, price or rule outside the table, fewer runs of a
+/// cell than the table's, or a shared run that differs.
 pub(crate) fn join(
     table: &Definition,
     results: Vec<JobResult>,
@@ -35,15 +37,11 @@ pub(crate) fn join(
     dir: &Path,
 ) -> Result<Vec<JobResult>> {
     let d = dir.display();
-    if other.seed != table.seed || other.runs < table.runs {
+    if other.seed != table.seed {
         bail!(
-            "--with {d}: its runs (seeds {} to {}) do not extend this table's (seeds {} to {}): \
-             give it the same --seed and at least --runs {}",
+            "--with {d}: its runs start at seed {}, this table's at {}: give it the same --seed",
             other.seed,
-            (other.seed + other.runs).saturating_sub(1),
-            table.seed,
-            (table.seed + table.runs).saturating_sub(1),
-            table.runs
+            table.seed
         );
     }
     let outside =
@@ -60,26 +58,37 @@ pub(crate) fn join(
     if let Some(r) = other.rules.iter().find(|r| !table.rules.contains(r)) {
         return Err(outside(r.name()));
     }
-    if let Some(l) = other.learners.iter().find(|l| !table.learners.contains(l)) {
-        return Err(outside(l.name()));
+    let mut runs: BTreeMap<Cell, u64> = BTreeMap::new();
+    for r in &results {
+        *runs.entry(cell(r)).or_insert(0) += 1;
     }
     let mine: BTreeMap<(Cell, u64), &JobResult> =
         results.iter().map(|r| ((cell(r), r.seed), r)).collect();
     for r in &other_results {
-        if let Some(m) = mine.get(&(cell(r), r.seed)) {
+        let key = cell(r);
+        let (world, dynamics, price, rule, learner) = &key;
+        let name = format!(
+            "{world}, {}, price {price}, {rule}, {}",
+            dynamics.name(),
+            learner.name()
+        );
+        if let Some(&n) = runs.get(&key)
+            && other.runs < n
+        {
+            bail!(
+                "--with {d}: its {} runs of ({name}) do not extend this table's {n}: give it at \
+                 least --runs {n}",
+                other.runs
+            );
+        }
+        if let Some(m) = mine.get(&(key.clone(), r.seed)) {
             let same = m.summary.to_bits() == r.summary.to_bits()
-                && m.curve
-                    .iter()
-                    .map(|x| x.to_bits())
-                    .eq(r.curve.iter().map(|x| x.to_bits()));
+                && (m.curve.iter().map(|x| x.to_bits())).eq(r.curve.iter().map(|x| x.to_bits()));
             if !same {
-                let (world, dynamics, price, rule, learner) = cell(r);
                 bail!(
-                    "--with {d}: its run of seed {} ({world}, {}, price {price}, {rule}, {}) \
-                     differs from this table's: the two were made by other code or settings",
-                    r.seed,
-                    dynamics.name(),
-                    learner.name()
+                    "--with {d}: its run of seed {} ({name}) differs from this table's: the two \
+                     were made by other code or settings",
+                    r.seed
                 );
             }
         }
@@ -257,7 +266,7 @@ mod tests {
         .unwrap_err()
         .to_string();
         assert!(
-            e.contains("seeds 1 to 3) do not extend this table's (seeds 1 to 5)"),
+            e.contains("its 3 runs of (frozenlake4x4, slippery, price 0.025, with-move, belief) do not extend this table's 5"),
             "{e}"
         );
         let mut seeded = def(20, true);
@@ -285,12 +294,41 @@ mod tests {
             e.contains("it holds slippery, which this table does not"),
             "{e}"
         );
-        let mut blind = def(20, true);
-        blind.learners = vec![Learner::BeliefBlind];
-        let e = join(&def(5, false), table(), (&blind, vec![]), Path::new("m"))
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("it holds belief-blind"), "{e}");
+    }
+
+    #[test]
+    fn a_learner_the_table_lacks_is_added_with_its_own_runs() {
+        let mut shared = def(3, true);
+        shared.learners = vec![Learner::BeliefShared];
+        let added: Vec<JobResult> = (1..=3)
+            .map(|seed| run(Dynamics::Slippery, Learner::BeliefShared, seed, 0.05))
+            .collect();
+        let joined = join(&def(5, false), table(), (&shared, added), Path::new("m")).unwrap();
+        let count = |l: Learner| joined.iter().filter(|r| r.learner == l).count();
+        assert_eq!(
+            (count(Learner::Belief), count(Learner::BeliefShared)),
+            (10, 3)
+        );
+        // Then longer runs of the added rows replace them.
+        let mut longer_shared = def(20, true);
+        longer_shared.learners = vec![Learner::BeliefShared];
+        let more: Vec<JobResult> = (1..=20)
+            .map(|seed| run(Dynamics::Slippery, Learner::BeliefShared, seed, 0.05))
+            .collect();
+        let joined = join(
+            &def(5, false),
+            joined,
+            (&longer_shared, more),
+            Path::new("m"),
+        )
+        .unwrap();
+        assert_eq!(
+            joined
+                .iter()
+                .filter(|r| r.learner == Learner::BeliefShared)
+                .count(),
+            20
+        );
     }
 
     #[test]

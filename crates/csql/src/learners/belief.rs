@@ -45,8 +45,11 @@ use mdp::{
 use rand::Rng;
 
 use crate::learners::amrl::{Episode, Episodes};
+
+mod moves;
 use crate::observe::{KeepTrace, Observer};
 use crate::settings::costed::{BeliefParams, MAX_EPISODES};
+use moves::Moves;
 
 /// Value iteration of a plan stops when a step changes no value by more than this (reward
 /// units): far below any price, and far fewer steps on lakes where the values creep.
@@ -98,6 +101,9 @@ struct Planner<'w, W: World + ?Sized> {
     k: u32,
     /// The most bytes a plan may be counted at ([`mdp::PlanSize::bytes`]).
     max_bytes: usize,
+    /// The moves learned over every state (`[belief] shared_moves`), in place of the
+    /// pairs' counts in the model.
+    moves: Option<Moves>,
 }
 
 /// Run `episodes` episodes of sensing by belief (specification 6.13) and return what
@@ -177,7 +183,22 @@ fn belief_planning_bounded<W: World + ?Sized, R: Rng + ?Sized>(
             readings.push(world.read(StateId(s as u32), Feature(f as u32)).0);
         }
     }
+    let moves = if params.shared_moves > 0 {
+        let terminal: Vec<bool> = (0..n)
+            .map(|s| world.is_terminal(StateId(s as u32)))
+            .collect();
+        Some(Moves::new(
+            &readings,
+            nf,
+            &terminal,
+            na,
+            params.shared_moves,
+        )?)
+    } else {
+        None
+    };
     let mut l = Planner {
+        moves,
         world,
         params: *params,
         rule,
@@ -286,7 +307,17 @@ impl<W: World + ?Sized> Planner<'_, W> {
         let mut reward = Vec::with_capacity(self.counts.len());
         let mut next = Vec::with_capacity(self.counts.len());
         let mut must_measure = Vec::with_capacity(self.counts.len());
-        for c in &self.counts {
+        if let Some(m) = &self.moves {
+            let na = self.na();
+            for i in 0..self.counts.len() {
+                let (s, a) = ((i / na) as u32, i % na);
+                let (on, r) = m.pair(s, a, p.prior, p.optimism);
+                reward.push(r);
+                next.push(on);
+                must_measure.push(!m.trusted(a));
+            }
+        }
+        for c in self.counts.iter().filter(|_| self.moves.is_none()) {
             let tries = f64::from(c.tries);
             let (weight, rest) = if c.trusted(p.trust) {
                 (1.0 / tries, 0.0)
@@ -324,6 +355,9 @@ impl<W: World + ?Sized> Planner<'_, W> {
     fn replan(&mut self, observer: &mut dyn Observer) -> Result<(), ReferenceError> {
         // The plan it replaces goes first: one plan at a time is held.
         self.plan = None;
+        if let Some(m) = &mut self.moves {
+            m.fit();
+        }
         let model = self.model()?;
         let roots: Vec<StateId> = (0..self.known.len())
             .filter(|&s| self.known[s])
@@ -391,9 +425,12 @@ impl<W: World + ?Sized> Planner<'_, W> {
         if let Some(t) = next {
             *c.next.entry(t).or_insert(0) += 1;
         }
-        if c.tries.is_power_of_two() || c.trusted(trust) != was {
+        // With shared moves the pairs' counts are not the model: only the moves' tries
+        // make it stale.
+        if (c.tries.is_power_of_two() || c.trusted(trust) != was) && self.moves.is_none() {
             self.stale = true;
         }
+
         if let Some(t) = next
             && !self.known[t as usize]
         {
@@ -406,6 +443,10 @@ impl<W: World + ?Sized> Planner<'_, W> {
     /// have been in) must be measured again.
     fn distrust(&mut self, path: &[(Vec<u32>, ActionId)]) {
         for (states, a) in path {
+            if let Some(m) = &mut self.moves {
+                m.distrust(a.index(), self.params.trust);
+                self.stale = true;
+            }
             for &s in states {
                 let i = self.pair(s, *a);
                 let c = &mut self.counts[i];
@@ -547,7 +588,9 @@ impl<W: World + ?Sized> Planner<'_, W> {
                         Some((c, Decision::Move { action, measure })) => (action, measure, Some(c)),
                         Some((_, Decision::Blind)) => {
                             if let Some(moves) = plan.blind_moves(*node) {
-                                self.blind(moves, truth, &mut e, rng);
+                                let belief: Vec<(u32, f64)> =
+                                    plan.belief(*node).iter().map(|&(s, p)| (s.0, p)).collect();
+                                self.blind(moves, (truth, belief), &mut e, rng);
                                 return Ok(e);
                             }
                             (self.fallback(&self.states(&place)), EVERY_PROBE, None)
@@ -579,11 +622,19 @@ impl<W: World + ?Sized> Planner<'_, W> {
             if ended {
                 if let Some(s) = from_state {
                     self.count(s, action, None, step.reward);
+                    if let Some(m) = &mut self.moves
+                        && m.record(s, action.index(), None, step.reward)
+                    {
+                        self.stale = true;
+                    }
                 }
                 // Did the model allow the end? (Counted above, so less one try.)
                 if let Place::Node(_) = place {
                     let trust = self.params.trust;
                     let may_end = self.states(&place).iter().any(|&s| {
+                        if let Some(m) = &self.moves {
+                            return m.may_end(s, action.index());
+                        }
                         let c = &self.counts[self.pair(s, action)];
                         let before = c.tries - u32::from(from_state == Some(s));
                         !c.trusted(trust) || c.next.values().sum::<u32>() < before
@@ -623,6 +674,17 @@ impl<W: World + ?Sized> Planner<'_, W> {
             if self.rule == SensingRule::AfterOutcome {
                 next_place = self.sense_after(next_place, truth, &mut e, &path, &mut read);
             }
+            if let Some(s) = from_state
+                && let Some(m) = &mut self.moves
+            {
+                let seen = read
+                    .iter()
+                    .map(|&f| (f, w.read(truth, Feature(f as u32)).0))
+                    .collect();
+                if m.record(s, action.index(), Some(seen), step.reward) {
+                    self.stale = true;
+                }
+            }
             // Certain now?
             let certain = match &next_place {
                 Place::Node(n) => {
@@ -655,12 +717,14 @@ impl<W: World + ?Sized> Planner<'_, W> {
         Ok(e)
     }
 
-    /// The rest of an episode without measuring: `moves` in order from the state `truth`,
-    /// until the episode ends or reaches its cap. Nothing is read, so nothing is learned.
+    /// The rest of an episode without measuring: `moves` in order from the state `truth`
+    /// (the agent's belief `belief`), until the episode ends or reaches its cap. Nothing
+    /// is read; with shared moves, an end teaches the reward of the terminal states the
+    /// belief, carried along the moves by the model, may have landed on.
     fn blind<R: Rng + ?Sized>(
-        &self,
+        &mut self,
         moves: Vec<ActionId>,
-        mut truth: StateId,
+        (mut truth, mut belief): (StateId, Vec<(u32, f64)>),
         e: &mut Episode,
         rng: &mut R,
     ) {
@@ -674,7 +738,15 @@ impl<W: World + ?Sized> Planner<'_, W> {
             e.reward += step.reward;
             if step.terminated || w.is_terminal(step.next) {
                 e.reached_goal = step.reward > 0.0;
+                if let Some(m) = &mut self.moves
+                    && m.end_blind(&belief, action.index(), step.reward)
+                {
+                    self.stale = true;
+                }
                 return;
+            }
+            if let Some(m) = &self.moves {
+                belief = m.carry(&belief, action.index());
             }
             truth = step.next;
         }

@@ -161,6 +161,14 @@ pub struct BeliefParams {
     /// is left out of the settings' echo.
     #[serde(skip_serializing_if = "is_zero")]
     pub blind_plans: usize,
+    /// With more than 0, what each action does is learned over every state at once (a
+    /// shift of the readings, the same everywhere; specification 6.13) in place of each
+    /// pair apart, an action trusted after this many tries from a known state; the
+    /// world's states must then be every combination of their readings (a grid, as the
+    /// lakes' row and column), else the run is refused. 0 (the default): each pair learned
+    /// apart, and the key is left out of the settings' echo.
+    #[serde(skip_serializing_if = "is_zero_u32")]
+    pub shared_moves: u32,
 }
 
 impl Default for BeliefParams {
@@ -174,12 +182,18 @@ impl Default for BeliefParams {
             max_beliefs: 5_000,
             move_cost: 1e-6,
             blind_plans: 0,
+            shared_moves: 0,
         }
     }
 }
 
 /// Whether `[belief] blind_plans` is off, so that the echo of the settings is as before.
 fn is_zero(n: &usize) -> bool {
+    *n == 0
+}
+
+/// Whether `[belief] shared_moves` is off, so that the echo of the settings is as before.
+fn is_zero_u32(n: &u32) -> bool {
     *n == 0
 }
 

@@ -245,6 +245,7 @@ settings_draft! {
             max_beliefs: BELIEF,
             move_cost: BELIEF,
             blind_plans: BELIEF,
+            shared_moves: BELIEF,
         };
     }
 }
