@@ -27,7 +27,8 @@ fn lake_refused(extra: &[&str]) -> String {
 }
 
 /// The report's returns are `belief_planning`'s for the same seed and settings, episode
-/// for episode, under both rules, with the defaults and with `[belief]` tuned.
+/// for episode, under both rules, with the defaults, with `[belief]` tuned and with shared
+/// moves.
 #[test]
 fn belief_in_csrl_run_is_csql_belief_planning() {
     let dir = tempfile::tempdir().unwrap();
@@ -40,11 +41,19 @@ fn belief_in_csrl_run_is_csql_belief_planning() {
         max_beliefs: 3000,
         move_cost: 1e-5,
         blind_plans: 0,
+        shared_moves: 0,
     };
+    let shared = csql::BeliefParams {
+        shared_moves: 48,
+        blind_plans: 16,
+        ..csql::BeliefParams::default()
+    };
+    let shared_table = "[belief]\nshared_moves = 48\nblind_plans = 16";
     let tuned_table = "[belief]\nmax_uncertain = 5\ntrust = 3\nprior = 2.0\noptimism = 0.8\nmax_beliefs = 3000\nmove_cost = 1e-5";
     for (name, table, params) in [
         ("default", "", csql::BeliefParams::default()),
         ("tuned", tuned_table, tuned),
+        ("shared", shared_table, shared),
     ] {
         for rule in [mdp::SensingRule::WithMove, mdp::SensingRule::AfterOutcome] {
             let path = config(dir.path(), name, table);

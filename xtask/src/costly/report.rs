@@ -111,8 +111,8 @@ pub(crate) fn write(
         let commands: Vec<String> = joined.iter().map(|c| format!("`{c}`")).collect();
         let _ = write!(
             md,
-            "\nThe rows do not all average the same number of runs (the `runs` column says how many): those of the cells that {} covers are its longer runs, joined with `--with`; their first runs are the other rows' runs, to the bit.\n",
-            commands.join(" and ")
+            "\nRows joined with `--with` from other runs of the same seeds, in order: {}. A later run's rows take the place of the table's in the cells it covers (longer runs of a row, whose first runs are the row's own to the bit) or are added (a learner the table lacks). The `runs` column says how many runs each row averages.\n",
+            commands.join(", then ")
         );
     }
     for (rule, csv_name) in CSV_NAMES {
