@@ -387,41 +387,40 @@ impl Moves {
         (next.into_iter().collect(), reward)
     }
 
-    /// The belief after action `a` from `belief`, given that the episode went on.
-    pub(super) fn carry(&self, belief: &[(u32, f64)], a: usize) -> Vec<(u32, f64)> {
-        let mut next: BTreeMap<u32, f64> = BTreeMap::new();
+    /// Where action `a` takes `belief` as the model has it, among the terminal states
+    /// (`ended`) or the others, normalised (empty where it goes to none of them).
+    fn spread(&self, belief: &[(u32, f64)], a: usize, ended: bool) -> Vec<(u32, f64)> {
+        let mut to: BTreeMap<u32, f64> = BTreeMap::new();
         for &(s, b) in belief {
             for (k, &q) in self.p[a].iter().enumerate() {
                 let t = self.land(s, k);
-                if q > 0.0 && !self.terminal[t as usize] {
-                    *next.entry(t).or_insert(0.0) += b * q;
+                if q > 0.0 && self.terminal[t as usize] == ended {
+                    *to.entry(t).or_insert(0.0) += b * q;
                 }
             }
         }
-        let total: f64 = next.values().sum();
+        let total: f64 = to.values().sum();
         if total <= 0.0 {
-            return belief.to_vec();
+            return Vec::new();
         }
-        next.into_iter().map(|(t, x)| (t, x / total)).collect()
+        to.into_iter().map(|(t, x)| (t, x / total)).collect()
+    }
+
+    /// The belief after action `a` from `belief`, given that the episode went on (the
+    /// same belief where the model says it cannot).
+    pub(super) fn carry(&self, belief: &[(u32, f64)], a: usize) -> Vec<(u32, f64)> {
+        let next = self.spread(belief, a, false);
+        if next.is_empty() {
+            belief.to_vec()
+        } else {
+            next
+        }
     }
 
     /// Each terminal state's share of an end of action `a` from `belief`, as the model
     /// has it (none where the model allows no end).
     fn shares(&self, belief: &[(u32, f64)], a: usize) -> Vec<(u32, f64)> {
-        let mut shares: BTreeMap<u32, f64> = BTreeMap::new();
-        for &(s, b) in belief {
-            for (k, &q) in self.p[a].iter().enumerate() {
-                let t = self.land(s, k);
-                if q > 0.0 && self.terminal[t as usize] {
-                    *shares.entry(t).or_insert(0.0) += b * q;
-                }
-            }
-        }
-        let total: f64 = shares.values().sum();
-        if total <= 0.0 {
-            return Vec::new();
-        }
-        shares.into_iter().map(|(t, x)| (t, x / total)).collect()
+        self.spread(belief, a, true)
     }
 
     /// Count `shares` as pending; whether they make a terminal state's reward known.
