@@ -30,13 +30,13 @@ const KNOWN: f64 = 0.5;
 /// The most displacements the model keeps (a try's consistent ones are a bit set).
 const MAX_SUPPORT: usize = 64;
 
-/// One try of an action from a known state: what was read after it (feature and
-/// reading; `None`: it ended the episode) and its reward.
-#[derive(Clone, Debug)]
+/// What a try of an action from a known state showed: the state it was tried from and
+/// what was read after it (feature and reading; `None`: it ended the episode). Tries that
+/// showed the same are kept once, with their number and the sum of their rewards.
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
 struct Try {
     from: u32,
     seen: Option<Vec<(usize, u32)>>,
-    reward: f64,
 }
 
 /// The shared model of moves.
@@ -57,8 +57,10 @@ pub(super) struct Moves {
     lands: Vec<u32>,
     /// Per action: its tries by the set of displacements they agree with.
     sets: Vec<BTreeMap<u64, f64>>,
-    /// Per action: its tries, and the probability of each displacement of `support`.
-    tries: Vec<Vec<Try>>,
+    /// Per action: its tries (how many of each, the sum of their rewards), their number,
+    /// and the probability of each displacement of `support`.
+    tries: Vec<BTreeMap<Try, (f64, f64)>>,
+    count: Vec<u32>,
     p: Vec<Vec<f64>>,
     /// Per action: tries from which on it may go unmeasured.
     trusted_at: Vec<u32>,
@@ -94,8 +96,10 @@ impl Moves {
             what: "belief.shared_moves",
             problem,
         };
-        if features == 0 {
-            return Err(bad("the world has no features to read a move by".into()));
+        if features == 0 || n == 0 {
+            return Err(bad(
+                "the world has no states or no features to read a move by".into(),
+            ));
         }
         let readings: Vec<i64> = readings.iter().map(|&r| i64::from(r)).collect();
         let mut lo = vec![i64::MAX; features];
@@ -128,7 +132,8 @@ impl Moves {
             support: Vec::new(),
             lands: Vec::new(),
             sets: vec![BTreeMap::new(); na],
-            tries: vec![Vec::new(); na],
+            tries: vec![BTreeMap::new(); na],
+            count: vec![0; na],
             p: vec![Vec::new(); na],
             trusted_at: vec![trust; na],
             landing: vec![(0.0, 0.0); n],
@@ -179,10 +184,10 @@ impl Moves {
             .collect();
         for a in 0..self.tries.len() {
             let mut sets = BTreeMap::new();
-            for t in &self.tries[a] {
+            for (t, &(n, _)) in &self.tries[a] {
                 let set = self.consistent(t);
                 if set != 0 {
-                    *sets.entry(set).or_insert(0.0) += 1.0;
+                    *sets.entry(set).or_insert(0.0) += n;
                 }
             }
             self.sets[a] = sets;
@@ -248,28 +253,27 @@ impl Moves {
                 stale |= self.learns(&shares);
             }
         }
-        let t = Try {
-            from: s,
-            seen,
-            reward,
-        };
+        let t = Try { from: s, seen };
         let set = self.consistent(&t);
         if set != 0 {
             *self.sets[a].entry(set).or_insert(0.0) += 1.0;
         }
-        self.tries[a].push(t);
-        let n = self.tries[a].len() as u32;
+        let kept = self.tries[a].entry(t).or_insert((0.0, 0.0));
+        kept.0 += 1.0;
+        kept.1 += reward;
+        self.count[a] = self.count[a].saturating_add(1);
+        let n = self.count[a];
         stale || n.is_power_of_two() || self.trusted(a) != was
     }
 
     /// Whether action `a` may go unmeasured.
     pub(super) fn trusted(&self, a: usize) -> bool {
-        self.tries[a].len() as u32 >= self.trusted_at[a]
+        self.count[a] >= self.trusted_at[a]
     }
 
     /// Action `a` must be measured `trust` more times.
     pub(super) fn distrust(&mut self, a: usize, trust: u32) {
-        let again = (self.tries[a].len() as u32).saturating_add(trust);
+        let again = self.count[a].saturating_add(trust);
         self.trusted_at[a] = self.trusted_at[a].max(again);
     }
 
@@ -322,14 +326,14 @@ impl Moves {
                     *x = m / total;
                 }
             }
-            for t in self.tries[a].iter().filter(|t| t.seen.is_none()) {
+            for (t, &(n, reward)) in self.tries[a].iter().filter(|(t, _)| t.seen.is_none()) {
                 let set = self.consistent(t);
                 let z: f64 = bits(set).map(|j| p[j]).sum();
                 if z > 0.0 {
                     for j in bits(set) {
                         let land = self.land(t.from, j) as usize;
-                        self.landing[land].0 += p[j] / z * t.reward;
-                        self.landing[land].1 += p[j] / z;
+                        self.landing[land].0 += p[j] / z * reward;
+                        self.landing[land].1 += p[j] / z * n;
                     }
                 }
             }
@@ -353,7 +357,7 @@ impl Moves {
         prior: f64,
         optimism: f64,
     ) -> (Vec<(u32, f64)>, f64) {
-        let n = self.tries[a].len() as f64;
+        let n = f64::from(self.count[a]);
         let weight = if self.trusted(a) {
             1.0
         } else {
