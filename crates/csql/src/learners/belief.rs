@@ -307,34 +307,36 @@ impl<W: World + ?Sized> Planner<'_, W> {
         let mut reward = Vec::with_capacity(self.counts.len());
         let mut next = Vec::with_capacity(self.counts.len());
         let mut must_measure = Vec::with_capacity(self.counts.len());
-        if let Some(m) = &self.moves {
-            let na = self.na();
-            for i in 0..self.counts.len() {
-                let (s, a) = ((i / na) as u32, i % na);
-                let (on, r) = m.pair(s, a, p.prior, p.optimism);
-                reward.push(r);
-                next.push(on);
-                must_measure.push(!m.trusted(a));
-            }
-        }
-        for c in self.counts.iter().filter(|_| self.moves.is_none()) {
-            let tries = f64::from(c.tries);
-            let (weight, rest) = if c.trusted(p.trust) {
-                (1.0 / tries, 0.0)
-            } else {
-                (1.0 / (tries + p.prior), p.prior / (tries + p.prior))
+        let na = self.na();
+        for (i, c) in self.counts.iter().enumerate() {
+            // Each pair from the shared moves where they are learned, else from its counts.
+            let (on, r, measure) = match &self.moves {
+                Some(m) => {
+                    let (s, a) = ((i / na) as u32, i % na);
+                    let (on, r) = m.pair(s, a, p.prior, p.optimism);
+                    (on, r, !m.trusted(a))
+                }
+                None => {
+                    let tries = f64::from(c.tries);
+                    let (weight, rest) = if c.trusted(p.trust) {
+                        (1.0 / tries, 0.0)
+                    } else {
+                        (1.0 / (tries + p.prior), p.prior / (tries + p.prior))
+                    };
+                    let on = c.next.iter().map(|(&t, &k)| (t, f64::from(k) * weight));
+                    (
+                        on.collect(),
+                        c.reward * weight + rest * p.optimism,
+                        !c.trusted(p.trust),
+                    )
+                }
             };
-            reward.push(c.reward * weight + rest * p.optimism);
-            next.push(
-                c.next
-                    .iter()
-                    .map(|(&t, &k)| (t, f64::from(k) * weight))
-                    .collect(),
-            );
-            must_measure.push(!c.trusted(p.trust));
+            reward.push(r);
+            next.push(on);
+            must_measure.push(measure);
         }
         CostlyModel::from_parts(ModelParts {
-            num_actions: self.na(),
+            num_actions: na,
             terminal: (0..n).map(|s| w.is_terminal(StateId(s as u32))).collect(),
             reward,
             next,
