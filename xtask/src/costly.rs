@@ -65,8 +65,8 @@ pub struct CostlyArgs {
     #[arg(long, value_delimiter = ',')]
     dynamics: Vec<String>,
     /// Learners, comma-separated, as `costly.csv` spells them (default: the table's; also
-    /// `belief-blind`, sensing by belief free to stop measuring, and `belief-shared`, the
-    /// same with its moves learned over every cell, run only when named).
+    /// `belief-blind`, sensing by belief with each pair apart and free to stop measuring,
+    /// run only when named).
     #[arg(long, value_delimiter = ',')]
     learners: Vec<String>,
     /// Prices per coordinate, comma-separated, as `costly.csv` spells them (default: all).
@@ -85,8 +85,7 @@ pub struct CostlyArgs {
     /// order: a row this table has is replaced by longer runs of it (at least as many;
     /// the runs both hold must agree to the bit), a row it lacks (a learner run only when
     /// named) is added; each row says how many runs it averages. The committed table
-    /// takes the slippery lakes' rows from 20 runs and `belief-shared`'s rows this way
-    /// (`docs/costly.md`).
+    /// takes the slippery lakes' rows from 20 runs this way (`docs/costly.md`).
     #[arg(long, value_delimiter = ',')]
     with: Vec<PathBuf>,
 }
@@ -220,35 +219,26 @@ pub enum Learner {
     /// Q-learning sensing every feature at every step, in CS-QL's main loop
     /// (`csql::costed_episodes` with `learner = "full-sensing"`).
     FullSensing,
-    /// Sensing by belief: a learned model, a plan over beliefs, the row and the column
-    /// measured apart (`csql::belief_planning`).
+    /// Sensing by belief as a run on the lake has it by default: a learned model (each
+    /// move learned once for every cell), a plan over beliefs free to stop measuring, the
+    /// row and the column measured apart (`csql::belief_planning` with the lake's
+    /// `[belief]` settings, [`csql::WorldDefaults::belief_for`]).
     Belief,
     /// CS-QL as [`Learner::CsQl`], sensing by its belief over descriptions
     /// (`predict_sensing = "weighed"`, `[prediction]` at its defaults).
     CsQlWeighed,
-    /// Sensing by belief as [`Learner::Belief`], its plan also free to stop measuring for
+    /// Sensing by belief as it was before the lakes asked for their own settings: each
+    /// pair learned apart, the plan never free to stop measuring (`[belief]
+    /// shared_moves = 0`, `blind_plans = 0`).
+    BeliefApart,
+    /// Sensing by belief as [`Learner::BeliefApart`], its plan free to stop measuring for
     /// the rest of an episode (`[belief] blind_plans` = [`BLIND_PLANS`]). Not in the
     /// committed table: run by naming it in `--learners`.
     BeliefBlind,
-    /// Sensing by belief free to stop measuring, its moves learned over every cell at
-    /// once (`[belief] shared_moves` = [`SHARED_MOVES`], `blind_plans` =
-    /// [`SHARED_BLIND_PLANS`]). Run by naming it; the committed table joins its rows
-    /// (`docs/costly.md`).
-    BeliefShared,
 }
 
-/// The open-loop plans a step of [`Learner::BeliefBlind`] and [`Learner::BeliefShared`]
-/// (`[belief] blind_plans`).
+/// The open-loop plans a step of [`Learner::BeliefBlind`] (`[belief] blind_plans`).
 const BLIND_PLANS: usize = 16;
-
-/// The tries from a known cell after which [`Learner::BeliefShared`] trusts an action
-/// (`[belief] shared_moves`).
-const SHARED_MOVES: u32 = 48;
-
-/// The open-loop plans a step of [`Learner::BeliefShared`] (`[belief] blind_plans`):
-/// more than [`Learner::BeliefBlind`]'s, as its model is good enough for long plans to
-/// pay (on the 8x8 slippery lake, 5 runs: 0.365 / 0.333 at 16, 0.412 / 0.422 at 64).
-const SHARED_BLIND_PLANS: usize = 64;
 
 impl Learner {
     /// Every learner `--learners` takes: the committed table's, in its order, then those
@@ -261,12 +251,12 @@ impl Learner {
         Learner::FullSensing,
         Learner::Belief,
         Learner::CsQlWeighed,
+        Learner::BeliefApart,
         Learner::BeliefBlind,
-        Learner::BeliefShared,
     ];
 
     /// The learners of the committed table (the default of `--learners`).
-    const TABLE: &[Learner] = Learner::NAMED.as_slice().split_at(7).0;
+    const TABLE: &[Learner] = Learner::NAMED.as_slice().split_at(8).0;
 
     fn name(self) -> &'static str {
         match self {
@@ -277,8 +267,8 @@ impl Learner {
             Learner::FullSensing => "full-sensing",
             Learner::Belief => "belief",
             Learner::CsQlWeighed => "cs-ql-weighed",
+            Learner::BeliefApart => "belief-apart",
             Learner::BeliefBlind => "belief-blind",
-            Learner::BeliefShared => "belief-shared",
         }
     }
 
@@ -297,19 +287,26 @@ impl Learner {
             Learner::CsQl => cs_ql(play, (LearnerKind::CsQl, PredictSensing::Off)),
             Learner::FullSensing => cs_ql(play, (LearnerKind::FullSensing, PredictSensing::Off)),
             Learner::CsQlWeighed => cs_ql(play, (LearnerKind::CsQl, PredictSensing::Weighed)),
-            Learner::Belief | Learner::BeliefBlind | Learner::BeliefShared => {
-                let params = csql::BeliefParams {
-                    blind_plans: match self {
-                        Learner::Belief => 0,
-                        Learner::BeliefShared => SHARED_BLIND_PLANS,
-                        _ => BLIND_PLANS,
-                    },
-                    shared_moves: if self == Learner::BeliefShared {
-                        SHARED_MOVES
-                    } else {
-                        0
-                    },
+            Learner::Belief | Learner::BeliefApart | Learner::BeliefBlind => {
+                let apart = |blind_plans| csql::BeliefParams {
+                    blind_plans: Some(blind_plans),
+                    shared_moves: Some(0),
                     ..csql::BeliefParams::default()
+                };
+                let params = match self {
+                    Learner::Belief => {
+                        let sensed = csql::WorldExtras {
+                            sensing: Some(SensingModel::Factors),
+                            ..csql::WorldExtras::default()
+                        };
+                        csql::WorldDefaults::of(play.world).belief_for(
+                            csql::BeliefParams::default(),
+                            &sensed,
+                            play.max_moves,
+                        )
+                    }
+                    Learner::BeliefApart => apart(0),
+                    _ => apart(BLIND_PLANS),
                 };
                 // Each coordinate costs 1: its price in reward units is the price.
                 let mut rng = Xoshiro256PlusPlus::seed_from_u64(play.seed);
@@ -705,7 +702,7 @@ mod tests {
                 "--learners",
                 |a| &mut a.learners,
                 "amrlq",
-                "amrl-q, amrl-q-greedy-after-first, always-measuring, cs-ql, full-sensing, belief, cs-ql-weighed, belief-blind, belief-shared",
+                "amrl-q, amrl-q-greedy-after-first, always-measuring, cs-ql, full-sensing, belief, cs-ql-weighed, belief-apart, belief-blind",
             ),
             ("--prices", |a| &mut a.prices, "0.050", "0.025, 0.05"),
             (

@@ -30,8 +30,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         prior: env("PRIOR", 3.0),
         max_beliefs: env("MAXB", 5000.0) as usize,
         optimism: env("OPT", 1.0),
-        blind_plans: env("BLIND", 0.0) as usize,
-        shared_moves: env("SHARED", 0.0) as u32,
+        blind_plans: Some(env("BLIND", 0.0) as usize),
+        shared_moves: Some(env("SHARED", 0.0) as u32),
         ..Default::default()
     };
     for (world, episodes, horizon) in [("frozenlake4x4", 1000, 100), ("frozenlake8x8", 2000, 200)] {

@@ -162,8 +162,8 @@ fn bad_settings_are_refused_naming_them() {
     }
 }
 
-/// The learner `belief` of a run's settings: `[belief]` read, echoed and read back, its
-/// price `[costly] price`, played by `costed_report` exactly as `belief_planning`
+/// The learner `belief` of a run's settings: `[belief]` read, what it leaves to the lake
+/// filled with the lake's own, echoed and read back, its price `[costly] price`, played by `costed_report` exactly as `belief_planning`
 /// plays it, and refused by `csql::run`.
 #[test]
 fn the_learner_belief_of_a_runs_settings() {
@@ -182,6 +182,9 @@ fn the_learner_belief_of_a_runs_settings() {
         BeliefParams {
             trust: 2,
             whole_state: true,
+            // The lake's own, which [belief] does not give.
+            shared_moves: Some(48),
+            blind_plans: Some(64),
             ..BeliefParams::default()
         }
     );

@@ -183,7 +183,7 @@ fn on_a_corridor_the_bound_on_uncertain_steps_keeps_it_measuring() {
 fn the_choice_to_stop_measuring_ends_the_corridors_measurements() {
     let w = corridor();
     let blind = BeliefParams {
-        blind_plans: 16,
+        blind_plans: Some(16),
         ..BeliefParams::default()
     };
     let open = mdp::open_loop(
@@ -198,7 +198,7 @@ fn the_choice_to_stop_measuring_ends_the_corridors_measurements() {
     assert!(last.sensing_per_episode <= 0.05, "{last:?}");
     assert!(last.mean_all >= open.value - 0.03, "{last:?}");
     let off = BeliefParams {
-        blind_plans: 0,
+        blind_plans: Some(0),
         ..blind
     };
     assert_eq!(
@@ -214,7 +214,7 @@ fn the_choice_to_stop_measuring_ends_the_corridors_measurements() {
 fn a_move_cap_beyond_what_open_loop_plans_hold_is_refused_by_name() {
     let w = corridor();
     let blind = BeliefParams {
-        blind_plans: 16,
+        blind_plans: Some(16),
         ..BeliefParams::default()
     };
     for cap in [u32::MAX, 100_000_000, mdp::MAX_BLIND_HORIZON + 1] {

@@ -47,8 +47,8 @@ fn run(world: &FiniteWorld, params: &BeliefParams, seed: u64) -> (CostlySummary,
 fn shared_moves_learn_the_slip_and_stop_measuring() {
     let lake = slippery_lake();
     let shared = BeliefParams {
-        shared_moves: 48,
-        blind_plans: 16,
+        shared_moves: Some(48),
+        blind_plans: Some(16),
         ..BeliefParams::default()
     };
     let mut total = 0.0;
@@ -70,7 +70,7 @@ fn a_world_whose_states_are_not_a_grid_is_refused_by_the_key() {
         "readings": [[0, 0], [0, 1], [1, 0]]}"#;
     let world = FiniteWorld::from_json(json).unwrap();
     let params = BeliefParams {
-        shared_moves: 8,
+        shared_moves: Some(8),
         ..BeliefParams::default()
     };
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);

@@ -213,6 +213,13 @@ struct RunDefaults {
     /// CS-QL's `[extensions] detector` (with beta 1; the paper's with another beta).
     detector: &'static str,
     max_trials: u32,
+    /// Sensing by belief's `[belief] shared_moves` and `blind_plans` where the world, as
+    /// sensed with these `[world]` settings, asks for them (absent otherwise: each pair
+    /// learned apart, no open-loop plans).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    belief_shared_moves: Option<u32>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    belief_blind_plans: Option<usize>,
     /// `world` (the built-in world's own) or `paper`.
     from: &'static str,
     /// Why the world asks for them (absent for the paper's).
@@ -225,7 +232,11 @@ impl RunDefaults {
     fn of(name: &str, extras: &csql::WorldExtras) -> RunDefaults {
         let d = csql::WorldDefaults::of(name);
         let own = d.world.filter(|w| !w.is_paper());
+        // Any move cap the open-loop plans hold (a run's larger cap turns them off).
+        let belief = d.belief_for(csql::BeliefParams::default(), extras, 1);
         RunDefaults {
+            belief_shared_moves: belief.shared_moves,
+            belief_blind_plans: belief.blind_plans,
             temperature: d.temperature.get(),
             detector: d.detector_for(1.0, extras).name(),
             max_trials: d.max_trials.get(),
@@ -349,6 +360,12 @@ impl Summary {
                 _ => "the paper's defaults",
             }
         )?;
+        if let (Some(shared), Some(blind)) = (d.belief_shared_moves, d.belief_blind_plans) {
+            writeln!(
+                out,
+                "            sensing by belief: [belief] shared_moves = {shared}, blind_plans = {blind}"
+            )?;
+        }
         if let Some(why) = d.why {
             writeln!(out, "            because {why}")?;
         }

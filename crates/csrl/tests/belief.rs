@@ -27,8 +27,9 @@ fn lake_refused(extra: &[&str]) -> String {
 }
 
 /// The report's returns are `belief_planning`'s for the same seed and settings, episode
-/// for episode, under both rules, with the defaults, with `[belief]` tuned and with shared
-/// moves.
+/// for episode, under both rules, with the lake's defaults (shared moves, 48 tries, and 64
+/// open-loop plans a step), with `[belief]` tuned and each pair apart, and with shared
+/// moves and fewer plans.
 #[test]
 fn belief_in_csrl_run_is_csql_belief_planning() {
     let dir = tempfile::tempdir().unwrap();
@@ -40,18 +41,23 @@ fn belief_in_csrl_run_is_csql_belief_planning() {
         whole_state: false,
         max_beliefs: 3000,
         move_cost: 1e-5,
-        blind_plans: 0,
-        shared_moves: 0,
+        blind_plans: Some(0),
+        shared_moves: Some(0),
+    };
+    let lakes_own = csql::BeliefParams {
+        shared_moves: Some(48),
+        blind_plans: Some(64),
+        ..csql::BeliefParams::default()
     };
     let shared = csql::BeliefParams {
-        shared_moves: 48,
-        blind_plans: 16,
+        shared_moves: Some(48),
+        blind_plans: Some(16),
         ..csql::BeliefParams::default()
     };
     let shared_table = "[belief]\nshared_moves = 48\nblind_plans = 16";
-    let tuned_table = "[belief]\nmax_uncertain = 5\ntrust = 3\nprior = 2.0\noptimism = 0.8\nmax_beliefs = 3000\nmove_cost = 1e-5";
+    let tuned_table = "[belief]\nmax_uncertain = 5\ntrust = 3\nprior = 2.0\noptimism = 0.8\nmax_beliefs = 3000\nmove_cost = 1e-5\nshared_moves = 0\nblind_plans = 0";
     for (name, table, params) in [
-        ("default", "", csql::BeliefParams::default()),
+        ("default", "", lakes_own),
         ("tuned", tuned_table, tuned),
         ("shared", shared_table, shared),
     ] {
@@ -107,8 +113,9 @@ fn belief_in_csrl_run_is_csql_belief_planning() {
 }
 
 /// The report's fields: the world, the learner, the seed, the prices, every episode's
-/// costed return with their summary, and the settings echoed (`[belief]` only where it
-/// departs from its defaults; the price is `[costly] price`, not a key of `[belief]`).
+/// costed return with their summary, and the settings echoed (`[belief]` where it departs
+/// from the library's defaults, the lake's own shared moves and open-loop plans included;
+/// the price is `[costly] price`, not a key of `[belief]`).
 #[test]
 fn the_report_has_the_fields_of_a_run_on_costed_episodes() {
     let dir = tempfile::tempdir().unwrap();
@@ -173,10 +180,11 @@ fn the_report_has_the_fields_of_a_run_on_costed_episodes() {
     assert_eq!(s["costly"]["price"], 0.5);
     assert_eq!(
         s["belief"],
-        serde_json::json!({"max_uncertain": 7, "trust": 2, "prior": 3.0, "optimism": 1.0, "whole_state": false, "max_beliefs": 5000, "move_cost": 1e-6})
+        serde_json::json!({"max_uncertain": 7, "trust": 2, "prior": 3.0, "optimism": 1.0, "whole_state": false, "max_beliefs": 5000, "move_cost": 1e-6, "blind_plans": 64, "shared_moves": 48})
     );
     assert!(s.get("strategy").is_none() && s.get("amrl_q").is_none());
-    // At its defaults, the table is left out.
+    // With no [belief], the lake's own shared moves and open-loop plans are echoed, so
+    // that the settings build again to the same.
     let plain = config(dir.path(), "plain", "");
     let v = json(&[
         "run",
@@ -192,7 +200,11 @@ fn the_report_has_the_fields_of_a_run_on_costed_episodes() {
         plain.to_str().unwrap(),
         "--json",
     ]);
-    assert!(v["settings"].get("belief").is_none(), "{v}");
+    assert_eq!(
+        v["settings"]["belief"],
+        serde_json::json!({"max_uncertain": 7, "trust": 4, "prior": 3.0, "optimism": 1.0, "whole_state": false, "max_beliefs": 5000, "move_cost": 1e-6, "blind_plans": 64, "shared_moves": 48}),
+        "{v}"
+    );
     // The text report.
     let text = ok(&[
         "run",

@@ -298,34 +298,34 @@ mod tests {
 
     #[test]
     fn a_learner_the_table_lacks_is_added_with_its_own_runs() {
-        let mut shared = def(3, true);
-        shared.learners = vec![Learner::BeliefShared];
+        let mut blind = def(3, true);
+        blind.learners = vec![Learner::BeliefBlind];
         let added: Vec<JobResult> = (1..=3)
-            .map(|seed| run(Dynamics::Slippery, Learner::BeliefShared, seed, 0.05))
+            .map(|seed| run(Dynamics::Slippery, Learner::BeliefBlind, seed, 0.05))
             .collect();
-        let joined = join(&def(5, false), table(), (&shared, added), Path::new("m")).unwrap();
+        let joined = join(&def(5, false), table(), (&blind, added), Path::new("m")).unwrap();
         let count = |l: Learner| joined.iter().filter(|r| r.learner == l).count();
         assert_eq!(
-            (count(Learner::Belief), count(Learner::BeliefShared)),
+            (count(Learner::Belief), count(Learner::BeliefBlind)),
             (10, 3)
         );
         // Then longer runs of the added rows replace them.
-        let mut longer_shared = def(20, true);
-        longer_shared.learners = vec![Learner::BeliefShared];
+        let mut longer_blind = def(20, true);
+        longer_blind.learners = vec![Learner::BeliefBlind];
         let more: Vec<JobResult> = (1..=20)
-            .map(|seed| run(Dynamics::Slippery, Learner::BeliefShared, seed, 0.05))
+            .map(|seed| run(Dynamics::Slippery, Learner::BeliefBlind, seed, 0.05))
             .collect();
         let joined = join(
             &def(5, false),
             joined,
-            (&longer_shared, more),
+            (&longer_blind, more),
             Path::new("m"),
         )
         .unwrap();
         assert_eq!(
             joined
                 .iter()
-                .filter(|r| r.learner == Learner::BeliefShared)
+                .filter(|r| r.learner == Learner::BeliefBlind)
                 .count(),
             20
         );

@@ -216,7 +216,7 @@ impl Learner {
             Learner::Belief => RGBColor(44, 160, 44),
             Learner::CsQlWeighed => RGBColor(148, 103, 189),
             Learner::BeliefBlind => RGBColor(140, 86, 75),
-            Learner::BeliefShared => RGBColor(23, 190, 207),
+            Learner::BeliefApart => RGBColor(23, 190, 207),
         }
     }
 }

@@ -183,7 +183,7 @@ fn belief_planning_bounded<W: World + ?Sized, R: Rng + ?Sized>(
             readings.push(world.read(StateId(s as u32), Feature(f as u32)).0);
         }
     }
-    let moves = if params.shared_moves > 0 {
+    let moves = if params.shared_moves() > 0 {
         let terminal: Vec<bool> = (0..n)
             .map(|s| world.is_terminal(StateId(s as u32)))
             .collect();
@@ -192,7 +192,7 @@ fn belief_planning_bounded<W: World + ?Sized, R: Rng + ?Sized>(
             nf,
             &terminal,
             na,
-            params.shared_moves,
+            params.shared_moves(),
         )?)
     } else {
         None
@@ -242,13 +242,13 @@ fn check(p: &BeliefParams, price: f64, max_moves: u32) -> Result<(), ReferenceEr
     if max_moves == 0 {
         return Err(bad("max_moves", "0; an episode needs a move".into()));
     }
-    if p.blind_plans > 0 && max_moves > mdp::MAX_BLIND_HORIZON {
+    if p.blind_plans() > 0 && max_moves > mdp::MAX_BLIND_HORIZON {
         return Err(bad(
             "max_moves",
             format!(
                 "{max_moves} with [belief] blind_plans = {}: the open-loop plans keep one \
                  level per move, so at most {} moves (mdp::MAX_BLIND_HORIZON)",
-                p.blind_plans,
+                p.blind_plans(),
                 mdp::MAX_BLIND_HORIZON
             ),
         ));
@@ -386,7 +386,7 @@ impl<W: World + ?Sized> Planner<'_, W> {
                 },
                 move_cost: self.params.move_cost,
                 tolerance: PLAN_TOLERANCE,
-                blind_plans: self.params.blind_plans,
+                blind_plans: self.params.blind_plans(),
             };
             match BeliefPlan::build_unless(&model, &options, &roots, &mut || !observer.keep_going())
             {

@@ -157,18 +157,22 @@ pub struct BeliefParams {
     /// With more than 0, the plan may stop measuring for the rest of the episode at any
     /// belief where the agent is to move, and follow the best open-loop plan over its
     /// model from that belief, at most this many plans kept a step
-    /// ([`mdp::PlanOptions::blind_plans`]); 0 (the default): no such choice, and the key
-    /// is left out of the settings' echo.
-    #[serde(skip_serializing_if = "is_zero")]
-    pub blind_plans: usize,
+    /// ([`mdp::PlanOptions::blind_plans`]); 0: no such choice. `None` (the default):
+    /// the world's own where a run's settings are built ([`crate::WorldDefaults`]: 64
+    /// on FrozenLake sensed by row and column), 0 otherwise, and for
+    /// [`crate::belief_planning`]; left out of the settings' echo.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub blind_plans: Option<usize>,
     /// With more than 0, what each action does is learned over every state at once (a
     /// shift of the readings, the same everywhere; specification 6.13) in place of each
     /// pair apart, an action trusted after this many tries from a known state; the
     /// world's states must then be every combination of their readings (a grid, as the
-    /// lakes' row and column), else the run is refused. 0 (the default): each pair learned
-    /// apart, and the key is left out of the settings' echo.
-    #[serde(skip_serializing_if = "is_zero_u32")]
-    pub shared_moves: u32,
+    /// lakes' row and column), else the run is refused. 0: each pair learned apart.
+    /// `None` (the default): the world's own where a run's settings are built (48 on
+    /// FrozenLake sensed by row and column), 0 otherwise, and for
+    /// [`crate::belief_planning`]; left out of the settings' echo.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shared_moves: Option<u32>,
 }
 
 impl Default for BeliefParams {
@@ -181,20 +185,10 @@ impl Default for BeliefParams {
             whole_state: false,
             max_beliefs: 5_000,
             move_cost: 1e-6,
-            blind_plans: 0,
-            shared_moves: 0,
+            blind_plans: None,
+            shared_moves: None,
         }
     }
-}
-
-/// Whether `[belief] blind_plans` is off, so that the echo of the settings is as before.
-fn is_zero(n: &usize) -> bool {
-    *n == 0
-}
-
-/// Whether `[belief] shared_moves` is off, so that the echo of the settings is as before.
-fn is_zero_u32(n: &u32) -> bool {
-    *n == 0
 }
 
 /// The largest `max_uncertain` a run's settings take ([`BeliefParams::validate`]): a plan
@@ -212,7 +206,7 @@ pub const MAX_BELIEF_UNCERTAIN: u32 = 64;
 /// with the square of their number.
 ///
 /// ```
-/// let p = csql::BeliefParams { blind_plans: csql::MAX_BLIND_PLANS + 1, ..Default::default() };
+/// let p = csql::BeliefParams { blind_plans: Some(csql::MAX_BLIND_PLANS + 1), ..Default::default() };
 /// assert!(p.validate().unwrap_err().to_string().contains("belief.blind_plans = 4097"));
 /// ```
 pub const MAX_BLIND_PLANS: usize = 4096;
@@ -228,6 +222,29 @@ impl BeliefParams {
     /// ```
     pub fn is_default(&self) -> bool {
         *self == BeliefParams::default()
+    }
+
+    /// The open-loop plans a step: [`BeliefParams::blind_plans`], 0 where not given.
+    ///
+    /// ```
+    /// let p = csql::BeliefParams::default();
+    /// assert_eq!(p.blind_plans(), 0);
+    /// assert_eq!(csql::BeliefParams { blind_plans: Some(64), ..p }.blind_plans(), 64);
+    /// ```
+    pub fn blind_plans(&self) -> usize {
+        self.blind_plans.unwrap_or(0)
+    }
+
+    /// The tries before a shared move is trusted: [`BeliefParams::shared_moves`], 0 (each
+    /// pair apart) where not given.
+    ///
+    /// ```
+    /// let p = csql::BeliefParams::default();
+    /// assert_eq!(p.shared_moves(), 0);
+    /// assert_eq!(csql::BeliefParams { shared_moves: Some(48), ..p }.shared_moves(), 48);
+    /// ```
+    pub fn shared_moves(&self) -> u32 {
+        self.shared_moves.unwrap_or(0)
     }
 
     /// Check the settings as a run's settings take them, each refused with its key in
@@ -281,10 +298,10 @@ impl BeliefParams {
                 "a finite price of at least 0 reward units",
             );
         }
-        if self.blind_plans > MAX_BLIND_PLANS {
+        if self.blind_plans() > MAX_BLIND_PLANS {
             return bad(
                 "blind_plans",
-                self.blind_plans.to_string(),
+                self.blind_plans().to_string(),
                 "at most 4096 open-loop plans a step (csql::MAX_BLIND_PLANS)",
             );
         }

@@ -9,6 +9,7 @@
 
 use qlearn::Temperature;
 
+use crate::settings::costed::BeliefParams;
 use crate::settings::extensions::{DetectorKind, WorldExtras};
 use crate::settings::learner::StrategyKind;
 use crate::settings::values::{MapSource, RunSettings, TrialCap};
@@ -124,6 +125,48 @@ impl WorldDefaults {
             DetectorKind::default()
         } else {
             self.detector
+        }
+    }
+
+    /// Sensing by belief's settings, with what `params` leaves to the world filled: the
+    /// world's shared moves and open-loop plans ([`mdp::WorldSettings::belief_shared_moves`],
+    /// [`mdp::WorldSettings::belief_blind_plans`]) where it asks for them, is sensed by its
+    /// own state variables (`[world] sensing = "factors"`) read without noise, and an
+    /// episode of `max_moves` moves fits the open-loop plans ([`mdp::MAX_BLIND_HORIZON`]).
+    /// A key `params` gives (0 included) stays as given; the others stay unset, which
+    /// is off.
+    ///
+    /// ```
+    /// use csql::{BeliefParams, WorldDefaults, WorldExtras};
+    /// let factors = WorldExtras { sensing: Some(mdp::SensingModel::Factors), ..Default::default() };
+    /// let lake = WorldDefaults::of("frozenlake8x8").belief_for(BeliefParams::default(), &factors, 200);
+    /// assert_eq!((lake.shared_moves, lake.blind_plans), (Some(48), Some(64)));
+    /// // A key given stays; the lake sensed cell by cell around the agent is no grid.
+    /// let apart = BeliefParams { shared_moves: Some(0), ..Default::default() };
+    /// let given = WorldDefaults::of("frozenlake8x8").belief_for(apart, &factors, 200);
+    /// assert_eq!((given.shared_moves, given.blind_plans), (Some(0), Some(64)));
+    /// let local = WorldDefaults::of("frozenlake8x8").belief_for(BeliefParams::default(), &WorldExtras::default(), 200);
+    /// assert!(local.is_default());
+    /// assert!(WorldDefaults::of("taxi").belief_for(BeliefParams::default(), &factors, 200).is_default());
+    /// ```
+    pub fn belief_for(
+        &self,
+        params: BeliefParams,
+        world: &WorldExtras,
+        max_moves: u32,
+    ) -> BeliefParams {
+        let applies = world.sensing == Some(mdp::SensingModel::Factors)
+            && world.sensor_noise().is_zero()
+            && max_moves <= mdp::MAX_BLIND_HORIZON;
+        let asked = self.world.filter(|_| applies);
+        BeliefParams {
+            shared_moves: params
+                .shared_moves
+                .or(asked.and_then(|w| w.belief_shared_moves)),
+            blind_plans: params
+                .blind_plans
+                .or(asked.and_then(|w| w.belief_blind_plans)),
+            ..params
         }
     }
 }

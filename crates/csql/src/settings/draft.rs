@@ -967,7 +967,17 @@ impl SettingsDraft {
             LearnerKind::AmrlQ => LearnerSettings::AmrlQ(self.amrl_q.unwrap_or_default()),
             // Its features are priced at `[costly] price` (which the learner needs:
             // refused without it by `validate`).
-            LearnerKind::Belief => LearnerSettings::Belief(self.belief.unwrap_or_default()),
+            // What `[belief]` leaves to the world is the world's (a lake's shared moves).
+            LearnerKind::Belief => LearnerSettings::Belief(
+                self.map
+                    .as_ref()
+                    .map_or_else(WorldDefaults::paper, WorldDefaults::of_source)
+                    .belief_for(
+                        self.belief.unwrap_or_default(),
+                        &world,
+                        self.max_moves.unwrap_or(paper.max_moves).get(),
+                    ),
+            ),
         };
         let settings = RunSettings {
             map: self.map.clone().unwrap_or(paper.map),
