@@ -307,13 +307,14 @@ impl TestCostTree {
     /// ACT's samples); `samples` ACT's trees sampled per branch; `selection_prices` the
     /// price selection functions see ("path", "listed" or "listed-once"); `icet_pruning` how ICET
     /// prunes ("errors" or "costs") and `search_objects` the most objects its search
-    /// uses; `folds` CVT's cross-validation (`seed` also its folds); `max_test_cost` and
+    /// uses; `folds` CVT's cross-validation (`seed` also its folds) and `cvt_samples` its
+    /// lookahead grower's samples per branch (0: no lookahead grower); `max_test_cost` and
     /// `max_tests` a budget per object (`Budget`), within which the greedy learners grow
     /// (`None`: no limit); `voi_lookahead`, `voi_confidence` and `voi_m` VOI's settings
     /// (`VoiParams::from_options`; `None`: the library's). The GIL is released while it grows, and Ctrl-C stops it
     /// (`KeyboardInterrupt`, checked every 50 ms).
     #[staticmethod]
-    #[pyo3(signature = (learner, names, columns, classes, class_names, prices, group_names, misclassification, confidence=0.25, w=1.0, seed=0, population=50, generations=20, samples=5, selection_prices="path", icet_pruning="errors", search_objects=400, folds=5, max_test_cost=None, max_tests=None, threads=1, voi_lookahead=None, voi_confidence=None, voi_m=None))]
+    #[pyo3(signature = (learner, names, columns, classes, class_names, prices, group_names, misclassification, confidence=0.25, w=1.0, seed=0, population=50, generations=20, samples=5, selection_prices="path", icet_pruning="errors", search_objects=400, folds=5, max_test_cost=None, max_tests=None, threads=1, voi_lookahead=None, voi_confidence=None, voi_m=None, cvt_samples=5))]
     #[expect(
         clippy::too_many_arguments,
         reason = "one argument per setting, all keywords from Python"
@@ -344,6 +345,7 @@ impl TestCostTree {
         voi_lookahead: Option<usize>,
         voi_confidence: Option<f64>,
         voi_m: Option<f64>,
+        cvt_samples: usize,
     ) -> PyResult<TestCostTree> {
         let budget = budget(max_test_cost, max_tests)?;
         let method = Method::parse(learner).map_err(|e| data_error(&e))?;
@@ -364,6 +366,7 @@ impl TestCostTree {
         let voi = VoiParams::from_options(voi_lookahead, voi_confidence, voi_m)
             .map_err(|e| data_error(&e))?;
         let cvt = CvtParams::with_folds(folds)
+            .and_then(|p| p.with_samples(cvt_samples))
             .map_err(|e| data_error(&e))?
             .with_threads(threads);
         let prices = TestPrices::new(

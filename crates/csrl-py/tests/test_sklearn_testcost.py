@@ -447,6 +447,23 @@ def test_cvt_is_reproducible_from_its_seed_and_says_what_it_chose():
         cs.CvtClassifier(cvt_folds=1).fit(X, y)
 
 
+def test_cvt_samples_set_its_lookahead_and_zero_leaves_it_out():
+    X, y = load_iris(return_X_y=True)
+    params = dict(feature_costs=[1.0, 5.0, 20.0, 40.0], misclassification_cost=200.0, seed=7)
+    full = cs.CvtClassifier(**params).fit(X, y)
+    assert full._model.nodes() == cs.CvtClassifier(cvt_samples=5, **params).fit(X, y)._model.nodes()
+    greedy = cs.CvtClassifier(cvt_samples=0, **params).fit(X, y)
+    assert greedy.cvt_choice_["grower"] != "act"
+    # The greedy growers' trees and folds do not depend on the lookahead's samples.
+    assert greedy.cvt_choice_["held_out_cost"] >= full.cvt_choice_["held_out_cost"] - 1e-9
+    general = cs.TestCostTreeClassifier(learner="cvt", cvt_samples=0, **params).fit(X, y)
+    assert general._model.nodes() == greedy._model.nodes()
+    with pytest.raises(ValueError, match="cvt_samples must be at most 1000"):
+        cs.CvtClassifier(cvt_samples=1001).fit(X, y)
+    with pytest.raises(ValueError, match="cvt_samples must be an integer at least 0"):
+        cs.CvtClassifier(cvt_samples=-1).fit(X, y)
+
+
 def test_cvt_on_several_threads_grows_the_same_tree():
     X, y = load_iris(return_X_y=True)
     params = dict(feature_costs=[1.0, 5.0, 20.0, 40.0], misclassification_cost=200.0, seed=3)

@@ -249,6 +249,7 @@ fn check_flags(args: &ClassifyArgs) -> Result<()> {
             ("--voi-confidence", args.voi_confidence.is_some()),
             ("--voi-m", args.voi_m.is_some()),
             ("--cvt-threads", args.cvt_threads.is_some()),
+            ("--cvt-samples", args.cvt_samples.is_some()),
             ("--max-test-cost", args.max_test_cost.is_some()),
             ("--max-tests", args.max_tests.is_some()),
             ("--max-classes", args.max_classes.is_some()),

@@ -198,6 +198,11 @@ pub struct ClassifyArgs {
     /// so the tree and every output are the same on any number of threads.
     #[arg(long, value_name = "N")]
     pub(crate) cvt_threads: Option<usize>,
+    /// CVT only: the trees its lookahead grower samples under each branch (default 5,
+    /// ACT's): fewer, a faster CVT (its time is mostly the lookahead's) and other trees; 0
+    /// leaves the lookahead out, CVT choosing among its greedy growers only.
+    #[arg(long, value_name = "R")]
+    pub(crate) cvt_samples: Option<usize>,
     /// ACT and CVT only: the most features ACT's sampled lookahead (ACT, and CVT's
     /// lookahead grower) is run on (1000 by default): its time grows with the square of
     /// the features, and a wider table is refused unless this raises the limit.

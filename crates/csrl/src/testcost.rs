@@ -511,6 +511,16 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
         )?),
         None => cvt,
     };
+    let cvt = match args.cvt_samples {
+        Some(_) => learner_flag(
+            args.cvt_samples,
+            "--cvt-samples",
+            Method::Cvt,
+            method,
+            |r| cvt.with_samples(r),
+        )?,
+        None => cvt,
+    };
     let budget = read_budget(args)?;
     if args.max_lookahead_features.is_some() && !matches!(method, Method::Act | Method::Cvt) {
         anyhow::bail!(
@@ -648,6 +658,7 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
             "icet_pruning": (method == cslearn::testcost::Method::Icet).then(|| params.icet.pruning.name()),
             "act_samples": (method == cslearn::testcost::Method::Act).then_some(params.act.samples),
             "cvt_folds": (method == cslearn::testcost::Method::Cvt).then_some(params.cvt.folds),
+            "cvt_samples": (method == cslearn::testcost::Method::Cvt).then_some(params.cvt.samples),
             "voi_lookahead": (method == cslearn::testcost::Method::Voi).then_some(params.voi.lookahead_for(frame.feature_count())),
             "voi_leaf": (method == cslearn::testcost::Method::Voi).then_some(params.voi.leaf),
             "all_tests_cost": prices.total(),

@@ -288,6 +288,40 @@ fn cvt_reports_what_its_cross_validation_chose_and_its_folds_are_a_cvt_setting()
     );
 }
 
+/// `--cvt-samples`: the lookahead grower's samples, reported; 0 leaves it out, so that
+/// the choice is a greedy grower's, measured at a held-out cost no lower than with the
+/// lookahead among the growers (the greedy growers' trees and folds are the same).
+#[test]
+fn cvt_samples_set_its_lookahead_and_zero_leaves_it_out() {
+    let mut held_out = Vec::new();
+    for samples in ["5", "0"] {
+        let v = heart_json(
+            "cvt",
+            &["--holdout", "0.3", "--mc", "1000", "--cvt-samples", samples],
+        );
+        assert_eq!(v["cvt_samples"].to_string(), samples);
+        let choice = &v["splits"][0]["cvt"];
+        if samples == "0" {
+            assert_ne!(choice["grower"], "act", "{choice}");
+        }
+        held_out.push(choice["held_out_cost"].as_f64().unwrap());
+    }
+    assert!(held_out[1] >= held_out[0] - 1e-9, "{held_out:?}");
+    assert_eq!(heart_json("cvt", &["--holdout", "0.3"])["cvt_samples"], 5);
+    refused(
+        &on_heart("eg2", &["--cvt-samples", "1"]),
+        &["--cvt-samples", "--learner cvt only"],
+    );
+    refused(
+        &on_heart("cvt", &["--cvt-samples", "1001"]),
+        &[
+            "--cvt-samples",
+            "1001 samples for CVT's lookahead",
+            "at most 1000",
+        ],
+    );
+}
+
 /// CVT on two threads, or on every core, writes what it writes on one, byte for byte.
 #[test]
 fn cvt_on_several_threads_writes_the_same_output() {

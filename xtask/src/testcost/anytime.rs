@@ -80,6 +80,7 @@ fn testcost_args(args: &AnytimeArgs, samples: usize, out: PathBuf) -> TestcostAr
         icet_search_objects: 1000,
         cvt_folds: 5,
         act_samples: samples,
+        cvt_samples: 5,
         voi_lookahead: None,
         voi_confidence: None,
         voi_m: None,

@@ -759,6 +759,7 @@ pub fn budget(args: &BudgetArgs) -> Result<()> {
         icet_search_objects: 1000,
         cvt_folds: 5,
         act_samples: 5,
+        cvt_samples: 5,
         voi_lookahead: None,
         voi_confidence: None,
         voi_m: None,

@@ -49,10 +49,31 @@ pub struct CvtParams {
     /// own seed, so the tree chosen does not depend on the number of threads.
     #[serde(default = "one_thread")]
     pub threads: usize,
+    /// The trees the lookahead grower samples under each branch of each candidate test
+    /// (5 by default, ACT's own; at most [`ActParams::MAX_SAMPLES`]): fewer make CVT
+    /// faster, as its time is mostly the lookahead's; 0 leaves the lookahead out of the
+    /// growers, so that CVT chooses among the greedy growers and their cuts only. Other
+    /// than 5, other trees.
+    #[serde(
+        default = "lookahead_samples",
+        skip_serializing_if = "is_lookahead_samples"
+    )]
+    pub samples: usize,
 }
 
 fn one_thread() -> usize {
     1
+}
+
+/// The lookahead's samples by default: ACT's.
+fn lookahead_samples() -> usize {
+    ActParams::default().samples
+}
+
+/// Whether `samples` is the default, left out of a model file so that files written
+/// before the setting existed are written the same.
+fn is_lookahead_samples(samples: &usize) -> bool {
+    *samples == lookahead_samples()
 }
 
 impl CvtParams {
@@ -87,6 +108,45 @@ impl CvtParams {
         CvtParams { threads, ..self }
     }
 
+    /// These settings with the lookahead grower sampling `samples` trees under each
+    /// branch (0: no lookahead grower), refused above [`ActParams::MAX_SAMPLES`].
+    ///
+    /// ```
+    /// use cslearn::testcost::CvtParams;
+    /// assert_eq!(CvtParams::default().samples, 5);
+    /// assert_eq!(CvtParams::default().with_samples(1).unwrap().samples, 1);
+    /// let e = CvtParams::default().with_samples(100_000).unwrap_err().to_string();
+    /// assert!(e.contains("100000 samples for CVT's lookahead"), "{e}");
+    /// ```
+    pub fn with_samples(self, samples: usize) -> Result<CvtParams, Error> {
+        if samples > ActParams::MAX_SAMPLES {
+            return Err(Error::Invalid {
+                what: format!("{samples} samples for CVT's lookahead"),
+                reason: format!(
+                    "at most {} trees sampled under each branch",
+                    ActParams::MAX_SAMPLES
+                ),
+            });
+        }
+        Ok(CvtParams { samples, ..self })
+    }
+
+    /// The growers of a fit: [`GROWERS`], the lookahead sampling [`CvtParams::samples`]
+    /// trees under each branch, or left out where that is 0 (it is the last, so a
+    /// grower's index in [`GROWERS`] stays its index here).
+    fn growers(&self) -> Vec<Grower> {
+        GROWERS
+            .iter()
+            .filter_map(|&(_, grower)| match grower {
+                Grower::Lookahead { .. } if self.samples == 0 => None,
+                Grower::Lookahead { .. } => Some(Grower::Lookahead {
+                    samples: self.samples,
+                }),
+                greedy => Some(greedy),
+            })
+            .collect()
+    }
+
     /// The threads a fit uses: `threads`, every core for 0, never more than `jobs`.
     fn threads_for(&self, jobs: usize) -> usize {
         let wanted = match self.threads {
@@ -102,6 +162,7 @@ impl Default for CvtParams {
         CvtParams {
             folds: 5,
             threads: 1,
+            samples: lookahead_samples(),
         }
     }
 }
@@ -187,30 +248,30 @@ impl Grower {
 /// The split tries of one set of objects, one per kind of statistics.
 type Tries<'a> = Vec<(Criterion, Splits<'a>)>;
 
-/// Every grower's tree on `rows`, in the order of [`GROWERS`], growers of one kind
+/// The tree of each of `growers` on `rows`, in their order, growers of one kind
 /// sharing a split trie; the lookahead's samples are drawn from `seed`. The tries are
 /// `tries` (those of another call on the same objects, with their statistics), and stay
 /// there but for DTMC's, whose statistics are priced at this call's `mc`. A trie made here
 /// watches `stop`.
 #[expect(
     clippy::too_many_arguments,
-    reason = "the data, prices, costs, selection and seed, the tries and the stop"
+    reason = "the data, prices, costs, selection and seed, the growers, the tries and the stop"
 )]
 fn grow_all<'a>(
     frame: &'a Frame,
     rows: &[usize],
     prices: &TestPrices,
     mc: &'a MisclassCosts,
-    selection: SelectionPrices,
-    seed: u64,
+    (selection, seed): (SelectionPrices, u64),
+    growers: &[Grower],
     tries: &mut Tries<'a>,
     stop: &'a Stop,
 ) -> Vec<CostTree> {
     let ones = vec![1.0; rows.len()];
     let min_objects = GrowParams::new(Criterion::C45).min_objects;
-    let trees = GROWERS
+    let trees = growers
         .iter()
-        .map(|&(_, grower)| {
+        .map(|&grower| {
             let kind = grower.kind();
             let t = match tries.iter().position(|(k, _)| *k == kind) {
                 Some(t) => t,
@@ -250,10 +311,9 @@ fn grow_roots<'a>(
     roots: &[&[usize]],
     prices: &TestPrices,
     mc: &'a MisclassCosts,
-    selection: SelectionPrices,
-    seed: u64,
+    (selection, seed): (SelectionPrices, u64),
     tries: &mut [Tries<'a>],
-    threads: usize,
+    (growers, threads): (&[Grower], usize),
     stop: &'a Stop,
 ) -> Vec<Vec<CostTree>> {
     let grow = |k: usize, tries: &mut Tries<'a>| {
@@ -262,8 +322,8 @@ fn grow_roots<'a>(
             roots[k],
             prices,
             mc,
-            selection,
-            sub_seed(seed, k as u64),
+            (selection, sub_seed(seed, k as u64)),
+            growers,
             tries,
             stop,
         )
@@ -389,10 +449,9 @@ pub(super) fn cvt_tree_in<'a>(
         &roots,
         prices,
         mc,
-        selection,
-        seed,
+        (selection, seed),
         &mut tries.roots[..roots.len()],
-        threads,
+        (&params.growers(), threads),
         stop,
     )
     .into_iter();
@@ -789,6 +848,75 @@ mod tests {
 
     /// Growers sharing a split trie grow the trees each grows alone, the lookahead
     /// included.
+    /// Without the lookahead grower CVT chooses among the greedy ones alone, whose trees
+    /// and held-out costs do not depend on the lookahead's samples: its held-out cost is
+    /// at least the full set's, and the same tree wherever the full set chose a greedy
+    /// grower. With one sample the lookahead is another grower, its tree another tree.
+    #[test]
+    fn fewer_lookahead_samples_change_the_lookahead_alone() {
+        let (frame, prices, _, train, _) = heart();
+        let selection = SelectionPrices::Listed;
+        let (mut chosen_greedy, mut chosen_lookahead) = (0, 0);
+        for mc in [100.0, 500.0, 1000.0, 5000.0] {
+            let mc = MisclassCosts::uniform(2, mc).unwrap();
+            let fit = |samples: usize| {
+                let params = CvtParams::default().with_samples(samples).unwrap();
+                let (tree, choice) = cvt_tree_in(
+                    &frame,
+                    &train,
+                    &prices,
+                    &mc,
+                    &params,
+                    selection,
+                    3,
+                    &mut CvtTries::default(),
+                    &Stop::default(),
+                );
+                (tree, choice)
+            };
+            let (full, full_choice) = fit(5);
+            let (greedy, greedy_choice) = fit(0);
+            assert!(greedy_choice.grower < 6, "{greedy_choice:?}");
+            assert!(
+                greedy_choice.held_out_cost >= full_choice.held_out_cost - 1e-9,
+                "{greedy_choice:?} {full_choice:?}"
+            );
+            if full_choice.grower < 6 {
+                chosen_greedy += 1;
+                assert_eq!((&greedy, greedy_choice), (&full, full_choice));
+            } else {
+                chosen_lookahead += 1;
+                assert!(greedy_choice.held_out_cost > full_choice.held_out_cost);
+            }
+            let (_, one) = fit(1);
+            assert!(one.held_out_cost <= greedy_choice.held_out_cost + 1e-9);
+        }
+        assert!(chosen_greedy + chosen_lookahead == 4);
+        // The samples reach the lookahead grower, and only it.
+        let mc = MisclassCosts::uniform(2, 500.0).unwrap();
+        let grow = |samples: usize| {
+            let growers = CvtParams::default()
+                .with_samples(samples)
+                .unwrap()
+                .growers();
+            grow_all(
+                &frame,
+                &train,
+                &prices,
+                &mc,
+                (selection, 3),
+                &growers,
+                &mut Vec::new(),
+                &Stop::default(),
+            )
+        };
+        let (five, one, none) = (grow(5), grow(1), grow(0));
+        assert_eq!((five.len(), one.len(), none.len()), (7, 7, 6));
+        assert_eq!(five[..6], none[..]);
+        assert_eq!(one[..6], none[..]);
+        assert_ne!(five[6], one[6]);
+    }
+
     #[test]
     fn growers_sharing_a_trie_grow_what_each_grows_alone() {
         let (frame, prices, mc, train, _) = heart();
@@ -798,8 +926,8 @@ mod tests {
             &train,
             &prices,
             &mc,
-            selection,
-            7,
+            (selection, 7),
+            &CvtParams::default().growers(),
             &mut Vec::new(),
             &Stop::default(),
         );

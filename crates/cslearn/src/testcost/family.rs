@@ -305,7 +305,7 @@ impl FamilyParams {
         let features = frame.feature_count();
         let lookahead = match method {
             Method::Act if self.act.samples > 0 => Some("ACT's lookahead"),
-            Method::Cvt => Some("CVT's lookahead grower"),
+            Method::Cvt if self.cvt.samples > 0 => Some("CVT's lookahead grower"),
             Method::Voi if self.voi.lookahead_for(features) > 1 => Some("VOI's lookahead"),
             _ => None,
         };
@@ -368,6 +368,9 @@ impl FamilyParams {
                 format!("{} ACT samples", self.act.samples),
                 format!("at most {}", ActParams::MAX_SAMPLES),
             );
+        }
+        if method == Method::Cvt {
+            self.cvt.with_samples(self.cvt.samples)?;
         }
         Ok(())
     }

@@ -182,6 +182,7 @@ class TestCostTree:
         voi_lookahead: Optional[int] = None,
         voi_confidence: Optional[float] = None,
         voi_m: Optional[float] = None,
+        cvt_samples: int = 5,
     ) -> TestCostTree: ...
     def classify(
         self,
