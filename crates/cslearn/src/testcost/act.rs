@@ -65,20 +65,27 @@ impl ActParams {
     /// assert!(e.contains("1001") && e.contains("at most 1000"), "{e}");
     /// ```
     pub fn with_samples(samples: usize) -> Result<ActParams, Error> {
-        if samples > ActParams::MAX_SAMPLES {
-            return Err(Error::Invalid {
-                what: format!("{samples} ACT samples"),
-                reason: format!(
-                    "at most {} trees per branch (each one is grown at every candidate test of every node)",
-                    ActParams::MAX_SAMPLES
-                ),
-            });
-        }
+        check_samples(samples, || format!("{samples} ACT samples"))?;
         Ok(ActParams {
             samples,
             ..ActParams::default()
         })
     }
+}
+
+/// Refuses more than [`ActParams::MAX_SAMPLES`] trees sampled under each branch (ACT's,
+/// or CVT's lookahead's), the samples named by `what`.
+pub(super) fn check_samples(samples: usize, what: impl FnOnce() -> String) -> Result<(), Error> {
+    if samples > ActParams::MAX_SAMPLES {
+        return Err(Error::Invalid {
+            what: what(),
+            reason: format!(
+                "at most {} trees per branch (each one is grown at every candidate test of every node)",
+                ActParams::MAX_SAMPLES
+            ),
+        });
+    }
+    Ok(())
 }
 
 impl Default for ActParams {

@@ -24,7 +24,7 @@
 //! it guesses well; where ICET scores each of its trees on one half of the objects, CVT
 //! scores on every object once.
 
-use super::act::{Act, ActParams, sub_seed};
+use super::act::{Act, ActParams, check_samples, sub_seed};
 use super::criterion::Criterion;
 use super::data::Frame;
 use super::evaluate::folds_of;
@@ -119,15 +119,7 @@ impl CvtParams {
     /// assert!(e.contains("100000 samples for CVT's lookahead"), "{e}");
     /// ```
     pub fn with_samples(self, samples: usize) -> Result<CvtParams, Error> {
-        if samples > ActParams::MAX_SAMPLES {
-            return Err(Error::Invalid {
-                what: format!("{samples} samples for CVT's lookahead"),
-                reason: format!(
-                    "at most {} trees sampled under each branch",
-                    ActParams::MAX_SAMPLES
-                ),
-            });
-        }
+        check_samples(samples, || format!("{samples} samples for CVT's lookahead"))?;
         Ok(CvtParams { samples, ..self })
     }
 
