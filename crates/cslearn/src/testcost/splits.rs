@@ -312,8 +312,10 @@ struct Scratch {
     /// Per class, whole counts: known, then on the left (objects of weight 1).
     counts: Vec<u32>,
     /// Per root position, its position in the node whose statistics are computed, for a
-    /// node large enough to read its orders off the root's ([`NO_RANK`] elsewhere).
+    /// node large enough to read its orders off a set of ranks ([`NO_RANK`] elsewhere).
     slot: Vec<u32>,
+    /// A set of ranks among the root's objects, a bit each (empty between uses).
+    bits: Vec<u64>,
     /// Per class: known weight, missing weight, and five buffers of numeric scans.
     classes: Vec<f64>,
     /// Per value of a nominal feature, the weight of its branch.
@@ -322,6 +324,29 @@ struct Scratch {
 
 /// The rank of a missing value.
 const NO_RANK: u32 = u32::MAX;
+
+/// Sets in `bits` (empty, or sized for `ranks` ranks) the rank of each of `objects` whose
+/// value is known.
+fn set_ranks(bits: &mut Vec<u64>, ranks: usize, objects: &[u32], rank: &[u32]) {
+    bits.resize(ranks.div_ceil(64), 0);
+    for &o in objects {
+        let r = rank[o as usize];
+        if r != NO_RANK {
+            bits[(r >> 6) as usize] |= 1 << (r & 63);
+        }
+    }
+}
+
+/// Each rank set in `bits`, in increasing order, to `each`; `bits` is left empty.
+fn take_ranks(bits: &mut [u64], mut each: impl FnMut(u32)) {
+    for (i, word) in bits.iter_mut().enumerate() {
+        let mut w = std::mem::take(word);
+        while w != 0 {
+            each(((i as u32) << 6) | w.trailing_zeros());
+            w &= w - 1;
+        }
+    }
+}
 
 /// A numeric feature's values among the root's objects, in the order of the root's sort
 /// (by value, ties by position): each position's rank ([`NO_RANK`] where the value is
@@ -397,6 +422,7 @@ impl<'a> Splits<'a> {
                 ranks: Vec::new(),
                 counts: Vec::new(),
                 slot: Vec::new(),
+                bits: Vec::new(),
                 classes: vec![0.0; 7 * classes],
                 sizes: Vec::new(),
             },
@@ -502,7 +528,7 @@ impl<'a> Splits<'a> {
             {
                 Some((entry, stats)) => (Some(entry), stats),
                 None => {
-                    let large = self.reads_root_order(cell.objects.len());
+                    let large = self.reads_rank_set(cell.objects.len());
                     if large {
                         let slot = &mut self.scratch.slot;
                         slot.resize(self.rows.len(), NO_RANK);
@@ -537,11 +563,11 @@ impl<'a> Splits<'a> {
         self.cells[c as usize].content
     }
 
-    /// Whether a node of `m` objects reads each numeric feature's order off the root's (one
-    /// pass over the root's objects) rather than sorting its own ranks (`m log2 m`): the
-    /// same order either way.
-    fn reads_root_order(&self, m: usize) -> bool {
-        m as f64 * (m as f64).log2() > self.rows.len() as f64
+    /// Whether a node of `m` objects reads each numeric feature's order off a set of its
+    /// ranks (a bit per root object: `m` bits set, then a pass over `n / 64` words) rather
+    /// than sorting its own ranks (`m log2 m`): the same order either way.
+    fn reads_rank_set(&self, m: usize) -> bool {
+        m as f64 * (m as f64).log2() > (self.rows.len() / 64) as f64 + m as f64
     }
 
     /// The weight per class of the root positions `objects`.
@@ -645,11 +671,9 @@ impl<'a> Splits<'a> {
                 let keys = &mut self.scratch.ranks;
                 keys.clear();
                 if large {
-                    let slot = &self.scratch.slot;
-                    keys.extend(
-                        (0..ranked.object.len() as u32)
-                            .filter(|&r| slot[ranked.object[r as usize] as usize] != NO_RANK),
-                    );
+                    let bits = &mut self.scratch.bits;
+                    set_ranks(bits, ranked.object.len(), objects, &ranked.rank);
+                    take_ranks(bits, |r| keys.push(r));
                 } else {
                     keys.extend(
                         objects
@@ -666,8 +690,15 @@ impl<'a> Splits<'a> {
                 counts.clear();
                 counts.resize(2 * k, 0);
                 let (known_n, left_n) = counts.split_at_mut(k);
-                for &r in keys.iter() {
-                    known_n[ranked.class[r as usize] as usize] += 1;
+                if keys.len() == objects.len() {
+                    // Every object's value known: the node's own counts (whole weights).
+                    for (n, &w) in known_n.iter_mut().zip(node_weights) {
+                        *n = w as u32;
+                    }
+                } else {
+                    for &r in keys.iter() {
+                        known_n[ranked.class[r as usize] as usize] += 1;
+                    }
                 }
                 let known = &mut self.scratch.classes[..k];
                 for (w, &n) in known.iter_mut().zip(&*known_n) {
@@ -680,11 +711,14 @@ impl<'a> Splits<'a> {
                 let all = keys.len() as u32;
                 let mut best: Option<(f64, f64, f64)> = None; // (value, at, left_total)
                 let mut tested = 0usize;
+                // The rank order's columns and the node's ranks as plain slices, read
+                // once (the loop writes only the counts).
+                let (class, values, keys) = (&ranked.class[..], &ranked.value[..], &keys[..]);
+                let mut next = values[keys[0] as usize];
                 for i in 0..keys.len() - 1 {
-                    let r = keys[i] as usize;
-                    left_n[ranked.class[r] as usize] += 1;
-                    let value = ranked.value[r];
-                    let next = ranked.value[keys[i + 1] as usize];
+                    left_n[class[keys[i] as usize] as usize] += 1;
+                    let value = next;
+                    next = values[keys[i + 1] as usize];
                     if next <= value {
                         continue;
                     }
@@ -722,13 +756,13 @@ impl<'a> Splits<'a> {
                 let keys = &mut self.scratch.keys;
                 keys.clear();
                 if large {
-                    let slot = &self.scratch.slot;
-                    for (r, &o) in ranked.object.iter().enumerate() {
-                        let p = slot[o as usize];
-                        if p != NO_RANK {
-                            keys.push(((r as u64) << 32) | u64::from(p));
-                        }
-                    }
+                    let (bits, slot) = (&mut self.scratch.bits, &self.scratch.slot);
+                    set_ranks(bits, ranked.object.len(), objects, &ranked.rank);
+                    let object = &ranked.object[..];
+                    take_ranks(bits, |r| {
+                        let p = slot[object[r as usize] as usize];
+                        keys.push((u64::from(r) << 32) | u64::from(p));
+                    });
                 } else {
                     for (p, &o) in objects.iter().enumerate() {
                         let r = ranked.rank[o as usize];
