@@ -116,7 +116,7 @@ struct Remembered {
 impl Memo {
     /// The most bytes of objects, weights and statistics remembered per trie (a fit may
     /// hold several: CVT's fourteen, one per fold and kind).
-    const MAX_BYTES: usize = 8 << 20;
+    const MAX_BYTES: usize = 64 << 20;
 
     fn hash(objects: &[u32], weights: &[f64]) -> u64 {
         // FNV-1a over whole words: enough spread for a hash map whose hits are checked.
