@@ -2018,7 +2018,17 @@ pub(crate) mod tests {
             .collect();
         assert_eq!(
             names,
-            ["c45", "id3-batch", "idx", "cs-id3-batch", "eg2", "dtmc", "icet", "act", "cvt"]
+            [
+                "c45",
+                "id3-batch",
+                "idx",
+                "cs-id3-batch",
+                "eg2",
+                "dtmc",
+                "icet",
+                "act",
+                "cvt"
+            ]
         );
         // The report says how far VOI looked.
         for (lookahead, said) in [

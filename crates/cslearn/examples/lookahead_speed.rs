@@ -15,7 +15,7 @@
 //! ```
 //!
 //! `--file CSV TARGET [LEARNER,...]` grows one tree per learner on every object of a CSV
-//! file, every test priced 1, mc 100, CVT on one thread and on two, VOI looking one, two
+//! file, every test priced 1, mc 100, ACT and CVT on one thread and on two, VOI looking one, two
 //! and three tests ahead (the Spambase measurements of `docs/testcost.md`: `-- --file
 //! data/uci/spambase/spambase.csv Outcome`, and `... Outcome eg2,voi`).
 //!
@@ -124,16 +124,17 @@ fn file(path: &str, target: &str, learners: &[Method]) -> Result<(), Box<dyn std
     fit(Method::Eg2, &frame, &rows, &prices, &mc, &params, 1);
     let mut eg2 = None;
     for &learner in learners {
-        // CVT on one thread and on two: the same tree. VOI looking one, two and three
-        // tests ahead: its work grows as the features to that power.
+        // ACT and CVT on one thread and on two: the same tree. VOI looking one, two and
+        // three tests ahead: its work grows as the features to that power.
         let settings: Vec<(usize, Option<usize>)> = match learner {
-            Method::Cvt => vec![(1, None), (2, None)],
+            Method::Act | Method::Cvt => vec![(1, None), (2, None)],
             Method::Voi => (1..=3).map(|d| (1, Some(d))).collect(),
             _ => vec![(1, None)],
         };
         let mut trees = Vec::new();
         for &(t, lookahead) in &settings {
             let params = FamilyParams {
+                act: params.act.with_threads(t),
                 cvt: params.cvt.with_threads(t),
                 voi: VoiParams {
                     lookahead: lookahead.or(params.voi.lookahead),

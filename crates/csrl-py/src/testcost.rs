@@ -362,7 +362,9 @@ impl TestCostTree {
             .map_err(|e| DataError::new_err(format!("selection_prices: {}", message(&e))))?;
         let icet_pruning = Pruning::parse(icet_pruning)
             .map_err(|e| DataError::new_err(format!("icet_pruning: {}", message(&e))))?;
-        let act = ActParams::with_samples(samples).map_err(|e| data_error(&e))?;
+        let act = ActParams::with_samples(samples)
+            .map_err(|e| data_error(&e))?
+            .with_threads(threads);
         let voi = VoiParams::from_options(voi_lookahead, voi_confidence, voi_m)
             .map_err(|e| data_error(&e))?;
         let cvt = CvtParams::with_folds(folds)

@@ -248,6 +248,7 @@ fn check_flags(args: &ClassifyArgs) -> Result<()> {
             ("--voi-lookahead", args.voi_lookahead.is_some()),
             ("--voi-confidence", args.voi_confidence.is_some()),
             ("--voi-m", args.voi_m.is_some()),
+            ("--act-threads", args.act_threads.is_some()),
             ("--cvt-threads", args.cvt_threads.is_some()),
             ("--cvt-samples", args.cvt_samples.is_some()),
             ("--max-test-cost", args.max_test_cost.is_some()),

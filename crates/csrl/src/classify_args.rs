@@ -193,6 +193,11 @@ pub struct ClassifyArgs {
     /// class shares weighing this many objects (0 takes the training counts as they are).
     #[arg(long, value_name = "M")]
     pub(crate) voi_m: Option<f64>,
+    /// ACT only: the most threads one fit uses (default 1; 0 for every core): the
+    /// candidate tests of a node are valued at the same time, and the tree and every
+    /// output are the same on any number of threads.
+    #[arg(long, value_name = "N")]
+    pub(crate) act_threads: Option<usize>,
     /// CVT only: the most threads one fit uses (default 1; 0 for every core): its trees
     /// on all the objects and on each fold grow at the same time, each from its own seed,
     /// so the tree and every output are the same on any number of threads.

@@ -501,6 +501,16 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
     )
     .map_err(|e| anyhow::anyhow!("--voi-lookahead / --voi-confidence / --voi-m: {e}"))?;
     // Without the flag, one thread (the library's default, not `usize`'s 0).
+    let act = match args.act_threads {
+        Some(_) => act.with_threads(learner_flag(
+            args.act_threads,
+            "--act-threads",
+            Method::Act,
+            method,
+            Ok::<usize, cslearn::Error>,
+        )?),
+        None => act,
+    };
     let cvt = match args.cvt_threads {
         Some(_) => cvt.with_threads(learner_flag(
             args.cvt_threads,

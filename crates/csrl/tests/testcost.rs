@@ -322,23 +322,26 @@ fn cvt_samples_set_its_lookahead_and_zero_leaves_it_out() {
     );
 }
 
-/// CVT on two threads, or on every core, writes what it writes on one, byte for byte.
+/// ACT and CVT on two threads, or on every core, write what they write on one, byte for
+/// byte.
 #[test]
-fn cvt_on_several_threads_writes_the_same_output() {
-    let one = on_heart("cvt", &["--folds", "3", "--json"]);
-    assert!(
-        one.status.success(),
-        "{}",
-        String::from_utf8_lossy(&one.stderr)
-    );
-    for threads in ["2", "0"] {
-        let many = on_heart("cvt", &["--folds", "3", "--json", "--cvt-threads", threads]);
-        assert_eq!(many.stdout, one.stdout, "--cvt-threads {threads}");
+fn act_and_cvt_on_several_threads_write_the_same_output() {
+    for (learner, flag) in [("act", "--act-threads"), ("cvt", "--cvt-threads")] {
+        let one = on_heart(learner, &["--folds", "3", "--json"]);
+        assert!(
+            one.status.success(),
+            "{}",
+            String::from_utf8_lossy(&one.stderr)
+        );
+        for threads in ["2", "0"] {
+            let many = on_heart(learner, &["--folds", "3", "--json", flag, threads]);
+            assert_eq!(many.stdout, one.stdout, "{flag} {threads}");
+        }
+        refused(
+            &on_heart("eg2", &[flag, "2"]),
+            &[flag, &format!("--learner {learner} only")],
+        );
     }
-    refused(
-        &on_heart("eg2", &["--cvt-threads", "2"]),
-        &["--cvt-threads", "--learner cvt only"],
-    );
 }
 
 #[test]

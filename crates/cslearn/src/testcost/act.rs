@@ -18,8 +18,14 @@
 //! sampled subtree met again is the same one and is read back, and a candidate or a
 //! sample can stop being valued once it is sure to lose, without moving any later draw.
 //! The choice is the one valuing everything whole gives, to the bit.
+//!
+//! So the candidates of a node can be valued on several threads ([`ActParams::threads`]),
+//! each thread in a split trie of its own over the same objects: which thread values
+//! which candidate, and with what bound, changes how much is grown, never the choice.
 
 use std::collections::BTreeMap;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use rand::{RngExt, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -38,7 +44,7 @@ use crate::Error;
 ///
 /// ```
 /// let p = cslearn::testcost::ActParams::default();
-/// assert_eq!((p.samples, p.confidence), (5, 0.25));
+/// assert_eq!((p.samples, p.confidence, p.threads), (5, 0.25, 1));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ActParams {
@@ -48,6 +54,28 @@ pub struct ActParams {
     pub samples: usize,
     /// The confidence of the pessimistic error estimate (C4.5's 0.25).
     pub confidence: f64,
+    /// The most threads one fit uses to value a node's candidates (1 by default; 0 for
+    /// every core). The tree is the same on any number of threads.
+    #[serde(default = "one_thread", skip_serializing_if = "is_one_thread")]
+    pub threads: usize,
+}
+
+fn one_thread() -> usize {
+    1
+}
+
+/// Whether `threads` is the default, left out of a model file so that files written
+/// before the setting existed are written the same.
+fn is_one_thread(threads: &usize) -> bool {
+    *threads == 1
+}
+
+/// The threads `threads` asks for: itself, or every core for 0.
+pub(super) fn threads_wanted(threads: usize) -> usize {
+    match threads {
+        0 => std::thread::available_parallelism().map_or(1, std::num::NonZero::get),
+        n => n,
+    }
 }
 
 impl ActParams {
@@ -71,6 +99,16 @@ impl ActParams {
             ..ActParams::default()
         })
     }
+
+    /// These settings using up to `threads` threads (0: every core).
+    ///
+    /// ```
+    /// use cslearn::testcost::ActParams;
+    /// assert_eq!(ActParams::default().with_threads(2).threads, 2);
+    /// ```
+    pub fn with_threads(self, threads: usize) -> ActParams {
+        ActParams { threads, ..self }
+    }
 }
 
 /// Refuses more than [`ActParams::MAX_SAMPLES`] trees sampled under each branch (ACT's,
@@ -93,6 +131,7 @@ impl Default for ActParams {
         ActParams {
             samples: 5,
             confidence: 0.25,
+            threads: 1,
         }
     }
 }
@@ -164,7 +203,7 @@ impl<'b> Act<'b> {
 
     fn grown_by(&self, splits: &mut Splits<'_>, thorough: bool) -> CostTree {
         let grow = GrowParams::new(Criterion::Eg2 { w: self.w }).selecting_at(self.selection);
-        let mut sampler = Sampler {
+        let sampler = || Sampler {
             scorer: Scorer::new(self.prices, grow.criterion),
             prices: self.prices,
             mc: self.mc,
@@ -178,8 +217,22 @@ impl<'b> Act<'b> {
             candidates: Vec::new(),
             thorough,
         };
+        let mut main = sampler();
+        let threads = threads_wanted(self.params.threads);
+        // Each thread values candidates in a trie and with remembered values of its own.
+        let mut helpers: Vec<(Splits<'_>, Sampler<'_>)> = if threads > 1 && !thorough {
+            (0..threads)
+                .map(|_| (splits.sibling(), sampler()))
+                .collect()
+        } else {
+            Vec::new()
+        };
         let nodes = grow_nodes_by(splits, self.mc, grow.max_depth, |splits, c| {
-            sampler.choose(splits, c)
+            if helpers.is_empty() {
+                main.choose(splits, c)
+            } else {
+                main.choose_on_threads(splits, c, &mut helpers)
+            }
         });
         CostTree::from_nodes(nodes, self.mc)
     }
@@ -334,6 +387,71 @@ impl Sampler<'_> {
                 chosen = Some(i);
             }
         }
+        let stat = chosen.map(|i| candidates[i].0);
+        self.candidates = candidates;
+        stat
+    }
+
+    /// [`choose`](Sampler::choose)'s choice, the candidates valued by `helpers` (a trie
+    /// over the same objects and a sampler each), one thread per helper. Each thread
+    /// takes the next candidate not yet taken and values it against the best found so
+    /// far by any thread: the estimates (and so the order) may differ from one run to
+    /// the next, the choice cannot, as every candidate that could be chosen is valued
+    /// exactly and the least (ties: the lower index; the leaf wins a tie) is chosen.
+    fn choose_on_threads(
+        &mut self,
+        splits: &mut Splits<'_>,
+        c: u32,
+        helpers: &mut [(Splits<'_>, Sampler<'_>)],
+    ) -> Option<Stat> {
+        let leaf = self.leaf(splits, c);
+        self.candidates(splits, c);
+        let candidates = std::mem::take(&mut self.candidates);
+        let samples = self.samples;
+        let shared: &Splits<'_> = splits;
+        // The candidates' estimates, one sample a branch, the least so far their bound.
+        let taken = AtomicUsize::new(0);
+        let guess = Mutex::new(leaf);
+        let estimates = Mutex::new(Vec::with_capacity(candidates.len()));
+        on_threads(helpers, shared, c, |trie, sampler, cell| {
+            loop {
+                let i = taken.fetch_add(1, Ordering::Relaxed);
+                let Some((stat, _)) = candidates.get(i) else {
+                    break;
+                };
+                let bound = *lock(&guess);
+                let estimate = sampler.value(trie, cell, stat, bound, false, samples.min(1));
+                let mut least = lock(&guess);
+                *least = least.min(estimate);
+                drop(least);
+                lock(&estimates).push((estimate, i));
+            }
+        });
+        let mut order = estimates.into_inner().unwrap_or_else(|e| e.into_inner());
+        order.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        // Cheapest estimate first, each against the best so far.
+        let taken = AtomicUsize::new(0);
+        let best = Mutex::new((leaf, None::<usize>));
+        on_threads(helpers, shared, c, |trie, sampler, cell| {
+            loop {
+                let k = taken.fetch_add(1, Ordering::Relaxed);
+                let Some(&(_, i)) = order.get(k) else {
+                    break;
+                };
+                let (bound, chosen) = *lock(&best);
+                let lower = chosen.is_some_and(|j| i < j);
+                let cost = sampler.value(trie, cell, &candidates[i].0, bound, lower, samples);
+                // A cost at or above the bound is one it is at least, and never chosen:
+                // the best only falls, and changes at an equal cost only to a lower
+                // index.
+                let mut best = lock(&best);
+                let lower = best.1.is_some_and(|j| i < j);
+                if cost < best.0 || (lower && cost == best.0) {
+                    *best = (cost, Some(i));
+                }
+            }
+        });
+        let (_, chosen) = best.into_inner().unwrap_or_else(|e| e.into_inner());
         let stat = chosen.map(|i| candidates[i].0);
         self.candidates = candidates;
         stat
@@ -511,6 +629,39 @@ impl Sampler<'_> {
     }
 }
 
+/// Runs `work` on one thread per helper (the first on this one), each with its trie, its
+/// sampler and its own copy of cell `c` of `shared`, dropped once the work is done.
+fn on_threads<'s, F>(
+    helpers: &mut [(Splits<'s>, Sampler<'_>)],
+    shared: &Splits<'_>,
+    c: u32,
+    work: F,
+) where
+    F: Fn(&mut Splits<'s>, &mut Sampler<'_>, u32) + Sync,
+{
+    let run = |(trie, sampler): &mut (Splits<'s>, Sampler<'_>)| {
+        let mark = trie.mark();
+        let cell = trie.adopt(shared, c);
+        work(trie, sampler, cell);
+        trie.forget_since(mark);
+    };
+    let Some((first, rest)) = helpers.split_first_mut() else {
+        return;
+    };
+    std::thread::scope(|scope| {
+        for helper in rest {
+            scope.spawn(|| run(helper));
+        }
+        run(first);
+    });
+}
+
+/// The value behind `mutex`, even if a thread panicked holding it (the panic is
+/// raised again where the threads are joined).
+fn lock<T>(mutex: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
+    mutex.lock().unwrap_or_else(|e| e.into_inner())
+}
+
 /// The cap for what is left once `cost` of `bound` is spent: a subtree at least this is
 /// sure to take `cost` to `bound` or past it, the sums' rounding included.
 fn cap_after(bound: f64, cost: f64) -> f64 {
@@ -526,7 +677,8 @@ mod tests {
     /// grown until they are sure to be too dear) and the values read back choose what
     /// valuing everything whole chooses, bit for bit: nominal and numeric features,
     /// missing values, group discounts, two to six classes, every selection prices, at
-    /// cheap and dear errors, with no sample (each branch a leaf), one, three and five.
+    /// cheap and dear errors, with no sample (each branch a leaf), one, three and five;
+    /// and so do the candidates valued on two or three threads.
     #[test]
     fn bounds_and_remembered_values_choose_what_valuing_everything_whole_chooses() {
         let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/uci");
@@ -560,6 +712,18 @@ mod tests {
                         let fast = act.grown(frame, &rows);
                         let whole = act.grown_thorough(frame, &rows);
                         assert_eq!(fast, whole, "{name} {selection:?} {samples}");
+                        // The candidates valued on two or three threads: the same tree.
+                        let threads = 2 + compared % 2;
+                        let threaded = params.with_threads(threads);
+                        let on_threads = Act {
+                            params: &threaded,
+                            ..act
+                        }
+                        .grown(frame, &rows);
+                        assert_eq!(
+                            on_threads, whole,
+                            "{name} {selection:?} {samples} {threads}"
+                        );
                         compared += usize::from(fast.len() > 1);
                     }
                 }

@@ -446,6 +446,75 @@ impl<'a> Splits<'a> {
         splits
     }
 
+    /// A trie over the same root objects, of the same kind and watching the same stop,
+    /// with nothing grown below its root and nothing remembered: one for another thread
+    /// to value cells of this one in ([`adopt`](Splits::adopt)). Its statistics are this
+    /// trie's, bit for bit (they depend on a cell's objects and weights alone).
+    pub fn sibling(&self) -> Splits<'a> {
+        let root = &self.cells[0];
+        Splits {
+            frame: self.frame,
+            rows: self.rows.clone(),
+            class_of: self.class_of.clone(),
+            ranked: self
+                .ranked
+                .iter()
+                .map(|r| Ranked {
+                    rank: r.rank.clone(),
+                    object: r.object.clone(),
+                    value: r.value.clone(),
+                    class: r.class.clone(),
+                })
+                .collect(),
+            memo: Memo::default(),
+            mc: self.mc,
+            classes: self.classes,
+            min_objects: self.min_objects,
+            cost_based: self.cost_based,
+            threshold_penalty: self.threshold_penalty,
+            cells: vec![Cell {
+                objects: root.objects.clone(),
+                weights: root.weights.clone(),
+                total: root.total,
+                unit: root.unit,
+                path: Vec::new(),
+                class_weights: root.class_weights.clone(),
+                ..Cell::placeholder()
+            }],
+            made: Vec::new(),
+            stop: self.stop,
+            scratch: Scratch {
+                branch: Vec::new(),
+                sorted: Vec::new(),
+                keys: Vec::new(),
+                ranks: Vec::new(),
+                counts: Vec::new(),
+                slot: Vec::new(),
+                bits: Vec::new(),
+                classes: vec![0.0; 7 * self.classes],
+                sizes: Vec::new(),
+            },
+        }
+    }
+
+    /// Cell `c` of `other`, a trie over the same root objects (its
+    /// [`sibling`](Splits::sibling)), made a cell of this one with the same objects,
+    /// weights and path (not its held-out objects): the index of the new cell, which
+    /// [`forget_since`](Splits::forget_since) a mark taken before drops.
+    pub fn adopt(&mut self, other: &Splits<'_>, c: u32) -> u32 {
+        let cell = &other.cells[c as usize];
+        self.cells.push(Cell {
+            objects: cell.objects.clone(),
+            weights: cell.weights.clone(),
+            total: cell.total,
+            unit: cell.unit,
+            path: cell.path.clone(),
+            class_weights: cell.class_weights.clone(),
+            ..Cell::placeholder()
+        });
+        self.cells.len() as u32 - 1
+    }
+
     /// Also sends the objects `held_out` of the frame down every split made, to score
     /// trees on them without classifying them one by one
     /// ([`CostTree::held_out_cost`](super::CostTree)); call before any split is made.

@@ -454,10 +454,10 @@ class TestCostTreeClassifier(ClassifierMixin, BaseEstimator):
         voi_m: estimate what stopping costs by an m-estimate of the classes instead, the
             class shares weighing this many objects (at least 0; not with
             ``voi_confidence``); ``None``: the pessimistic estimate.
-        n_jobs: the threads one CVT fit uses (``None``: one; ``-1``: every core; else at
-            least 1): its trees on all the objects and on each fold grow at the same time,
-            each from its own seed, so the tree does not depend on it. Other learners
-            use one.
+        n_jobs: the threads one ACT or CVT fit uses (``None``: one; ``-1``: every core;
+            else at least 1): ACT values the candidate tests of a node at the same time,
+            CVT grows its trees on all the objects and on each fold at the same time, and
+            the tree does not depend on it. Other learners use one.
         max_test_cost: the most one object may pay for its tests (a number at least 0,
             after group discounts, a test done once free further down), or ``None``: no
             limit. ``predict``, ``predict_proba``, ``predict_cost`` and the rest never
@@ -1319,7 +1319,9 @@ class ActClassifier(TestCostTreeClassifier):
     tree depends on ``misclassification_cost`` (:class:`TestCostTreeClassifier` with
     ``learner="act"``). More samples, better estimates, more time.
     ``max_test_cost`` and ``max_tests`` hold every object to a budget when it is
-    classified (the tree is grown free, and cut where an object runs out)."""
+    classified (the tree is grown free, and cut where an object runs out). ``n_jobs``
+    values the candidate tests of a node at the same time (``-1``: every core): the
+    same tree on any number of threads."""
 
     _learner = "act"
 
@@ -1336,6 +1338,7 @@ class ActClassifier(TestCostTreeClassifier):
         selection_prices: str = "path",
         max_test_cost: Optional[float] = None,
         max_tests: Optional[int] = None,
+        n_jobs: Optional[int] = None,
     ) -> None:
         self.feature_costs = feature_costs
         self.feature_groups = feature_groups
@@ -1348,6 +1351,7 @@ class ActClassifier(TestCostTreeClassifier):
         self.selection_prices = selection_prices
         self.max_test_cost = max_test_cost
         self.max_tests = max_tests
+        self.n_jobs = n_jobs
 
 
 class CvtClassifier(TestCostTreeClassifier):
