@@ -55,7 +55,8 @@ pub struct ActParams {
     /// The confidence of the pessimistic error estimate (C4.5's 0.25).
     pub confidence: f64,
     /// The most threads one fit uses to value a node's candidates (1 by default; 0 for
-    /// every core). The tree is the same on any number of threads.
+    /// every core; never more than the features, a node's most candidates). The tree is
+    /// the same on any number of threads.
     #[serde(default = "one_thread", skip_serializing_if = "is_one_thread")]
     pub threads: usize,
 }
@@ -218,7 +219,8 @@ impl<'b> Act<'b> {
             thorough,
         };
         let mut main = sampler();
-        let threads = threads_wanted(self.params.threads);
+        // No more threads than a node can have candidates (each holds a trie of its own).
+        let threads = threads_wanted(self.params.threads).min(splits.feature_count());
         // Each thread values candidates in a trie and with remembered values of its own.
         let mut helpers: Vec<(Splits<'_>, Sampler<'_>)> = if threads > 1 && !thorough {
             (0..threads)
@@ -731,5 +733,36 @@ mod tests {
         }
         // Most of the comparisons are of trees that split.
         assert!(compared > 40, "{compared}");
+    }
+
+    /// Far more threads than features asked for: as many threads as features, the same
+    /// tree.
+    #[test]
+    fn threads_beyond_the_features_grow_the_same_tree() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/uci");
+        let loaded = Catalogue::read(&root.join("datasets.toml"))
+            .unwrap()
+            .load("iris")
+            .unwrap();
+        let frame = &loaded.frame;
+        let rows: Vec<usize> = (0..frame.len()).collect();
+        let prices = crate::testcost::random_prices(frame.feature_count(), 1.0, 100.0, 3);
+        let mc = MisclassCosts::uniform(frame.class_count(), 500.0).unwrap();
+        let one = ActParams::default();
+        let many = one.with_threads(100_000);
+        let grow = |params: &ActParams| {
+            Act {
+                prices: &prices,
+                mc: &mc,
+                params,
+                w: 1.0,
+                selection: SelectionPrices::Listed,
+                seed: 5,
+            }
+            .grown(frame, &rows)
+        };
+        let tree = grow(&one);
+        assert!(tree.len() > 1);
+        assert_eq!(grow(&many), tree);
     }
 }

@@ -497,6 +497,11 @@ impl<'a> Splits<'a> {
         }
     }
 
+    /// The features a cell may be split on.
+    pub fn feature_count(&self) -> usize {
+        self.frame.feature_count()
+    }
+
     /// Cell `c` of `other`, a trie over the same root objects (its
     /// [`sibling`](Splits::sibling)), made a cell of this one with the same objects,
     /// weights and path (not its held-out objects): the index of the new cell, which
