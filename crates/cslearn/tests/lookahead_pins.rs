@@ -4,12 +4,16 @@
 //! before the lookahead was made fast; the cases too slow for an unoptimised build are
 //! checked by `cargo run --release -p cslearn --example lookahead_speed -- --check`.
 //!
+//! ACT's cases are grown on one thread and on two (a node's candidates valued at the same
+//! time): the same trees.
+//!
 //! When a change of trees is intended, explain it in the commit and write the new
 //! fingerprints with `CSLEARN_PINS_WRITE=1 cargo test --release -p cslearn --test
 //! lookahead_pins`.
 
 mod support;
 
+use cslearn::testcost::Method;
 use support::lookahead::{Case, catalogue, fingerprint, pin_file, pins, release_cases, test_cases};
 
 #[test]
@@ -41,6 +45,16 @@ fn act_and_cvt_grow_the_pinned_trees() {
         let got = fingerprint(&tree);
         if &got != print {
             failed.push(format!("{}: pinned {print}, grown {got}", case.key()));
+        }
+        // ACT valuing each node's candidates on two threads grows the same tree.
+        if case.learner == Method::Act {
+            let got = fingerprint(&case.grow_on(&loaded, 2));
+            if &got != print {
+                failed.push(format!(
+                    "{} on two threads: pinned {print}, grown {got}",
+                    case.key()
+                ));
+            }
         }
     }
     assert!(failed.is_empty(), "trees changed:\n{}", failed.join("\n"));

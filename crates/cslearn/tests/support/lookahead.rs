@@ -57,6 +57,12 @@ impl Case {
 
     /// The tree this case grows.
     pub fn grow(&self, loaded: &Loaded) -> CostTree {
+        self.grow_on(loaded, 1)
+    }
+
+    /// The tree this case grows, ACT valuing a node's candidates on `threads` threads
+    /// (the same tree on any number).
+    pub fn grow_on(&self, loaded: &Loaded, threads: usize) -> CostTree {
         let frame: &Frame = &loaded.frame;
         let prices: TestPrices = match self.prices.as_str() {
             "random" => random_prices(frame.feature_count(), 1.0, 100.0, 1),
@@ -77,9 +83,11 @@ impl Case {
                 .map(|i| train[i * n / self.objects])
                 .collect();
         }
+        let defaults = FamilyParams::default();
         let params = FamilyParams {
             selection_prices: self.selection,
-            ..FamilyParams::default()
+            act: defaults.act.with_threads(threads),
+            ..defaults
         };
         fit(self.learner, frame, &train, &prices, &mc, &params, 1).tree
     }
