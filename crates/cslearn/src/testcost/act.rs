@@ -71,7 +71,7 @@ fn is_one_thread(threads: &usize) -> bool {
     *threads == 1
 }
 
-/// The threads `threads` asks for: itself, or every core for 0.
+/// The threads a `threads` setting asks for (ACT's, CVT's): itself, or every core for 0.
 pub(super) fn threads_wanted(threads: usize) -> usize {
     match threads {
         0 => std::thread::available_parallelism().map_or(1, std::num::NonZero::get),

@@ -24,7 +24,7 @@
 //! it guesses well; where ICET scores each of its trees on one half of the objects, CVT
 //! scores on every object once.
 
-use super::act::{Act, ActParams, check_samples, sub_seed};
+use super::act::{Act, ActParams, check_samples, sub_seed, threads_wanted};
 use super::criterion::Criterion;
 use super::data::Frame;
 use super::evaluate::folds_of;
@@ -141,11 +141,7 @@ impl CvtParams {
 
     /// The threads a fit uses: `threads`, every core for 0, never more than `jobs`.
     fn threads_for(&self, jobs: usize) -> usize {
-        let wanted = match self.threads {
-            0 => std::thread::available_parallelism().map_or(1, std::num::NonZero::get),
-            n => n,
-        };
-        wanted.clamp(1, jobs.max(1))
+        threads_wanted(self.threads).clamp(1, jobs.max(1))
     }
 }
 
