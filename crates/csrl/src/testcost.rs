@@ -501,24 +501,17 @@ pub(crate) fn run(args: &ClassifyArgs, method: Method, out: &mut dyn Write) -> R
     )
     .map_err(|e| anyhow::anyhow!("--voi-lookahead / --voi-confidence / --voi-m: {e}"))?;
     // Without the flag, one thread (the library's default, not `usize`'s 0).
-    let act = match args.act_threads {
-        Some(_) => act.with_threads(learner_flag(
-            args.act_threads,
-            "--act-threads",
-            Method::Act,
-            method,
-            Ok::<usize, cslearn::Error>,
-        )?),
+    let threads = |value: Option<usize>, flag, owner| -> Result<Option<usize>> {
+        learner_flag(value, flag, owner, method, |n| {
+            Ok::<_, cslearn::Error>(Some(n))
+        })
+    };
+    let act = match threads(args.act_threads, "--act-threads", Method::Act)? {
+        Some(n) => act.with_threads(n),
         None => act,
     };
-    let cvt = match args.cvt_threads {
-        Some(_) => cvt.with_threads(learner_flag(
-            args.cvt_threads,
-            "--cvt-threads",
-            Method::Cvt,
-            method,
-            Ok::<usize, cslearn::Error>,
-        )?),
+    let cvt = match threads(args.cvt_threads, "--cvt-threads", Method::Cvt)? {
+        Some(n) => cvt.with_threads(n),
         None => cvt,
     };
     let cvt = match args.cvt_samples {

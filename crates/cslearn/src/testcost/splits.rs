@@ -322,6 +322,23 @@ struct Scratch {
     sizes: Vec<f64>,
 }
 
+impl Scratch {
+    /// Empty buffers for statistics over `classes` classes.
+    fn new(classes: usize) -> Scratch {
+        Scratch {
+            branch: Vec::new(),
+            sorted: Vec::new(),
+            keys: Vec::new(),
+            ranks: Vec::new(),
+            counts: Vec::new(),
+            slot: Vec::new(),
+            bits: Vec::new(),
+            classes: vec![0.0; 7 * classes],
+            sizes: Vec::new(),
+        }
+    }
+}
+
 /// The rank of a missing value.
 const NO_RANK: u32 = u32::MAX;
 
@@ -415,17 +432,7 @@ impl<'a> Splits<'a> {
             cells: Vec::new(),
             made: Vec::new(),
             stop: None,
-            scratch: Scratch {
-                branch: Vec::new(),
-                sorted: Vec::new(),
-                keys: Vec::new(),
-                ranks: Vec::new(),
-                counts: Vec::new(),
-                slot: Vec::new(),
-                bits: Vec::new(),
-                classes: vec![0.0; 7 * classes],
-                sizes: Vec::new(),
-            },
+            scratch: Scratch::new(classes),
         };
         let objects: Vec<u32> = (0..splits.rows.len() as u32).collect();
         let class_weights = splits.class_weights(&objects, weights);
@@ -483,17 +490,7 @@ impl<'a> Splits<'a> {
             }],
             made: Vec::new(),
             stop: self.stop,
-            scratch: Scratch {
-                branch: Vec::new(),
-                sorted: Vec::new(),
-                keys: Vec::new(),
-                ranks: Vec::new(),
-                counts: Vec::new(),
-                slot: Vec::new(),
-                bits: Vec::new(),
-                classes: vec![0.0; 7 * self.classes],
-                sizes: Vec::new(),
-            },
+            scratch: Scratch::new(self.classes),
         }
     }
 
