@@ -13,8 +13,9 @@
 //! sampled trees per tree): a node holds only its objects (as positions among the root's
 //! objects) and their weights; the order of a numeric feature's values at a node is not
 //! kept but made when its statistics are first asked for, by sorting each object's rank
-//! in the root's order or, for a large node, by one pass over that order (either way the
-//! order the root's sort gives, ties included); objects of weight 1 are scanned over whole
+//! in the root's order or, for a node of more than a few dozen objects, by reading its
+//! ranks off a set of them, a bit per root object (either way the order the root's sort
+//! gives, ties included); objects of weight 1 are scanned over whole
 //! counts; and the statistics of an exact list of objects and weights are remembered
 //! ([`Memo`]), so a node reached again by another path, or made again after
 //! [`Splits::forget_since`], reads them instead of computing them. Statistics depend only
@@ -312,7 +313,8 @@ struct Scratch {
     /// Per class, whole counts: known, then on the left (objects of weight 1).
     counts: Vec<u32>,
     /// Per root position, its position in the node whose statistics are computed, for a
-    /// node large enough to read its orders off a set of ranks ([`NO_RANK`] elsewhere).
+    /// node of weighted objects that reads its orders off a set of ranks ([`NO_RANK`]
+    /// elsewhere).
     slot: Vec<u32>,
     /// A set of ranks among the root's objects, a bit each (empty between uses).
     bits: Vec<u64>,
@@ -368,7 +370,7 @@ fn take_ranks(bits: &mut [u64], mut each: impl FnMut(u32)) {
 /// A numeric feature's values among the root's objects, in the order of the root's sort
 /// (by value, ties by position): each position's rank ([`NO_RANK`] where the value is
 /// missing), and the value and class of the object of each rank.
-#[derive(Default)]
+#[derive(Clone, Default)]
 struct Ranked {
     rank: Vec<u32>,
     /// The position of each rank.
@@ -458,40 +460,24 @@ impl<'a> Splits<'a> {
     /// to value cells of this one in ([`adopt`](Splits::adopt)). Its statistics are this
     /// trie's, bit for bit (they depend on a cell's objects and weights alone).
     pub fn sibling(&self) -> Splits<'a> {
-        let root = &self.cells[0];
-        Splits {
+        let mut sibling = Splits {
             frame: self.frame,
             rows: self.rows.clone(),
             class_of: self.class_of.clone(),
-            ranked: self
-                .ranked
-                .iter()
-                .map(|r| Ranked {
-                    rank: r.rank.clone(),
-                    object: r.object.clone(),
-                    value: r.value.clone(),
-                    class: r.class.clone(),
-                })
-                .collect(),
+            ranked: self.ranked.clone(),
             memo: Memo::default(),
             mc: self.mc,
             classes: self.classes,
             min_objects: self.min_objects,
             cost_based: self.cost_based,
             threshold_penalty: self.threshold_penalty,
-            cells: vec![Cell {
-                objects: root.objects.clone(),
-                weights: root.weights.clone(),
-                total: root.total,
-                unit: root.unit,
-                path: Vec::new(),
-                class_weights: root.class_weights.clone(),
-                ..Cell::placeholder()
-            }],
+            cells: Vec::new(),
             made: Vec::new(),
             stop: self.stop,
             scratch: Scratch::new(self.classes),
-        }
+        };
+        sibling.adopt(self, 0);
+        sibling
     }
 
     /// The features a cell may be split on.
@@ -599,8 +585,11 @@ impl<'a> Splits<'a> {
             {
                 Some((entry, stats)) => (Some(entry), stats),
                 None => {
-                    let large = self.reads_rank_set(cell.objects.len());
-                    if large {
+                    let rank_set = self.reads_rank_set(cell.objects.len());
+                    // Where each object sits in the cell, for the weighted numeric scan
+                    // (objects of weight 1 need no weights, DTMC's scan is weighted).
+                    let slots = rank_set && (!cell.unit || self.cost_based);
+                    if slots {
                         let slot = &mut self.scratch.slot;
                         slot.resize(self.rows.len(), NO_RANK);
                         for (p, &o) in cell.objects.iter().enumerate() {
@@ -608,9 +597,9 @@ impl<'a> Splits<'a> {
                         }
                     }
                     let stats: Arc<[Stat]> = (0..self.frame.feature_count())
-                        .filter_map(|f| self.stat(f, &cell, large))
+                        .filter_map(|f| self.stat(f, &cell, rank_set))
                         .collect();
-                    if large {
+                    if slots {
                         for &o in &cell.objects {
                             self.scratch.slot[o as usize] = NO_RANK;
                         }
@@ -661,7 +650,7 @@ impl<'a> Splits<'a> {
 
     /// The best split of `feature` for the node's objects, or `None` if it has none
     /// (too few objects with a known value, a single value, no gain).
-    fn stat(&mut self, feature: usize, cell: &Cell, large: bool) -> Option<Stat> {
+    fn stat(&mut self, feature: usize, cell: &Cell, rank_set: bool) -> Option<Stat> {
         let (objects, weights) = (&cell.objects[..], &cell.weights[..]);
         let rows = &self.rows[..];
         let node_weights = &cell.class_weights[..];
@@ -741,7 +730,7 @@ impl<'a> Splits<'a> {
                 let ranked = &self.ranked[feature];
                 let keys = &mut self.scratch.ranks;
                 keys.clear();
-                if large {
+                if rank_set {
                     let bits = &mut self.scratch.bits;
                     set_ranks(bits, ranked.object.len(), objects, &ranked.rank);
                     take_ranks(bits, |r| keys.push(r));
@@ -826,7 +815,7 @@ impl<'a> Splits<'a> {
                 let ranked = &self.ranked[feature];
                 let keys = &mut self.scratch.keys;
                 keys.clear();
-                if large {
+                if rank_set {
                     let (bits, slot) = (&mut self.scratch.bits, &self.scratch.slot);
                     set_ranks(bits, ranked.object.len(), objects, &ranked.rank);
                     let object = &ranked.object[..];
