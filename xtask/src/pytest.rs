@@ -1,6 +1,7 @@
 //! `cargo xtask test`: every test of the repository, Rust and Python.
 //!
-//! 1. `cargo test --workspace`;
+//! 1. `cargo test --workspace`, then the examples of `cslearn`'s work counts, which only
+//!    a build with its `work-counts` feature has;
 //! 2. the project's virtual environment under `target/py-venv` (`crate::python`: made
 //!    once, with `$PYTHON` or `python3`, and given the pinned packages of
 //!    `crates/csrl-py/requirements-test.txt` whenever they change);
@@ -22,7 +23,7 @@ use crate::python::{run, venv};
 /// Arguments of `cargo xtask test`.
 #[derive(clap::Args)]
 pub struct TestArgs {
-    /// Skip `cargo test --workspace` (run only the Python tests).
+    /// Skip the Rust tests (run only the Python tests).
     #[arg(long)]
     python_only: bool,
     /// Arguments passed on to pytest (after `--`).
@@ -38,6 +39,17 @@ pub fn test(args: &TestArgs) -> Result<()> {
     if !args.python_only {
         run(Command::new(&cargo)
             .args(["test", "--workspace"])
+            .current_dir(&root))?;
+        run(Command::new(&cargo)
+            .args([
+                "test",
+                "-p",
+                "cslearn",
+                "--features",
+                "work-counts",
+                "--doc",
+                "testcost::work",
+            ])
             .current_dir(&root))?;
     }
 

@@ -135,8 +135,8 @@ pub struct TestcostArgs {
     /// the same data sets, price sets, draws, folds, seed and settings, but their own
     /// learners, runs and mc (a subset of `--mc`). Only learners this run does not have are
     /// added, each row saying how many runs it averages and each ratio to CS-ID3 taken on
-    /// its own runs. The committed table takes ACT and CVT this way, from one run at mc 500
-    /// and 1000 (`docs/testcost.md`).
+    /// its own runs. The committed table takes ACT, CVT and VOI this way, each from ten
+    /// runs of the same protocol (`docs/testcost.md`).
     #[arg(long, value_delimiter = ',')]
     with: Vec<PathBuf>,
     /// The Python interpreter of CEGB's worker (`--learners ...,cegb`), which must have

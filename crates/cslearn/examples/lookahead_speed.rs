@@ -21,10 +21,20 @@
 //!
 //! `--each` grows each learner's trees at the benchmark's four costs (mc 100, 500, 1000
 //! and 5000) one by one with `fit`, then all at once with `fit_each`, checks that they are
-//! the same trees, and prints both times.
+//! the same trees, and prints both times, and (where EG2 ran first) the time per tree of
+//! all at once over EG2's, the benchmark's measure: a learner whose tree depends on the
+//! costs grows four trees, EG2 one tree that serves the four.
 //!
 //! LEARNER is any of the family's names (default `eg2,act,cvt`); the columns give each
 //! learner's time over EG2's and over ACT's, where those ran before it.
+//!
+//! Built with `--features work-counts` (`cargo run --release -p cslearn --features
+//! work-counts --example lookahead_speed -- ...`), every mode but `--check` also gives the
+//! work of each tree apart from the machine: the objects of the nodes whose split
+//! statistics were computed (each read once per feature), and that over EG2's. Time over
+//! EG2's may sit below work over EG2's: a greedy tree's time also holds what the count
+//! leaves out (the root's sorted orders, the pruning), and a small node costs less per
+//! object than the root. `--each` also gives the nodes split per node scored.
 
 #[path = "../tests/support/lookahead.rs"]
 #[expect(dead_code, reason = "the pin test's parts this example does not use")]
@@ -42,6 +52,40 @@ use lookahead::{Case, catalogue, fingerprint, pins};
 /// and free many small vectors.
 #[global_allocator]
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
+/// The objects of the nodes whose split statistics this process has computed so far,
+/// where the build counts them (`--features work-counts`).
+#[cfg(feature = "work-counts")]
+fn scored() -> Option<u64> {
+    Some(cslearn::testcost::Work::now().objects)
+}
+
+/// The nodes whose statistics this process has computed, and the nodes it has split,
+/// so far, where the build counts them.
+#[cfg(feature = "work-counts")]
+fn nodes() -> Option<(u64, u64)> {
+    let work = cslearn::testcost::Work::now();
+    Some((work.nodes, work.splits))
+}
+
+/// Nothing: the build does not count (`--features work-counts` does).
+#[cfg(not(feature = "work-counts"))]
+fn scored() -> Option<u64> {
+    None
+}
+
+/// Nothing: the build does not count.
+#[cfg(not(feature = "work-counts"))]
+fn nodes() -> Option<(u64, u64)> {
+    None
+}
+
+/// `value / base` to one decimal, or `-` where either is unknown.
+fn over(value: Option<f64>, base: Option<f64>) -> String {
+    value
+        .zip(base)
+        .map_or("-".into(), |(v, b)| format!("{:.1}", v / b))
+}
 
 fn check() -> Result<(), Box<dyn std::error::Error>> {
     let catalogue = catalogue();
@@ -74,7 +118,9 @@ fn check() -> Result<(), Box<dyn std::error::Error>> {
 /// prices, random prices of seed 1, seed 1).
 fn each(names: &[String], learners: &[Method]) -> Result<(), Box<dyn std::error::Error>> {
     let catalogue = catalogue();
-    println!("dataset        learner   one by one ms   all at once ms   ratio");
+    println!(
+        "dataset        learner   one by one ms   all at once ms   ratio   x EG2   scored/tree  work x EG2   splits"
+    );
     for name in names {
         let loaded = catalogue.load(name)?;
         let frame = &loaded.frame;
@@ -91,6 +137,8 @@ fn each(names: &[String], learners: &[Method]) -> Result<(), Box<dyn std::error:
             selection_prices: SelectionPrices::Listed,
             ..FamilyParams::default()
         };
+        // EG2's time and work per tree, where it ran first.
+        let mut eg2: Option<(f64, Option<f64>)> = None;
         for &learner in learners {
             let start = Instant::now();
             let alone: Vec<_> = mcs
@@ -98,17 +146,37 @@ fn each(names: &[String], learners: &[Method]) -> Result<(), Box<dyn std::error:
                 .map(|mc| fit(learner, frame, &train, &prices, mc, &params, 1))
                 .collect();
             let one_by_one = start.elapsed().as_secs_f64() * 1e3;
+            let (before, counted) = (scored(), nodes());
             let start = Instant::now();
             let together = fit_each(learner, frame, &train, &prices, &mcs, &params, 1);
             let at_once = start.elapsed().as_secs_f64() * 1e3;
+            let work = before.zip(scored()).map(|(a, b)| (b - a) as f64);
+            // Nodes split per node scored.
+            let splits = counted.zip(nodes()).map(|((n0, s0), (n1, s1))| {
+                format!("{:.2}", (s1 - s0) as f64 / (n1 - n0).max(1) as f64)
+            });
+            // Per tree, as the benchmark's `timing.csv` counts them.
+            let trees = if learner.depends_on_mc() {
+                mcs.len()
+            } else {
+                1
+            } as f64;
+            let (per_tree, work) = (at_once / trees, work.map(|w| w / trees));
             if alone != together {
                 return Err(format!("{name} {}: fit_each grew other trees", learner.name()).into());
             }
             println!(
-                "{name:<14} {:<7} {one_by_one:>15.1} {at_once:>16.1} {:>7.2}",
+                "{name:<14} {:<7} {one_by_one:>15.1} {at_once:>16.1} {:>7.2} {:>7} {:>13} {:>11} {:>8}",
                 learner.name(),
-                at_once / one_by_one
+                at_once / one_by_one,
+                over(Some(per_tree), eg2.map(|(t, _)| t)),
+                work.map_or("-".into(), |w| format!("{w:.0}")),
+                over(work, eg2.and_then(|(_, w)| w)),
+                splits.unwrap_or_else(|| "-".into()),
             );
+            if learner == Method::Eg2 {
+                eg2 = Some((per_tree, work));
+            }
         }
     }
     Ok(())
@@ -126,7 +194,7 @@ fn file(path: &str, target: &str, learners: &[Method]) -> Result<(), Box<dyn std
         frame.len(),
         frame.feature_count()
     );
-    println!("learner  threads        ms  nodes   x EG2");
+    println!("learner  threads        ms  nodes   x EG2     scored  work x EG2");
     // One untimed tree first, as in the table of data sets.
     fit(Method::Eg2, &frame, &rows, &prices, &mc, &params, 1);
     let mut eg2 = None;
@@ -149,21 +217,28 @@ fn file(path: &str, target: &str, learners: &[Method]) -> Result<(), Box<dyn std
                 },
                 ..params
             };
+            let before = scored();
             let start = Instant::now();
             let tree = fit(learner, &frame, &rows, &prices, &mc, &params, 1).tree;
             let ms = start.elapsed().as_secs_f64() * 1e3;
-            let ratio = eg2.map_or("-".into(), |b: f64| format!("{:.1}", ms / b));
+            let work = before.zip(scored()).map(|(a, b)| (b - a) as f64);
             let name = match lookahead {
                 Some(d) => format!("{}-{d}", learner.name()),
                 None => learner.name().to_string(),
             };
-            println!("{name:<7} {t:>8} {ms:>9.1} {:>6} {ratio:>7}", tree.len());
+            println!(
+                "{name:<7} {t:>8} {ms:>9.1} {:>6} {:>7} {:>10} {:>11}",
+                tree.len(),
+                over(Some(ms), eg2.map(|(b, _)| b)),
+                work.map_or("-".into(), |w| w.to_string()),
+                over(work, eg2.and_then(|(_, w)| w)),
+            );
             if lookahead.is_some() {
                 // Each lookahead grows a tree of its own.
                 continue;
             }
             if learner == Method::Eg2 {
-                eg2 = Some(ms);
+                eg2 = Some((ms, work));
             }
             trees.push(tree);
         }
@@ -212,10 +287,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if sweep {
         return each(&names, &learners);
     }
-    println!("dataset        learner   ms/tree  nodes   x EG2   x ACT  fingerprint");
+    println!(
+        "dataset        learner   ms/tree  nodes   x EG2   x ACT     scored  work x EG2  fingerprint"
+    );
     for name in &names {
         let loaded = catalogue.load(name)?;
-        let (mut eg2, mut act) = (None, None);
+        let (mut eg2, mut act, mut eg2_work) = (None, None, None);
         // One untimed tree first: the process's first allocations and page faults would
         // otherwise be charged to the first learner timed.
         let warm_up = Case {
@@ -236,20 +313,23 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 mc: 500.0,
                 objects: 0,
             };
+            let before = scored();
             let start = Instant::now();
             let tree = case.grow(&loaded);
             let ms = start.elapsed().as_secs_f64() * 1e3;
-            let ratio = |base: Option<f64>| base.map_or("-".into(), |b| format!("{:.1}", ms / b));
+            let work = before.zip(scored()).map(|(a, b)| (b - a) as f64);
             println!(
-                "{name:<14} {:<7} {ms:>9.2} {:>6} {:>7} {:>7}  {}",
+                "{name:<14} {:<7} {ms:>9.2} {:>6} {:>7} {:>7} {:>10} {:>11}  {}",
                 learner.name(),
                 tree.len(),
-                ratio(eg2),
-                ratio(act),
+                over(Some(ms), eg2),
+                over(Some(ms), act),
+                work.map_or("-".into(), |w| w.to_string()),
+                over(work, eg2_work),
                 fingerprint(&tree)
             );
             match learner {
-                Method::Eg2 => eg2 = Some(ms),
+                Method::Eg2 => (eg2, eg2_work) = (Some(ms), work),
                 Method::Act => act = Some(ms),
                 _ => {}
             }

@@ -81,6 +81,8 @@ mod splits;
 mod stop;
 mod tree;
 mod voi;
+#[cfg(feature = "work-counts")]
+mod work;
 
 pub use act::ActParams;
 pub use budget::Budget;
@@ -100,3 +102,5 @@ pub use tree::{
     NodeValue, Pruning, SelectionPrices, Split, TreeFault, TreeNode, laplace,
 };
 pub use voi::{VoiLeaf, VoiParams};
+#[cfg(feature = "work-counts")]
+pub use work::Work;

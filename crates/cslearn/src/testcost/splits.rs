@@ -322,6 +322,9 @@ struct Scratch {
     classes: Vec<f64>,
     /// Per value of a nominal feature, the weight of its branch.
     sizes: Vec<f64>,
+    /// Per object of a cell being split, its branch ([`NO_BRANCH`] where its value is
+    /// missing).
+    of: Vec<u32>,
 }
 
 impl Scratch {
@@ -337,12 +340,16 @@ impl Scratch {
             bits: Vec::new(),
             classes: vec![0.0; 7 * classes],
             sizes: Vec::new(),
+            of: Vec::new(),
         }
     }
 }
 
 /// The rank of a missing value.
 const NO_RANK: u32 = u32::MAX;
+
+/// The branch of a missing value.
+const NO_BRANCH: u32 = u32::MAX;
 
 /// Sets in `bits` (empty, or sized for `ranks` ranks) the rank of each of `objects` whose
 /// value is known.
@@ -585,6 +592,8 @@ impl<'a> Splits<'a> {
             {
                 Some((entry, stats)) => (Some(entry), stats),
                 None => {
+                    #[cfg(feature = "work-counts")]
+                    super::work::scored(cell.objects.len());
                     let rank_set = self.reads_rank_set(cell.objects.len());
                     // Where each object sits in the cell, for the weighted numeric scan
                     // (objects of weight 1 need no weights, DTMC's scan is weighted).
@@ -999,6 +1008,8 @@ impl<'a> Splits<'a> {
         match found {
             Some(i) => i,
             None => {
+                #[cfg(feature = "work-counts")]
+                super::work::split();
                 let made = self.split(c, stat);
                 self.cells[c as usize].children.push(made);
                 self.made.push(c);
@@ -1029,84 +1040,116 @@ impl<'a> Splits<'a> {
             }
         };
         let cell = &self.cells[c as usize];
-        // The known weight and the count of each branch, and the objects whose value is
-        // missing, first: every child's vectors are then made at their size.
+        // Each object's branch ([`NO_BRANCH`] for a missing value), the known weight and
+        // the count of each branch, and how many values are missing, first: every child's
+        // vectors are then made at their size.
+        let (of, counts) = (&mut self.scratch.of, &mut self.scratch.counts);
+        of.clear();
+        counts.clear();
+        counts.resize(branches, 0);
         let mut known_by_branch = vec![0.0; branches];
-        let mut counts = vec![0usize; branches];
-        let mut unknown: Vec<usize> = Vec::new();
-        for (p, (&o, &w)) in cell.objects.iter().zip(&cell.weights).enumerate() {
+        let mut unknown = 0usize;
+        for (&o, &w) in cell.objects.iter().zip(&cell.weights) {
             match branch_of(self.rows[o as usize]) {
                 Some(b) => {
                     known_by_branch[b] += w;
                     counts[b] += 1;
+                    of.push(b as u32);
                 }
-                None => unknown.push(p),
+                None => {
+                    unknown += 1;
+                    of.push(NO_BRANCH);
+                }
             }
         }
         let known_total: f64 = known_by_branch.iter().sum();
         let shares: Vec<f64> = known_by_branch.iter().map(|k| k / known_total).collect();
-        let mut parts: Vec<(Vec<u32>, Vec<f64>)> = (0..branches)
+        // Each child's objects, weights and weight per class, added in the child's order
+        // (the known objects in the cell's order, then those with a missing value), so
+        // the sums are the ones a pass over the child would make.
+        let k = self.classes;
+        let mut parts: Vec<(Vec<u32>, Vec<f64>, Vec<f64>)> = (0..branches)
             .map(|b| {
-                let size = counts[b] + if shares[b] > 0.0 { unknown.len() } else { 0 };
-                (Vec::with_capacity(size), Vec::with_capacity(size))
+                let size = counts[b] as usize + if shares[b] > 0.0 { unknown } else { 0 };
+                (
+                    Vec::with_capacity(size),
+                    Vec::with_capacity(size),
+                    vec![0.0; k],
+                )
             })
             .collect();
-        // The objects with a known value go to their branch in the cell's order; those
-        // with a missing value follow them in every branch of positive share.
-        for (&o, &w) in cell.objects.iter().zip(&cell.weights) {
-            if let Some(b) = branch_of(self.rows[o as usize]) {
-                parts[b].0.push(o);
-                parts[b].1.push(w);
+        for ((&o, &w), &b) in cell.objects.iter().zip(&cell.weights).zip(of.iter()) {
+            if b != NO_BRANCH {
+                let part = &mut parts[b as usize];
+                part.0.push(o);
+                part.1.push(w);
+                part.2[self.class_of[o as usize] as usize] += w;
             }
         }
-        for &p in &unknown {
-            for (b, part) in parts.iter_mut().enumerate() {
-                if shares[b] > 0.0 {
-                    part.0.push(cell.objects[p]);
-                    part.1.push(cell.weights[p] * shares[b]);
+        if unknown > 0 {
+            for ((&o, &w), &b) in cell.objects.iter().zip(&cell.weights).zip(of.iter()) {
+                if b != NO_BRANCH {
+                    continue;
                 }
-            }
-        }
-        // The held-out objects follow the same rule, with the training shares.
-        let mut held: Vec<(Vec<u32>, Vec<f64>)> = vec![(Vec::new(), Vec::new()); branches];
-        for (&r, &w) in cell.held_rows.iter().zip(&cell.held_weights) {
-            match branch_of(r) {
-                Some(b) => {
-                    held[b].0.push(r);
-                    held[b].1.push(w);
-                }
-                None => {
-                    for (b, part) in held.iter_mut().enumerate() {
-                        if shares[b] > 0.0 {
-                            part.0.push(r);
-                            part.1.push(w * shares[b]);
-                        }
+                let class = self.class_of[o as usize] as usize;
+                for (part, &share) in parts.iter_mut().zip(&shares) {
+                    if share > 0.0 {
+                        let weight = w * share;
+                        part.0.push(o);
+                        part.1.push(weight);
+                        part.2[class] += weight;
                     }
                 }
             }
         }
-        // Without held-out objects (every tree but ICET's search) there is nothing to count.
-        let held_out: Vec<Vec<f64>> = if cell.held_rows.is_empty() {
-            Vec::new()
-        } else {
-            held.iter()
+        // The held-out objects follow the same rule, with the training shares. Without
+        // them (every tree but ICET's search) there is nothing to send or count.
+        let mut held: Vec<(Vec<u32>, Vec<f64>)> = Vec::new();
+        let mut held_out: Vec<Vec<f64>> = Vec::new();
+        if !cell.held_rows.is_empty() {
+            held = vec![(Vec::new(), Vec::new()); branches];
+            for (&r, &w) in cell.held_rows.iter().zip(&cell.held_weights) {
+                match branch_of(r) {
+                    Some(b) => {
+                        held[b].0.push(r);
+                        held[b].1.push(w);
+                    }
+                    None => {
+                        for (b, part) in held.iter_mut().enumerate() {
+                            if shares[b] > 0.0 {
+                                part.0.push(r);
+                                part.1.push(w * shares[b]);
+                            }
+                        }
+                    }
+                }
+            }
+            held_out = held
+                .iter()
                 .map(|(rows, weights)| self.row_class_weights(rows, weights))
-                .collect()
-        };
+                .collect();
+        }
+        // A child of a cell whose weights are all 1, with no value missing, has weights
+        // of 1 too, and its total is its count.
+        let whole = cell.unit && unknown == 0;
         let mut path = cell.path.clone();
         path.push(feature);
         let mut made = Vec::with_capacity(branches);
-        for (b, ((objects, weights), (held_rows, held_weights))) in
-            parts.into_iter().zip(held).enumerate()
-        {
+        let mut held = held.into_iter();
+        for (b, (objects, weights, class_weights)) in parts.into_iter().enumerate() {
+            let (held_rows, held_weights) = held.next().unwrap_or_default();
             if objects.is_empty() {
                 made.push(None);
                 continue;
             }
-            let class_weights = self.class_weights(&objects, &weights);
+            let (total, unit) = if whole {
+                (objects.len() as f64, true)
+            } else {
+                (weights.iter().sum(), weights.iter().all(|&w| w == 1.0))
+            };
             self.cells.push(Cell {
-                total: weights.iter().sum(),
-                unit: weights.iter().all(|&w| w == 1.0),
+                total,
+                unit,
                 objects,
                 weights,
                 path: path.clone(),
