@@ -310,7 +310,8 @@ struct Scratch {
     keys: Vec<u64>,
     /// The ranks of the objects with a known value, to sort (objects of weight 1).
     ranks: Vec<u32>,
-    /// Per class, whole counts: known, then on the left (objects of weight 1).
+    /// Per class, whole counts: known, then on the left (objects of weight 1); in a
+    /// split, the objects of each branch with a known value.
     counts: Vec<u32>,
     /// Per root position, its position in the node whose statistics are computed, for a
     /// node of weighted objects that reads its orders off a set of ranks ([`NO_RANK`]
