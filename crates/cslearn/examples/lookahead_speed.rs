@@ -53,31 +53,25 @@ use lookahead::{Case, catalogue, fingerprint, pins};
 #[global_allocator]
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
-/// The objects of the nodes whose split statistics this process has computed so far,
-/// where the build counts them (`--features work-counts`).
+/// The work this process has counted so far: the nodes whose split statistics were
+/// computed, their objects, and the nodes split, where the build counts them
+/// (`--features work-counts`).
 #[cfg(feature = "work-counts")]
-fn scored() -> Option<u64> {
-    Some(cslearn::testcost::Work::now().objects)
-}
-
-/// The nodes whose statistics this process has computed, and the nodes it has split,
-/// so far, where the build counts them.
-#[cfg(feature = "work-counts")]
-fn nodes() -> Option<(u64, u64)> {
+fn counted() -> Option<(u64, u64, u64)> {
     let work = cslearn::testcost::Work::now();
-    Some((work.nodes, work.splits))
+    Some((work.nodes, work.objects, work.splits))
 }
 
 /// Nothing: the build does not count (`--features work-counts` does).
 #[cfg(not(feature = "work-counts"))]
-fn scored() -> Option<u64> {
+fn counted() -> Option<(u64, u64, u64)> {
     None
 }
 
-/// Nothing: the build does not count.
-#[cfg(not(feature = "work-counts"))]
-fn nodes() -> Option<(u64, u64)> {
-    None
+/// The work counted since the reading `before`.
+fn since(before: Option<(u64, u64, u64)>) -> Option<(u64, u64, u64)> {
+    let ((n0, o0, s0), (n1, o1, s1)) = before.zip(counted())?;
+    Some((n1 - n0, o1 - o0, s1 - s0))
 }
 
 /// `value / base` to one decimal, or `-` where either is unknown.
@@ -146,15 +140,15 @@ fn each(names: &[String], learners: &[Method]) -> Result<(), Box<dyn std::error:
                 .map(|mc| fit(learner, frame, &train, &prices, mc, &params, 1))
                 .collect();
             let one_by_one = start.elapsed().as_secs_f64() * 1e3;
-            let (before, counted) = (scored(), nodes());
+            let before = counted();
             let start = Instant::now();
             let together = fit_each(learner, frame, &train, &prices, &mcs, &params, 1);
             let at_once = start.elapsed().as_secs_f64() * 1e3;
-            let work = before.zip(scored()).map(|(a, b)| (b - a) as f64);
+            let done = since(before);
+            let work = done.map(|(_, objects, _)| objects as f64);
             // Nodes split per node scored.
-            let splits = counted.zip(nodes()).map(|((n0, s0), (n1, s1))| {
-                format!("{:.2}", (s1 - s0) as f64 / (n1 - n0).max(1) as f64)
-            });
+            let splits = done
+                .map(|(nodes, _, splits)| format!("{:.2}", splits as f64 / nodes.max(1) as f64));
             // Per tree, as the benchmark's `timing.csv` counts them.
             let trees = if learner.depends_on_mc() {
                 mcs.len()
@@ -217,11 +211,11 @@ fn file(path: &str, target: &str, learners: &[Method]) -> Result<(), Box<dyn std
                 },
                 ..params
             };
-            let before = scored();
+            let before = counted();
             let start = Instant::now();
             let tree = fit(learner, &frame, &rows, &prices, &mc, &params, 1).tree;
             let ms = start.elapsed().as_secs_f64() * 1e3;
-            let work = before.zip(scored()).map(|(a, b)| (b - a) as f64);
+            let work = since(before).map(|(_, objects, _)| objects as f64);
             let name = match lookahead {
                 Some(d) => format!("{}-{d}", learner.name()),
                 None => learner.name().to_string(),
@@ -313,11 +307,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 mc: 500.0,
                 objects: 0,
             };
-            let before = scored();
+            let before = counted();
             let start = Instant::now();
             let tree = case.grow(&loaded);
             let ms = start.elapsed().as_secs_f64() * 1e3;
-            let work = before.zip(scored()).map(|(a, b)| (b - a) as f64);
+            let work = since(before).map(|(_, objects, _)| objects as f64);
             println!(
                 "{name:<14} {:<7} {ms:>9.2} {:>6} {:>7} {:>7} {:>10} {:>11}  {}",
                 learner.name(),
