@@ -188,7 +188,7 @@ fn file(path: &str, target: &str, learners: &[Method]) -> Result<(), Box<dyn std
         frame.len(),
         frame.feature_count()
     );
-    println!("learner  threads        ms  nodes   x EG2     scored  work x EG2");
+    println!("learner  threads        ms  nodes   x EG2     scored  work x EG2  fingerprint");
     // One untimed tree first, as in the table of data sets.
     fit(Method::Eg2, &frame, &rows, &prices, &mc, &params, 1);
     let mut eg2 = None;
@@ -221,11 +221,12 @@ fn file(path: &str, target: &str, learners: &[Method]) -> Result<(), Box<dyn std
                 None => learner.name().to_string(),
             };
             println!(
-                "{name:<7} {t:>8} {ms:>9.1} {:>6} {:>7} {:>10} {:>11}",
+                "{name:<7} {t:>8} {ms:>9.1} {:>6} {:>7} {:>10} {:>11}  {}",
                 tree.len(),
                 over(Some(ms), eg2.map(|(b, _)| b)),
                 work.map_or("-".into(), |w| w.to_string()),
                 over(work, eg2.and_then(|(_, w)| w)),
+                fingerprint(&tree),
             );
             if lookahead.is_some() {
                 // Each lookahead grows a tree of its own.

@@ -15,9 +15,12 @@
 //! kept but made when its statistics are first asked for, by sorting each object's rank
 //! in the root's order or, for a node of more than a few dozen objects, by reading its
 //! ranks off a set of them, a bit per root object (either way the order the root's sort
-//! gives, ties included); objects of weight 1 are scanned over whole
-//! counts; and the statistics of an exact list of objects and weights are remembered
-//! ([`Memo`]), so a node reached again by another path, or made again after
+//! gives, ties included), or, where the feature has few distinct values for the node's
+//! objects and none missing, not made at all: the objects are tallied per value and
+//! class and the values walked in order (the same thresholds and counts); objects of
+//! weight 1 are scanned over whole counts, with what every feature of the node shares
+//! (its entropy, the terms of split information) computed once; and the statistics of
+//! an exact list of objects and weights are remembered ([`Memo`]), so a node reached again by another path, or made again after
 //! [`Splits::forget_since`], reads them instead of computing them. Statistics depend only
 //! on the node's objects and weights, in their order, so none of this changes a bit of
 //! what a tree reads (`tests/pins/lookahead.txt` holds sixty trees to it).
@@ -208,6 +211,9 @@ pub(crate) struct Splits<'a> {
     made: Vec<u32>,
     /// Once it is requested, no cell offers a test ([`Splits::watch`]).
     stop: Option<&'a Stop>,
+    /// The most tally slots per object of a node ([`Splits::tallies`]): [`TALLY_SLOTS`]
+    /// but in the tests that compare the two ways.
+    tally_slots: usize,
 }
 
 /// A point in a trie's growth ([`Splits::mark`]) to forget what grew after it.
@@ -323,6 +329,13 @@ struct Scratch {
     classes: Vec<f64>,
     /// Per value of a nominal feature, the weight of its branch.
     sizes: Vec<f64>,
+    /// Per group and class of a numeric feature, the node's objects (zero between uses).
+    tally: Vec<u32>,
+    /// The entropy of a node of weight 1, once a feature has computed it.
+    node_entropy: Option<f64>,
+    /// For a node of weight 1, `p log2 p` of each share `w / total` of it (`w` whole) a
+    /// split information has needed (NaN for the others).
+    split_terms: Vec<f64>,
     /// Per object of a cell being split, its branch ([`NO_BRANCH`] where its value is
     /// missing).
     of: Vec<u32>,
@@ -341,9 +354,76 @@ impl Scratch {
             bits: Vec::new(),
             classes: vec![0.0; 7 * classes],
             sizes: Vec::new(),
+            tally: Vec::new(),
+            node_entropy: None,
+            split_terms: Vec::new(),
             of: Vec::new(),
         }
     }
+}
+
+/// The best threshold of a numeric feature over objects of weight 1, the thresholds
+/// offered in increasing order: each side's entropy from whole counts, read from the
+/// table.
+struct WholeScan {
+    table: &'static [f64; TABLE],
+    /// The objects with a known value.
+    all: u32,
+    known_total: f64,
+    /// The least weight of a branch.
+    min: f64,
+    /// The thresholds compared.
+    tested: usize,
+    /// The best so far: its quality, threshold and weight on the left.
+    best: Option<(f64, f64, f64)>,
+}
+
+impl WholeScan {
+    /// The threshold between `value` and `next` (the greater), with `left` objects
+    /// below it, `left_n` of each class, of `known_n` in all.
+    #[inline]
+    fn offer(&mut self, left: u32, known_n: &[u32], left_n: &[u32], value: f64, next: f64) {
+        let left_total = f64::from(left);
+        let right_total = self.known_total - left_total;
+        if left_total < self.min || right_total < self.min {
+            return;
+        }
+        self.tested += 1;
+        let table = self.table;
+        let mut h_left = nlog2n(table, left);
+        let mut h_right = nlog2n(table, self.all - left);
+        for (&kn, &ln) in known_n.iter().zip(left_n) {
+            h_left -= nlog2n(table, ln);
+            h_right -= nlog2n(table, kn - ln);
+        }
+        let quality = -(h_left.max(0.0) + h_right.max(0.0));
+        if self.best.is_none_or(|(q, _, _)| quality > q) {
+            self.best = Some((quality, threshold_between(value, next), left_total));
+        }
+    }
+}
+
+/// The mark of a position of a numeric feature's largest group in its tally slot.
+const DOMINANT: u32 = 1 << 31;
+
+/// The counters per class a numeric feature's largest group is tallied on.
+const SINKS: usize = 8;
+
+/// The most tally slots per object of a node for [`Splits::tallies`].
+const TALLY_SLOTS: usize = 16;
+
+/// The first index from `from` on where `tally` is not zero.
+#[inline]
+fn next_nonzero(tally: &[u32], from: usize) -> Option<usize> {
+    // Eight at a time, where the whole eight can be read together.
+    let mut i = from;
+    while let Some(block) = tally.get(i..i + 8) {
+        if block.iter().fold(0, |a, &t| a | t) != 0 {
+            break;
+        }
+        i += 8;
+    }
+    tally.get(i..)?.iter().position(|&t| t != 0).map(|p| i + p)
 }
 
 /// The rank of a missing value.
@@ -385,6 +465,17 @@ struct Ranked {
     object: Vec<u32>,
     value: Vec<f64>,
     class: Vec<u32>,
+    /// Where no root object misses the value: each position's tally slot, its group
+    /// (the index of its value among the root's distinct values, bit for bit, in the
+    /// sorted order) times the classes plus its class ([`Splits::tally_scan`]); empty
+    /// otherwise.
+    slot: Vec<u32>,
+    /// The value of each group.
+    group_value: Vec<f64>,
+    /// The largest group, whose positions' slots are [`DOMINANT`] and their class: they
+    /// are tallied apart, on [`SINKS`] counters per class in turn, so that the counts of
+    /// one slot do not wait on each other.
+    dominant: u32,
 }
 
 impl<'a> Splits<'a> {
@@ -414,14 +505,56 @@ impl<'a> Splits<'a> {
                     for (k, &p) in known.iter().enumerate() {
                         rank[p as usize] = k as u32;
                     }
+                    let value: Vec<f64> = known
+                        .iter()
+                        .map(|&p| x[rows[p as usize] as usize])
+                        .collect();
+                    let (mut slot, mut group_value) = (Vec::new(), Vec::new());
+                    let mut dominant = 0;
+                    let k = frame.class_count();
+                    if known.len() == rows.len() && (rows.len() + 1) * k < DOMINANT as usize {
+                        let mut group = vec![0; rows.len()];
+                        let mut sizes: Vec<usize> = Vec::new();
+                        for (&p, &v) in known.iter().zip(&value) {
+                            if group_value
+                                .last()
+                                .is_none_or(|g: &f64| g.to_bits() != v.to_bits())
+                            {
+                                group_value.push(v);
+                                sizes.push(0);
+                            }
+                            group[p as usize] = group_value.len() as u32 - 1;
+                            *sizes.last_mut().unwrap_or(&mut 0) += 1;
+                        }
+                        // The largest group (the first of the largest).
+                        dominant = sizes
+                            .iter()
+                            .enumerate()
+                            .fold(
+                                (0, 0),
+                                |(d, n), (g, &s)| if s > n { (g, s) } else { (d, n) },
+                            )
+                            .0 as u32;
+                        slot = group
+                            .iter()
+                            .zip(&class_of)
+                            .map(|(&g, &c)| {
+                                if g == dominant {
+                                    DOMINANT | c
+                                } else {
+                                    g * k as u32 + c
+                                }
+                            })
+                            .collect();
+                    }
                     Ranked {
                         rank,
                         object: known.clone(),
-                        value: known
-                            .iter()
-                            .map(|&p| x[rows[p as usize] as usize])
-                            .collect(),
+                        value,
                         class: known.iter().map(|&p| class_of[p as usize]).collect(),
+                        slot,
+                        group_value,
+                        dominant,
                     }
                 }
                 Column::Nominal { .. } => Ranked::default(),
@@ -443,6 +576,7 @@ impl<'a> Splits<'a> {
             made: Vec::new(),
             stop: None,
             scratch: Scratch::new(classes),
+            tally_slots: TALLY_SLOTS,
         };
         let objects: Vec<u32> = (0..splits.rows.len() as u32).collect();
         let class_weights = splits.class_weights(&objects, weights);
@@ -483,6 +617,7 @@ impl<'a> Splits<'a> {
             made: Vec::new(),
             stop: self.stop,
             scratch: Scratch::new(self.classes),
+            tally_slots: self.tally_slots,
         };
         sibling.adopt(self, 0);
         sibling
@@ -596,6 +731,13 @@ impl<'a> Splits<'a> {
                     #[cfg(feature = "work-counts")]
                     super::work::scored(cell.objects.len());
                     let rank_set = self.reads_rank_set(cell.objects.len());
+                    // What the features of a node of weight 1 share, computed on first use.
+                    self.scratch.node_entropy = None;
+                    if cell.unit {
+                        let terms = &mut self.scratch.split_terms;
+                        terms.clear();
+                        terms.resize(cell.objects.len() + 1, f64::NAN);
+                    }
                     // Where each object sits in the cell, for the weighted numeric scan
                     // (objects of weight 1 need no weights, DTMC's scan is weighted).
                     let slots = rank_set && (!cell.unit || self.cost_based);
@@ -638,6 +780,16 @@ impl<'a> Splits<'a> {
     /// than sorting its own ranks (`m log2 m`): the same order either way.
     fn reads_rank_set(&self, m: usize) -> bool {
         m as f64 * (m as f64).log2() > (self.rows.len() / 64) as f64 + m as f64
+    }
+
+    /// Whether a node of `m` objects of weight 1 scores the numeric feature `ranked` by
+    /// tallying its objects per group and class, then walking the groups
+    /// (`groups * classes` slots), rather than by ordering its objects: where no value is
+    /// missing and the slots are few for the objects. The same thresholds and counts
+    /// either way.
+    fn tallies(&self, ranked: &Ranked, m: usize) -> bool {
+        !ranked.slot.is_empty()
+            && ranked.group_value.len() * self.classes <= self.tally_slots.saturating_mul(m)
     }
 
     /// The weight per class of the root positions `objects`.
@@ -738,9 +890,12 @@ impl<'a> Splits<'a> {
                 // entropy term read from the table by count (the very values `xlog2x`
                 // gives the weights, which are these counts, exactly).
                 let ranked = &self.ranked[feature];
+                let tallied = self.tallies(ranked, objects.len());
                 let keys = &mut self.scratch.ranks;
                 keys.clear();
-                if rank_set {
+                if tallied {
+                    // No value missing: every object is known.
+                } else if rank_set {
                     let bits = &mut self.scratch.bits;
                     set_ranks(bits, ranked.object.len(), objects, &ranked.rank);
                     take_ranks(bits, |r| keys.push(r));
@@ -753,14 +908,15 @@ impl<'a> Splits<'a> {
                     );
                     keys.sort_unstable();
                 }
-                if keys.len() < 2 {
+                let all = if tallied { objects.len() } else { keys.len() };
+                if all < 2 {
                     return None;
                 }
                 let counts = &mut self.scratch.counts;
                 counts.clear();
                 counts.resize(2 * k, 0);
                 let (known_n, left_n) = counts.split_at_mut(k);
-                if keys.len() == objects.len() {
+                if all == objects.len() {
                     // Every object's value known: the node's own counts (whole weights).
                     for (n, &w) in known_n.iter_mut().zip(node_weights) {
                         *n = w as u32;
@@ -775,49 +931,95 @@ impl<'a> Splits<'a> {
                     *w = f64::from(n);
                 }
                 let known_total: f64 = known.iter().sum();
-                let min = min_split(self.min_objects, self.classes, known_total);
-                let base = entropy(known, known_total);
-                let table = xlog2x_table();
-                let all = keys.len() as u32;
-                let mut best: Option<(f64, f64, f64)> = None; // (value, at, left_total)
-                let mut tested = 0usize;
-                // The rank order's columns and the node's ranks as plain slices, read
-                // once (the loop writes only the counts).
-                let (class, values, keys) = (&ranked.class[..], &ranked.value[..], &keys[..]);
-                let mut next = values[keys[0] as usize];
-                for i in 0..keys.len() - 1 {
-                    left_n[class[keys[i] as usize] as usize] += 1;
-                    let value = next;
-                    next = values[keys[i + 1] as usize];
-                    if next <= value {
-                        continue;
+                let base = if all == objects.len() {
+                    // The node's own entropy, the same for every feature known throughout.
+                    *self
+                        .scratch
+                        .node_entropy
+                        .get_or_insert_with(|| entropy(known, known_total))
+                } else {
+                    entropy(known, known_total)
+                };
+                let mut scan = WholeScan {
+                    table: xlog2x_table(),
+                    all: all as u32,
+                    known_total,
+                    min: min_split(self.min_objects, self.classes, known_total),
+                    tested: 0,
+                    best: None,
+                };
+                if tallied {
+                    // Each group's count per class, then the groups in the root's order:
+                    // a threshold wherever the next group present has a greater value,
+                    // with the counts the object by object scan has there.
+                    let tally = &mut self.scratch.tally;
+                    let slots = ranked.group_value.len() * k;
+                    tally.resize(slots + SINKS * k, 0);
+                    let (tally, slot) = (&mut tally[..], &ranked.slot[..]);
+                    for (i, &o) in objects.iter().enumerate() {
+                        let s = slot[o as usize];
+                        let sink = slots + (s & !DOMINANT) as usize * SINKS + i % SINKS;
+                        let s =
+                            std::hint::select_unpredictable(s & DOMINANT == 0, s as usize, sink);
+                        tally[s] += 1;
                     }
-                    let left = i as u32 + 1;
-                    let left_total = f64::from(left);
-                    let right_total = known_total - left_total;
-                    if left_total < min || right_total < min {
-                        continue;
+                    let d = ranked.dominant as usize * k;
+                    for c in 0..k {
+                        let sinks = &mut tally[slots + c * SINKS..slots + (c + 1) * SINKS];
+                        let n: u32 = sinks.iter().sum();
+                        sinks.fill(0);
+                        tally[d + c] = n;
                     }
-                    tested += 1;
-                    let mut h_left = nlog2n(table, left);
-                    let mut h_right = nlog2n(table, all - left);
-                    for (&kn, &ln) in known_n.iter().zip(&*left_n) {
-                        h_left -= nlog2n(table, ln);
-                        h_right -= nlog2n(table, kn - ln);
+                    let tally = &mut tally[..slots];
+                    let mut left = 0u32;
+                    let mut value: Option<f64> = None;
+                    let mut from = 0;
+                    while let Some(s) = next_nonzero(tally, from) {
+                        let g = s / k;
+                        from = (g + 1) * k;
+                        let group = &mut tally[g * k..from];
+                        let n: u32 = group.iter().sum();
+                        let next = ranked.group_value[g];
+                        if let Some(value) = value
+                            && next > value
+                        {
+                            scan.offer(left, known_n, left_n, value, next);
+                        }
+                        for (l, t) in left_n.iter_mut().zip(group.iter_mut()) {
+                            *l += std::mem::take(t);
+                        }
+                        left += n;
+                        value = Some(next);
+                        if left == scan.all {
+                            // The groups after the last present are empty, as the tally
+                            // is left between uses.
+                            break;
+                        }
                     }
-                    let quality = -(h_left.max(0.0) + h_right.max(0.0));
-                    if best.is_none_or(|(q, _, _)| quality > q) {
-                        best = Some((quality, threshold_between(value, next), left_total));
+                } else {
+                    // The rank order's columns and the node's ranks as plain slices, read
+                    // once (the loop writes only the counts).
+                    let (class, values, keys) = (&ranked.class[..], &ranked.value[..], &keys[..]);
+                    let mut next = values[keys[0] as usize];
+                    for i in 0..keys.len() - 1 {
+                        left_n[class[keys[i] as usize] as usize] += 1;
+                        let value = next;
+                        next = values[keys[i + 1] as usize];
+                        if next <= value {
+                            continue;
+                        }
+                        scan.offer(i as u32 + 1, known_n, left_n, value, next);
                     }
                 }
-                let (quality, at, left_total) = best?;
+                let (quality, at, left_total) = scan.best?;
                 self.information_stat(
                     feature,
                     quality,
                     at,
                     [left_total, known_total, total],
                     base,
-                    tested,
+                    scan.tested,
+                    true,
                 )
             }
             Column::Numeric(_) => {
@@ -942,6 +1144,7 @@ impl<'a> Splits<'a> {
                     [left_total, known_total, total],
                     base,
                     tested,
+                    false,
                 )
             }
         }
@@ -950,15 +1153,21 @@ impl<'a> Splits<'a> {
     /// A numeric test's statistics from its best threshold `at` of quality `quality`
     /// (minus the weighted entropy after the split): the weights left of it, with a
     /// known value and in all are `left_total`, `known_total` and `total`; `base` is the
-    /// entropy of the known ones, `tested` the thresholds compared.
+    /// entropy of the known ones, `tested` the thresholds compared. `whole` where the
+    /// objects are of weight 1 (the weights are whole numbers up to the node's count).
+    #[expect(
+        clippy::too_many_arguments,
+        reason = "one numeric scan's outcome, in parts"
+    )]
     fn information_stat(
-        &self,
+        &mut self,
         feature: usize,
         quality: f64,
         at: f64,
         [left_total, known_total, total]: [f64; 3],
         base: f64,
         tested: usize,
+        whole: bool,
     ) -> Option<Stat> {
         let right_total = known_total - left_total;
         let share = known_total / total;
@@ -967,10 +1176,25 @@ impl<'a> Splits<'a> {
             // C4.5 (release 8) charges the choice among thresholds.
             gain -= (tested as f64).log2() / total;
         }
-        let split_info = split_information(
-            [left_total, right_total, total - known_total].into_iter(),
-            total,
-        );
+        let parts = [left_total, right_total, total - known_total];
+        let split_info = if whole {
+            // The same terms, each computed once per node.
+            let terms = &mut self.scratch.split_terms;
+            let mut h = 0.0;
+            for w in parts {
+                if w > 0.0 {
+                    let t = &mut terms[w as usize];
+                    if t.is_nan() {
+                        let p = w / total;
+                        *t = p * p.log2();
+                    }
+                    h -= *t;
+                }
+            }
+            h
+        } else {
+            split_information(parts.into_iter(), total)
+        };
         Some(Stat {
             feature,
             at: Some(at),
@@ -1210,4 +1434,103 @@ pub(crate) fn threshold_between(low: f64, high: f64) -> f64 {
     }
     let halves = low / 2.0 + high / 2.0;
     if separates(halves) { halves } else { low }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{RngExt, SeedableRng};
+    use rand_xoshiro::Xoshiro256PlusPlus;
+
+    /// Every statistic of every cell down to depth three, each feature's split taken in
+    /// turn, bit for bit.
+    fn statistics(splits: &mut Splits<'_>) -> Vec<[u64; 5]> {
+        let mut out = Vec::new();
+        let mut cells = vec![(0u32, 0usize)];
+        while let Some((c, depth)) = cells.pop() {
+            let stats = splits.stats(c).to_vec();
+            for s in &stats {
+                out.push([
+                    s.feature as u64,
+                    s.at.map_or(u64::MAX, f64::to_bits),
+                    s.gain.to_bits(),
+                    s.split_info.to_bits(),
+                    s.exp2_gain.to_bits(),
+                ]);
+                if depth < 3 {
+                    let children = splits.children(c, s).cells.clone();
+                    cells.extend(children.into_iter().flatten().map(|c| (c, depth + 1)));
+                }
+            }
+        }
+        out
+    }
+
+    /// A node's numeric statistics are the same whether its objects are tallied per group
+    /// of equal values or put in order: few values and many (ties throughout, `-0.0`
+    /// beside `0.0`), a feature with missing values, two and three classes, for EG2's
+    /// statistics and C4.5's.
+    #[test]
+    fn tallied_and_ordered_scans_give_the_same_statistics() {
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(7);
+        let n = 300;
+        for classes in [2u32, 3] {
+            let few = [-1.5, -0.0, 0.0, 0.25, 2.0];
+            let columns = vec![
+                Column::Numeric(
+                    (0..n)
+                        .map(|_| few[rng.random_range(0..few.len())])
+                        .collect(),
+                ),
+                Column::Numeric(
+                    (0..n)
+                        .map(|_| f64::from(rng.random_range(0..40u32)))
+                        .collect(),
+                ),
+                Column::Numeric((0..n).map(|_| rng.random_range(-3.0..3.0)).collect()),
+                Column::Numeric(
+                    (0..n)
+                        .map(|i| {
+                            if i % 7 == 0 {
+                                f64::NAN
+                            } else {
+                                f64::from(i as u32 % 9)
+                            }
+                        })
+                        .collect(),
+                ),
+            ];
+            // Classes that follow the first two features in part, so that splits gain.
+            let labels: Vec<u32> = (0..n)
+                .map(|i| {
+                    let (Column::Numeric(a), Column::Numeric(b)) = (&columns[0], &columns[1])
+                    else {
+                        unreachable!()
+                    };
+                    let noise = rng.random_range(0..classes);
+                    if rng.random_range(0..3) == 0 {
+                        noise
+                    } else {
+                        (u32::from(a[i] > 0.1) + u32::from(b[i] > 20.0)) % classes
+                    }
+                })
+                .collect();
+            let names = (0..columns.len()).map(|f| format!("x{f}")).collect();
+            let class_names = (0..classes).map(|c| c.to_string()).collect();
+            let frame = Frame::new(names, columns, labels, class_names).unwrap();
+            let mc = MisclassCosts::uniform(classes as usize, 100.0).unwrap();
+            let rows: Vec<usize> = (0..n).collect();
+            let ones = vec![1.0; n];
+            for criterion in [Criterion::Eg2 { w: 1.0 }, Criterion::C45] {
+                let mut both = [0, usize::MAX].map(|tally_slots| {
+                    let mut splits = Splits::new(&frame, &rows, &ones, &mc, criterion, 2.0);
+                    splits.tally_slots = tally_slots;
+                    statistics(&mut splits)
+                });
+                assert!(both[0].len() > 100, "{}", both[0].len());
+                let [ordered, tallied] = &mut both;
+                assert_eq!(ordered, tallied, "{classes} classes, {criterion:?}");
+            }
+        }
+    }
 }
