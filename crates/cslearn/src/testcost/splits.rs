@@ -212,7 +212,8 @@ pub(crate) struct Splits<'a> {
     /// Once it is requested, no cell offers a test ([`Splits::watch`]).
     stop: Option<&'a Stop>,
     /// The most tally slots per object of a node ([`Splits::tallies`]): [`TALLY_SLOTS`]
-    /// but in the tests that compare the two ways.
+    /// but in the tests that compare the ways (0: no use of the groups of equal values
+    /// at all, as before they were).
     tally_slots: usize,
 }
 
@@ -890,6 +891,16 @@ impl<'a> Splits<'a> {
                 // entropy term read from the table by count (the very values `xlog2x`
                 // gives the weights, which are these counts, exactly).
                 let ranked = &self.ranked[feature];
+                if !ranked.slot.is_empty()
+                    && self.tally_slots > 0
+                    && objects
+                        .iter()
+                        .all(|&o| ranked.slot[o as usize] & DOMINANT != 0)
+                {
+                    // Every object holds the same value (the root's commonest): no
+                    // threshold.
+                    return None;
+                }
                 let tallied = self.tallies(ranked, objects.len());
                 let keys = &mut self.scratch.ranks;
                 keys.clear();
@@ -1468,15 +1479,27 @@ mod tests {
 
     /// A node's numeric statistics are the same whether its objects are tallied per group
     /// of equal values or put in order: few values and many (ties throughout, `-0.0`
-    /// beside `0.0`), a feature with missing values, two and three classes, for EG2's
-    /// statistics and C4.5's.
+    /// beside `0.0`), a sparse feature (nine objects in ten at 0, so that many nodes hold
+    /// a single value), a feature with missing values, two, three and five classes, for
+    /// EG2's statistics and C4.5's.
     #[test]
     fn tallied_and_ordered_scans_give_the_same_statistics() {
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(7);
         let n = 300;
-        for classes in [2u32, 3] {
+        for classes in [2u32, 3, 5] {
             let few = [-1.5, -0.0, 0.0, 0.25, 2.0];
             let columns = vec![
+                Column::Numeric(
+                    (0..n)
+                        .map(|_| {
+                            if rng.random_range(0..10) == 0 {
+                                f64::from(rng.random_range(1..4u32))
+                            } else {
+                                0.0
+                            }
+                        })
+                        .collect(),
+                ),
                 Column::Numeric(
                     (0..n)
                         .map(|_| few[rng.random_range(0..few.len())])
@@ -1503,7 +1526,7 @@ mod tests {
             // Classes that follow the first two features in part, so that splits gain.
             let labels: Vec<u32> = (0..n)
                 .map(|i| {
-                    let (Column::Numeric(a), Column::Numeric(b)) = (&columns[0], &columns[1])
+                    let (Column::Numeric(a), Column::Numeric(b)) = (&columns[1], &columns[2])
                     else {
                         unreachable!()
                     };
