@@ -15,9 +15,10 @@
 //! ```
 //!
 //! `--file CSV TARGET [LEARNER,...]` grows one tree per learner on every object of a CSV
-//! file, every test priced 1, mc 100, ACT and CVT on one thread and on two, VOI looking one, two
-//! and three tests ahead (the Spambase measurements of `docs/testcost.md`: `-- --file
-//! data/uci/spambase/spambase.csv Outcome`, and `... Outcome eg2,voi`).
+//! file, every test priced 1, mc 100, ACT and CVT on one thread and on two, VOI looking
+//! one, two and three tests ahead (the Spambase measurements of `docs/testcost.md`: `--
+//! --file data/uci/spambase/spambase.csv Outcome`, and `... Outcome eg2,voi`), and prints
+//! each tree's fingerprint, to compare two builds tree for tree.
 //!
 //! `--each` grows each learner's trees at the benchmark's four costs (mc 100, 500, 1000
 //! and 5000) one by one with `fit`, then all at once with `fit_each`, checks that they are
