@@ -20,8 +20,8 @@
 //! class and the values walked in order (the same thresholds and counts); objects of
 //! weight 1 are scanned over whole counts, with what every feature of the node shares
 //! (its entropy, the terms of split information) computed once; and the statistics of
-//! an exact list of objects and weights are remembered ([`Memo`]), so a node reached again by another path, or made again after
-//! [`Splits::forget_since`], reads them instead of computing them. Statistics depend only
+//! an exact list of objects and weights are remembered ([`Memo`]), so a node reached
+//! again by another path, or made again after [`Splits::forget_since`], reads them instead of computing them. Statistics depend only
 //! on the node's objects and weights, in their order, so none of this changes a bit of
 //! what a tree reads (`tests/pins/lookahead.txt` holds sixty trees to it).
 
@@ -335,7 +335,7 @@ struct Scratch {
     /// The entropy of a node of weight 1, once a feature has computed it.
     node_entropy: Option<f64>,
     /// For a node of weight 1, `p log2 p` of each share `w / total` of it (`w` whole) a
-    /// split information has needed (NaN for the others).
+    /// split information has needed (NaN for the others; empty until one does).
     split_terms: Vec<f64>,
     /// Per object of a cell being split, its branch ([`NO_BRANCH`] where its value is
     /// missing).
@@ -466,17 +466,97 @@ struct Ranked {
     object: Vec<u32>,
     value: Vec<f64>,
     class: Vec<u32>,
-    /// Where no root object misses the value: each position's tally slot, its group
-    /// (the index of its value among the root's distinct values, bit for bit, in the
-    /// sorted order) times the classes plus its class ([`Splits::tally_scan`]); empty
-    /// otherwise.
+    /// Its values in groups of equal ones, where no root object misses it.
+    groups: Option<Groups>,
+}
+
+/// A numeric feature's values among the root's objects (none missing) in groups of values
+/// equal bit for bit, in the root's order: a node can tally its objects per group and
+/// class instead of putting them in order ([`Splits::tallies`]).
+#[derive(Clone)]
+struct Groups {
+    /// Each root position's tally slot: its group times the classes plus its class; in
+    /// the largest group, [`DOMINANT`] plus its class.
     slot: Vec<u32>,
     /// The value of each group.
-    group_value: Vec<f64>,
-    /// The largest group, whose positions' slots are [`DOMINANT`] and their class: they
-    /// are tallied apart, on [`SINKS`] counters per class in turn, so that the counts of
-    /// one slot do not wait on each other.
-    dominant: u32,
+    value: Vec<f64>,
+    /// The largest group (the first of the largest). Its objects are tallied apart, on
+    /// [`SINKS`] counters per class in turn, so that their counts do not wait on each
+    /// other.
+    dominant: usize,
+}
+
+impl Groups {
+    /// The groups of the root positions `known` (every one, in the root's order), of
+    /// values `value` and classes `class` among `classes`; none where a slot would reach
+    /// [`DOMINANT`].
+    fn new(known: &[u32], value: &[f64], class: &[u32], classes: usize) -> Option<Groups> {
+        if (known.len() + 1) * classes >= DOMINANT as usize {
+            return None;
+        }
+        let mut group = vec![0; known.len()];
+        let (mut values, mut sizes): (Vec<f64>, Vec<usize>) = (Vec::new(), Vec::new());
+        for (&p, &v) in known.iter().zip(value) {
+            match (values.last(), sizes.last_mut()) {
+                (Some(last), Some(size)) if last.to_bits() == v.to_bits() => *size += 1,
+                _ => {
+                    values.push(v);
+                    sizes.push(1);
+                }
+            }
+            group[p as usize] = values.len() - 1;
+        }
+        let dominant = sizes
+            .iter()
+            .enumerate()
+            .fold(
+                (0, 0),
+                |(d, n), (g, &s)| if s > n { (g, s) } else { (d, n) },
+            )
+            .0;
+        let mut slot = vec![0; known.len()];
+        for (&p, &c) in known.iter().zip(class) {
+            let g = group[p as usize];
+            slot[p as usize] = if g == dominant {
+                DOMINANT | c
+            } else {
+                (g * classes) as u32 + c
+            };
+        }
+        Some(Groups {
+            slot,
+            value: values,
+            dominant,
+        })
+    }
+
+    /// Whether every one of `objects` holds the largest group's value.
+    fn all_dominant(&self, objects: &[u32]) -> bool {
+        objects
+            .iter()
+            .all(|&o| self.slot[o as usize] & DOMINANT != 0)
+    }
+
+    /// `objects` tallied per group and class (`classes` of them) into `tally`, which is
+    /// zero on entry and left zero past the groups' slots; the groups' slots returned.
+    fn tally<'t>(&self, objects: &[u32], classes: usize, tally: &'t mut Vec<u32>) -> &'t mut [u32] {
+        let slots = self.value.len() * classes;
+        tally.resize(slots + SINKS * classes, 0);
+        // Plain slices, so that the loop reads neither vector's length again.
+        let (tally, slot) = (&mut tally[..], &self.slot[..]);
+        for (i, &o) in objects.iter().enumerate() {
+            let s = slot[o as usize];
+            let sink = slots + (s & !DOMINANT) as usize * SINKS + i % SINKS;
+            tally[std::hint::select_unpredictable(s & DOMINANT == 0, s as usize, sink)] += 1;
+        }
+        let d = self.dominant * classes;
+        for c in 0..classes {
+            let sinks = slots + c * SINKS..slots + (c + 1) * SINKS;
+            tally[d + c] = tally[sinks.clone()].iter().sum();
+            tally[sinks].fill(0);
+        }
+        &mut tally[..slots]
+    }
 }
 
 impl<'a> Splits<'a> {
@@ -510,52 +590,16 @@ impl<'a> Splits<'a> {
                         .iter()
                         .map(|&p| x[rows[p as usize] as usize])
                         .collect();
-                    let (mut slot, mut group_value) = (Vec::new(), Vec::new());
-                    let mut dominant = 0;
-                    let k = frame.class_count();
-                    if known.len() == rows.len() && (rows.len() + 1) * k < DOMINANT as usize {
-                        let mut group = vec![0; rows.len()];
-                        let mut sizes: Vec<usize> = Vec::new();
-                        for (&p, &v) in known.iter().zip(&value) {
-                            if group_value
-                                .last()
-                                .is_none_or(|g: &f64| g.to_bits() != v.to_bits())
-                            {
-                                group_value.push(v);
-                                sizes.push(0);
-                            }
-                            group[p as usize] = group_value.len() as u32 - 1;
-                            *sizes.last_mut().unwrap_or(&mut 0) += 1;
-                        }
-                        // The largest group (the first of the largest).
-                        dominant = sizes
-                            .iter()
-                            .enumerate()
-                            .fold(
-                                (0, 0),
-                                |(d, n), (g, &s)| if s > n { (g, s) } else { (d, n) },
-                            )
-                            .0 as u32;
-                        slot = group
-                            .iter()
-                            .zip(&class_of)
-                            .map(|(&g, &c)| {
-                                if g == dominant {
-                                    DOMINANT | c
-                                } else {
-                                    g * k as u32 + c
-                                }
-                            })
-                            .collect();
-                    }
+                    let class: Vec<u32> = known.iter().map(|&p| class_of[p as usize]).collect();
+                    let groups = (known.len() == rows.len())
+                        .then(|| Groups::new(&known, &value, &class, frame.class_count()))
+                        .flatten();
                     Ranked {
                         rank,
-                        object: known.clone(),
+                        object: known,
                         value,
-                        class: known.iter().map(|&p| class_of[p as usize]).collect(),
-                        slot,
-                        group_value,
-                        dominant,
+                        class,
+                        groups,
                     }
                 }
                 Column::Nominal { .. } => Ranked::default(),
@@ -734,11 +778,7 @@ impl<'a> Splits<'a> {
                     let rank_set = self.reads_rank_set(cell.objects.len());
                     // What the features of a node of weight 1 share, computed on first use.
                     self.scratch.node_entropy = None;
-                    if cell.unit {
-                        let terms = &mut self.scratch.split_terms;
-                        terms.clear();
-                        terms.resize(cell.objects.len() + 1, f64::NAN);
-                    }
+                    self.scratch.split_terms.clear();
                     // Where each object sits in the cell, for the weighted numeric scan
                     // (objects of weight 1 need no weights, DTMC's scan is weighted).
                     let slots = rank_set && (!cell.unit || self.cost_based);
@@ -788,9 +828,8 @@ impl<'a> Splits<'a> {
     /// (`groups * classes` slots), rather than by ordering its objects: where no value is
     /// missing and the slots are few for the objects. The same thresholds and counts
     /// either way.
-    fn tallies(&self, ranked: &Ranked, m: usize) -> bool {
-        !ranked.slot.is_empty()
-            && ranked.group_value.len() * self.classes <= self.tally_slots.saturating_mul(m)
+    fn tallies(&self, groups: &Groups, m: usize) -> bool {
+        groups.value.len() * self.classes <= self.tally_slots.saturating_mul(m)
     }
 
     /// The weight per class of the root positions `objects`.
@@ -891,20 +930,17 @@ impl<'a> Splits<'a> {
                 // entropy term read from the table by count (the very values `xlog2x`
                 // gives the weights, which are these counts, exactly).
                 let ranked = &self.ranked[feature];
-                if !ranked.slot.is_empty()
-                    && self.tally_slots > 0
-                    && objects
-                        .iter()
-                        .all(|&o| ranked.slot[o as usize] & DOMINANT != 0)
-                {
+                // The feature's groups, unless the tests compare without them.
+                let groups = ranked.groups.as_ref().filter(|_| self.tally_slots > 0);
+                if groups.is_some_and(|g| g.all_dominant(objects)) {
                     // Every object holds the same value (the root's commonest): no
                     // threshold.
                     return None;
                 }
-                let tallied = self.tallies(ranked, objects.len());
+                let tallied = groups.filter(|g| self.tallies(g, objects.len()));
                 let keys = &mut self.scratch.ranks;
                 keys.clear();
-                if tallied {
+                if tallied.is_some() {
                     // No value missing: every object is known.
                 } else if rank_set {
                     let bits = &mut self.scratch.bits;
@@ -919,7 +955,11 @@ impl<'a> Splits<'a> {
                     );
                     keys.sort_unstable();
                 }
-                let all = if tallied { objects.len() } else { keys.len() };
+                let all = if tallied.is_some() {
+                    objects.len()
+                } else {
+                    keys.len()
+                };
                 if all < 2 {
                     return None;
                 }
@@ -959,29 +999,11 @@ impl<'a> Splits<'a> {
                     tested: 0,
                     best: None,
                 };
-                if tallied {
+                if let Some(groups) = tallied {
                     // Each group's count per class, then the groups in the root's order:
                     // a threshold wherever the next group present has a greater value,
                     // with the counts the object by object scan has there.
-                    let tally = &mut self.scratch.tally;
-                    let slots = ranked.group_value.len() * k;
-                    tally.resize(slots + SINKS * k, 0);
-                    let (tally, slot) = (&mut tally[..], &ranked.slot[..]);
-                    for (i, &o) in objects.iter().enumerate() {
-                        let s = slot[o as usize];
-                        let sink = slots + (s & !DOMINANT) as usize * SINKS + i % SINKS;
-                        let s =
-                            std::hint::select_unpredictable(s & DOMINANT == 0, s as usize, sink);
-                        tally[s] += 1;
-                    }
-                    let d = ranked.dominant as usize * k;
-                    for c in 0..k {
-                        let sinks = &mut tally[slots + c * SINKS..slots + (c + 1) * SINKS];
-                        let n: u32 = sinks.iter().sum();
-                        sinks.fill(0);
-                        tally[d + c] = n;
-                    }
-                    let tally = &mut tally[..slots];
+                    let tally = groups.tally(objects, k, &mut self.scratch.tally);
                     let mut left = 0u32;
                     let mut value: Option<f64> = None;
                     let mut from = 0;
@@ -990,7 +1012,7 @@ impl<'a> Splits<'a> {
                         from = (g + 1) * k;
                         let group = &mut tally[g * k..from];
                         let n: u32 = group.iter().sum();
-                        let next = ranked.group_value[g];
+                        let next = groups.value[g];
                         if let Some(value) = value
                             && next > value
                         {
@@ -1189,8 +1211,12 @@ impl<'a> Splits<'a> {
         }
         let parts = [left_total, right_total, total - known_total];
         let split_info = if whole {
-            // The same terms, each computed once per node.
+            // The same terms, each computed once per node (the weights are whole, up to
+            // the node's count).
             let terms = &mut self.scratch.split_terms;
+            if terms.is_empty() {
+                terms.resize(total as usize + 1, f64::NAN);
+            }
             let mut h = 0.0;
             for w in parts {
                 if w > 0.0 {
