@@ -21,9 +21,10 @@
 //! weight 1 are scanned over whole counts, with what every feature of the node shares
 //! (its entropy, the terms of split information) computed once; and the statistics of
 //! an exact list of objects and weights are remembered ([`Memo`]), so a node reached
-//! again by another path, or made again after [`Splits::forget_since`], reads them instead of computing them. Statistics depend only
-//! on the node's objects and weights, in their order, so none of this changes a bit of
-//! what a tree reads (`tests/pins/lookahead.txt` holds sixty trees to it).
+//! again by another path, or made again after [`Splits::forget_since`], reads them
+//! instead of computing them. Statistics depend only on the node's objects and weights,
+//! in their order, so none of this changes a bit of what a tree reads
+//! (`tests/pins/lookahead.txt` holds sixty trees to it).
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -1549,13 +1550,13 @@ mod tests {
                         .collect(),
                 ),
             ];
-            // Classes that follow the first two features in part, so that splits gain.
+            // Classes that follow the second and third features in part, so that splits
+            // gain.
+            let (Column::Numeric(a), Column::Numeric(b)) = (&columns[1], &columns[2]) else {
+                unreachable!()
+            };
             let labels: Vec<u32> = (0..n)
                 .map(|i| {
-                    let (Column::Numeric(a), Column::Numeric(b)) = (&columns[1], &columns[2])
-                    else {
-                        unreachable!()
-                    };
                     let noise = rng.random_range(0..classes);
                     if rng.random_range(0..3) == 0 {
                         noise
